@@ -1,0 +1,53 @@
+#include "core/broad_phase.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace superdex {
+
+void FindOverlappingPairs(const std::vector<Aabb>& boxes, std::vector<std::pair<int, int>>* pairs) {
+  pairs->clear();
+  const int n = static_cast<int>(boxes.size());
+  std::vector<int> finite, infinite;
+  finite.reserve(n);
+  for (int i = 0; i < n; ++i) {
+    if (boxes[i].IsEmpty()) continue;
+    const bool bounded = boxes[i].min.allFinite() && boxes[i].max.allFinite();
+    (bounded ? finite : infinite).push_back(i);
+  }
+  // Axis of largest spread of the box centres.
+  int axis = 0;
+  if (!finite.empty()) {
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
+    for (int i : finite) {
+      const Eigen::Vector3d c = 0.5 * (boxes[i].min + boxes[i].max);
+      lo = lo.cwiseMin(c);
+      hi = hi.cwiseMax(c);
+    }
+    (hi - lo).maxCoeff(&axis);
+  }
+  std::sort(finite.begin(), finite.end(), [&](int a, int b) {
+    return boxes[a].min[axis] < boxes[b].min[axis] ||
+           (boxes[a].min[axis] == boxes[b].min[axis] && a < b);
+  });
+  for (size_t s = 0; s < finite.size(); ++s) {
+    const Aabb& a = boxes[finite[s]];
+    for (size_t t = s + 1; t < finite.size(); ++t) {
+      const Aabb& b = boxes[finite[t]];
+      if (b.min[axis] > a.max[axis]) break;
+      if (a.Overlaps(b))
+        pairs->emplace_back(std::min(finite[s], finite[t]), std::max(finite[s], finite[t]));
+    }
+  }
+  for (int i : infinite)
+    for (int j = 0; j < n; ++j)
+      if (j != i && !boxes[j].IsEmpty() && boxes[i].Overlaps(boxes[j])) {
+        // Two infinite boxes would be listed twice; keep the pair once.
+        const bool jInfinite = std::find(infinite.begin(), infinite.end(), j) != infinite.end();
+        if (jInfinite && j < i) continue;
+        pairs->emplace_back(std::min(i, j), std::max(i, j));
+      }
+  std::sort(pairs->begin(), pairs->end());
+}
+
+}  // namespace superdex

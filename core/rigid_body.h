@@ -1,0 +1,119 @@
+// Rigid actors: their description (what a user gives), model (fixed during a run) and state.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/contact_params.h"
+#include "core/enums.h"
+#include "core/error.h"
+#include "geometry/aabb.h"
+#include "geometry/analytic_sdf.h"
+#include "geometry/triangle_mesh.h"
+
+namespace superdex {
+
+enum class RigidShapeKind { Sphere, Box, Mesh, Plane };
+
+/// Geometry of a rigid actor in its own frame. Sphere and Box are centred at the frame origin.
+/// A Plane (static actors only) is the half space {X : n·X <= 0} of its frame. A Mesh is a closed,
+/// outward-oriented triangle mesh in the frame given by its file.
+struct RigidShape {
+  RigidShapeKind kind = RigidShapeKind::Sphere;
+  double radius = 0.5;                                      ///< Sphere [m]
+  Eigen::Vector3d halfExtents = Eigen::Vector3d::Constant(0.5);  ///< Box [m]
+  Eigen::Vector3d planeNormal = Eigen::Vector3d::UnitZ();   ///< Plane (unit after creation)
+  std::shared_ptr<const TriangleMesh> mesh;                 ///< Mesh
+  /// Surface resolution of the colliding samples: icosphere subdivisions for a Sphere, grid
+  /// divisions per box edge for a Box; ignored for Mesh (its own faces) and Plane (no samples).
+  int surfaceResolution = 3;
+};
+
+/// What a user gives to create a rigid actor.
+struct RigidActorDesc {
+  std::string name;
+  bool dynamic = true;
+  RigidShape shape;
+  double density = 1000.0;                    ///< [kg/m³], used when mass is not given
+  std::optional<double> mass;                 ///< [kg]; overrides density
+  std::optional<Eigen::Matrix3d> inertia;     ///< inertia tensor about the centre of mass in the
+                                              ///< shape frame [kg·m²]; default from the shape
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();        ///< shape frame origin [m]
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d linearVelocity = Eigen::Vector3d::Zero();  ///< of the centre of mass [m/s]
+  Eigen::Vector3d angularVelocity = Eigen::Vector3d::Zero(); ///< world frame [rad/s]
+  ContactParams contact;
+  ColliderType colliderType = ColliderType::Auto;
+  ActorBoundaryElementType boundaryElementType = ActorBoundaryElementType::P1Q3;
+  std::string contactLayer = "default";
+};
+
+/// One colliding quadrature sample in the body frame (origin at the centre of mass).
+struct SurfaceSample {
+  Eigen::Vector3d X;       ///< reference position [m]
+  Eigen::Vector3d normal;  ///< outward unit normal n_A in the body frame
+  double weight;           ///< reference-area weight w_q [m²]
+};
+
+/// The analytic field of a rigid collider, in the body frame.
+struct RigidCollider {
+  ColliderType type = ColliderType::None;  ///< resolved: None, Sphere, Box or Plane
+  SphereSdf sphere;
+  BoxSdf box;
+  PlaneSdf plane;
+  double boundingRadius = 0.0;  ///< max |X| over the shape (infinite for a plane) [m]
+  SdfSample Evaluate(const Eigen::Vector3d& X) const;
+};
+
+/// Everything about a rigid actor that stays fixed during a run. The body frame has its origin at
+/// the centre of mass; `shapeOffset` is the centre of mass in the user's shape frame.
+struct RigidBodyModel {
+  std::string name;
+  bool dynamic = true;
+  RigidShape shape;
+  double mass = 0.0;                                        ///< [kg] (0 for static actors)
+  Eigen::Matrix3d secondMoment = Eigen::Matrix3d::Zero();   ///< J = ∫ X Xᵀ dm [kg·m²]
+  Eigen::Vector3d shapeOffset = Eigen::Vector3d::Zero();    ///< [m]
+  std::vector<SurfaceSample> samples;                       ///< colliding role (empty if none)
+  double samplesRadius = 0.0;                               ///< max |X| over the samples [m]
+  Aabb localBounds;                                         ///< body-frame bounds of the shape
+  RigidCollider collider;                                   ///< collider role
+  ColliderType requestedCollider = ColliderType::Auto;
+  ContactParams contact;
+  ActorBoundaryElementType boundaryElementType = ActorBoundaryElementType::P1Q3;
+  std::string contactLayer;
+  std::string notice;  ///< a one-time note for the run log (e.g. a collider not supported yet)
+};
+
+/// Pose and velocity. Velocities are kept in material-point form: the velocity of body point X
+/// is v + Ṙ X, so that BDF combinations of states are plain affine combinations.
+struct RigidBodyState {
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();      ///< centre of mass [m]
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();  ///< rotation body → world
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();      ///< centre-of-mass velocity [m/s]
+  Eigen::Matrix3d Rdot = Eigen::Matrix3d::Zero();   ///< dR/dt [1/s]
+
+  /// World angular velocity ω = axial(Ṙ Rᵀ) [rad/s].
+  Eigen::Vector3d AngularVelocity() const;
+};
+
+/// Builds the model and initial state, validating the description. Returns false with a message
+/// naming the field (`prefix` + snake_case name) on invalid input.
+bool BuildRigidBody(const RigidActorDesc& desc, const std::string& prefix, RigidBodyModel* model,
+                    RigidBodyState* state, Error* error);
+
+/// Kinetic energy ½ m|v|² + ½ tr(Ṙ J Ṙᵀ) [J].
+double KineticEnergy(const RigidBodyModel& model, const RigidBodyState& state);
+/// Linear momentum m v [kg·m/s] and angular momentum about the world origin
+/// m p × v + axial(Ṙ J Rᵀ − R J Ṙᵀ) [kg·m²/s] (the integral of x × v dm over material points).
+Eigen::Vector3d LinearMomentum(const RigidBodyModel& model, const RigidBodyState& state);
+Eigen::Vector3d AngularMomentum(const RigidBodyModel& model, const RigidBodyState& state);
+
+/// World AABB of the shape at the given pose (infinite for a plane).
+Aabb WorldBounds(const RigidBodyModel& model, const Eigen::Vector3d& p, const Eigen::Matrix3d& R);
+
+}  // namespace superdex

@@ -1,0 +1,42 @@
+// Normal penalty between a colliding rigid actor's surface samples and a rigid collider's field.
+#pragma once
+
+#include "core/rigid_body.h"
+#include "energies/normal_penalty.h"
+#include "energies/stencil.h"
+
+namespace superdex {
+
+/// Pose of a rigid body: centre of mass p [m] and rotation R (body → world).
+struct RigidPose {
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+};
+
+/// Sum over the samples of A of w_q W(φ_B(x_A,q)), the discrete Π_{A,B} (spec: "Surface
+/// Quadrature"), with its gradient and Hessian on the stencil
+///   [δp_A, δθ_A]            (6 dofs, B static) or
+///   [δp_A, δθ_A, δp_B, δθ_B] (12 dofs, B dynamic),
+/// with the retractions p ← p + δp, R ← exp([δθ]×) R.
+///
+/// Kinematics of one sample (X in A's body frame): r = R_A X, x = p_A + r, d = x − p_B,
+/// Y = R_Bᵀ d (the pullback X_B(x)), φ = Φ_B(Y), G = ∇Φ_B(Y), world normal n = R_B G.
+///   ∇φ = [n, r × n, −n, −d × n]   (balanced: equal and opposite forces at x, zero net torque)
+///   ∇²φ = J_xᵀ (R_B ∇²Φ_B R_Bᵀ) J_x + S,  J_x = [I, −[r]×, −I, [d]×],
+/// with S the curvature of the retractions contracted with n:
+///   S_θAθA = ½(n rᵀ + r nᵀ) − (n·r) I,   S_θBθB = ½(n dᵀ + d nᵀ) − (n·d) I,
+///   S_θBpA = [n]×,  S_θBpB = −[n]×,  S_θBθA = (n·r) I − r nᵀ   (and their transposes).
+struct RigidPairPenalty {
+  double value = 0.0;      ///< Σ w_q W [J]
+  StencilVector gradient;  ///< [N, N·m]
+  StencilMatrix hessian;   ///< unprojected
+  int activeSamples = 0;   ///< samples with φ < δ
+  double minPhi = INFINITY;///< smallest φ among the samples tested [m]
+};
+
+/// order: 0 value only, 1 with gradient, 2 with gradient and Hessian.
+void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& poseA,
+                              const RigidBodyModel& B, const RigidPose& poseB, bool bDynamic,
+                              const PenaltyParams& params, int order, RigidPairPenalty* out);
+
+}  // namespace superdex

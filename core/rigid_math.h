@@ -1,0 +1,19 @@
+// Rotations: skew matrices, the SO(3) exponential and logarithm, Lie-algebra combinations.
+#pragma once
+
+#include <Eigen/Core>
+
+namespace superdex {
+
+/// [v]× with [v]× w = v × w.
+Eigen::Matrix3d Skew(const Eigen::Vector3d& v);
+/// Axial vector of the skew part of A: a with [a]× = ½(A − Aᵀ).
+Eigen::Vector3d Axial(const Eigen::Matrix3d& A);
+/// exp([θ]×) by Rodrigues' formula (series near θ = 0).
+Eigen::Matrix3d ExpSo3(const Eigen::Vector3d& theta);
+/// θ with exp([θ]×) = R, |θ| <= π.
+Eigen::Vector3d LogSo3(const Eigen::Matrix3d& R);
+/// Nearest rotation to A (polar factor), used to re-orthonormalize after accumulated round-off.
+Eigen::Matrix3d NearestRotation(const Eigen::Matrix3d& A);
+
+}  // namespace superdex

@@ -1,0 +1,53 @@
+// One implicit stage over the scene's rigid bodies, as a StageProblem for the optim/ solvers:
+//   Φ_i(q) = 1/(2Δt_i²) Σ_b E_inertia,b(q)  +  Σ_b U_gravity,b(q)  +  Π_contact(q)   [J]
+// (DESIGN.md "The idea in one paragraph"; dissipation arrives with its own issue).
+#pragma once
+
+#include <vector>
+
+#include "core/contact_pipeline.h"
+#include "core/rigid_body.h"
+#include "optim/stage_problem.h"
+
+namespace superdex {
+
+/// The integrator's data for one stage: step Δt_i [s] and inertial targets x̂ in material-point
+/// form (p̂ [m], R̂ — an affine combination of rotations, not necessarily a rotation).
+struct StageTargets {
+  double dt = 0.0;
+  std::vector<Eigen::Vector3d> pHat;
+  std::vector<Eigen::Matrix3d> RHat;
+};
+
+class RigidStageProblem : public StageProblem {
+ public:
+  /// `poses` is the iterate, updated in place by Commit; dynamic bodies own 6 dofs each
+  /// [δp, δθ] at dofOffset[i] (−1 for static bodies).
+  RigidStageProblem(const std::vector<RigidBodyModel>& models, const std::vector<int>& dofOffset,
+                    int numDofs, const StageTargets& targets, const Eigen::Vector3d& gravity,
+                    ContactPipeline* contact, std::vector<RigidPose>* poses);
+
+  int NumDofs() const override { return numDofs_; }
+  double Value(const Eigen::VectorXd& d) override;
+  double Evaluate(Eigen::VectorXd* gradient, Eigen::SparseMatrix<double>* hessian,
+                  PsdProjection projection) override;
+  void Commit(const Eigen::VectorXd& d) override;
+  /// max over bodies of ‖δp‖∞ and ‖δθ‖ times the body's RMS radius √(tr J / m) [m].
+  double StepNorm(const Eigen::VectorXd& d) const override;
+
+ private:
+  double BodyEnergy(size_t i, const RigidPose& pose) const;
+  void Retract(const Eigen::VectorXd& d, std::vector<RigidPose>* out) const;
+
+  const std::vector<RigidBodyModel>& models_;
+  const std::vector<int>& dofOffset_;
+  int numDofs_;
+  const StageTargets& targets_;
+  Eigen::Vector3d gravity_;
+  ContactPipeline* contact_;
+  std::vector<RigidPose>* poses_;
+  std::vector<RigidPose> trial_;
+  std::vector<Eigen::Triplet<double>> triplets_;
+};
+
+}  // namespace superdex

@@ -1,0 +1,254 @@
+#include "core/scene.h"
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "core/rigid_math.h"
+#include "core/rigid_stage.h"
+
+namespace superdex {
+namespace {
+
+// a·x + b·y over every field (poses as matrices: the result's R need not be a rotation).
+RigidBodyState Affine(double a, const RigidBodyState& x, double b, const RigidBodyState& y) {
+  RigidBodyState s;
+  s.p = a * x.p + b * y.p;
+  s.R = a * x.R + b * y.R;
+  s.v = a * x.v + b * y.v;
+  s.Rdot = a * x.Rdot + b * y.Rdot;
+  return s;
+}
+
+int Severity(StageStatus s) {
+  return s == StageStatus::Converged ? 0 : s == StageStatus::Stopped ? 1 : 2;
+}
+
+}  // namespace
+
+std::string Validate(const SceneSettings& s, const std::string& prefix) {
+  if (!s.gravity.allFinite()) return prefix + "gravity: must be finite";
+  if (std::string m = Validate(s.solver); !m.empty()) return prefix + "solver." + m;
+  if (std::string m = Validate(s.eval, prefix + "experimental_eval_params."); !m.empty()) return m;
+  switch (s.integrator) {
+    case IntegrationMethod::BackwardEuler:
+    case IntegrationMethod::BDF2:
+    case IntegrationMethod::SymplecticDIRK12: break;
+    default:
+      return prefix + "integrator: " + ToString(s.integrator) +
+             " is not supported yet (supported: BackwardEuler, BDF2, SymplecticDIRK12)";
+  }
+  return "";
+}
+
+Scene::Scene(const SceneSettings& settings) : settings_(settings) {}
+
+ActorHandle Scene::AddRigidActor(const RigidActorDesc& desc, Error* error) {
+  RigidBodyModel model;
+  RigidBodyState state;
+  if (!BuildRigidBody(desc, "", &model, &state, error)) return {};
+  models_.push_back(std::move(model));
+  states_.push_back(state);
+  prepared_ = false;
+  hasHistory_ = false;
+  return {static_cast<int>(models_.size()) - 1};
+}
+
+bool Scene::SetIntegrator(IntegrationMethod method, Error* error) {
+  SceneSettings s = settings_;
+  s.integrator = method;
+  if (std::string m = Validate(s); !m.empty()) return Fail(error, m);
+  settings_ = s;
+  hasHistory_ = false;
+  return true;
+}
+
+bool Scene::SetState(ActorHandle a, const RigidBodyState& state, Error* error) {
+  if (a.index < 0 || a.index >= NumActors()) return Fail(error, "actor: invalid handle");
+  if (!state.p.allFinite() || !state.R.allFinite() || !state.v.allFinite() ||
+      !state.Rdot.allFinite())
+    return Fail(error, "state: must be finite");
+  if ((state.R.transpose() * state.R - Eigen::Matrix3d::Identity()).norm() > 1e-9 ||
+      state.R.determinant() <= 0)
+    return Fail(error, "state.R: must be a rotation matrix");
+  states_[a.index] = state;
+  hasHistory_ = false;
+  return true;
+}
+
+void Scene::Prepare() {
+  if (prepared_) return;
+  dofOffset_.assign(models_.size(), -1);
+  numDofs_ = 0;
+  for (size_t i = 0; i < models_.size(); ++i)
+    if (models_[i].dynamic) {
+      dofOffset_[i] = numDofs_;
+      numDofs_ += 6;
+    }
+  pipeline_.Configure(&models_);
+  prepared_ = true;
+}
+
+std::vector<RigidPose> Scene::CurrentPoses() const {
+  std::vector<RigidPose> poses(states_.size());
+  for (size_t i = 0; i < states_.size(); ++i) poses[i] = {states_[i].p, states_[i].R};
+  return poses;
+}
+
+SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& start,
+                              std::vector<RigidPose>* poses) {
+  StageTargets targets;
+  targets.dt = dt;
+  targets.pHat.resize(models_.size());
+  targets.RHat.resize(models_.size());
+  for (size_t i = 0; i < models_.size(); ++i) {
+    targets.pHat[i] = start[i].p + dt * start[i].v;
+    targets.RHat[i] = start[i].R + dt * start[i].Rdot;
+  }
+  RigidStageProblem problem(models_, dofOffset_, numDofs_, targets, settings_.gravity, &pipeline_,
+                            poses);
+  return MinimizeNewton(problem, settings_.solver, dt);
+}
+
+bool Scene::Step(double h, StepReport* report, Error* error) {
+  if (!(std::isfinite(h) && h > 0)) {
+    std::ostringstream s;
+    s << "dt: must be > 0 and finite, got " << h;
+    return Fail(error, s.str());
+  }
+  if (std::string m = Validate(settings_); !m.empty()) return Fail(error, m);
+  const auto t0 = std::chrono::steady_clock::now();
+  Prepare();
+  StepReport rep;
+  rep.dt = h;
+  auto account = [&](const SolverStats& st) {
+    ++rep.stages;
+    rep.newtonIterations += st.iterations;
+    rep.lineSearchSteps += st.lineSearchSteps;
+    rep.finalGradientNorm = std::max(rep.finalGradientNorm, st.finalGradientNorm);
+    if (Severity(st.status) > Severity(rep.status)) {
+      rep.status = st.status;
+      rep.message = st.message;
+    }
+  };
+
+  const size_t n = models_.size();
+  std::vector<RigidPose> poses = CurrentPoses();
+  std::vector<RigidBodyState> next = states_;
+  IntegrationMethod method = settings_.integrator;
+  if (method == IntegrationMethod::BDF2 && !hasHistory_) method = IntegrationMethod::BackwardEuler;
+
+  switch (method) {
+    case IntegrationMethod::BackwardEuler: {
+      account(SolveStage(h, states_, &poses));
+      for (size_t i = 0; i < n; ++i) {
+        if (!models_[i].dynamic) continue;
+        next[i].p = poses[i].p;
+        next[i].R = poses[i].R;
+        next[i].v = (poses[i].p - states_[i].p) / h;
+        next[i].Rdot = (poses[i].R - states_[i].R) / h;
+      }
+      break;
+    }
+    case IntegrationMethod::BDF2: {
+      // Variable-step BDF2, ω = h_n / h_{n−1}:
+      //   x_{n+1} − a x_n + b x_{n−1} = Δt v_{n+1},  a = (1+ω)²/(1+2ω), b = ω²/(1+2ω),
+      //   Δt = h (1+ω)/(1+2ω); the same for v. Stage: x⁰ = a x_n − b x_{n−1}, v⁰ likewise.
+      const double w = h / previousDt_;
+      const double a = (1 + w) * (1 + w) / (1 + 2 * w);
+      const double b = w * w / (1 + 2 * w);
+      const double dt = h * (1 + w) / (1 + 2 * w);
+      std::vector<RigidBodyState> start(n);
+      for (size_t i = 0; i < n; ++i) start[i] = Affine(a, states_[i], -b, previous_[i]);
+      account(SolveStage(dt, start, &poses));
+      for (size_t i = 0; i < n; ++i) {
+        if (!models_[i].dynamic) continue;
+        next[i].p = poses[i].p;
+        next[i].R = poses[i].R;
+        next[i].v = (poses[i].p - start[i].p) / dt;
+        next[i].Rdot = (poses[i].R - start[i].R) / dt;
+      }
+      break;
+    }
+    case IntegrationMethod::SymplecticDIRK12: {
+      // Implicit midpoint: a Backward Euler stage of h/2 to y, then x_{n+1} = 2y − x_n (rotations
+      // in the Lie algebra: R_{n+1} = exp(2 log(R_y R_nᵀ)) R_n = R_y R_nᵀ R_y) and
+      // v_{n+1} = 2 v_y − v_n with v_y = (y − x_n)/(h/2).
+      const double dt = 0.5 * h;
+      account(SolveStage(dt, states_, &poses));
+      for (size_t i = 0; i < n; ++i) {
+        if (!models_[i].dynamic) continue;
+        const RigidBodyState& s = states_[i];
+        const Eigen::Vector3d vy = (poses[i].p - s.p) / dt;
+        const Eigen::Matrix3d Rdy = (poses[i].R - s.R) / dt;
+        next[i].p = 2.0 * poses[i].p - s.p;
+        next[i].R = NearestRotation(poses[i].R * s.R.transpose() * poses[i].R);
+        next[i].v = 2.0 * vy - s.v;
+        next[i].Rdot = 2.0 * Rdy - s.Rdot;
+      }
+      break;
+    }
+    default:
+      return Fail(error, std::string("integrator: ") + ToString(method) + " is not supported yet");
+  }
+  previous_ = states_;
+  previousDt_ = h;
+  hasHistory_ = true;
+  states_ = std::move(next);
+  time_ += h;
+  rep.time = time_;
+  rep.contact = ContactState();
+  rep.wallSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (report) *report = rep;
+  return true;
+}
+
+ContactStats Scene::ContactState() {
+  Prepare();
+  ContactStats st;
+  pipeline_.Evaluate(CurrentPoses(), dofOffset_, 0, PsdProjection::None, nullptr, nullptr, &st);
+  return st;
+}
+
+EnergyReport Scene::Energies() {
+  EnergyReport e;
+  for (size_t i = 0; i < models_.size(); ++i) {
+    if (!models_[i].dynamic) continue;
+    e.kinetic += KineticEnergy(models_[i], states_[i]);
+    e.gravity += -models_[i].mass * settings_.gravity.dot(states_[i].p);
+  }
+  e.contact = ContactState().energy;
+  return e;
+}
+
+Eigen::Vector3d Scene::TotalLinearMomentum() const {
+  Eigen::Vector3d L = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < models_.size(); ++i)
+    if (models_[i].dynamic) L += LinearMomentum(models_[i], states_[i]);
+  return L;
+}
+
+Eigen::Vector3d Scene::TotalAngularMomentum() const {
+  Eigen::Vector3d L = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < models_.size(); ++i)
+    if (models_[i].dynamic) L += AngularMomentum(models_[i], states_[i]);
+  return L;
+}
+
+std::vector<std::string> Scene::Notices() const {
+  std::vector<std::string> out;
+  for (const auto& m : models_)
+    if (!m.notice.empty()) out.push_back(m.notice);
+  bool dissipation = false;
+  for (const auto& m : models_)
+    dissipation |= m.contact.coulombFrictionCoefficient > 0 ||
+                   m.contact.viscousFrictionCoefficient > 0 ||
+                   m.contact.normalViscousDampingCoefficient > 0;
+  if (dissipation)
+    out.push_back("friction and damping coefficients are not applied yet: contact is "
+                  "frictionless normal penalty only");
+  return out;
+}
+
+}  // namespace superdex

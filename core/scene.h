@@ -1,0 +1,107 @@
+// The scene: actors, settings, and time stepping. Kept thin: actor data, the contact pipeline, the
+// stage problem and the integrator formulas live in their own files.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/contact_pipeline.h"
+#include "core/enums.h"
+#include "core/error.h"
+#include "core/eval_params.h"
+#include "core/rigid_body.h"
+#include "optim/newton_solver.h"
+
+namespace superdex {
+
+struct ActorHandle {
+  int index = -1;
+  bool IsValid() const { return index >= 0; }
+};
+
+struct SceneSettings {
+  Eigen::Vector3d gravity = Eigen::Vector3d(0.0, 0.0, -9.81);  ///< [m/s²]
+  IntegrationMethod integrator = IntegrationMethod::BDF2;
+  NonlinearSolverParams solver;
+  ExperimentalEvalParams eval;
+};
+/// "" when valid, else a message naming the field.
+std::string Validate(const SceneSettings& settings, const std::string& prefix = "");
+
+/// What one step did.
+struct StepReport {
+  double time = 0.0;           ///< simulated time at the end of the step [s]
+  double dt = 0.0;             ///< [s]
+  int stages = 0;
+  int newtonIterations = 0;    ///< summed over stages
+  int lineSearchSteps = 0;
+  StageStatus status = StageStatus::Converged;  ///< worst over the stages
+  std::string message;         ///< the solver's message for a non-converged stage
+  double finalGradientNorm = 0.0;  ///< largest over the stages
+  ContactStats contact;        ///< at the end of the step
+  double wallSeconds = 0.0;
+};
+
+/// Energies of the current state [J].
+struct EnergyReport {
+  double kinetic = 0.0;
+  double gravity = 0.0;  ///< Σ −m g·p
+  double contact = 0.0;  ///< penalty energy Σ Π_{A,B}
+  double Total() const { return kinetic + gravity + contact; }
+};
+
+class Scene {
+ public:
+  explicit Scene(const SceneSettings& settings = SceneSettings());
+
+  /// Adds a rigid actor; returns an invalid handle and fills *error on bad input.
+  ActorHandle AddRigidActor(const RigidActorDesc& desc, Error* error);
+
+  /// Advances by dt [s] (> 0; may differ from step to step) with the scene's integrator.
+  /// Returns false (and fills *error) only for invalid input; a stage that did not converge is
+  /// reported in *report (status Stopped or Diverged), never silently accepted.
+  bool Step(double dt, StepReport* report, Error* error);
+
+  double Time() const { return time_; }
+  int NumActors() const { return static_cast<int>(models_.size()); }
+  const RigidBodyModel& Model(ActorHandle a) const { return models_[a.index]; }
+  const RigidBodyState& State(ActorHandle a) const { return states_[a.index]; }
+  const std::vector<RigidBodyModel>& Models() const { return models_; }
+  const std::vector<RigidBodyState>& States() const { return states_; }
+  const SceneSettings& Settings() const { return settings_; }
+  /// Changes the integrator (validated); the next step starts without BDF history.
+  bool SetIntegrator(IntegrationMethod method, Error* error);
+  /// Replaces the state of an actor (e.g. to restart from a recorded state); clears BDF history.
+  bool SetState(ActorHandle a, const RigidBodyState& state, Error* error);
+
+  EnergyReport Energies();
+  Eigen::Vector3d TotalLinearMomentum() const;
+  Eigen::Vector3d TotalAngularMomentum() const;
+  /// Contact statistics at the current state (one value-only pass of the pipeline).
+  ContactStats ContactState();
+  /// One-time notes about the scene (e.g. a collider type not supported yet).
+  std::vector<std::string> Notices() const;
+
+ private:
+  // Solves one stage: minimizes the incremental potential with step dt, inertial target
+  // x̂ = x⁰ + dt v⁰ taken from `start` (x⁰, v⁰ in material-point form), from the initial guess in
+  // *poses; on return *poses holds the stage solution.
+  SolverStats SolveStage(double dt, const std::vector<RigidBodyState>& start,
+                         std::vector<RigidPose>* poses);
+  void Prepare();
+  std::vector<RigidPose> CurrentPoses() const;
+
+  SceneSettings settings_;
+  std::vector<RigidBodyModel> models_;
+  std::vector<RigidBodyState> states_;
+  std::vector<RigidBodyState> previous_;  // x_{n−1}, v_{n−1} for BDF2
+  double previousDt_ = 0.0;
+  bool hasHistory_ = false;
+  double time_ = 0.0;
+  bool prepared_ = false;
+  std::vector<int> dofOffset_;
+  int numDofs_ = 0;
+  ContactPipeline pipeline_;
+};
+
+}  // namespace superdex

@@ -1,0 +1,57 @@
+// Triangle surface meshes: storage, generators, OBJ reading, mass properties.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "geometry/aabb.h"
+
+namespace superdex {
+
+/// A triangle surface mesh. Faces are counter-clockwise seen from outside (outward normals by
+/// the right-hand rule) for closed meshes. Units: metres.
+struct TriangleMesh {
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<Eigen::Vector3i> faces;
+
+  int NumVertices() const { return static_cast<int>(vertices.size()); }
+  int NumFaces() const { return static_cast<int>(faces.size()); }
+  /// Area of face f [m^2].
+  double FaceArea(int f) const;
+  /// Outward unit normal of face f (zero vector for a degenerate face).
+  Eigen::Vector3d FaceNormal(int f) const;
+  double SurfaceArea() const;
+  Aabb Bounds() const;
+};
+
+/// Icosphere of the given radius [m]: an icosahedron subdivided `subdivisions` times (each
+/// subdivision splits every triangle in four), vertices projected onto the sphere.
+/// 20 * 4^subdivisions faces.
+TriangleMesh MakeIcosphere(double radius, int subdivisions);
+
+/// Axis-aligned box centred at the origin with the given half extents [m]; every face split into
+/// a `divisions` x `divisions` grid of quads, two triangles each (divisions >= 1).
+TriangleMesh MakeBoxMesh(const Eigen::Vector3d& halfExtents, int divisions = 1);
+
+/// Square patch in the z = 0 plane centred at the origin, side `size` [m], `divisions` x
+/// `divisions` quads, normals +z (an open surface).
+TriangleMesh MakePlanePatch(double size, int divisions);
+
+/// Reads vertices ("v") and faces ("f", polygons fan-triangulated, "v/vt/vn" forms and negative
+/// indices accepted) from a Wavefront OBJ file. Returns false and fills *error (naming the file,
+/// the line and the problem) on failure.
+bool ReadObj(const std::string& path, TriangleMesh* mesh, std::string* error);
+
+/// Mass properties of the solid bounded by a closed, outward-oriented mesh of uniform density
+/// [kg/m^3]: mass [kg], centre of mass [m], and the second-moment matrix about the centre of mass
+/// J = ∫ (x - c)(x - c)^T dm [kg m^2] (the inertia tensor is tr(J) I - J).
+struct MassProperties {
+  double volume = 0.0;
+  double mass = 0.0;
+  Eigen::Vector3d centerOfMass = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d secondMoment = Eigen::Matrix3d::Zero();
+};
+MassProperties ComputeMassProperties(const TriangleMesh& mesh, double density);
+
+}  // namespace superdex

@@ -1,0 +1,41 @@
+// The abstract problem the stage solvers work on: a scalar objective over a manifold of states,
+// stepped by tangent vectors. optim/ knows nothing of physics.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+namespace superdex {
+
+/// How local (per-element) Hessians are made positive semi-definite before assembly.
+enum class PsdProjection {
+  None,   ///< exact Hessian (may be indefinite)
+  Clamp,  ///< negative eigenvalues set to zero
+  Abs,    ///< negative eigenvalues replaced by their absolute value
+};
+
+/// An objective f over states s of a manifold. The problem keeps a current state s; a tangent step
+/// d in R^n moves it by the problem's retraction s ⊕ d (for a rigid body p += dp, R = exp(dθ) R).
+class StageProblem {
+ public:
+  virtual ~StageProblem() = default;
+
+  /// Dimension n of the tangent space.
+  virtual int NumDofs() const = 0;
+
+  /// f(s ⊕ d) without changing s. Returns +infinity where f is undefined (e.g. inverted elements).
+  virtual double Value(const Eigen::VectorXd& d) = 0;
+
+  /// f(s), its gradient g = ∂f(s ⊕ d)/∂d at d = 0, and optionally the Hessian (full symmetric,
+  /// compressed column) with local Hessians projected as `projection` says. hessian may be null.
+  virtual double Evaluate(Eigen::VectorXd* gradient, Eigen::SparseMatrix<double>* hessian,
+                          PsdProjection projection) = 0;
+
+  /// s ← s ⊕ d.
+  virtual void Commit(const Eigen::VectorXd& d) = 0;
+
+  /// A norm of a step in length units [m], used for the step convergence test. Default: max-norm.
+  virtual double StepNorm(const Eigen::VectorXd& d) const { return d.lpNorm<Eigen::Infinity>(); }
+};
+
+}  // namespace superdex

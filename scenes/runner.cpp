@@ -1,0 +1,119 @@
+#include "scenes/runner.h"
+
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+
+#include "scenes/trajectory_writer.h"
+
+namespace superdex {
+
+bool RunScene(SceneFile* file, const RunOptions& options, RunSummary* summary, Error* error) {
+  Scene& scene = *file->scene;
+  const double dt = options.dt.value_or(file->dt);
+  const double duration = options.duration.value_or(file->duration);
+  if (!(dt > 0 && std::isfinite(dt))) return Fail(error, "dt: must be > 0");
+  if (!(duration > 0 && std::isfinite(duration))) return Fail(error, "duration: must be > 0");
+  RunSummary s;
+  s.trajectoryPath = options.out.value_or(file->output.path);
+  TrajectoryWriter writer;
+  if (!s.trajectoryPath.empty()) {
+    if (!writer.Open(s.trajectoryPath, scene, file->actorNames, dt, error)) return false;
+    writer.WriteFrame(scene, 0, nullptr);
+  }
+  s.initialEnergy = scene.Energies().Total();
+  s.maxPenetration = std::max(0.0, -scene.ContactState().minSignedDistance);
+  const int steps = std::max(1, static_cast<int>(std::llround(duration / dt)));
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int k = 1; k <= steps; ++k) {
+    StepReport rep;
+    if (!scene.Step(dt, &rep, error)) return false;
+    ++s.steps;
+    s.newtonIterations += rep.newtonIterations;
+    s.maxNewtonIterations = std::max(s.maxNewtonIterations, rep.newtonIterations);
+    (rep.status == StageStatus::Converged ? s.converged
+     : rep.status == StageStatus::Stopped ? s.stopped
+                                          : s.diverged) += 1;
+    if (std::isfinite(rep.contact.minSignedDistance))
+      s.maxPenetration = std::max(s.maxPenetration, -rep.contact.minSignedDistance);
+    if (writer.IsOpen() && (k % file->output.every == 0 || k == steps))
+      writer.WriteFrame(scene, k, &rep);
+    if (options.progress) options.progress(rep, double(k) / steps);
+  }
+  s.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  s.simulatedSeconds = scene.Time();
+  s.finalEnergy = scene.Energies().Total();
+
+  const SceneExpectations& e = file->expect;
+  auto fail = [&](const std::string& m) { s.expectationFailures.push_back(m); };
+  std::ostringstream m;
+  if (e.maxPenetration && s.maxPenetration > *e.maxPenetration) {
+    m.str("");
+    m << "max penetration " << s.maxPenetration << " m > expected " << *e.maxPenetration << " m";
+    fail(m.str());
+  }
+  if (e.maxRelativeEnergyDrift) {
+    const double drift = std::abs(s.finalEnergy - s.initialEnergy) /
+                         std::max(std::abs(s.initialEnergy), 1e-300);
+    if (drift > *e.maxRelativeEnergyDrift) {
+      m.str("");
+      m << "relative energy drift " << drift << " > expected " << *e.maxRelativeEnergyDrift;
+      fail(m.str());
+    }
+  }
+  if (e.allConverged && (s.stopped > 0 || s.diverged > 0)) {
+    m.str("");
+    m << s.stopped << " stages stopped and " << s.diverged << " diverged; expected all converged";
+    fail(m.str());
+  }
+  for (const auto& r : e.finalPositions) {
+    for (size_t i = 0; i < file->actorNames.size(); ++i) {
+      if (file->actorNames[i] != r.actor) continue;
+      const Eigen::Vector3d p = scene.States()[i].p;
+      const double err = (p - r.position).norm();
+      if (err > r.tolerance) {
+        m.str("");
+        m << "actor " << r.actor << " ends at (" << p.transpose() << "), " << err
+          << " m from the expected (" << r.position.transpose() << ") > " << r.tolerance << " m";
+        fail(m.str());
+      }
+    }
+  }
+  *summary = s;
+  return true;
+}
+
+void PrintSummary(const SceneFile& file, const RunSummary& s, std::ostream& os) {
+  const Scene& scene = *file.scene;
+  os << "\n== superdex run: " << file.path << " ==\n";
+  if (!file.description.empty()) os << file.description << "\n";
+  os << std::setprecision(4);
+  os << "actors            " << scene.NumActors() << " (integrator "
+     << ToString(scene.Settings().integrator) << ")\n";
+  os << "steps             " << s.steps << " of dt = " << file.scene->Time() / std::max(1, s.steps)
+     << " s, simulated " << s.simulatedSeconds << " s\n";
+  os << "wall time         " << s.wallSeconds << " s ("
+     << s.wallSeconds / std::max(s.simulatedSeconds, 1e-300) << " s per simulated second)\n";
+  os << "Newton iterations " << double(s.newtonIterations) / std::max(1, s.steps)
+     << " per step (max " << s.maxNewtonIterations << ")\n";
+  os << "stages            " << s.converged << " converged, " << s.stopped << " stopped, "
+     << s.diverged << " diverged\n";
+  os << "max penetration   " << s.maxPenetration * 1e3 << " mm (max of −φ at step ends)\n";
+  const double drift = s.finalEnergy - s.initialEnergy;
+  os << "energy            " << s.initialEnergy << " J -> " << s.finalEnergy << " J (drift "
+     << drift << " J, " << 100.0 * drift / std::max(std::abs(s.initialEnergy), 1e-300)
+     << " %)\n";
+  if (!s.trajectoryPath.empty()) os << "trajectory        " << s.trajectoryPath << "\n";
+  if (s.expectationFailures.empty()) {
+    os << "expectations      " << (file.expect.maxPenetration || file.expect.allConverged ||
+                                   file.expect.maxRelativeEnergyDrift ||
+                                   !file.expect.finalPositions.empty()
+                                       ? "all hold"
+                                       : "none given")
+       << "\n";
+  } else {
+    for (const auto& f : s.expectationFailures) os << "EXPECTATION FAILED: " << f << "\n";
+  }
+}
+
+}  // namespace superdex

@@ -1,0 +1,39 @@
+// Runs a loaded scene: steps it, writes the trajectory, and summarizes the run.
+#pragma once
+
+#include <functional>
+#include <ostream>
+#include <string>
+
+#include "scenes/scene_file.h"
+
+namespace superdex {
+
+struct RunOptions {
+  std::optional<double> dt;          ///< overrides the file's settings.dt [s]
+  std::optional<double> duration;    ///< overrides settings.duration [s]
+  std::optional<std::string> out;    ///< overrides output.path ("" = no file)
+  /// Called after every step with the step's report and the fraction done in [0, 1].
+  std::function<void(const StepReport&, double)> progress;
+};
+
+struct RunSummary {
+  int steps = 0;
+  double simulatedSeconds = 0.0;
+  double wallSeconds = 0.0;
+  long newtonIterations = 0;
+  int maxNewtonIterations = 0;
+  int converged = 0, stopped = 0, diverged = 0;  ///< stages by outcome
+  double maxPenetration = 0.0;        ///< max over steps of max(0, −min φ) [m]
+  double initialEnergy = 0.0, finalEnergy = 0.0;  ///< total mechanical energy [J]
+  std::vector<std::string> expectationFailures;   ///< empty when every expectation holds
+  std::string trajectoryPath;
+};
+
+/// Runs to the end. Returns false only for I/O or input errors (then *error says which).
+bool RunScene(SceneFile* scene, const RunOptions& options, RunSummary* summary, Error* error);
+
+/// The one-screen summary printed by `superdex run`.
+void PrintSummary(const SceneFile& scene, const RunSummary& summary, std::ostream& os);
+
+}  // namespace superdex

@@ -1,0 +1,391 @@
+#include "scenes/scene_file.h"
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <set>
+#include <sstream>
+
+namespace superdex {
+namespace {
+
+using json = nlohmann::json;
+
+// Internal only: loading stops at the first problem; LoadSceneText turns it into an Error.
+struct LoadError {
+  std::string message;
+};
+[[noreturn]] void Throw(const std::string& path, const std::string& rule) {
+  throw LoadError{path + ": " + rule};
+}
+
+std::string Join(const std::string& path, const std::string& key) {
+  return path.empty() ? key : path + "." + key;
+}
+
+const char* TypeName(const json& j) { return j.type_name(); }
+
+void CheckObject(const json& j, const std::string& path, std::set<std::string> known) {
+  if (!j.is_object()) Throw(path.empty() ? "(top level)" : path, std::string("must be an object, got ") + TypeName(j));
+  for (auto it = j.begin(); it != j.end(); ++it)
+    if (!known.count(it.key())) Throw(Join(path, it.key()), "unknown field");
+}
+
+double Number(const json& obj, const std::string& path, const char* key,
+              std::optional<double> def = std::nullopt) {
+  const std::string p = Join(path, key);
+  if (!obj.contains(key)) {
+    if (def) return *def;
+    Throw(p, "missing required field");
+  }
+  const json& v = obj.at(key);
+  if (!v.is_number()) Throw(p, std::string("must be a number, got ") + TypeName(v));
+  const double x = v.get<double>();
+  if (!std::isfinite(x)) Throw(p, "must be finite");
+  return x;
+}
+
+double Positive(const json& obj, const std::string& path, const char* key,
+                std::optional<double> def = std::nullopt) {
+  const double x = Number(obj, path, key, def);
+  if (!(x > 0)) {
+    std::ostringstream s;
+    s << "must be > 0, got " << x;
+    Throw(Join(path, key), s.str());
+  }
+  return x;
+}
+
+int Integer(const json& obj, const std::string& path, const char* key, int def, int lo, int hi) {
+  const std::string p = Join(path, key);
+  if (!obj.contains(key)) return def;
+  const json& v = obj.at(key);
+  if (!v.is_number_integer()) Throw(p, std::string("must be an integer, got ") + TypeName(v));
+  const long long x = v.get<long long>();
+  if (x < lo || x > hi) {
+    std::ostringstream s;
+    s << "must be in [" << lo << ", " << hi << "], got " << x;
+    Throw(p, s.str());
+  }
+  return static_cast<int>(x);
+}
+
+bool Bool(const json& obj, const std::string& path, const char* key, bool def) {
+  if (!obj.contains(key)) return def;
+  const json& v = obj.at(key);
+  if (!v.is_boolean()) Throw(Join(path, key), std::string("must be true or false, got ") + TypeName(v));
+  return v.get<bool>();
+}
+
+std::string String(const json& obj, const std::string& path, const char* key,
+                   std::optional<std::string> def = std::nullopt) {
+  if (!obj.contains(key)) {
+    if (def) return *def;
+    Throw(Join(path, key), "missing required field");
+  }
+  const json& v = obj.at(key);
+  if (!v.is_string()) Throw(Join(path, key), std::string("must be a string, got ") + TypeName(v));
+  return v.get<std::string>();
+}
+
+template <int N>
+Eigen::Matrix<double, N, 1> Vector(const json& obj, const std::string& path, const char* key,
+                                   const Eigen::Matrix<double, N, 1>& def) {
+  if (!obj.contains(key)) return def;
+  const json& v = obj.at(key);
+  const std::string p = Join(path, key);
+  if (!v.is_array() || v.size() != N)
+    Throw(p, "must be an array of " + std::to_string(N) + " numbers");
+  Eigen::Matrix<double, N, 1> out;
+  for (int i = 0; i < N; ++i) {
+    if (!v[i].is_number()) Throw(p + "[" + std::to_string(i) + "]", "must be a number");
+    out[i] = v[i].get<double>();
+    if (!std::isfinite(out[i])) Throw(p + "[" + std::to_string(i) + "]", "must be finite");
+  }
+  return out;
+}
+
+template <typename E>
+E Enum(const json& obj, const std::string& path, const char* key, E def) {
+  if (!obj.contains(key)) return def;
+  const std::string s = String(obj, path, key);
+  E e;
+  if (!Parse(s, &e)) Throw(Join(path, key), "unknown value \"" + s + "\" (expected one of: " + AllNames(def) + ")");
+  return e;
+}
+
+ContactParams ReadContact(const json& j, const std::string& path) {
+  ContactParams c;
+  CheckObject(j, path,
+              {"penalty_coefficient", "penalty_smoothing_half_distance", "penalty_threshold_default",
+               "penalty_threshold_extra_padding", "friction_with_collider_normal",
+               "max_alignment_normals", "viscous_friction_coefficient",
+               "coulomb_friction_coefficient", "friction_falloff_vel",
+               "normal_viscous_damping_coefficient", "distance_error_bound",
+               "colliding_penalty_length_scale"});
+  c.penaltyCoefficient = Number(j, path, "penalty_coefficient", c.penaltyCoefficient);
+  c.penaltySmoothingHalfDistance =
+      Number(j, path, "penalty_smoothing_half_distance", c.penaltySmoothingHalfDistance);
+  c.penaltyThresholdDefault = Number(j, path, "penalty_threshold_default", c.penaltyThresholdDefault);
+  c.penaltyThresholdExtraPadding =
+      Number(j, path, "penalty_threshold_extra_padding", c.penaltyThresholdExtraPadding);
+  c.frictionWithColliderNormal =
+      Bool(j, path, "friction_with_collider_normal", c.frictionWithColliderNormal);
+  c.maxAlignmentNormals = Number(j, path, "max_alignment_normals", c.maxAlignmentNormals);
+  c.viscousFrictionCoefficient =
+      Number(j, path, "viscous_friction_coefficient", c.viscousFrictionCoefficient);
+  c.coulombFrictionCoefficient =
+      Number(j, path, "coulomb_friction_coefficient", c.coulombFrictionCoefficient);
+  c.frictionFalloffVel = Number(j, path, "friction_falloff_vel", c.frictionFalloffVel);
+  c.normalViscousDampingCoefficient =
+      Number(j, path, "normal_viscous_damping_coefficient", c.normalViscousDampingCoefficient);
+  c.distanceErrorBound = Number(j, path, "distance_error_bound", c.distanceErrorBound);
+  c.collidingPenaltyLengthScale =
+      Number(j, path, "colliding_penalty_length_scale", c.collidingPenaltyLengthScale);
+  return c;
+}
+
+RigidShape ReadShape(const json& j, const std::string& path, const std::string& baseDir) {
+  RigidShape s;
+  if (!j.is_object()) Throw(path, std::string("must be an object, got ") + TypeName(j));
+  const std::string type = String(j, path, "type");
+  if (type == "sphere") {
+    CheckObject(j, path, {"type", "radius", "surface_resolution"});
+    s.kind = RigidShapeKind::Sphere;
+    s.radius = Positive(j, path, "radius");
+    s.surfaceResolution = Integer(j, path, "surface_resolution", 3, 0, 7);
+  } else if (type == "box") {
+    CheckObject(j, path, {"type", "half_extents", "size", "surface_resolution"});
+    s.kind = RigidShapeKind::Box;
+    if (j.contains("size") == j.contains("half_extents"))
+      Throw(path, "give exactly one of \"size\" and \"half_extents\"");
+    const bool full = j.contains("size");
+    const Eigen::Vector3d e = Vector<3>(j, path, full ? "size" : "half_extents", Eigen::Vector3d::Zero());
+    if (!(e.minCoeff() > 0)) Throw(Join(path, full ? "size" : "half_extents"), "must be > 0");
+    s.halfExtents = full ? 0.5 * e : e;
+    s.surfaceResolution = Integer(j, path, "surface_resolution", 2, 1, 64);
+  } else if (type == "plane") {
+    CheckObject(j, path, {"type", "normal"});
+    s.kind = RigidShapeKind::Plane;
+    s.planeNormal = Vector<3>(j, path, "normal", Eigen::Vector3d::UnitZ());
+    if (!(s.planeNormal.norm() > 0)) Throw(Join(path, "normal"), "must be a non-zero vector");
+  } else if (type == "mesh") {
+    CheckObject(j, path, {"type", "file", "scale"});
+    s.kind = RigidShapeKind::Mesh;
+    std::string file = String(j, path, "file");
+    if (!file.empty() && file[0] != '/' && !baseDir.empty()) file = baseDir + "/" + file;
+    auto mesh = std::make_shared<TriangleMesh>();
+    std::string err;
+    if (!ReadObj(file, mesh.get(), &err)) Throw(Join(path, "file"), err);
+    const double scale = Positive(j, path, "scale", 1.0);
+    for (auto& v : mesh->vertices) v *= scale;
+    s.mesh = mesh;
+  } else {
+    Throw(Join(path, "type"), "unknown value \"" + type + "\" (expected one of: sphere, box, plane, mesh)");
+  }
+  return s;
+}
+
+Eigen::Quaterniond ReadOrientation(const json& j, const std::string& path) {
+  if (j.contains("orientation") && j.contains("euler_deg"))
+    Throw(path, "give at most one of \"orientation\" and \"euler_deg\"");
+  if (j.contains("euler_deg")) {
+    const Eigen::Vector3d e = Vector<3>(j, path, "euler_deg", Eigen::Vector3d::Zero()) * M_PI / 180.0;
+    return Eigen::AngleAxisd(e.z(), Eigen::Vector3d::UnitZ()) *
+           Eigen::AngleAxisd(e.y(), Eigen::Vector3d::UnitY()) *
+           Eigen::AngleAxisd(e.x(), Eigen::Vector3d::UnitX());
+  }
+  const Eigen::Vector4d q = Vector<4>(j, path, "orientation", Eigen::Vector4d(0, 0, 0, 1));
+  if (!(q.norm() > 0)) Throw(Join(path, "orientation"), "must be a non-zero quaternion [x, y, z, w]");
+  return Eigen::Quaterniond(q[3], q[0], q[1], q[2]).normalized();
+}
+
+void ReadActors(const json& actors, const std::string& baseDir, SceneFile* out) {
+  if (!actors.is_array()) Throw("actors", std::string("must be an array, got ") + TypeName(actors));
+  std::set<std::string> names;
+  for (size_t i = 0; i < actors.size(); ++i) {
+    const std::string path = "actors[" + std::to_string(i) + "]";
+    const json& a = actors[i];
+    CheckObject(a, path,
+                {"name", "type", "dynamic", "shape", "density", "mass", "inertia", "position",
+                 "orientation", "euler_deg", "velocity", "angular_velocity", "contact",
+                 "collider_type", "boundary_element_type", "contact_layer", "grid"});
+    const std::string type = String(a, path, "type", std::string("rigid"));
+    if (type != "rigid")
+      Throw(Join(path, "type"), "unknown value \"" + type + "\" (supported: rigid)");
+    RigidActorDesc d;
+    d.name = String(a, path, "name");
+    d.dynamic = Bool(a, path, "dynamic", true);
+    if (!a.contains("shape")) Throw(Join(path, "shape"), "missing required field");
+    d.shape = ReadShape(a.at("shape"), Join(path, "shape"), baseDir);
+    if (a.contains("density")) d.density = Positive(a, path, "density");
+    if (a.contains("mass")) d.mass = Positive(a, path, "mass");
+    if (a.contains("inertia")) {
+      const Eigen::Vector3d I = Vector<3>(a, path, "inertia", Eigen::Vector3d::Zero());
+      d.inertia = Eigen::Matrix3d(I.asDiagonal());
+    }
+    d.position = Vector<3>(a, path, "position", Eigen::Vector3d::Zero());
+    d.orientation = ReadOrientation(a, path);
+    d.linearVelocity = Vector<3>(a, path, "velocity", Eigen::Vector3d::Zero());
+    d.angularVelocity = Vector<3>(a, path, "angular_velocity", Eigen::Vector3d::Zero());
+    if (a.contains("contact")) d.contact = ReadContact(a.at("contact"), Join(path, "contact"));
+    d.colliderType = Enum(a, path, "collider_type", ColliderType::Auto);
+    d.boundaryElementType = Enum(a, path, "boundary_element_type", ActorBoundaryElementType::P1Q3);
+    d.contactLayer = String(a, path, "contact_layer", std::string("default"));
+
+    // Optional replication on a grid: count [nx, ny, nz], spacing [m], jitter [m] (uniform in
+    // [−jitter, jitter] per axis, fixed seed), names "<name>_<k>".
+    Eigen::Vector3i count(1, 1, 1);
+    Eigen::Vector3d spacing = Eigen::Vector3d::Zero();
+    double jitter = 0.0;
+    const bool grid = a.contains("grid");
+    if (grid) {
+      const json& g = a.at("grid");
+      const std::string gp = Join(path, "grid");
+      CheckObject(g, gp, {"count", "spacing", "jitter", "seed"});
+      const Eigen::Vector3d c = Vector<3>(g, gp, "count", Eigen::Vector3d::Ones());
+      for (int k = 0; k < 3; ++k) {
+        if (c[k] < 1 || c[k] > 1000 || c[k] != std::floor(c[k]))
+          Throw(Join(gp, "count"), "must hold integers in [1, 1000]");
+        count[k] = static_cast<int>(c[k]);
+      }
+      spacing = Vector<3>(g, gp, "spacing", Eigen::Vector3d::Zero());
+      jitter = Number(g, gp, "jitter", 0.0);
+      if (jitter < 0) Throw(Join(gp, "jitter"), "must be >= 0");
+    }
+    std::mt19937 rng(grid ? Integer(a.at("grid"), Join(path, "grid"), "seed", 1, 0, 1 << 30) : 1);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    int k = 0;
+    for (int z = 0; z < count.z(); ++z)
+      for (int y = 0; y < count.y(); ++y)
+        for (int x = 0; x < count.x(); ++x, ++k) {
+          RigidActorDesc di = d;
+          if (grid) {
+            di.name = d.name + "_" + std::to_string(k);
+            di.position += Eigen::Vector3d(x, y, z).cwiseProduct(spacing) +
+                           jitter * Eigen::Vector3d(u(rng), u(rng), u(rng));
+          }
+          if (!names.insert(di.name).second) Throw(Join(path, "name"), "duplicate actor name \"" + di.name + "\"");
+          Error err;
+          if (!out->scene->AddRigidActor(di, &err).IsValid()) throw LoadError{path + "." + err.message};
+          out->actorNames.push_back(di.name);
+        }
+  }
+}
+
+}  // namespace
+
+bool LoadSceneText(const std::string& text, const std::string& baseDir, SceneFile* out,
+                   Error* error) {
+  try {
+    json j;
+    try {
+      j = json::parse(text);
+    } catch (const json::parse_error& e) {
+      return Fail(error, std::string("(file): not valid JSON: ") + e.what());
+    }
+    CheckObject(j, "", {"format", "description", "settings", "actors", "output", "expect"});
+    const std::string format = String(j, "", "format", std::string("superdex-scene/1"));
+    if (format != "superdex-scene/1")
+      Throw("format", "unsupported \"" + format + "\" (expected superdex-scene/1)");
+    out->description = String(j, "", "description", std::string());
+
+    SceneSettings settings;
+    if (j.contains("settings")) {
+      const json& s = j.at("settings");
+      CheckObject(s, "settings",
+                  {"dt", "duration", "integrator", "gravity", "solver", "experimental_eval_params"});
+      out->dt = Positive(s, "settings", "dt", out->dt);
+      out->duration = Positive(s, "settings", "duration", out->duration);
+      settings.integrator = Enum(s, "settings", "integrator", settings.integrator);
+      settings.gravity = Vector<3>(s, "settings", "gravity", settings.gravity);
+      if (s.contains("solver")) {
+        const json& v = s.at("solver");
+        const std::string p = "settings.solver";
+        CheckObject(v, p, {"max_iterations", "absolute_tolerance", "relative_tolerance",
+                           "step_tolerance", "line_search", "psd_projection"});
+        NonlinearSolverParams& n = settings.solver;
+        n.maxIterations = Integer(v, p, "max_iterations", n.maxIterations, 1, 1000000);
+        n.absoluteTolerance = Number(v, p, "absolute_tolerance", n.absoluteTolerance);
+        n.relativeTolerance = Number(v, p, "relative_tolerance", n.relativeTolerance);
+        n.stepTolerance = Number(v, p, "step_tolerance", n.stepTolerance);
+        const std::string ls = String(v, p, "line_search", std::string("Armijo"));
+        if (ls == "Armijo") n.lineSearch = LineSearchKind::Armijo;
+        else if (ls == "None") n.lineSearch = LineSearchKind::None;
+        else Throw(p + ".line_search", "unknown value \"" + ls + "\" (expected one of: Armijo, None)");
+        const std::string pp = String(v, p, "psd_projection", std::string("Clamp"));
+        if (pp == "Clamp") n.psdProjection = PsdProjection::Clamp;
+        else if (pp == "Abs") n.psdProjection = PsdProjection::Abs;
+        else if (pp == "None") n.psdProjection = PsdProjection::None;
+        else Throw(p + ".psd_projection", "unknown value \"" + pp + "\" (expected one of: None, Clamp, Abs)");
+      }
+      if (s.contains("experimental_eval_params")) {
+        const json& v = s.at("experimental_eval_params");
+        const std::string p = "settings.experimental_eval_params";
+        CheckObject(v, p, {"explicit_normals", "implicit_normal_force_for_dissipation", "fade_friction"});
+        settings.eval.explicitNormals = Bool(v, p, "explicit_normals", false);
+        settings.eval.implicitNormalForceForDissipation =
+            Bool(v, p, "implicit_normal_force_for_dissipation", false);
+        settings.eval.fadeFriction = Bool(v, p, "fade_friction", true);
+      }
+    }
+    if (std::string m = Validate(settings, "settings."); !m.empty()) throw LoadError{m};
+    out->scene = std::make_unique<Scene>(settings);
+
+    if (!j.contains("actors")) Throw("actors", "missing required field");
+    ReadActors(j.at("actors"), baseDir, out);
+
+    if (j.contains("output")) {
+      const json& o = j.at("output");
+      CheckObject(o, "output", {"path", "every"});
+      out->output.path = String(o, "output", "path", std::string());
+      out->output.every = Integer(o, "output", "every", 1, 1, 1 << 30);
+    }
+    if (j.contains("expect")) {
+      const json& e = j.at("expect");
+      CheckObject(e, "expect", {"max_penetration", "max_relative_energy_drift", "all_converged",
+                                "final_positions"});
+      if (e.contains("max_penetration")) out->expect.maxPenetration = Positive(e, "expect", "max_penetration");
+      if (e.contains("max_relative_energy_drift"))
+        out->expect.maxRelativeEnergyDrift = Positive(e, "expect", "max_relative_energy_drift");
+      out->expect.allConverged = Bool(e, "expect", "all_converged", false);
+      if (e.contains("final_positions")) {
+        const json& f = e.at("final_positions");
+        if (!f.is_array()) Throw("expect.final_positions", "must be an array");
+        for (size_t i = 0; i < f.size(); ++i) {
+          const std::string p = "expect.final_positions[" + std::to_string(i) + "]";
+          CheckObject(f[i], p, {"actor", "position", "tolerance"});
+          SceneExpectations::RestingActor r;
+          r.actor = String(f[i], p, "actor");
+          bool found = false;
+          for (const auto& n : out->actorNames) found |= n == r.actor;
+          if (!found) Throw(Join(p, "actor"), "no actor named \"" + r.actor + "\"");
+          r.position = Vector<3>(f[i], p, "position", Eigen::Vector3d::Zero());
+          r.tolerance = Positive(f[i], p, "tolerance");
+          out->expect.finalPositions.push_back(r);
+        }
+      }
+    }
+  } catch (const LoadError& e) {
+    return Fail(error, e.message);
+  } catch (const std::exception& e) {
+    return Fail(error, std::string("(file): ") + e.what());
+  }
+  return true;
+}
+
+bool LoadSceneFile(const std::string& path, SceneFile* out, Error* error) {
+  std::ifstream in(path);
+  if (!in) return Fail(error, path + ": cannot open file");
+  std::stringstream buf;
+  buf << in.rdbuf();
+  out->path = path;
+  const size_t slash = path.find_last_of('/');
+  const std::string baseDir = slash == std::string::npos ? "." : path.substr(0, slash);
+  Error local;
+  if (!LoadSceneText(buf.str(), baseDir, out, &local)) return Fail(error, path + ": " + local.message);
+  return true;
+}
+
+}  // namespace superdex

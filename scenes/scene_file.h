@@ -1,0 +1,51 @@
+// The JSON scene format (README "Scene format"): loading with errors that name the JSON path.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/scene.h"
+
+namespace superdex {
+
+/// Output settings of a scene file.
+struct OutputSpec {
+  std::string path;      ///< trajectory file (JSON Lines); empty: no file
+  int every = 1;         ///< write every n-th step
+};
+
+/// Expected figures of a shipped scene (regression checks run by `superdex run` and the tests).
+struct SceneExpectations {
+  std::optional<double> maxPenetration;        ///< max over the run of max(0, −φ) <= this [m]
+  std::optional<double> maxRelativeEnergyDrift;///< |E_end − E_0| / |E_0| <= this
+  bool allConverged = false;                   ///< every stage Converged
+  struct RestingActor {
+    std::string actor;
+    Eigen::Vector3d position;
+    double tolerance;                          ///< [m]
+  };
+  std::vector<RestingActor> finalPositions;    ///< centre of mass at the end of the run
+};
+
+/// A loaded scene: the Scene itself plus the run settings from the file.
+struct SceneFile {
+  std::string path;
+  std::string description;
+  std::unique_ptr<Scene> scene;
+  double dt = 1e-3;        ///< [s]
+  double duration = 1.0;   ///< [s]
+  OutputSpec output;
+  SceneExpectations expect;
+  std::vector<std::string> actorNames;  ///< index → name
+};
+
+/// Loads a scene file. Returns false and fills *error with "<json path>: <rule>" (e.g.
+/// "actors[2].contact.penalty_coefficient: must be > 0, got -3") on the first problem found.
+bool LoadSceneFile(const std::string& path, SceneFile* out, Error* error);
+/// The same from a JSON text; `baseDir` resolves relative mesh paths.
+bool LoadSceneText(const std::string& text, const std::string& baseDir, SceneFile* out,
+                   Error* error);
+
+}  // namespace superdex

@@ -1,0 +1,107 @@
+// The `superdex` command-line tool.
+//   superdex run SCENE.json [--dt S] [--duration S] [--integrator NAME] [--out FILE] [--quiet]
+// Exit codes: 0 success; 2 invalid input (scene file, options); 3 a stage did not converge
+// (Stopped or Diverged); 4 a scene expectation failed.
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+
+#include "scenes/runner.h"
+
+namespace {
+
+using superdex::StepReport;
+
+// A one-line progress bar on stderr, redrawn at most ten times a second.
+class ProgressBar {
+ public:
+  explicit ProgressBar(bool enabled) : enabled_(enabled), start_(Clock::now()), last_(start_) {}
+  void Update(const StepReport& r, double fraction) {
+    ++steps_;
+    iterations_ += r.newtonIterations;
+    if (!enabled_) return;
+    const auto now = Clock::now();
+    if (fraction < 1.0 && now - last_ < std::chrono::milliseconds(100)) return;
+    last_ = now;
+    const double wall = std::chrono::duration<double>(now - start_).count();
+    const int width = 30;
+    const int filled = static_cast<int>(fraction * width);
+    std::fprintf(stderr, "\r[%s%s] %3.0f%%  t = %.4g s  step %d  %.1f Newton/step  %.1f s%s",
+                 std::string(filled, '#').c_str(), std::string(width - filled, ' ').c_str(),
+                 100.0 * fraction, r.time, steps_, double(iterations_) / steps_, wall,
+                 fraction >= 1.0 ? "\n" : "");
+    std::fflush(stderr);
+  }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  bool enabled_;
+  Clock::time_point start_, last_;
+  int steps_ = 0;
+  long iterations_ = 0;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"superdex: compliant-contact simulation by incremental potentials"};
+  app.require_subcommand(1);
+  CLI::App* run = app.add_subcommand("run", "Run a scene file and write its trajectory");
+  std::string scenePath, integrator, out;
+  double dt = 0.0, duration = 0.0;
+  bool quiet = false;
+  run->add_option("scene", scenePath, "Scene file (JSON)")->required();
+  run->add_option("--dt", dt, "Time step [s] (overrides settings.dt)");
+  run->add_option("--duration", duration, "Simulated time [s] (overrides settings.duration)");
+  run->add_option("--integrator", integrator,
+                  "IntegrationMethod (overrides settings.integrator): BackwardEuler, BDF2, "
+                  "SymplecticDIRK12");
+  run->add_option("--out", out, "Trajectory file (JSON Lines); overrides output.path");
+  run->add_flag("--quiet", quiet, "No progress bar");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  }
+
+  superdex::SceneFile file;
+  superdex::Error error;
+  if (!superdex::LoadSceneFile(scenePath, &file, &error)) {
+    std::cerr << "error: " << error.message << "\n";
+    return 2;
+  }
+  superdex::RunOptions options;
+  if (run->count("--dt")) options.dt = dt;
+  if (run->count("--duration")) options.duration = duration;
+  if (run->count("--out")) options.out = out;
+  if (run->count("--integrator")) {
+    superdex::IntegrationMethod m;
+    if (!superdex::Parse(integrator, &m)) {
+      std::cerr << "error: --integrator: unknown value \"" << integrator
+                << "\" (expected one of: " << superdex::AllNames(m) << ")\n";
+      return 2;
+    }
+    if (!file.scene->SetIntegrator(m, &error)) {
+      std::cerr << "error: --integrator: " << error.message << "\n";
+      return 2;
+    }
+  }
+  for (const auto& n : file.scene->Notices()) std::cerr << "note: " << n << "\n";
+
+  ProgressBar bar(!quiet);
+  options.progress = [&](const StepReport& r, double f) { bar.Update(r, f); };
+  superdex::RunSummary summary;
+  if (!superdex::RunScene(&file, options, &summary, &error)) {
+    std::cerr << "error: " << error.message << "\n";
+    return 2;
+  }
+  superdex::PrintSummary(file, summary, std::cout);
+  if (summary.stopped > 0 || summary.diverged > 0) {
+    std::cerr << "error: " << summary.stopped + summary.diverged
+              << " stages did not converge (see the summary)\n";
+    return 3;
+  }
+  return summary.expectationFailures.empty() ? 0 : 4;
+}
