@@ -1,5 +1,6 @@
 #include "core/rigid_math.h"
 
+#include <Eigen/LU>
 #include <Eigen/SVD>
 #include <cmath>
 

@@ -1,5 +1,7 @@
 #include "core/scene.h"
 
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -173,7 +175,7 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
     case IntegrationMethod::SymplecticDIRK12: {
       // Implicit midpoint: a Backward Euler stage of h/2 to y, then x_{n+1} = 2y − x_n (rotations
       // in the Lie algebra: R_{n+1} = exp(2 log(R_y R_nᵀ)) R_n = R_y R_nᵀ R_y) and
-      // v_{n+1} = 2 v_y − v_n with v_y = (y − x_n)/(h/2).
+      // v_{n+1} = 2 v_y − v_n with v_y = (y − x_n)/(h/2); the spin as below.
       const double dt = 0.5 * h;
       account(SolveStage(dt, states_, &poses));
       for (size_t i = 0; i < n; ++i) {
@@ -184,7 +186,16 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
         next[i].p = 2.0 * poses[i].p - s.p;
         next[i].R = NearestRotation(poses[i].R * s.R.transpose() * poses[i].R);
         next[i].v = 2.0 * vy - s.v;
-        next[i].Rdot = 2.0 * Rdy - s.Rdot;
+        // Material-point midpoint conserves the spin angular momentum of the affine end state
+        // (2R_y − R_n, 2Ṙ_y − Ṙ_n) exactly; on SO(3) the same momentum is carried by
+        // Ṙ = [ω] R_{n+1} with I_world ω = axial(Ṙ' J R'ᵀ − R' J Ṙ'ᵀ).
+        const Eigen::Matrix3d Ra = 2.0 * poses[i].R - s.R;
+        const Eigen::Matrix3d Rda = 2.0 * Rdy - s.Rdot;
+        const Eigen::Matrix3d& J = models_[i].secondMoment;
+        const Eigen::Vector3d spin = Axial(Rda * J * Ra.transpose() - Ra * J * Rda.transpose());
+        const Eigen::Matrix3d Iw =
+            next[i].R * (J.trace() * Eigen::Matrix3d::Identity() - J) * next[i].R.transpose();
+        next[i].Rdot = Skew(Iw.ldlt().solve(spin)) * next[i].R;
       }
       break;
     }

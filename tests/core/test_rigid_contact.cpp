@@ -1,0 +1,127 @@
+#include <catch2/catch.hpp>
+#include <random>
+
+#include "core/rigid_contact.h"
+#include "core/rigid_math.h"
+#include "derivative_check.h"
+
+using namespace superdex;
+
+namespace {
+
+RigidBodyModel Build(RigidShape shape, bool dynamic) {
+  RigidActorDesc d;
+  d.name = "a";
+  d.dynamic = dynamic;
+  d.shape = shape;
+  RigidBodyModel m;
+  RigidBodyState s;
+  Error e;
+  REQUIRE(BuildRigidBody(d, "", &m, &s, &e));
+  return m;
+}
+
+RigidShape Sphere(double r, int res) {
+  RigidShape s;
+  s.kind = RigidShapeKind::Sphere;
+  s.radius = r;
+  s.surfaceResolution = res;
+  return s;
+}
+RigidShape Box(Eigen::Vector3d h, int res) {
+  RigidShape s;
+  s.kind = RigidShapeKind::Box;
+  s.halfExtents = h;
+  s.surfaceResolution = res;
+  return s;
+}
+
+struct PairCase {
+  RigidBodyModel A, B;
+  RigidPose a, b;
+  bool bDynamic;
+};
+
+// Value of the pair energy after retracting both poses by the stencil step d.
+double PairValue(const PairCase& c, const PenaltyParams& p, const Eigen::VectorXd& d) {
+  RigidPose a = c.a, b = c.b;
+  a.p += d.segment<3>(0);
+  a.R = ExpSo3(d.segment<3>(3)) * a.R;
+  if (c.bDynamic) {
+    b.p += d.segment<3>(6);
+    b.R = ExpSo3(d.segment<3>(9)) * b.R;
+  }
+  RigidPairPenalty out;
+  EvaluateRigidPairPenalty(c.A, a, c.B, b, c.bDynamic, p, 0, &out);
+  return out.value;
+}
+
+void CheckPair(const PairCase& c, const PenaltyParams& p, int minActive) {
+  RigidPairPenalty out;
+  EvaluateRigidPairPenalty(c.A, c.a, c.B, c.b, c.bDynamic, p, 2, &out);
+  REQUIRE(out.activeSamples >= minActive);
+  RigidPairPenalty v0;
+  EvaluateRigidPairPenalty(c.A, c.a, c.B, c.b, c.bDynamic, p, 0, &v0);
+  CHECK(v0.value == Approx(out.value).epsilon(1e-14));
+  const auto check = test::CheckDerivatives(
+      [&](const Eigen::VectorXd& d) { return PairValue(c, p, d); }, Eigen::VectorXd(out.gradient),
+      Eigen::MatrixXd(out.hessian), 1e-6);
+  INFO("gradient error " << check.gradientError << ", Hessian error " << check.hessianError);
+  CHECK(check.gradientError < 1e-5);
+  CHECK(check.hessianError < 1e-4);
+  if (c.bDynamic) {
+    // Balanced: forces sum to zero, torques about the world origin sum to zero.
+    const Eigen::Vector3d fA = out.gradient.segment<3>(0), fB = out.gradient.segment<3>(6);
+    const Eigen::Vector3d tA = out.gradient.segment<3>(3), tB = out.gradient.segment<3>(9);
+    const double scale = fA.norm() + 1e-30;
+    CHECK((fA + fB).norm() < 1e-12 * scale);
+    CHECK((c.a.p.cross(fA) + tA + c.b.p.cross(fB) + tB).norm() < 1e-11 * scale);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("rigid pair penalty: derivatives through both retractions", "[core][gradient][contact]") {
+  // Smaller k keeps the finite differences well conditioned; the formulas do not depend on k.
+  PenaltyParams p;
+  p.k = 1e5;
+  std::mt19937 rng(5);
+  std::normal_distribution<double> n01;
+  auto rot = [&]() { return ExpSo3(Eigen::Vector3d(n01(rng), n01(rng), n01(rng))); };
+
+  SECTION("sphere samples against a moving sphere collider") {
+    PairCase c{Build(Sphere(0.1, 2), true), Build(Sphere(0.15, 2), true), {}, {}, true};
+    c.a.R = rot();
+    c.b.R = rot();
+    c.a.p = Eigen::Vector3d(0.01, 0.02, 0.0);
+    c.b.p = c.a.p + Eigen::Vector3d(0.05, 0.2, 0.1).normalized() * (0.25 - 0.006);
+    CheckPair(c, p, 3);
+  }
+  SECTION("box samples against a moving box collider (face, edge and corner regions)") {
+    PairCase c{Build(Box({0.1, 0.07, 0.05}, 3), true), Build(Box({0.2, 0.1, 0.15}, 2), true), {}, {}, true};
+    for (int t = 0; t < 3; ++t) {
+      c.a.R = rot();
+      c.b.R = rot();
+      c.b.p = Eigen::Vector3d(0.3, -0.1, 0.2);
+      // Put A's centre just outside a face/edge/corner of B so some samples penetrate.
+      const Eigen::Vector3d dirs[3] = {{1, 0, 0}, {1, 1, 0}, {1, 1, 1}};
+      const Eigen::Vector3d local = Eigen::Vector3d(0.2, 0.1, 0.15).cwiseProduct(dirs[t]) +
+                                    dirs[t].normalized() * 0.06;
+      c.a.p = c.b.p + c.b.R * local;
+      RigidPairPenalty out;
+      EvaluateRigidPairPenalty(c.A, c.a, c.B, c.b, true, p, 0, &out);
+      if (out.activeSamples == 0) continue;
+      CheckPair(c, p, 1);
+    }
+  }
+  SECTION("sphere samples against a static plane") {
+    RigidShape plane;
+    plane.kind = RigidShapeKind::Plane;
+    plane.planeNormal = Eigen::Vector3d(0.1, 0.2, 1.0).normalized();
+    PairCase c{Build(Sphere(0.1, 2), true), Build(plane, false), {}, {}, false};
+    c.a.R = rot();
+    c.b.p = Eigen::Vector3d(0.0, 0.0, -0.05);
+    c.a.p = c.b.p + plane.planeNormal * (0.1 - 0.004);
+    CheckPair(c, p, 3);
+  }
+}
