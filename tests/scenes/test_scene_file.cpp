@@ -1,0 +1,130 @@
+// Scene files: bad input gets one clear error naming the JSON path and the rule (and exit code 2
+// from the command line); shipped scenes load and meet their expectations.
+#include <catch2/catch.hpp>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+#include <sys/wait.h>
+
+#include "scenes/runner.h"
+#include "scenes/scene_file.h"
+
+using namespace superdex;
+
+namespace {
+
+const char* kGood = R"({
+  "format": "superdex-scene/1",
+  "settings": {"dt": 0.001, "duration": 0.01},
+  "actors": [
+    {"name": "ground", "dynamic": false, "shape": {"type": "plane"}},
+    {"name": "ball", "shape": {"type": "sphere", "radius": 0.1}, "mass": 1.0, "position": [0, 0, 0.5]},
+    {"name": "box", "shape": {"type": "box", "size": [0.2, 0.2, 0.2]}, "mass": 1.0, "position": [1, 0, 0.5]}
+  ]
+})";
+
+std::string LoadError(const std::string& text) {
+  SceneFile f;
+  Error e;
+  const bool ok = LoadSceneText(text, ".", &f, &e);
+  return ok ? std::string("<loaded>") : e.message;
+}
+
+std::string Replace(std::string s, const std::string& from, const std::string& to) {
+  const size_t at = s.find(from);
+  REQUIRE(at != std::string::npos);
+  return s.replace(at, from.size(), to);
+}
+
+int RunCli(const std::string& args) {
+  const std::string cmd = std::string(SUPERDEX_CLI) + " " + args + " > /dev/null 2>&1";
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+}  // namespace
+
+TEST_CASE("scene file: the good file loads", "[scenes]") {
+  CHECK(LoadError(kGood) == "<loaded>");
+}
+
+TEST_CASE("scene file: each defect gives one error with its JSON path", "[scenes]") {
+  CHECK(LoadError(Replace(kGood, R"(, "radius": 0.1)", "")) ==
+        "actors[1].shape.radius: missing required field");
+  CHECK(LoadError(Replace(kGood, R"("mass": 1.0, "position": [0, 0, 0.5])", R"("mass": "heavy")")) ==
+        "actors[1].mass: must be a number, got string");
+  CHECK(LoadError(Replace(kGood, R"("mass": 1.0, "position": [1)", R"("mass": -2, "position": [1)")) ==
+        "actors[2].mass: must be > 0, got -2");
+  CHECK(LoadError(Replace(kGood, R"("duration": 0.01})", R"("duration": 0.01, "integrator": "RK4"})")) ==
+        "settings.integrator: unknown value \"RK4\" (expected one of: BackwardEuler, BDF2, BDF3, "
+        "DIRK22, DIRK23, DIRK33, SymplecticDIRK12, SymplecticDIRK22)");
+  CHECK(LoadError(Replace(kGood, R"("mass": 1.0, "position": [0)",
+                          R"("mass": 1.0, "contact": {"max_alignment_normals": 1.5}, "position": [0)")) ==
+        "actors[1].contact.max_alignment_normals: must be in [-1, 1], got 1.5");
+  CHECK(LoadError(Replace(kGood, R"("mass": 1.0, "position": [0)",
+                          R"("mass": 1.0, "contact": {"penalty_coefficient": -3}, "position": [0)")) ==
+        "actors[1].contact.penalty_coefficient: must be > 0, got -3");
+  CHECK(LoadError(Replace(kGood, R"("shape": {"type": "sphere")", R"("shpe": {"type": "sphere")")) ==
+        "actors[1].shpe: unknown field");
+  CHECK(LoadError(Replace(kGood, R"("dynamic": false, "shape": {"type": "plane"})",
+                          R"("shape": {"type": "plane"})")) ==
+        "actors[0].shape: a plane can only be a static actor");
+  CHECK(LoadError(Replace(kGood, R"("duration": 0.01})", R"("duration": 0.01, "integrator": "DIRK22"})")) ==
+        "settings.integrator: DIRK22 is not supported yet (supported: BackwardEuler, BDF2, "
+        "SymplecticDIRK12)");
+  CHECK(LoadError(Replace(kGood, R"("duration": 0.01})",
+                          R"("duration": 0.01, "experimental_eval_params": {"explicit_normals": true, "implicit_normal_force_for_dissipation": true}})")) ==
+        "settings.experimental_eval_params.explicit_normals, implicit_normal_force_for_dissipation: "
+        "the combination (true, true) is unsupported");
+  CHECK(LoadError("{ not json").rfind("(file): not valid JSON", 0) == 0);
+}
+
+TEST_CASE("command line: bad scene files exit with code 2", "[scenes][cli]") {
+  const std::string dir = std::string(SUPERDEX_SOURCE_DIR) + "/build-test-tmp";
+  std::system(("mkdir -p " + dir).c_str());
+  const std::string bad = dir + "/bad.json";
+  std::ofstream(bad) << Replace(kGood, R"("mass": 1.0, "position": [1)", R"("mass": -2, "position": [1)");
+  CHECK(RunCli("run " + bad + " --quiet") == 2);
+  CHECK(RunCli("run " + dir + "/missing.json --quiet") == 2);
+  const std::string good = dir + "/good.json";
+  std::ofstream(good) << kGood;
+  CHECK(RunCli("run " + good + " --quiet --out " + dir + "/good.jsonl") == 0);
+  CHECK(RunCli("run " + good + " --quiet --integrator Euler") == 2);
+  std::ifstream traj(dir + "/good.jsonl");
+  std::string header;
+  std::getline(traj, header);
+  CHECK(header.find("\"format\":\"superdex-trajectory/1\"") != std::string::npos);
+  int frames = 0;
+  for (std::string line; std::getline(traj, line);) ++frames;
+  CHECK(frames == 11);  // the initial state and 10 steps
+  std::system(("rm -rf " + dir).c_str());
+}
+
+TEST_CASE("shipped scenes meet their expectations", "[scenes][shipped]") {
+  for (const char* name : {"drop", "box_rest", "stack"}) {
+    SceneFile f;
+    Error e;
+    REQUIRE(LoadSceneFile(std::string(SUPERDEX_SOURCE_DIR) + "/scenes/data/" + name + ".json", &f, &e));
+    RunOptions o;
+    o.out = "";
+    RunSummary s;
+    REQUIRE(RunScene(&f, o, &s, &e));
+    INFO(name << ": max penetration " << s.maxPenetration);
+    for (const auto& msg : s.expectationFailures) FAIL_CHECK(name << ": " << msg);
+    CHECK(s.stopped + s.diverged == 0);
+  }
+}
+
+TEST_CASE("the 1000-sphere pile loads and its first steps converge", "[scenes][shipped]") {
+  SceneFile f;
+  Error e;
+  REQUIRE(LoadSceneFile(std::string(SUPERDEX_SOURCE_DIR) + "/scenes/data/pile.json", &f, &e));
+  REQUIRE(f.scene->NumActors() == 1005);
+  RunOptions o;
+  o.out = "";
+  o.duration = 0.05;
+  RunSummary s;
+  REQUIRE(RunScene(&f, o, &s, &e));
+  CHECK(s.stopped + s.diverged == 0);
+  CHECK(s.maxPenetration < 0.01);
+}
