@@ -23,7 +23,11 @@ struct SymmetricSolver::Impl {
   }
 };
 
-SymmetricSolver::SymmetricSolver() : impl_(new Impl) {}
+SymmetricSolver::SymmetricSolver() : impl_(new Impl) {
+  // A matrix that is not positive definite is an expected outcome here (the caller shifts it);
+  // keep CHOLMOD from printing a warning for each one.
+  impl_->cholmod.cholmod().print = 0;
+}
 SymmetricSolver::~SymmetricSolver() = default;
 
 bool SymmetricSolver::Factorize(const Eigen::SparseMatrix<double>& H) {
