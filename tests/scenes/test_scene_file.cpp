@@ -80,7 +80,7 @@ TEST_CASE("scene file: each defect gives one error with its JSON path", "[scenes
 }
 
 TEST_CASE("command line: bad scene files exit with code 2", "[scenes][cli]") {
-  const std::string dir = std::string(SUPERDEX_SOURCE_DIR) + "/build-test-tmp";
+  const std::string dir = std::string(SUPERDEX_BINARY_DIR) + "/cli-test-tmp";
   std::system(("mkdir -p " + dir).c_str());
   const std::string bad = dir + "/bad.json";
   std::ofstream(bad) << Replace(kGood, R"("mass": 1.0, "position": [1)", R"("mass": -2, "position": [1)");
