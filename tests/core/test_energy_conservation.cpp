@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/scene.h"
+#include "scene_builders.h"
 
 using namespace superdex;
 
@@ -14,13 +15,7 @@ TEST_CASE("SymplecticDIRK12 keeps the energy of a bouncing sphere", "[core][phys
   settings.integrator = IntegrationMethod::SymplecticDIRK12;
   Scene scene(settings);
   Error e;
-  RigidActorDesc ground;
-  ground.name = "ground";
-  ground.dynamic = false;
-  ground.shape.kind = RigidShapeKind::Plane;
-  ground.contact.penaltyCoefficient = 1e7;
-  ground.contact.coulombFrictionCoefficient = 0.0;
-  REQUIRE(scene.AddRigidActor(ground, &e).IsValid());
+  REQUIRE(scene.AddRigidActor(test::StaticGround(1e7, 0.0), &e).IsValid());
   RigidActorDesc ball;
   ball.name = "ball";
   ball.shape.radius = 0.1;

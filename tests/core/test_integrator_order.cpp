@@ -8,6 +8,7 @@
 
 #include "core/scene.h"
 #include "energies/penalty_ramp.h"
+#include "scene_builders.h"
 
 using namespace superdex;
 
@@ -45,12 +46,7 @@ double SimulatedHeight(IntegrationMethod method, double dt) {
   settings.solver.stepTolerance = 1e-12;
   Scene scene(settings);
   Error e;
-  RigidActorDesc ground;
-  ground.name = "ground";
-  ground.dynamic = false;
-  ground.shape.kind = RigidShapeKind::Plane;
-  ground.contact.penaltyCoefficient = kK;
-  REQUIRE(scene.AddRigidActor(ground, &e).IsValid());
+  REQUIRE(scene.AddRigidActor(test::StaticGround(kK), &e).IsValid());
   RigidActorDesc box;
   box.name = "box";
   box.shape.kind = RigidShapeKind::Box;

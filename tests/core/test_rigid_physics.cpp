@@ -5,18 +5,11 @@
 
 #include "core/scene.h"
 #include "energies/penalty_ramp.h"
+#include "scene_builders.h"
 
 using namespace superdex;
 
 namespace {
-
-RigidActorDesc Ground() {
-  RigidActorDesc d;
-  d.name = "ground";
-  d.dynamic = false;
-  d.shape.kind = RigidShapeKind::Plane;
-  return d;
-}
 
 RigidActorDesc BoxDesc(double side, double mass, double z) {
   RigidActorDesc d;
@@ -62,9 +55,7 @@ TEST_CASE("box resting flat on a plane settles at k A h h' = m g", "[core][physi
     settings.integrator = IntegrationMethod::BackwardEuler;
     Scene scene(settings);
     Error e;
-    RigidActorDesc ground = Ground();
-    ground.contact.penaltyCoefficient = k;
-    REQUIRE(scene.AddRigidActor(ground, &e).IsValid());
+    REQUIRE(scene.AddRigidActor(test::StaticGround(k), &e).IsValid());
     RigidActorDesc box = BoxDesc(side, mass, side / 2 + defaults.penaltyThresholdDefault);
     box.contact.penaltyCoefficient = k;
     const ActorHandle h = scene.AddRigidActor(box, &e);
