@@ -1,3 +1,4 @@
+// Analytic signed distance fields (see analytic_sdf.h).
 #include "geometry/analytic_sdf.h"
 
 #include <cmath>
@@ -12,32 +13,33 @@ SdfSample SphereSdf::Evaluate(const Eigen::Vector3d& X) const {
     s.gradient = X / r;
     s.hessian = (Eigen::Matrix3d::Identity() - s.gradient * s.gradient.transpose()) / r;
   } else {
-    s.gradient = Eigen::Vector3d::UnitZ();
+    s.gradient = Eigen::Vector3d::UnitZ();  // any direction is a closest one; Hessian left zero
   }
   return s;
 }
 
 SdfSample BoxSdf::Evaluate(const Eigen::Vector3d& X) const {
   SdfSample s;
-  const Eigen::Vector3d a = X.cwiseAbs();
-  const Eigen::Vector3d d = a - halfExtents;
-  const Eigen::Vector3d sign(X.x() < 0 ? -1.0 : 1.0, X.y() < 0 ? -1.0 : 1.0,
-                             X.z() < 0 ? -1.0 : 1.0);
+  const Eigen::Vector3d d = X.cwiseAbs() - halfExtents;  // per-axis distance past the slab
+  const Eigen::Vector3d sign(X.x() < 0.0 ? -1.0 : 1.0, X.y() < 0.0 ? -1.0 : 1.0,
+                             X.z() < 0.0 ? -1.0 : 1.0);
   if ((d.array() <= 0.0).all()) {
-    // Inside (or on the surface): distance to the nearest face, gradient its outward normal.
-    int i;
+    // Inside or on the surface: Φ = max_i d_i <= 0, the (negated) distance to the nearest face;
+    // ∇Φ = ±e_i of that face; piecewise linear, so ∇∇Φ = 0 (ties: the lowest axis).
+    int i = 0;
     s.value = d.maxCoeff(&i);
     s.gradient[i] = sign[i];
     return s;
   }
-  // Outside: vector from the closest surface point, q = max(d, 0) componentwise.
+  // Outside: q = max(d, 0) is the offset from the closest surface point (in the octant of X);
+  // Φ = |q|, ∇Φ = n = sign ∘ q/|q|. The Hessian is (P − n nᵀ)/Φ with P the projector onto the
+  // axes on which X lies outside the slab: one axis (face region) gives zero, two (edge region)
+  // give (I − t tᵀ − n nᵀ)/Φ with t the edge direction, three (corner region) (I − n nᵀ)/Φ.
   const Eigen::Vector3d q = d.cwiseMax(0.0);
   const double dist = q.norm();
   s.value = dist;
   const Eigen::Vector3d n = q.cwiseProduct(sign) / dist;
   s.gradient = n;
-  // Hessian: (P − n nᵀ)/dist with P the projector onto the axes where the point is outside
-  // (one axis: face region, zero Hessian; two: edge; three: corner).
   Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
   int outside = 0;
   for (int k = 0; k < 3; ++k)
@@ -50,6 +52,7 @@ SdfSample BoxSdf::Evaluate(const Eigen::Vector3d& X) const {
 }
 
 SdfSample PlaneSdf::Evaluate(const Eigen::Vector3d& X) const {
+  // normal is used as given (the header requires it to be a unit vector).
   SdfSample s;
   s.value = normal.dot(X) - offset;
   s.gradient = normal;

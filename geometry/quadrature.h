@@ -25,7 +25,10 @@ struct TriangleQuadratureRule {
   int degree = 0;  ///< highest total polynomial degree integrated exactly
 };
 
-/// The rule for `type`; built once, valid for the program's lifetime, thread-safe.
+/// The rule for `type`; built once, valid for the program's lifetime, thread-safe. The tabulated
+/// orbit parameters are refined at first use by Newton's method on the symmetric moment equations,
+/// so every rule integrates its degree exactly to double round-off. A value outside the
+/// enumeration yields the default rule, P1Q3.
 const TriangleQuadratureRule& GetTriangleQuadratureRule(ActorBoundaryElementType type);
 
 }  // namespace superdex

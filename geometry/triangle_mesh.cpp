@@ -1,12 +1,22 @@
+// Triangle surface meshes (see triangle_mesh.h).
 #include "geometry/triangle_mesh.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <cerrno>
+#include <climits>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <tuple>
+#include <utility>
 
 namespace superdex {
+
+// ---------------------------------------------------------------------------------------------
+// Per-face queries
 
 double TriangleMesh::FaceArea(int f) const {
   const Eigen::Vector3i& t = faces[f];
@@ -15,7 +25,8 @@ double TriangleMesh::FaceArea(int f) const {
 
 Eigen::Vector3d TriangleMesh::FaceNormal(int f) const {
   const Eigen::Vector3i& t = faces[f];
-  const Eigen::Vector3d n = (vertices[t[1]] - vertices[t[0]]).cross(vertices[t[2]] - vertices[t[0]]);
+  const Eigen::Vector3d n =
+      (vertices[t[1]] - vertices[t[0]]).cross(vertices[t[2]] - vertices[t[0]]);
   const double len = n.norm();
   return len > 0.0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero();
 }
@@ -32,27 +43,32 @@ Aabb TriangleMesh::Bounds() const {
   return b;
 }
 
+// ---------------------------------------------------------------------------------------------
+// Generators
+
 TriangleMesh MakeIcosphere(double radius, int subdivisions) {
   TriangleMesh m;
-  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+  const double t = (1.0 + std::sqrt(5.0)) / 2.0;  // golden ratio
   const double base[12][3] = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
                               {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
                               {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
   for (const auto& v : base) m.vertices.push_back(Eigen::Vector3d(v[0], v[1], v[2]).normalized());
+  // Counter-clockwise seen from outside.
   const int f0[20][3] = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
                          {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
                          {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
-                         {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7}, {9, 8, 1}};
+                         {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
   for (const auto& f : f0) m.faces.emplace_back(f[0], f[1], f[2]);
   for (int s = 0; s < subdivisions; ++s) {
-    std::map<std::pair<int, int>, int> mid;
+    // One new vertex per edge, shared by the two faces of the edge.
+    std::map<std::pair<int, int>, int> midpoints;
     auto midpoint = [&](int a, int b) {
       const auto key = std::make_pair(std::min(a, b), std::max(a, b));
-      auto it = mid.find(key);
-      if (it != mid.end()) return it->second;
+      const auto it = midpoints.find(key);
+      if (it != midpoints.end()) return it->second;
       m.vertices.push_back((m.vertices[a] + m.vertices[b]).normalized());
       const int idx = m.NumVertices() - 1;
-      mid.emplace(key, idx);
+      midpoints.emplace(key, idx);
       return idx;
     };
     std::vector<Eigen::Vector3i> next;
@@ -70,38 +86,46 @@ TriangleMesh MakeIcosphere(double radius, int subdivisions) {
   return m;
 }
 
-TriangleMesh MakeBoxMesh(const Eigen::Vector3d& h, int divisions) {
+TriangleMesh MakeBoxMesh(const Eigen::Vector3d& halfExtents, int divisions) {
   TriangleMesh m;
   const int n = std::max(1, divisions);
-  std::map<std::tuple<long, long, long>, int> index;  // shared vertices on the integer lattice
-  auto vertex = [&](const Eigen::Vector3i& lattice) {
-    const auto key = std::make_tuple(long(lattice.x()), long(lattice.y()), long(lattice.z()));
-    auto it = index.find(key);
+  // Vertices live on the integer lattice {0..n}^3 of the box; a lattice point maps to
+  // X = (2 l/n − 1) ∘ halfExtents. Sharing lattice points makes the six faces one closed mesh.
+  std::map<std::tuple<int, int, int>, int> index;
+  auto vertex = [&](const Eigen::Vector3i& l) {
+    const auto key = std::make_tuple(l.x(), l.y(), l.z());
+    const auto it = index.find(key);
     if (it != index.end()) return it->second;
-    const Eigen::Vector3d p = (lattice.cast<double>() / n - Eigen::Vector3d::Ones()).cwiseProduct(h);
+    Eigen::Vector3d p;
+    for (int k = 0; k < 3; ++k) {
+      // Exact ±h at the faces, so the box's faces are exactly planar and its area exact.
+      const double s = l[k] == 0 ? -1.0 : (l[k] == n ? 1.0 : 2.0 * l[k] / n - 1.0);
+      p[k] = s * halfExtents[k];
+    }
     m.vertices.push_back(p);
     index.emplace(key, m.NumVertices() - 1);
     return m.NumVertices() - 1;
   };
-  // Each face: fixed axis k at lattice 0 or 2n, spanned by axes u, v with u × v = ±e_k.
+  m.faces.reserve(12 * n * n);
+  // Face with fixed axis k at lattice 0 (normal −e_k) or n (normal +e_k), spanned by the axes
+  // u = k+1, v = k+2 (cyclic), so that e_u × e_v = e_k.
   for (int k = 0; k < 3; ++k) {
     const int u = (k + 1) % 3, v = (k + 2) % 3;
     for (int side = 0; side < 2; ++side) {
-      for (int i = 0; i < 2 * n; i += 2)
-        for (int j = 0; j < 2 * n; j += 2) {
-          // Lattice spacing 2 per cell keeps integer coordinates in [0, 2n].
-          auto at = [&](int a, int b) {
-            Eigen::Vector3i l;
-            l[k] = side * 2 * n;
-            l[u] = a;
-            l[v] = b;
-            return vertex(l);
-          };
-          const int v00 = at(i, j), v10 = at(i + 2, j), v11 = at(i + 2, j + 2), v01 = at(i, j + 2);
-          if (side == 1) {
+      auto at = [&](int a, int b) {
+        Eigen::Vector3i l;
+        l[k] = side * n;
+        l[u] = a;
+        l[v] = b;
+        return vertex(l);
+      };
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          const int v00 = at(i, j), v10 = at(i + 1, j), v11 = at(i + 1, j + 1), v01 = at(i, j + 1);
+          if (side == 1) {  // +e_k: (u, v) counter-clockwise
             m.faces.emplace_back(v00, v10, v11);
             m.faces.emplace_back(v00, v11, v01);
-          } else {
+          } else {  // −e_k: reversed
             m.faces.emplace_back(v00, v11, v10);
             m.faces.emplace_back(v00, v01, v11);
           }
@@ -114,105 +138,168 @@ TriangleMesh MakeBoxMesh(const Eigen::Vector3d& h, int divisions) {
 TriangleMesh MakePlanePatch(double size, int divisions) {
   TriangleMesh m;
   const int n = std::max(1, divisions);
+  m.vertices.reserve((n + 1) * (n + 1));
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i)
       m.vertices.emplace_back(size * (double(i) / n - 0.5), size * (double(j) / n - 0.5), 0.0);
+  m.faces.reserve(2 * n * n);
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
       const int a = j * (n + 1) + i, b = a + 1, c = a + n + 2, d = a + n + 1;
-      m.faces.emplace_back(a, b, c);
+      m.faces.emplace_back(a, b, c);  // counter-clockwise seen from +z
       m.faces.emplace_back(a, c, d);
     }
   return m;
 }
 
+// ---------------------------------------------------------------------------------------------
+// OBJ reading
+
+namespace {
+
+// Parses a whole token as a base-10 integer.
+bool ParseLong(const std::string& s, long* out) {
+  if (s.empty()) return false;
+  errno = 0;
+  char* end = nullptr;
+  const long v = std::strtol(s.c_str(), &end, 10);
+  if (errno != 0 || end != s.c_str() + s.size()) return false;
+  *out = v;
+  return true;
+}
+
+// Parses a whole token as a finite double.
+bool ParseDouble(const std::string& s, double* out) {
+  if (s.empty()) return false;
+  errno = 0;
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  if (errno != 0 || end != s.c_str() + s.size() || !std::isfinite(v)) return false;
+  *out = v;
+  return true;
+}
+
+struct PendingIndex {
+  long index;         // 1-based, resolved (negative indices made absolute)
+  std::string token;  // as written, for messages
+};
+
+}  // namespace
+
 bool ReadObj(const std::string& path, TriangleMesh* mesh, std::string* error) {
-  std::ifstream in(path);
-  if (!in) {
-    if (error) *error = path + ": cannot open file";
+  auto fail = [&](const std::string& message) {
+    if (error) *error = message;
     return false;
-  }
+  };
+  if (mesh == nullptr) return fail(path + ": no output mesh given");
+  std::ifstream in(path);
+  if (!in) return fail(path + ": cannot open file");
+
   TriangleMesh m;
+  struct Polygon {
+    std::vector<PendingIndex> corners;
+    int line;
+  };
+  std::vector<Polygon> polygons;
   std::string line;
   int lineNo = 0;
-  std::vector<std::pair<int, int>> faceLines;  // face start index in m.faces, line number
-  std::vector<std::vector<long>> polys;
-  std::vector<int> polyLines;
   while (std::getline(in, line)) {
     ++lineNo;
-    std::istringstream s(line);
+    const std::string where = path + ":" + std::to_string(lineNo) + ": ";
+    const size_t hash = line.find('#');
+    if (hash != std::string::npos) line.erase(hash);  // comments, also after data
+    std::istringstream s(line);                       // '\r' of CRLF files is whitespace here
     std::string tag;
-    if (!(s >> tag) || tag[0] == '#') continue;
+    if (!(s >> tag)) continue;
     if (tag == "v") {
-      double x, y, z;
-      if (!(s >> x >> y >> z) || !std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) {
-        if (error) *error = path + ":" + std::to_string(lineNo) + ": malformed vertex";
-        return false;
-      }
-      m.vertices.emplace_back(x, y, z);
+      // "v x y z [w]": w (rational weight) is ignored; colours after xyz are tolerated.
+      std::string tok[3];
+      double x[3];
+      for (int k = 0; k < 3; ++k)
+        if (!(s >> tok[k]) || !ParseDouble(tok[k], &x[k]))
+          return fail(where + "malformed vertex (expected \"v x y z\" with finite numbers)");
+      m.vertices.emplace_back(x[0], x[1], x[2]);
     } else if (tag == "f") {
-      std::vector<long> poly;
+      // "f a b c ...", each corner "v", "v/vt", "v//vn" or "v/vt/vn"; only v is used.
+      Polygon poly;
+      poly.line = lineNo;
       std::string tok;
       while (s >> tok) {
-        try {
-          poly.push_back(std::stol(tok.substr(0, tok.find('/'))));
-        } catch (...) {
-          if (error) *error = path + ":" + std::to_string(lineNo) + ": malformed face index \"" + tok + "\"";
-          return false;
+        const std::string v = tok.substr(0, tok.find('/'));
+        long idx = 0;
+        if (!ParseLong(v, &idx)) return fail(where + "malformed face index \"" + tok + "\"");
+        if (idx < 0) {
+          // Relative to the vertices read so far: −1 is the last one.
+          if (idx < -static_cast<long>(m.vertices.size()))
+            return fail(where + "face index " + v + " out of range (" +
+                        std::to_string(m.vertices.size()) + " vertices so far)");
+          idx = static_cast<long>(m.vertices.size()) + idx + 1;
         }
+        poly.corners.push_back({idx, v});
       }
-      if (poly.size() < 3) {
-        if (error) *error = path + ":" + std::to_string(lineNo) + ": a face needs at least 3 vertices";
-        return false;
-      }
-      // Negative indices are relative to the vertices read so far.
-      for (long& idx : poly) idx = idx < 0 ? long(m.vertices.size()) + idx + 1 : idx;
-      polys.push_back(poly);
-      polyLines.push_back(lineNo);
+      if (poly.corners.size() < 3)
+        return fail(where + "a face needs at least 3 vertices, got " +
+                    std::to_string(poly.corners.size()));
+      polygons.push_back(std::move(poly));
     }
+    // Every other statement (vt, vn, o, g, s, usemtl, mtllib, l, ...) is ignored.
   }
-  const long nv = long(m.vertices.size());
-  for (size_t p = 0; p < polys.size(); ++p) {
-    for (long idx : polys[p])
-      if (idx < 1 || idx > nv) {
-        if (error)
-          *error = path + ":" + std::to_string(polyLines[p]) + ": face index " + std::to_string(idx) +
-                   " out of range (" + std::to_string(nv) + " vertices)";
-        return false;
-      }
-    for (size_t k = 1; k + 1 < polys[p].size(); ++k)
-      m.faces.emplace_back(int(polys[p][0] - 1), int(polys[p][k] - 1), int(polys[p][k + 1] - 1));
+  if (in.bad()) return fail(path + ": read error");
+
+  // Positive indices are checked once all vertices are known.
+  const long nv = static_cast<long>(m.vertices.size());
+  if (nv > INT_MAX) return fail(path + ": too many vertices");
+  for (const Polygon& poly : polygons) {
+    for (const PendingIndex& c : poly.corners)
+      if (c.index < 1 || c.index > nv)
+        return fail(path + ":" + std::to_string(poly.line) + ": face index " + c.token +
+                    " out of range (" + std::to_string(nv) + " vertices)");
+    // Fan triangulation around the first corner.
+    for (size_t k = 1; k + 1 < poly.corners.size(); ++k)
+      m.faces.emplace_back(static_cast<int>(poly.corners[0].index - 1),
+                           static_cast<int>(poly.corners[k].index - 1),
+                           static_cast<int>(poly.corners[k + 1].index - 1));
   }
-  if (m.faces.empty()) {
-    if (error) *error = path + ": no faces";
-    return false;
-  }
+  if (m.faces.empty()) return fail(path + ": no faces");
   *mesh = std::move(m);
   return true;
 }
 
+// ---------------------------------------------------------------------------------------------
+// Mass properties
+
 MassProperties ComputeMassProperties(const TriangleMesh& mesh, double density) {
-  // Signed tetrahedra (0, a, b, c): volume det/6, first and second moments exactly.
+  // Divergence theorem: the solid is the signed sum of the tetrahedra (o, a, b, c) over the
+  // faces, o a reference point (the bounding-box centre, which keeps round-off small for meshes
+  // far from the origin). For a tetrahedron with vertices p_0..p_3 and relative coordinates
+  // r_i = p_i − o (r_0 = 0), exactly:
+  //   V = r_1 · (r_2 × r_3) / 6,   ∫ r dV = V/4 Σ r_i,
+  //   ∫ r rᵀ dV = V/20 (Σ r_i r_iᵀ + (Σ r_i)(Σ r_i)ᵀ).
   MassProperties mp;
+  if (mesh.vertices.empty()) return mp;
+  const Aabb box = mesh.Bounds();
+  const Eigen::Vector3d o = 0.5 * (box.min + box.max);
   double vol = 0.0;
-  Eigen::Vector3d first = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d second = Eigen::Matrix3d::Zero();  // ∫ x xᵀ dV about the origin
+  Eigen::Vector3d first = Eigen::Vector3d::Zero();   // ∫ r dV
+  Eigen::Matrix3d second = Eigen::Matrix3d::Zero();  // ∫ r rᵀ dV
   for (const auto& f : mesh.faces) {
-    const Eigen::Vector3d& a = mesh.vertices[f[0]];
-    const Eigen::Vector3d& b = mesh.vertices[f[1]];
-    const Eigen::Vector3d& c = mesh.vertices[f[2]];
+    const Eigen::Vector3d a = mesh.vertices[f[0]] - o;
+    const Eigen::Vector3d b = mesh.vertices[f[1]] - o;
+    const Eigen::Vector3d c = mesh.vertices[f[2]] - o;
     const double v = a.dot(b.cross(c)) / 6.0;
-    vol += v;
-    first += v * (a + b + c) / 4.0;
-    // ∫_tet x xᵀ dV = V/20 (Σ_i v_i v_iᵀ + (Σ v_i)(Σ v_i)ᵀ) with the origin as fourth vertex.
     const Eigen::Vector3d s = a + b + c;
-    second += v / 20.0 * (a * a.transpose() + b * b.transpose() + c * c.transpose() + s * s.transpose());
+    vol += v;
+    first += (v / 4.0) * s;
+    second += (v / 20.0) *
+              (a * a.transpose() + b * b.transpose() + c * c.transpose() + s * s.transpose());
   }
   mp.volume = vol;
   mp.mass = density * vol;
   if (vol != 0.0) {
-    mp.centerOfMass = first / vol;
-    mp.secondMoment = density * (second - vol * mp.centerOfMass * mp.centerOfMass.transpose());
+    const Eigen::Vector3d rc = first / vol;  // centre of mass relative to o
+    mp.centerOfMass = o + rc;
+    Eigen::Matrix3d J = density * (second - vol * rc * rc.transpose());  // parallel axis
+    mp.secondMoment = 0.5 * (J + J.transpose());
   }
   return mp;
 }

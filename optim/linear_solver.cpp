@@ -1,73 +1,125 @@
+// Sparse symmetric solves: CHOLMOD supernodal LLᵀ first, Eigen's SimplicialLDLT as the fallback.
+//
+// Both backends read only the lower triangle of H (the full symmetric matrix is stored). The
+// symbolic analysis (fill-reducing ordering, elimination tree, supernode structure) depends only
+// on the sparsity pattern, so it is redone only when the compressed-column index arrays differ from
+// those of the last analysis; the numeric factorization is redone on every call.
 #include "optim/linear_solver.h"
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <limits>
+#include <vector>
 
 namespace superdex {
+namespace {
+
+using SparseMatrix = Eigen::SparseMatrix<double>;
+
+enum class BackendKind { None, Cholmod, Ldlt };
+
+}  // namespace
 
 struct SymmetricSolver::Impl {
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> cholmod;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> ldlt;
-  std::vector<int> outer, inner;  // pattern of the last analysis
-  bool analyzedCholmod = false;
-  bool analyzedLdlt = false;
-  int backend = 0;  // 1 cholmod, 2 ldlt
+  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> cholmod;
+  Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower> ldlt;
+  // Pattern (rows, outer and inner index arrays) of the last symbolic analysis.
+  Eigen::Index rows = -1;
+  std::vector<SparseMatrix::StorageIndex> outer, inner;
+  bool cholmodAnalyzed = false;  // cholmod holds a valid analysis of the stored pattern
+  bool ldltAnalyzed = false;     // ldlt holds a valid analysis of the stored pattern
+  BackendKind backend = BackendKind::None;
+  SparseMatrix compressed;       // scratch copy when the caller passes an uncompressed matrix
 
-  bool SamePattern(const Eigen::SparseMatrix<double>& H) const {
-    const int n = static_cast<int>(H.outerSize());
-    if (static_cast<int>(outer.size()) != n + 1 ||
-        static_cast<int>(inner.size()) != H.nonZeros())
+  bool SamePattern(const SparseMatrix& H) const {
+    if (H.rows() != rows || static_cast<Eigen::Index>(outer.size()) != H.outerSize() + 1 ||
+        static_cast<Eigen::Index>(inner.size()) != H.nonZeros())
       return false;
     return std::equal(outer.begin(), outer.end(), H.outerIndexPtr()) &&
            std::equal(inner.begin(), inner.end(), H.innerIndexPtr());
   }
+
+  void StorePattern(const SparseMatrix& H) {
+    rows = H.rows();
+    outer.assign(H.outerIndexPtr(), H.outerIndexPtr() + H.outerSize() + 1);
+    inner.assign(H.innerIndexPtr(), H.innerIndexPtr() + H.nonZeros());
+    cholmodAnalyzed = ldltAnalyzed = false;
+  }
+
+  bool FactorizeCholmod(const SparseMatrix& H) {
+    if (!cholmodAnalyzed) {
+      cholmod.analyzePattern(H);
+      // A failed analysis (e.g. out of memory) leaves no symbolic factor to factorize into.
+      if (cholmod.cholmod().status < CHOLMOD_OK) return false;
+      cholmodAnalyzed = true;
+    }
+    // CHOLMOD stops at the first non-positive pivot and reports it through L->minor < n, which
+    // Eigen maps to NumericalIssue. The symbolic factor stays valid for the next call.
+    cholmod.factorize(H);
+    return cholmod.cholmod().status >= CHOLMOD_OK && cholmod.info() == Eigen::Success;
+  }
+
+  bool FactorizeLdlt(const SparseMatrix& H) {
+    if (!ldltAnalyzed) {
+      ldlt.analyzePattern(H);
+      ldltAnalyzed = true;
+    }
+    ldlt.factorize(H);
+    // H = P^T L D L^T P with unit lower L is positive definite iff every D_ii > 0.
+    return ldlt.info() == Eigen::Success && (ldlt.vectorD().array() > 0.0).all();
+  }
 };
 
 SymmetricSolver::SymmetricSolver() : impl_(new Impl) {
-  // A matrix that is not positive definite is an expected outcome here (the caller shifts it);
-  // keep CHOLMOD from printing a warning for each one.
+  // A matrix that is not positive definite is an expected outcome here (the Newton solver shifts
+  // it and retries); keep CHOLMOD from printing a warning for each one.
   impl_->cholmod.cholmod().print = 0;
 }
+
 SymmetricSolver::~SymmetricSolver() = default;
 
 bool SymmetricSolver::Factorize(const Eigen::SparseMatrix<double>& H) {
   Impl& s = *impl_;
-  if (!H.isCompressed()) return false;
-  if (!s.SamePattern(H)) {
-    s.outer.assign(H.outerIndexPtr(), H.outerIndexPtr() + H.outerSize() + 1);
-    s.inner.assign(H.innerIndexPtr(), H.innerIndexPtr() + H.nonZeros());
-    s.analyzedCholmod = s.analyzedLdlt = false;
+  s.backend = BackendKind::None;
+  if (H.rows() != H.cols() || H.rows() == 0) return false;
+  const SparseMatrix* A = &H;
+  if (!H.isCompressed()) {
+    s.compressed = H;
+    s.compressed.makeCompressed();
+    A = &s.compressed;
   }
-  if (!s.analyzedCholmod) {
-    s.cholmod.analyzePattern(H);
-    s.analyzedCholmod = true;
-  }
-  s.cholmod.factorize(H);
-  if (s.cholmod.info() == Eigen::Success) {
-    s.backend = 1;
+  // A non-finite entry cannot be factorized meaningfully by either backend.
+  if (!Eigen::Map<const Eigen::VectorXd>(A->valuePtr(), A->nonZeros()).allFinite()) return false;
+  if (!s.SamePattern(*A)) s.StorePattern(*A);
+  if (s.FactorizeCholmod(*A)) {
+    s.backend = BackendKind::Cholmod;
     return true;
   }
-  if (!s.analyzedLdlt) {
-    s.ldlt.analyzePattern(H);
-    s.analyzedLdlt = true;
-  }
-  s.ldlt.factorize(H);
-  if (s.ldlt.info() == Eigen::Success && (s.ldlt.vectorD().array() > 0.0).all()) {
-    s.backend = 2;
+  if (s.FactorizeLdlt(*A)) {
+    s.backend = BackendKind::Ldlt;
     return true;
   }
-  s.backend = 0;
   return false;
 }
 
 Eigen::VectorXd SymmetricSolver::Solve(const Eigen::VectorXd& b) const {
-  if (impl_->backend == 1) return impl_->cholmod.solve(b);
-  if (impl_->backend == 2) return impl_->ldlt.solve(b);
+  switch (impl_->backend) {
+    case BackendKind::Cholmod: return impl_->cholmod.solve(b);
+    case BackendKind::Ldlt: return impl_->ldlt.solve(b);
+    case BackendKind::None: break;
+  }
+  // No valid factorization (never factorized, or the last Factorize failed and overwrote it).
   return Eigen::VectorXd::Constant(b.size(), std::numeric_limits<double>::quiet_NaN());
 }
 
 const char* SymmetricSolver::Backend() const {
-  return impl_->backend == 1 ? "cholmod" : impl_->backend == 2 ? "ldlt" : "none";
+  switch (impl_->backend) {
+    case BackendKind::Cholmod: return "cholmod";
+    case BackendKind::Ldlt: return "ldlt";
+    case BackendKind::None: break;
+  }
+  return "none";
 }
 
 }  // namespace superdex

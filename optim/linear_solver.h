@@ -16,11 +16,13 @@ class SymmetricSolver {
   SymmetricSolver(const SymmetricSolver&) = delete;
   SymmetricSolver& operator=(const SymmetricSolver&) = delete;
 
-  /// Factorizes H. Returns false if H is not positive definite for both backends.
+  /// Factorizes H (only its lower triangle is read). Returns false if H is not positive definite
+  /// for both backends, is empty or non-square, or has non-finite entries.
   bool Factorize(const Eigen::SparseMatrix<double>& H);
-  /// Solves with the last successful factorization.
+  /// Solves H x = b with the last factorization; all NaN if the last Factorize returned false
+  /// (a failed attempt overwrites the previous factors).
   Eigen::VectorXd Solve(const Eigen::VectorXd& b) const;
-  /// "cholmod" or "ldlt": the backend of the last successful factorization.
+  /// "cholmod" or "ldlt": the backend of the last factorization; "none" if it failed.
   const char* Backend() const;
 
  private:

@@ -1,8 +1,13 @@
+// Projected Newton with a backtracking (Armijo) line search. See newton_solver.h for the
+// convergence tests and the statuses.
 #include "optim/newton_solver.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <sstream>
+#include <vector>
 
 #include "optim/linear_solver.h"
 
@@ -10,13 +15,72 @@ namespace superdex {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double Since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+using SparseMatrix = Eigen::SparseMatrix<double>;
 
-std::string Describe(const char* what, double value, const char* rule, double bound) {
+double SecondsSince(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+/// Relative width of the round-off band of the line search: trial values with
+/// |f(s ⊕ αd) − f(s)| <= kRoundoffBand |f(s)| cannot be told apart from f(s) in double precision
+/// once f is a sum of many terms.
+constexpr double kRoundoffBand = 1e-14;
+/// Diagonal shifts tried after the unshifted factorization fails: τ_k = τ_0 10^k, k < this.
+constexpr int kMaxShiftRetries = 12;
+/// First shift relative to the Hessian's scale: τ_0 = kInitialShift max_i |H_ii|.
+constexpr double kInitialShift = 1e-8;
+
+/// Makes every diagonal entry of H structurally present (explicit zeros where missing), so that
+/// H and H + τI share one sparsity pattern and the symbolic analysis is kept. Fills diagonal[k]
+/// with the index of H_kk in H.valuePtr().
+void FindDiagonal(SparseMatrix* H, std::vector<Eigen::Index>* diagonal) {
+  const Eigen::Index n = H->outerSize();
+  diagonal->assign(n, -1);
+  bool missing = false;
+  for (int pass = 0; pass < 2; ++pass) {
+    missing = false;
+    for (Eigen::Index k = 0; k < n; ++k) {
+      using Index = SparseMatrix::StorageIndex;
+      const Index* begin = H->innerIndexPtr() + H->outerIndexPtr()[k];
+      const Index* end = H->innerIndexPtr() + H->outerIndexPtr()[k + 1];
+      const Index* it = std::lower_bound(begin, end, static_cast<Index>(k));
+      if (it != end && *it == k) {
+        (*diagonal)[k] = it - H->innerIndexPtr();
+      } else {
+        missing = true;
+      }
+    }
+    if (!missing) return;
+    // Rebuild with explicit zeros on the missing diagonal entries (setFromTriplets keeps zeros).
+    std::vector<Eigen::Triplet<double>> triplets;
+    triplets.reserve(H->nonZeros() + n);
+    for (Eigen::Index k = 0; k < n; ++k) {
+      for (SparseMatrix::InnerIterator e(*H, k); e; ++e)
+        triplets.emplace_back(e.row(), e.col(), e.value());
+      if ((*diagonal)[k] < 0) triplets.emplace_back(k, k, 0.0);
+    }
+    SparseMatrix rebuilt(H->rows(), H->cols());
+    rebuilt.setFromTriplets(triplets.begin(), triplets.end());
+    *H = std::move(rebuilt);
+  }
+}
+
+/// Formats "<what> = <value> <= <bound>".
+std::string Passed(const char* what, double value, const char* bound, double boundValue) {
   std::ostringstream s;
-  s << what << " " << value << " " << rule << " " << bound;
+  s << what << " = " << value << " <= " << bound << " = " << boundValue;
   return s.str();
 }
+
+template <typename T>
+std::string Rule(const char* field, const char* rule, T value) {
+  std::ostringstream s;
+  s << field << ": " << rule << ", got " << value;
+  return s.str();
+}
+
+bool NonNegative(double x) { return std::isfinite(x) && x >= 0.0; }
+bool InOpenUnitInterval(double x) { return x > 0.0 && x < 1.0; }
 
 }  // namespace
 
@@ -26,129 +90,231 @@ const char* ToString(StageStatus status) {
     case StageStatus::Stopped: return "Stopped";
     case StageStatus::Diverged: return "Diverged";
   }
-  return "?";
+  return "Unknown";
 }
 
 std::string Validate(const NonlinearSolverParams& p) {
-  std::ostringstream s;
-  if (p.maxIterations < 1) s << "max_iterations: must be >= 1, got " << p.maxIterations;
-  else if (!(p.absoluteTolerance >= 0)) s << "absolute_tolerance: must be >= 0, got " << p.absoluteTolerance;
-  else if (!(p.relativeTolerance >= 0)) s << "relative_tolerance: must be >= 0, got " << p.relativeTolerance;
-  else if (!(p.stepTolerance >= 0)) s << "step_tolerance: must be >= 0, got " << p.stepTolerance;
-  else if (!(p.armijoConstant > 0 && p.armijoConstant < 1))
-    s << "armijo_constant: must be in (0, 1), got " << p.armijoConstant;
-  else if (!(p.backtrackFactor > 0 && p.backtrackFactor < 1))
-    s << "backtrack_factor: must be in (0, 1), got " << p.backtrackFactor;
-  else if (p.maxLineSearchSteps < 1)
-    s << "max_line_search_steps: must be >= 1, got " << p.maxLineSearchSteps;
-  return s.str();
+  // Field names are those of the scene file ("settings.solver.<name>"), so that a message can be
+  // prefixed with the path of the offending key.
+  if (p.maxIterations < 1) return Rule("max_iterations", "must be >= 1", p.maxIterations);
+  if (!NonNegative(p.absoluteTolerance))
+    return Rule("absolute_tolerance", "must be >= 0", p.absoluteTolerance);
+  if (!NonNegative(p.relativeTolerance))
+    return Rule("relative_tolerance", "must be >= 0", p.relativeTolerance);
+  if (!NonNegative(p.stepTolerance)) return Rule("step_tolerance", "must be >= 0", p.stepTolerance);
+  if (p.lineSearch != LineSearchKind::Armijo && p.lineSearch != LineSearchKind::None)
+    return Rule("line_search", "must be Armijo or None", static_cast<int>(p.lineSearch));
+  if (p.psdProjection != PsdProjection::None && p.psdProjection != PsdProjection::Clamp &&
+      p.psdProjection != PsdProjection::Abs)
+    return Rule("psd_projection", "must be None, Clamp or Abs", static_cast<int>(p.psdProjection));
+  if (!InOpenUnitInterval(p.armijoConstant))
+    return Rule("armijo_constant", "must be in (0, 1)", p.armijoConstant);
+  if (!InOpenUnitInterval(p.backtrackFactor))
+    return Rule("backtrack_factor", "must be in (0, 1)", p.backtrackFactor);
+  if (p.maxLineSearchSteps < 1)
+    return Rule("max_line_search_steps", "must be >= 1", p.maxLineSearchSteps);
+  return "";
 }
 
 SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& params,
                            double timeScale) {
   SolverStats st;
+  auto diverge = [&st](const std::string& message) {
+    st.status = StageStatus::Diverged;
+    st.message = message;
+    return st;
+  };
+  if (std::string m = Validate(params); !m.empty()) return diverge("invalid parameters: " + m);
+  if (!(std::isfinite(timeScale) && timeScale > 0.0)) {
+    std::ostringstream s;
+    s << "invalid time scale: must be > 0, got " << timeScale;
+    return diverge(s.str());
+  }
+
   const int n = problem.NumDofs();
-  Eigen::VectorXd g(n), d(n), trial(n);
-  Eigen::SparseMatrix<double> H;
+  Eigen::VectorXd g(n), d(n), step(n);
+  SparseMatrix H, shifted;
+  std::vector<Eigen::Index> diagonal;
   SymmetricSolver solver;
+
   if (n == 0) {
+    Clock::time_point t0 = Clock::now();
+    st.finalValue = problem.Evaluate(&g, nullptr, params.psdProjection);
+    st.assemblySeconds = SecondsSince(t0);
+    if (!std::isfinite(st.finalValue)) return diverge("non-finite value at the initial state");
     st.status = StageStatus::Converged;
     st.message = "no degrees of freedom";
     return st;
   }
+
   for (int it = 0; it < params.maxIterations; ++it) {
-    auto t0 = Clock::now();
+    // --- Assembly: f, g, H at the current state s.
+    Clock::time_point t0 = Clock::now();
     const double f = problem.Evaluate(&g, &H, params.psdProjection);
-    st.assemblySeconds += Since(t0);
+    st.assemblySeconds += SecondsSince(t0);
     st.finalValue = f;
+    if (g.size() != n || H.rows() != n || H.cols() != n) {
+      std::ostringstream s;
+      s << "gradient/Hessian of size " << g.size() << "/" << H.rows() << "x" << H.cols()
+        << " for " << n << " degrees of freedom";
+      return diverge(s.str());
+    }
+    if (!std::isfinite(f) || !g.allFinite()) {
+      std::ostringstream s;
+      s << "non-finite value or gradient at iteration " << it + 1 << " (f = " << f << ")";
+      return diverge(s.str());
+    }
     st.finalGradientNorm = g.lpNorm<Eigen::Infinity>();
     if (it == 0) st.initialGradientNorm = st.finalGradientNorm;
-    if (!std::isfinite(f) || !g.allFinite()) {
-      st.status = StageStatus::Diverged;
-      st.message = "non-finite value or gradient";
-      return st;
-    }
-    if (st.finalGradientNorm == 0.0) {
+    if (it == 0 && st.initialGradientNorm == 0.0) {
       st.status = StageStatus::Converged;
-      st.message = "gradient is exactly zero";
+      st.message = "gradient is exactly zero at the initial state";
       return st;
     }
-    // Newton direction d = −H⁻¹ g, with a diagonal shift where H is not positive definite.
+
+    // --- Direction d = −H̃⁻¹g, H̃ = H or H + τI (the smallest shift on the ladder that gives a
+    // positive definite matrix and a descent direction).
     t0 = Clock::now();
-    bool ok = solver.Factorize(H);
-    if (ok) d = -solver.Solve(g);
-    if (!ok || !d.allFinite() || g.dot(d) >= 0.0) {
-      double maxDiag = 0.0;
-      for (int k = 0; k < H.outerSize(); ++k) maxDiag = std::max(maxDiag, std::abs(H.coeff(k, k)));
-      double tau = 1e-8 * std::max(maxDiag, 1e-12);
-      Eigen::SparseMatrix<double> I(n, n);
-      I.setIdentity();
-      ok = false;
-      for (int r = 0; r < 16 && !ok; ++r, tau *= 10.0) {
-        ++st.regularizations;
-        const Eigen::SparseMatrix<double> Hs = H + tau * I;
-        if (solver.Factorize(Hs)) {
+    H.makeCompressed();
+    if (!Eigen::Map<const Eigen::VectorXd>(H.valuePtr(), H.nonZeros()).allFinite())
+      return diverge("non-finite Hessian entry at iteration " + std::to_string(it + 1));
+    FindDiagonal(&H, &diagonal);  // keeps the pattern of H and H + τI identical
+    bool ok = false;
+    if (st.finalGradientNorm == 0.0) {
+      d.setZero();  // an exact stationary point: nothing to solve (g·d = 0 is no descent failure)
+      ok = true;
+    } else if (solver.Factorize(H)) {
+      d = -solver.Solve(g);
+      ok = d.allFinite() && g.dot(d) < 0.0;
+    }
+    if (!ok) {
+      ++st.regularizations;
+      double scale = 0.0;
+      for (Eigen::Index k = 0; k < n; ++k)
+        scale = std::max(scale, std::abs(H.valuePtr()[diagonal[k]]));
+      if (scale == 0.0) scale = Eigen::Map<const Eigen::VectorXd>(H.valuePtr(), H.nonZeros())
+                                    .lpNorm<Eigen::Infinity>();
+      if (scale == 0.0) scale = 1.0;
+      // Gershgorin: τ >= max_i (Σ_{j≠i} |H_ij| − H_ii) + scale makes H + τI strictly diagonally
+      // dominant with a positive diagonal, hence positive definite. Tried after the ladder.
+      Eigen::VectorXd offDiagonal = Eigen::VectorXd::Zero(n);
+      for (Eigen::Index k = 0; k < H.outerSize(); ++k)
+        for (SparseMatrix::InnerIterator e(H, k); e; ++e)
+          if (e.row() != e.col()) offDiagonal[e.row()] += std::abs(e.value());
+      double gershgorin = 0.0;
+      for (Eigen::Index k = 0; k < n; ++k)
+        gershgorin = std::max(gershgorin, offDiagonal[k] - H.valuePtr()[diagonal[k]]);
+      gershgorin += scale;
+
+      shifted = H;
+      double tau = kInitialShift * scale;
+      for (int r = 0; r <= kMaxShiftRetries && !ok; ++r, tau *= 10.0) {
+        if (r == kMaxShiftRetries) tau = std::max(tau, gershgorin);
+        for (Eigen::Index k = 0; k < n; ++k)
+          shifted.valuePtr()[diagonal[k]] = H.valuePtr()[diagonal[k]] + tau;
+        if (solver.Factorize(shifted)) {
           d = -solver.Solve(g);
           ok = d.allFinite() && g.dot(d) < 0.0;
         }
       }
-      if (!ok) d = -g;  // steepest descent as the last resort
+      if (!ok) {
+        st.factorizationSeconds += SecondsSince(t0);
+        std::ostringstream s;
+        s << "no descent direction at iteration " << it + 1
+          << ": the Hessian stays singular or indefinite with diagonal shifts up to " << tau / 10.0;
+        return diverge(s.str());
+      }
     }
-    st.factorizationSeconds += Since(t0);
-    const double decrement = -0.5 * g.dot(d);
-    st.finalDecrement = decrement;
+    st.factorizationSeconds += SecondsSince(t0);
     st.iterations = it + 1;
+    const double slope = g.dot(d);  // g·d < 0 (or 0 at an exact stationary point)
+    const double decrement = -0.5 * slope;
+    st.finalDecrement = decrement;
 
+    // Round-off band: accept a trial value indistinguishable from f when the predicted change
+    // |α g·d| (≈ α‖d‖²_H̃, the step length in the Hessian norm) is itself inside the band, i.e.
+    // the step is too small for f to resolve its decrease. Far from a minimum it never applies.
+    const double band = kRoundoffBand * std::abs(f);
+    auto withinRoundoff = [&](double trialValue, double alpha) {
+      return std::abs(trialValue - f) <= band && alpha * std::abs(slope) <= band;
+    };
+
+    // --- Convergence tests (see newton_solver.h), before stepping.
     std::string converged;
-    if (decrement <= params.absoluteTolerance)
-      converged = Describe("Newton decrement", decrement, "<=", params.absoluteTolerance);
-    else if (st.finalGradientNorm <= params.relativeTolerance * st.initialGradientNorm && it > 0)
-      converged = Describe("gradient norm", st.finalGradientNorm, "<= relative tolerance x",
-                           st.initialGradientNorm);
-    else if (problem.StepNorm(d) <= params.stepTolerance * timeScale)
-      converged = Describe("step/dt", problem.StepNorm(d) / timeScale, "<=", params.stepTolerance);
+    const double stepVelocity = problem.StepNorm(d) / timeScale;
+    if (decrement <= params.absoluteTolerance) {
+      converged = Passed("Newton decrement 0.5 g^T H^-1 g", decrement, "absolute_tolerance",
+                         params.absoluteTolerance);
+    } else if (st.finalGradientNorm <= params.relativeTolerance * st.initialGradientNorm) {
+      converged = Passed("gradient norm |g|_inf", st.finalGradientNorm,
+                         "relative_tolerance * |g0|_inf",
+                         params.relativeTolerance * st.initialGradientNorm);
+    } else if (stepVelocity <= params.stepTolerance) {
+      converged = Passed("step StepNorm(d)/dt [m/s]", stepVelocity, "step_tolerance",
+                         params.stepTolerance);
+    }
+    if (!converged.empty()) {
+      // Take the last Newton correction as well, unless it would raise f.
+      t0 = Clock::now();
+      const double trialValue = problem.Value(d);
+      const bool commit = std::isfinite(trialValue) &&
+                          (trialValue <= f || withinRoundoff(trialValue, 1.0));
+      if (commit) {
+        problem.Commit(d);
+        st.finalValue = trialValue;
+      }
+      st.lineSearchSeconds += SecondsSince(t0);
+      st.status = StageStatus::Converged;
+      st.message = converged + (commit ? "" : " (last step not taken: it would raise f)");
+      return st;
+    }
 
-    // Line search.
+    // --- Line search along d. No allocation here: `step` is preallocated.
     t0 = Clock::now();
     double alpha = 1.0;
-    const double slope = g.dot(d);
+    double trialValue = std::numeric_limits<double>::quiet_NaN();
     bool accepted = false;
-    for (int ls = 0; ls < params.maxLineSearchSteps; ++ls) {
-      trial = alpha * d;
-      const double ft = problem.Value(trial);
-      if (params.lineSearch == LineSearchKind::None && std::isfinite(ft)) {
-        accepted = true;
-        break;
+    if (params.lineSearch == LineSearchKind::None) {
+      trialValue = problem.Value(d);
+      accepted = std::isfinite(trialValue);
+      step = d;
+    } else {
+      for (int trial = 0; trial < params.maxLineSearchSteps; ++trial) {
+        step.noalias() = alpha * d;
+        trialValue = problem.Value(step);
+        // Non-finite values (e.g. inverted elements) are rejections; comparisons with NaN fail.
+        if (std::isfinite(trialValue) &&
+            (trialValue <= f + params.armijoConstant * alpha * slope ||
+             withinRoundoff(trialValue, alpha))) {
+          accepted = true;
+          break;
+        }
+        ++st.lineSearchSteps;
+        alpha *= params.backtrackFactor;
       }
-      if (std::isfinite(ft) && (ft <= f + params.armijoConstant * alpha * slope ||
-                                // Round-off band: at convergence f changes below its precision.
-                                std::abs(ft - f) <= 1e-14 * std::abs(f) + 1e-300)) {
-        accepted = true;
-        break;
-      }
-      ++st.lineSearchSteps;
-      alpha *= params.backtrackFactor;
     }
-    st.lineSearchSeconds += Since(t0);
-    if (accepted) problem.Commit(trial);
-    if (!converged.empty()) {
-      st.status = StageStatus::Converged;
-      st.message = converged;
-      return st;
+    if (accepted) {
+      problem.Commit(step);
+      st.finalValue = trialValue;
     }
+    st.lineSearchSeconds += SecondsSince(t0);
     if (!accepted) {
-      st.status = StageStatus::Diverged;
       std::ostringstream s;
-      s << "line search found no decrease after " << params.maxLineSearchSteps
-        << " trials (gradient norm " << st.finalGradientNorm << ")";
-      st.message = s.str();
-      return st;
+      if (params.lineSearch == LineSearchKind::None) {
+        s << "the full Newton step gives a non-finite value at iteration " << it + 1;
+      } else {
+        s << "line search rejected " << params.maxLineSearchSteps << " trials at iteration "
+          << it + 1 << " (step scale down to " << alpha / params.backtrackFactor << ", f = " << f
+          << ", g.d = " << slope << ", last trial value " << trialValue << ")";
+      }
+      return diverge(s.str());
     }
   }
+
   st.status = StageStatus::Stopped;
   std::ostringstream s;
-  s << "iteration cap " << params.maxIterations << " reached (gradient norm "
-    << st.finalGradientNorm << ", decrement " << st.finalDecrement << ")";
+  s << "iteration cap max_iterations = " << params.maxIterations << " reached (|g|_inf = "
+    << st.finalGradientNorm << ", Newton decrement " << st.finalDecrement << ")";
   st.message = s.str();
   return st;
 }

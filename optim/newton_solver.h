@@ -1,4 +1,31 @@
 // Projected Newton with a backtracking (Armijo) line search.
+//
+// Each iteration k at state s_k:
+//   1. f, g, H ← problem.Evaluate (local Hessians projected as params.psdProjection says).
+//      Non-finite f or g (or H) → Diverged.
+//   2. d = −H̃⁻¹ g with H̃ = H if it factorizes (CHOLMOD, LDLᵀ fallback) and g·d < 0; otherwise
+//      H̃ = H + τI with τ = 1e-8 max_i |H_ii|, 1e-7 max_i |H_ii|, ... (×10, 12 retries), then one
+//      last shift large enough for diagonal dominance (Gershgorin). The first τ that gives a
+//      positive definite H̃ and a descent direction is taken; SolverStats::regularizations counts
+//      the iterations that needed a shift. If none works → Diverged.
+//   3. Convergence tests, in this order, on d before stepping (the first that passes is named in
+//      SolverStats::message):
+//        a. Newton decrement  λ = ½ gᵀH̃⁻¹g = −½ g·d <= absoluteTolerance            [J]
+//        b. gradient          ‖g_k‖∞ <= relativeTolerance ‖g_0‖∞                     [-]
+//           (if ‖g_0‖∞ == 0 the solve is Converged at once, with 0 iterations)
+//        c. step              StepNorm(d) / timeScale <= stepTolerance               [m/s]
+//      When one passes, the full step d is still committed if f(s ⊕ d) <= f(s) (or lies in the
+//      round-off band below), so the returned state includes the last Newton correction; status
+//      Converged.
+//   4. Line search (Armijo): α = 1, 1·β, 1·β², ... (β = backtrackFactor); accept the first α with
+//        f(s ⊕ αd) <= f(s) + c α g·d                                  (c = armijoConstant)
+//      or, as a round-off band, |f(s ⊕ αd) − f(s)| <= 1e-14 |f(s)| while the predicted change
+//      α|g·d| (≈ α‖d‖²_H̃: the step is tiny in the Hessian norm) is also <= 1e-14 |f(s)|, i.e. when
+//      f cannot resolve the decrease any more. Non-finite trial values are rejections. After
+//      maxLineSearchSteps rejections → Diverged. LineSearchKind::None takes α = 1 (Diverged only if
+//      f(s ⊕ d) is not finite). s ← s ⊕ αd.
+//   After maxIterations iterations without convergence → Stopped (the last step is committed but
+//   not tested: Stopped is reported even if it happened to reach the minimum).
 #pragma once
 
 #include <string>
@@ -51,11 +78,18 @@ struct SolverStats {
 };
 
 /// Minimizes the problem from its current state. The problem is left at the last accepted iterate.
-/// `timeScale` > 0 is the stage time step Δt_i [s] used by the step test.
+/// `timeScale` > 0 is the stage time step Δt_i [s] used by the step test. Invalid `params` (see
+/// Validate) or `timeScale` give Diverged with the reason, without touching the problem.
+/// `iterations` counts the Newton directions computed: a quadratic takes 2 (the step, then the
+/// iteration whose decrement test passes).
 SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& params,
                            double timeScale);
 
-/// Validates the parameters; returns an empty string if valid, else a message naming the field.
+/// Validates the parameters; returns an empty string if valid, else a message for the first
+/// invalid field in declaration order, named as in the scene file:
+/// "<field>: <rule>, got <value>", e.g. "max_iterations: must be >= 1, got 0". Rules: maxIterations
+/// >= 1; the three tolerances finite and >= 0; 0 < armijoConstant < 1; 0 < backtrackFactor < 1;
+/// maxLineSearchSteps >= 1; the enums hold a named value.
 std::string Validate(const NonlinearSolverParams& params);
 
 }  // namespace superdex

@@ -1,0 +1,156 @@
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "optim/linear_solver.h"
+
+using namespace superdex;
+
+namespace {
+
+using SparseMatrix = Eigen::SparseMatrix<double>;
+
+// Weighted graph Laplacian of a random graph on n nodes (a path through all nodes plus `extra`
+// random edges) plus a positive diagonal: symmetric positive definite, full storage.
+SparseMatrix RandomSpd(int n, int extra, std::mt19937& rng, double diagonalShift = 0.1) {
+  std::uniform_int_distribution<int> node(0, n - 1);
+  std::uniform_real_distribution<double> weight(0.1, 2.0);
+  std::vector<Eigen::Triplet<double>> t;
+  auto edge = [&](int i, int j) {
+    if (i == j) return;
+    const double w = weight(rng);
+    t.emplace_back(i, i, w);
+    t.emplace_back(j, j, w);
+    t.emplace_back(i, j, -w);
+    t.emplace_back(j, i, -w);
+  };
+  for (int i = 0; i + 1 < n; ++i) edge(i, i + 1);
+  for (int e = 0; e < extra; ++e) edge(node(rng), node(rng));
+  for (int i = 0; i < n; ++i) t.emplace_back(i, i, diagonalShift * weight(rng));
+  SparseMatrix H(n, n);
+  H.setFromTriplets(t.begin(), t.end());
+  H.makeCompressed();
+  return H;
+}
+
+// Same pattern as H, new values: off-diagonal weights rescaled, diagonal made dominant again.
+SparseMatrix NewValuesSamePattern(const SparseMatrix& H, std::mt19937& rng) {
+  std::uniform_real_distribution<double> factor(0.5, 1.5);
+  SparseMatrix A = H;
+  // Symmetric rescaling: scale (i, j) and (j, i) by the same factor.
+  const Eigen::Index n = A.rows();
+  std::vector<double> offSum(n, 0.0);
+  for (Eigen::Index k = 0; k < n; ++k)
+    for (SparseMatrix::InnerIterator e(A, k); e; ++e)
+      if (e.row() > e.col()) {
+        const double s = factor(rng);
+        e.valueRef() *= s;
+        A.coeffRef(e.col(), e.row()) *= s;
+      }
+  for (Eigen::Index k = 0; k < n; ++k)
+    for (SparseMatrix::InnerIterator e(A, k); e; ++e)
+      if (e.row() != e.col()) offSum[e.row()] += std::abs(e.value());
+  for (Eigen::Index k = 0; k < n; ++k) A.coeffRef(k, k) = offSum[k] + factor(rng);
+  return A;
+}
+
+double RelativeResidual(const SparseMatrix& H, const Eigen::VectorXd& x, const Eigen::VectorXd& b) {
+  return (H * x - b).norm() / b.norm();
+}
+
+}  // namespace
+
+TEST_CASE("CHOLMOD solves random sparse SPD systems", "[optim]") {
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 5; ++trial) {
+    const SparseMatrix H = RandomSpd(200, 400, rng);
+    const Eigen::VectorXd b = Eigen::VectorXd::Random(200);
+    SymmetricSolver solver;
+    REQUIRE(solver.Factorize(H));
+    CHECK(std::string(solver.Backend()) == "cholmod");
+    const Eigen::VectorXd x = solver.Solve(b);
+    CHECK(RelativeResidual(H, x, b) <= 1e-10);
+  }
+}
+
+TEST_CASE("a second factorization with the same pattern reuses the analysis", "[optim]") {
+  std::mt19937 rng(11);
+  const SparseMatrix H1 = RandomSpd(200, 300, rng);
+  const SparseMatrix H2 = NewValuesSamePattern(H1, rng);
+  REQUIRE(H2.nonZeros() == H1.nonZeros());
+  REQUIRE((H2 - H1).norm() > 1e-3 * H1.norm());
+  const Eigen::VectorXd b = Eigen::VectorXd::Random(200);
+
+  SymmetricSolver reused;
+  REQUIRE(reused.Factorize(H1));
+  const Eigen::VectorXd x1 = reused.Solve(b);
+  REQUIRE(reused.Factorize(H2));
+  CHECK(std::string(reused.Backend()) == "cholmod");
+  const Eigen::VectorXd x2 = reused.Solve(b);
+
+  SymmetricSolver fresh;
+  REQUIRE(fresh.Factorize(H2));
+  const Eigen::VectorXd x2Fresh = fresh.Solve(b);
+
+  CHECK(RelativeResidual(H1, x1, b) <= 1e-10);
+  CHECK(RelativeResidual(H2, x2, b) <= 1e-10);
+  CHECK((x2 - x2Fresh).norm() <= 1e-12 * x2Fresh.norm());
+  CHECK((x2 - x1).norm() > 1e-6 * x1.norm());  // the new values were really used
+
+  // Back to the first values: same answer as the first solve.
+  REQUIRE(reused.Factorize(H1));
+  CHECK((reused.Solve(b) - x1).norm() <= 1e-12 * x1.norm());
+}
+
+TEST_CASE("a different pattern triggers a new analysis", "[optim]") {
+  std::mt19937 rng(3);
+  SymmetricSolver solver;
+  for (int n : {50, 120, 120}) {
+    const SparseMatrix H = RandomSpd(n, 2 * n, rng);
+    const Eigen::VectorXd b = Eigen::VectorXd::Random(n);
+    REQUIRE(solver.Factorize(H));
+    CHECK(RelativeResidual(H, solver.Solve(b), b) <= 1e-10);
+  }
+}
+
+TEST_CASE("an indefinite matrix is rejected, and the solver recovers", "[optim]") {
+  std::mt19937 rng(5);
+  const SparseMatrix H = RandomSpd(200, 400, rng);
+  SparseMatrix indefinite = H;
+  indefinite.coeffRef(100, 100) = -1.0;  // same pattern, one negative pivot
+  SymmetricSolver solver;
+  CHECK_FALSE(solver.Factorize(indefinite));
+  CHECK(std::string(solver.Backend()) == "none");
+  CHECK_FALSE(solver.Solve(Eigen::VectorXd::Ones(200)).allFinite());
+
+  // Negative definite and singular matrices too.
+  CHECK_FALSE(solver.Factorize(SparseMatrix(-H)));
+  // A pure graph Laplacian (no diagonal shift) is singular: the constant vector is in its kernel.
+  const SparseMatrix laplacian = RandomSpd(60, 100, rng, 0.0);
+  CHECK_FALSE(solver.Factorize(laplacian));
+
+  // The same pattern with positive definite values factorizes again after the failures.
+  const Eigen::VectorXd b = Eigen::VectorXd::Random(200);
+  REQUIRE(solver.Factorize(H));
+  CHECK(std::string(solver.Backend()) == "cholmod");
+  CHECK(RelativeResidual(H, solver.Solve(b), b) <= 1e-10);
+}
+
+TEST_CASE("non-finite entries and uncompressed input", "[optim]") {
+  std::mt19937 rng(9);
+  SparseMatrix H = RandomSpd(40, 60, rng);
+  SymmetricSolver solver;
+  SparseMatrix bad = H;
+  bad.coeffRef(3, 3) = std::numeric_limits<double>::quiet_NaN();
+  CHECK_FALSE(solver.Factorize(bad));
+
+  SparseMatrix uncompressed = H;
+  uncompressed.uncompress();
+  REQUIRE_FALSE(uncompressed.isCompressed());
+  const Eigen::VectorXd b = Eigen::VectorXd::Random(40);
+  REQUIRE(solver.Factorize(uncompressed));
+  CHECK(RelativeResidual(H, solver.Solve(b), b) <= 1e-10);
+}
