@@ -1,15 +1,16 @@
-# SuiteSparse 5.12 on Debian ships no CMake config: find CHOLMOD (and UMFPACK) by hand.
+# SuiteSparse 5.12 on Debian ships no CMake config: find CHOLMOD and UMFPACK by hand (targets in
+# our own namespace, so that packages with their own SuiteSparse finder do not collide).
 find_path(CHOLMOD_INCLUDE_DIR cholmod.h PATH_SUFFIXES suitesparse REQUIRED)
 find_library(CHOLMOD_LIBRARY cholmod REQUIRED)
 find_library(SUITESPARSECONFIG_LIBRARY suitesparseconfig REQUIRED)
-find_library(UMFPACK_LIBRARY umfpack)
-add_library(SuiteSparse::CHOLMOD INTERFACE IMPORTED)
-set_target_properties(SuiteSparse::CHOLMOD PROPERTIES
+find_library(UMFPACK_LIBRARY umfpack REQUIRED)
+add_library(superdex::CHOLMOD INTERFACE IMPORTED)
+set_target_properties(superdex::CHOLMOD PROPERTIES
   INTERFACE_INCLUDE_DIRECTORIES "${CHOLMOD_INCLUDE_DIR}"
   INTERFACE_LINK_LIBRARIES "${CHOLMOD_LIBRARY};${SUITESPARSECONFIG_LIBRARY}")
-if(UMFPACK_LIBRARY)
-  add_library(SuiteSparse::UMFPACK INTERFACE IMPORTED)
-  set_target_properties(SuiteSparse::UMFPACK PROPERTIES
-    INTERFACE_INCLUDE_DIRECTORIES "${CHOLMOD_INCLUDE_DIR}"
-    INTERFACE_LINK_LIBRARIES "${UMFPACK_LIBRARY};${CHOLMOD_LIBRARY};${SUITESPARSECONFIG_LIBRARY}")
-endif()
+
+add_library(superdex::UMFPACK INTERFACE IMPORTED)
+set_target_properties(superdex::UMFPACK PROPERTIES
+  INTERFACE_INCLUDE_DIRECTORIES "${CHOLMOD_INCLUDE_DIR}"
+  INTERFACE_LINK_LIBRARIES "${UMFPACK_LIBRARY};${CHOLMOD_LIBRARY};${SUITESPARSECONFIG_LIBRARY}")
+

@@ -14,6 +14,24 @@ bool IsCollider(const RigidBodyModel& m) { return m.collider.type != ColliderTyp
 // Below this many tested samples a pair list is evaluated serially.
 constexpr size_t kParallelSampleWork = 20000;
 
+void AppendBlocks(const StencilMatrix& M, const int offs[2], int blocks,
+                  std::vector<Eigen::Triplet<double>>* triplets) {
+  for (int bi = 0; bi < blocks; ++bi) {
+    if (offs[bi] < 0) continue;
+    for (int bj = 0; bj < blocks; ++bj) {
+      if (offs[bj] < 0) continue;
+      for (int c = 0; c < 6; ++c)
+        for (int r = 0; r < 6; ++r)
+          triplets->emplace_back(offs[bi] + r, offs[bj] + c, M(6 * bi + r, 6 * bj + c));
+    }
+  }
+}
+
+void AddBlocks(const StencilVector& g, const int offs[2], int blocks, Eigen::VectorXd* out) {
+  for (int bi = 0; bi < blocks; ++bi)
+    if (offs[bi] >= 0) out->segment<6>(offs[bi]) += g.segment<6>(6 * bi);
+}
+
 }  // namespace
 
 void ContactPipeline::Configure(const std::vector<RigidBodyModel>* models) {
@@ -28,12 +46,21 @@ void ContactPipeline::Configure(const std::vector<RigidBodyModel>* models) {
   }
 }
 
-void ContactPipeline::FindPairs(const std::vector<RigidPose>& poses) {
+void ContactPipeline::FindPairs(const std::vector<RigidPose>& poses,
+                                const DissipationContext* dissipation) {
   const std::vector<RigidBodyModel>& models = *models_;
   const size_t n = models.size();
   boxes_.resize(n);
+  // Explicit normals retain the stage-start contacts: the boxes sweep from x⁰ to x.
+  const bool sweep = dissipation && dissipation->mode == DissipationMode::ExplicitNormals;
   for (size_t i = 0; i < n; ++i) {
     boxes_[i] = WorldBounds(models[i], poses[i].p, poses[i].R);
+    if (sweep) {
+      const RigidStageStart& s = (*dissipation->start)[i];
+      const Aabb b0 = WorldBounds(models[i], s.p, s.R);
+      boxes_[i].Extend(b0.min);
+      boxes_[i].Extend(b0.max);
+    }
     boxes_[i].Inflate(inflation_[i]);
   }
   FindOverlappingPairs(boxes_, &overlaps_);
@@ -61,10 +88,13 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
                                  const std::vector<int>& dofOffset, int order,
                                  PsdProjection projection, Eigen::VectorXd* gradient,
                                  std::vector<Eigen::Triplet<double>>* triplets,
-                                 ContactStats* stats) {
+                                 ContactStats* stats, const DissipationContext* dissipation,
+                                 Eigen::VectorXd* dissipationResidual) {
   const std::vector<RigidBodyModel>& models = *models_;
-  FindPairs(poses);
+  FindPairs(poses, dissipation);
   results_.resize(pairs_.size());
+  dissipationResults_.resize(dissipation ? pairs_.size() : 0);
+  const bool potential = !dissipation || dissipation->mode == DissipationMode::ExplicitNormals;
   size_t work = 0;
   for (const ContactPair& p : pairs_) work += models[p.colliding].samples.size();
 
@@ -74,11 +104,36 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
     pp.k = cp.params.penaltyCoefficient;
     pp.eps = cp.params.smoothingHalfDistance;
     pp.delta = cp.params.threshold;
+    const RigidBodyModel& A = models[cp.colliding];
     const RigidBodyModel& B = models[cp.collider];
     RigidPairPenalty& r = results_[k];
-    EvaluateRigidPairPenalty(models[cp.colliding], poses[cp.colliding], B, poses[cp.collider],
-                             B.dynamic, pp, order, &r);
-    if (order >= 2 && r.activeSamples > 0 && projection != PsdProjection::None)
+    EvaluateRigidPairPenalty(A, poses[cp.colliding], B, poses[cp.collider], B.dynamic, pp, order,
+                             &r, cp.params.maxAlignmentNormals);
+    if (dissipation) {
+      DissipationSetup setup;
+      setup.mode = dissipation->mode;
+      setup.fadeFriction = dissipation->fadeFriction;
+      setup.dt = dissipation->dt;
+      setup.penalty = pp;
+      setup.coefficients.mu = cp.params.coulombFrictionCoefficient;
+      setup.coefficients.ct = cp.params.viscousFrictionCoefficient;
+      setup.coefficients.cn = cp.params.normalViscousDampingCoefficient;
+      setup.coefficients.vf = cp.params.frictionFalloffVel;
+      setup.maxAlignment = cp.params.maxAlignmentNormals;
+      setup.frictionWithColliderNormal = cp.params.frictionWithColliderNormal;
+      RigidPairDissipation& d = dissipationResults_[k];
+      const std::vector<RigidStageStart>& start = *dissipation->start;
+      EvaluateRigidPairDissipation(A, poses[cp.colliding], start[cp.colliding], B,
+                                   poses[cp.collider], start[cp.collider], B.dynamic, setup, order,
+                                   &d);
+      if (order >= 2 && potential && d.activeSamples > 0) {
+        if (r.activeSamples == 0) r.hessian.setZero(d.jacobian.rows(), d.jacobian.cols());
+        r.hessian += d.jacobian;
+      }
+    }
+    const bool any = r.activeSamples > 0 ||
+                     (dissipation && potential && dissipationResults_[k].activeSamples > 0);
+    if (order >= 2 && any && projection != PsdProjection::None)
       ProjectToPsd(&r.hessian, projection == PsdProjection::Abs);
   };
   if (work >= kParallelSampleWork && pairs_.size() > 1) {
@@ -93,27 +148,30 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
   st.candidatePairs = static_cast<int>(pairs_.size());
   for (size_t k = 0; k < pairs_.size(); ++k) {
     const RigidPairPenalty& r = results_[k];
-    st.minSignedDistance = std::min(st.minSignedDistance, r.minPhi);
-    if (r.activeSamples == 0) continue;
-    ++st.activePairs;
-    st.activeSamples += r.activeSamples;
-    energy += r.value;
-    if (order == 0) continue;
     const int offs[2] = {dofOffset[pairs_[k].colliding], dofOffset[pairs_[k].collider]};
-    const int blocks = static_cast<int>(r.gradient.size()) / 6;
-    for (int bi = 0; bi < blocks; ++bi) {
-      if (offs[bi] < 0) continue;
-      gradient->segment<6>(offs[bi]) += r.gradient.segment<6>(6 * bi);
-      if (order < 2) continue;
-      for (int bj = 0; bj < blocks; ++bj) {
-        if (offs[bj] < 0) continue;
-        for (int c = 0; c < 6; ++c)
-          for (int rr = 0; rr < 6; ++rr)
-            triplets->emplace_back(offs[bi] + rr, offs[bj] + c, r.hessian(6 * bi + rr, 6 * bj + c));
-      }
+    const int blocks = models[pairs_[k].collider].dynamic ? 2 : 1;
+    st.minSignedDistance = std::min(st.minSignedDistance, r.minPhi);
+    const RigidPairDissipation* d =
+        dissipation && dissipationResults_[k].activeSamples > 0 ? &dissipationResults_[k] : nullptr;
+    if (r.activeSamples > 0) {
+      ++st.activePairs;
+      st.activeSamples += r.activeSamples;
+      st.energy += r.value;
+      energy += r.value;
+      if (order >= 1) AddBlocks(r.gradient, offs, blocks, gradient);
     }
+    if (d) {
+      st.dissipativeSamples += d->activeSamples;
+      st.dissipation += d->value;
+      st.maxCoulombRatio = std::max(st.maxCoulombRatio, d->maxCoulombRatio);
+      energy += d->value;
+      if (order >= 1)
+        AddBlocks(d->residual, offs, blocks, dissipationResidual ? dissipationResidual : gradient);
+      if (order >= 2 && !potential) AppendBlocks(d->jacobian, offs, blocks, triplets);
+    }
+    if (order >= 2 && (r.activeSamples > 0 || (d && potential)))
+      AppendBlocks(r.hessian, offs, blocks, triplets);
   }
-  st.energy = energy;
   if (stats) *stats = st;
   return energy;
 }

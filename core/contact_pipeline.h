@@ -9,6 +9,7 @@
 
 #include "core/rigid_body.h"
 #include "core/rigid_contact.h"
+#include "core/rigid_dissipation.h"
 #include "optim/stage_problem.h"
 
 namespace superdex {
@@ -20,6 +21,17 @@ struct ContactStats {
   int activeSamples = 0;       ///< samples with φ < δ
   double minSignedDistance = INFINITY;  ///< smallest φ over tested samples [m]
   double energy = 0.0;         ///< Σ Π_{A,B} [J]
+  int dissipativeSamples = 0;  ///< samples with a positive dissipative load
+  double dissipation = 0.0;    ///< Δt_i Σ w R [J] (0 without a dissipation context)
+  double maxCoulombRatio = 0.0;///< max ‖T_C‖/(μ λ̂_n) over samples (<= 1)
+};
+
+/// The stage data dissipation needs (spec: "Stage-Discrete Dissipation").
+struct DissipationContext {
+  const std::vector<RigidStageStart>* start = nullptr;  ///< x⁰ per actor
+  double dt = 0.0;                                      ///< Δt_i [s]
+  DissipationMode mode = DissipationMode::ReconstructedLoad;
+  bool fadeFriction = true;
 };
 
 /// Ordered pair (A colliding, B collider) with its combined parameters.
@@ -34,20 +46,25 @@ class ContactPipeline {
   /// Precomputes per-actor data. `models` must outlive the pipeline's use.
   void Configure(const std::vector<RigidBodyModel>* models);
 
-  /// Π = Σ over eligible ordered pairs of the penalty energy at the given poses. order 0: value;
-  /// 1: also adds the gradient into *gradient (dofs at dofOffset[i], −1 for static actors);
-  /// 2: also appends Hessian triplets, with each pair's 6×6 or 12×12 block projected per
-  /// `projection`. Pairs are evaluated in parallel; results are reduced in a fixed order, so the
+  /// Π = Σ over eligible ordered pairs of the penalty energy at the given poses, plus Δt_i Σ w R
+  /// when `dissipation` is not null. order 0: value; 1: also adds the penalty gradient into
+  /// *gradient and the dissipative residual into *dissipationResidual (may alias *gradient;
+  /// dofs at dofOffset[i], −1 for static actors); 2: also appends Jacobian triplets: each pair's
+  /// penalty Hessian plus, in ExplicitNormals mode, its dissipation Hessian, projected per
+  /// `projection`; in the residual modes the dissipation Jacobian (not symmetric) is appended
+  /// unprojected. Pairs are evaluated in parallel; results are reduced in a fixed order, so the
   /// output does not depend on the number of threads.
   double Evaluate(const std::vector<RigidPose>& poses, const std::vector<int>& dofOffset,
                   int order, PsdProjection projection, Eigen::VectorXd* gradient,
-                  std::vector<Eigen::Triplet<double>>* triplets, ContactStats* stats);
+                  std::vector<Eigen::Triplet<double>>* triplets, ContactStats* stats,
+                  const DissipationContext* dissipation = nullptr,
+                  Eigen::VectorXd* dissipationResidual = nullptr);
 
   /// The ordered pairs found by the last evaluation.
   const std::vector<ContactPair>& Pairs() const { return pairs_; }
 
  private:
-  void FindPairs(const std::vector<RigidPose>& poses);
+  void FindPairs(const std::vector<RigidPose>& poses, const DissipationContext* dissipation);
 
   const std::vector<RigidBodyModel>* models_ = nullptr;
   std::vector<double> inflation_;  // per actor: its collider reach padding [m]
@@ -55,6 +72,7 @@ class ContactPipeline {
   std::vector<std::pair<int, int>> overlaps_;
   std::vector<ContactPair> pairs_;
   std::vector<RigidPairPenalty> results_;
+  std::vector<RigidPairDissipation> dissipationResults_;
 };
 
 }  // namespace superdex

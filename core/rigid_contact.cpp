@@ -6,9 +6,50 @@
 
 namespace superdex {
 
+void AddFunctionOfPullback(const Eigen::Vector3d& r, const Eigen::Vector3d& d,
+                           const Eigen::Matrix3d& RB, const Eigen::Vector3d& gY,
+                           const Eigen::Matrix3d* HY, bool bDynamic, double w,
+                           StencilVector* grad, StencilMatrix* hess) {
+  const Eigen::Vector3d n = RB * gY;
+  grad->segment<3>(0) += w * n;
+  grad->segment<3>(3) += w * r.cross(n);
+  if (bDynamic) {
+    grad->segment<3>(6) -= w * n;
+    grad->segment<3>(9) -= w * d.cross(n);
+  }
+  if (!hess) return;
+  const int m = bDynamic ? 12 : 6;
+  Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 12> Jx(3, m);
+  Jx.leftCols<3>().setIdentity();
+  Jx.middleCols<3>(3) = -Skew(r);
+  if (bDynamic) {
+    Jx.middleCols<3>(6) = -Eigen::Matrix3d::Identity();
+    Jx.middleCols<3>(9) = Skew(d);
+  }
+  const Eigen::Matrix3d Hw = w * (RB * (*HY) * RB.transpose());
+  hess->topLeftCorner(m, m).noalias() += Jx.transpose() * Hw * Jx;
+  const Eigen::Vector3d nw = w * n;
+  const double nr = nw.dot(r);
+  hess->block<3, 3>(3, 3) +=
+      0.5 * (nw * r.transpose() + r * nw.transpose()) - nr * Eigen::Matrix3d::Identity();
+  if (bDynamic) {
+    const double nd = nw.dot(d);
+    const Eigen::Matrix3d Nx = Skew(nw);
+    hess->block<3, 3>(9, 9) +=
+        0.5 * (nw * d.transpose() + d * nw.transpose()) - nd * Eigen::Matrix3d::Identity();
+    hess->block<3, 3>(9, 0) += Nx;
+    hess->block<3, 3>(0, 9) += Nx.transpose();
+    hess->block<3, 3>(9, 6) -= Nx;
+    hess->block<3, 3>(6, 9) -= Nx.transpose();
+    const Eigen::Matrix3d C = nr * Eigen::Matrix3d::Identity() - r * nw.transpose();
+    hess->block<3, 3>(9, 3) += C;
+    hess->block<3, 3>(3, 9) += C.transpose();
+  }
+}
+
 void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& a, const RigidBodyModel& B,
                               const RigidPose& b, bool bDynamic, const PenaltyParams& params,
-                              int order, RigidPairPenalty* out) {
+                              int order, RigidPairPenalty* out, double maxAlignment) {
   const int n = bDynamic ? 12 : 6;
   out->value = 0.0;
   out->activeSamples = 0;
@@ -20,15 +61,11 @@ void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& a, const
   const Eigen::Matrix3d RBt = b.R.transpose();
   const Eigen::Matrix3d RBtRA = RBt * a.R;
   const Eigen::Vector3d YA = RBt * (a.p - b.p);  // A's centre in B's frame
+  const bool alignmentTest = std::isfinite(maxAlignment);
 
   // Whole-pair rejection: analytic fields are exact SDFs (1-Lipschitz), so every sample, lying
   // within samplesRadius of A's centre, has φ >= Φ_B(Y_A) − samplesRadius.
   if (B.collider.Evaluate(YA).value - A.samplesRadius >= delta) return;
-
-  StencilVector gradPhi(n);
-  StencilMatrix hessPhi;
-  if (order >= 2) hessPhi.resize(n, n);
-  Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 12> Jx(3, n);
 
   for (const SurfaceSample& s : A.samples) {
     const Eigen::Vector3d Y = YA + RBtRA * s.X;
@@ -36,49 +73,19 @@ void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& a, const
     const SdfSample f = B.collider.Evaluate(Y);
     out->minPhi = std::min(out->minPhi, f.value);
     if (f.value >= delta) continue;
+    if (alignmentTest && f.gradient.dot(RBtRA * s.normal) > maxAlignment) continue;
     ++out->activeSamples;
     const PenaltyDensity W = NormalPenaltyDensity(f.value, params);
-    if (order == 0) {
-      out->value += s.weight * W.W;
-      continue;
-    }
+    out->value += s.weight * W.W;
+    if (order == 0) continue;
     const Eigen::Vector3d r = a.R * s.X;
     const Eigen::Vector3d d = a.p + r - b.p;
-    const Eigen::Vector3d nw = b.R * f.gradient;
-    gradPhi.segment<3>(0) = nw;
-    gradPhi.segment<3>(3) = r.cross(nw);
-    if (bDynamic) {
-      gradPhi.segment<3>(6) = -nw;
-      gradPhi.segment<3>(9) = -d.cross(nw);
-    }
-    if (order >= 2) {
-      Jx.leftCols<3>().setIdentity();
-      Jx.middleCols<3>(3) = -Skew(r);
-      if (bDynamic) {
-        Jx.middleCols<3>(6) = -Eigen::Matrix3d::Identity();
-        Jx.middleCols<3>(9) = Skew(d);
-      }
-      const Eigen::Matrix3d Hw = b.R * f.hessian * RBt;
-      hessPhi.noalias() = Jx.transpose() * Hw * Jx;
-      const double nr = nw.dot(r);
-      hessPhi.block<3, 3>(3, 3) +=
-          0.5 * (nw * r.transpose() + r * nw.transpose()) - nr * Eigen::Matrix3d::Identity();
-      if (bDynamic) {
-        const double nd = nw.dot(d);
-        const Eigen::Matrix3d Nx = Skew(nw);
-        hessPhi.block<3, 3>(9, 9) +=
-            0.5 * (nw * d.transpose() + d * nw.transpose()) - nd * Eigen::Matrix3d::Identity();
-        hessPhi.block<3, 3>(9, 0) += Nx;
-        hessPhi.block<3, 3>(0, 9) += Nx.transpose();
-        hessPhi.block<3, 3>(9, 6) -= Nx;
-        hessPhi.block<3, 3>(6, 9) -= Nx.transpose();
-        const Eigen::Matrix3d C = nr * Eigen::Matrix3d::Identity() - r * nw.transpose();
-        hessPhi.block<3, 3>(9, 3) += C;
-        hessPhi.block<3, 3>(3, 9) += C.transpose();
-      }
-    }
-    AddNormalPenalty(W, s.weight, gradPhi, hessPhi, &out->value, &out->gradient,
-                     order >= 2 ? &out->hessian : nullptr);
+    // W(Φ(Y)): g_Y = W' G, H_Y = W'' G Gᵀ + W' ∇²Φ.
+    const Eigen::Vector3d gY = W.dW * f.gradient;
+    Eigen::Matrix3d HY;
+    if (order >= 2) HY = W.d2W * f.gradient * f.gradient.transpose() + W.dW * f.hessian;
+    AddFunctionOfPullback(r, d, b.R, gY, order >= 2 ? &HY : nullptr, bDynamic, s.weight,
+                          &out->gradient, order >= 2 ? &out->hessian : nullptr);
   }
 }
 

@@ -34,9 +34,21 @@ struct RigidPairPenalty {
   double minPhi = INFINITY;///< smallest φ among the samples tested [m]
 };
 
-/// order: 0 value only, 1 with gradient, 2 with gradient and Hessian.
+/// order: 0 value only, 1 with gradient, 2 with gradient and Hessian. A sample whose alignment
+/// s = G_B·N_A (N_A = R_Bᵀ R_A n_A, raw vectors) exceeds `maxAlignment` (the collider's m) is
+/// rejected entirely (spec: "Normal/Tangential Split"); +∞ disables the test.
 void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& poseA,
                               const RigidBodyModel& B, const RigidPose& poseB, bool bDynamic,
-                              const PenaltyParams& params, int order, RigidPairPenalty* out);
+                              const PenaltyParams& params, int order, RigidPairPenalty* out,
+                              double maxAlignment = INFINITY);
+
+/// Chains a scalar function f(Y) of the pullback Y = R_Bᵀ(p_A + r − p_B), r = R_A X, through the
+/// rigid retractions (the stencil above): adds w·J_Yᵀ g_Y = w·[n, r × n, −n, −d × n] (n = R_B g_Y,
+/// d = p_A + r − p_B) to *grad and, if hess is not null, w·(J_xᵀ R_B H_Y R_Bᵀ J_x + S(n)) with S the
+/// retraction curvature of the comment above (n in place of the normal).
+void AddFunctionOfPullback(const Eigen::Vector3d& r, const Eigen::Vector3d& d,
+                           const Eigen::Matrix3d& RB, const Eigen::Vector3d& gY,
+                           const Eigen::Matrix3d* HY, bool bDynamic, double w,
+                           StencilVector* grad, StencilMatrix* hess);
 
 }  // namespace superdex

@@ -9,15 +9,25 @@ namespace superdex {
 RigidStageProblem::RigidStageProblem(const std::vector<RigidBodyModel>& models,
                                      const std::vector<int>& dofOffset, int numDofs,
                                      const StageTargets& targets, const Eigen::Vector3d& gravity,
-                                     ContactPipeline* contact, std::vector<RigidPose>* poses)
+                                     ContactPipeline* contact, std::vector<RigidPose>* poses,
+                                     const StageDissipation& dissipation)
     : models_(models),
       dofOffset_(dofOffset),
       numDofs_(numDofs),
       targets_(targets),
       gravity_(gravity),
       contact_(contact),
-      poses_(poses) {
+      poses_(poses),
+      dissipation_(dissipation) {
   trial_ = *poses;
+  context_.start = &targets_.start;
+  context_.dt = targets_.dt;
+  context_.mode = dissipation_.mode;
+  context_.fadeFriction = dissipation_.fadeFriction;
+}
+
+bool RigidStageProblem::IsPotential() const {
+  return !dissipation_.enabled || dissipation_.mode == DissipationMode::ExplicitNormals;
 }
 
 double RigidStageProblem::BodyEnergy(size_t i, const RigidPose& pose) const {
@@ -38,48 +48,80 @@ void RigidStageProblem::Retract(const Eigen::VectorXd& d, std::vector<RigidPose>
   }
 }
 
-double RigidStageProblem::Value(const Eigen::VectorXd& d) {
-  Retract(d, &trial_);
-  double value = 0.0;
-  for (size_t i = 0; i < models_.size(); ++i)
-    if (dofOffset_[i] >= 0) value += BodyEnergy(i, trial_[i]);
-  value += contact_->Evaluate(trial_, dofOffset_, 0, PsdProjection::None, nullptr, nullptr,
-                              nullptr);
-  return value;
-}
-
-double RigidStageProblem::Evaluate(Eigen::VectorXd* gradient,
-                                   Eigen::SparseMatrix<double>* hessian,
-                                   PsdProjection projection) {
-  const std::vector<RigidPose>& poses = *poses_;
-  gradient->setZero(numDofs_);
-  triplets_.clear();
+double RigidStageProblem::EvaluateAt(const std::vector<RigidPose>& poses, int order,
+                                     PsdProjection projection, Eigen::VectorXd* gPot,
+                                     Eigen::VectorXd* rDiss) {
   const double w = 1.0 / (targets_.dt * targets_.dt);
   double value = 0.0;
+  if (order >= 1) {
+    gPot->setZero(numDofs_);
+    if (rDiss != gPot) rDiss->setZero(numDofs_);
+  }
+  triplets_.clear();
   for (size_t i = 0; i < models_.size(); ++i) {
     const int o = dofOffset_[i];
     if (o < 0) continue;
     const RigidBodyModel& m = models_[i];
     const RigidInertiaTerm t = RigidInertia(m.mass, m.secondMoment, poses[i].p, poses[i].R,
-                                            targets_.pHat[i], targets_.RHat[i], true);
+                                            targets_.pHat[i], targets_.RHat[i], order >= 1);
     value += w * t.value + GravityPotential(m.mass, gravity_, poses[i].p);
-    gradient->segment<6>(o) += w * t.gradient;
-    gradient->segment<3>(o) -= m.mass * gravity_;
-    if (!hessian) continue;
+    if (order == 0) continue;
+    gPot->segment<6>(o) += w * t.gradient;
+    gPot->segment<3>(o) -= m.mass * gravity_;
+    if (order < 2) continue;
     StencilMatrix H = w * t.hessian;
-    if (projection != PsdProjection::None)
-      ProjectToPsd(&H, projection == PsdProjection::Abs);
+    if (projection != PsdProjection::None) ProjectToPsd(&H, projection == PsdProjection::Abs);
     for (int c = 0; c < 6; ++c)
       for (int r = 0; r < 6; ++r)
         if (H(r, c) != 0.0) triplets_.emplace_back(o + r, o + c, H(r, c));
   }
-  value += contact_->Evaluate(poses, dofOffset_, hessian ? 2 : 1, projection, gradient,
-                              &triplets_, nullptr);
+  value += contact_->Evaluate(poses, dofOffset_, order, projection, gPot, &triplets_, nullptr,
+                              dissipation_.enabled ? &context_ : nullptr, rDiss);
+  return value;
+}
+
+double RigidStageProblem::Value(const Eigen::VectorXd& d) {
+  Retract(d, &trial_);
+  return EvaluateAt(trial_, 0, PsdProjection::None, nullptr, nullptr);
+}
+
+double RigidStageProblem::Evaluate(Eigen::VectorXd* gradient,
+                                   Eigen::SparseMatrix<double>* hessian,
+                                   PsdProjection projection) {
+  const double value = EvaluateAt(*poses_, hessian ? 2 : 1, projection, gradient, gradient);
   if (hessian) {
     hessian->resize(numDofs_, numDofs_);
     hessian->setFromTriplets(triplets_.begin(), triplets_.end());
   }
   return value;
+}
+
+void RigidStageProblem::Residual(const Eigen::VectorXd& d, Eigen::VectorXd* r) {
+  Retract(d, &trial_);
+  EvaluateAt(trial_, 1, PsdProjection::None, r, r);
+}
+
+void RigidStageProblem::EvaluateResidual(Eigen::VectorXd* r, Eigen::SparseMatrix<double>* J) {
+  EvaluateAt(*poses_, J ? 2 : 1, PsdProjection::None, r, &scratch_);
+  if (J) {
+    // The rotation entries of r are world torques τ. Along the retraction exp([δθ]×) R the torque
+    // of a potential changes by (H − ½[τ]×) δθ, H its second derivative (assembled above); the
+    // dissipation Jacobian of the residual modes is already that of the world torque.
+    const bool dissipationIsPotential = IsPotential();
+    for (size_t i = 0; i < models_.size(); ++i) {
+      const int o = dofOffset_[i];
+      if (o < 0) continue;
+      Eigen::Vector3d tau = r->segment<3>(o + 3);
+      if (dissipationIsPotential) tau += scratch_.segment<3>(o + 3);
+      const Eigen::Matrix3d S = -0.5 * Skew(tau);
+      for (int c = 0; c < 3; ++c)
+        for (int k = 0; k < 3; ++k)
+          if (S(k, c) != 0.0) triplets_.emplace_back(o + 3 + k, o + 3 + c, S(k, c));
+    }
+    J->resize(numDofs_, numDofs_);
+    J->setFromTriplets(triplets_.begin(), triplets_.end());
+  }
+  *r += scratch_;
 }
 
 void RigidStageProblem::Commit(const Eigen::VectorXd& d) {

@@ -1,6 +1,8 @@
 // One implicit stage over the scene's rigid bodies, as a StageProblem for the optim/ solvers:
-//   Φ_i(q) = 1/(2Δt_i²) Σ_b E_inertia,b(q)  +  Σ_b U_gravity,b(q)  +  Π_contact(q)   [J]
-// (DESIGN.md "The idea in one paragraph"; dissipation arrives with its own issue).
+//   Φ_i(q) = 1/(2Δt_i²) Σ_b E_inertia,b(q)  +  Σ_b U_gravity,b(q)  +  Π_contact(q)
+//            + Δt_i Σ w R(V_rel,i)                                                    [J]
+// The last term is an exact potential only with ExplicitNormals; in the other dissipation modes
+// the stage is the residual r = ∇(Φ without R) + Σ w J_Yᵀ ∂R/∂V (core/rigid_dissipation.h).
 #pragma once
 
 #include <vector>
@@ -17,6 +19,14 @@ struct StageTargets {
   double dt = 0.0;
   std::vector<Eigen::Vector3d> pHat;
   std::vector<Eigen::Matrix3d> RHat;
+  std::vector<RigidStageStart> start;  ///< x⁰ per body (used by dissipation)
+};
+
+/// Dissipation settings of a stage; `enabled` false gives the conservative stage.
+struct StageDissipation {
+  bool enabled = false;
+  DissipationMode mode = DissipationMode::ReconstructedLoad;
+  bool fadeFriction = true;
 };
 
 class RigidStageProblem : public StageProblem {
@@ -25,19 +35,29 @@ class RigidStageProblem : public StageProblem {
   /// [δp, δθ] at dofOffset[i] (−1 for static bodies).
   RigidStageProblem(const std::vector<RigidBodyModel>& models, const std::vector<int>& dofOffset,
                     int numDofs, const StageTargets& targets, const Eigen::Vector3d& gravity,
-                    ContactPipeline* contact, std::vector<RigidPose>* poses);
+                    ContactPipeline* contact, std::vector<RigidPose>* poses,
+                    const StageDissipation& dissipation = StageDissipation());
 
   int NumDofs() const override { return numDofs_; }
   double Value(const Eigen::VectorXd& d) override;
   double Evaluate(Eigen::VectorXd* gradient, Eigen::SparseMatrix<double>* hessian,
                   PsdProjection projection) override;
   void Commit(const Eigen::VectorXd& d) override;
+  bool IsPotential() const override;
+  void Residual(const Eigen::VectorXd& d, Eigen::VectorXd* r) override;
+  /// J = ∂r/∂δ: the (unprojected) Hessian of the potential terms with the rotation blocks'
+  /// trivialization term −½[τ]× (τ: that body's potential torque), plus the dissipation Jacobian.
+  void EvaluateResidual(Eigen::VectorXd* r, Eigen::SparseMatrix<double>* J) override;
   /// max over bodies of ‖δp‖∞ and ‖δθ‖ times the body's RMS radius √(tr J / m) [m].
   double StepNorm(const Eigen::VectorXd& d) const override;
 
  private:
   double BodyEnergy(size_t i, const RigidPose& pose) const;
   void Retract(const Eigen::VectorXd& d, std::vector<RigidPose>* out) const;
+  /// All terms at `poses`: value; order >= 1: potential gradient into *gPot and dissipative
+  /// residual into *rDiss (may alias); order 2: triplets_.
+  double EvaluateAt(const std::vector<RigidPose>& poses, int order, PsdProjection projection,
+                    Eigen::VectorXd* gPot, Eigen::VectorXd* rDiss);
 
   const std::vector<RigidBodyModel>& models_;
   const std::vector<int>& dofOffset_;
@@ -48,6 +68,9 @@ class RigidStageProblem : public StageProblem {
   std::vector<RigidPose>* poses_;
   std::vector<RigidPose> trial_;
   std::vector<Eigen::Triplet<double>> triplets_;
+  StageDissipation dissipation_;
+  DissipationContext context_;
+  Eigen::VectorXd scratch_;
 };
 
 }  // namespace superdex

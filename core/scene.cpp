@@ -8,6 +8,7 @@
 
 #include "core/rigid_math.h"
 #include "core/rigid_stage.h"
+#include "optim/residual_newton.h"
 
 namespace superdex {
 namespace {
@@ -20,6 +21,12 @@ RigidBodyState Affine(double a, const RigidBodyState& x, double b, const RigidBo
   s.v = a * x.v + b * y.v;
   s.Rdot = a * x.Rdot + b * y.Rdot;
   return s;
+}
+
+DissipationMode ModeOf(const ExperimentalEvalParams& e) {
+  if (e.explicitNormals) return DissipationMode::ExplicitNormals;
+  return e.implicitNormalForceForDissipation ? DissipationMode::ImplicitLoad
+                                             : DissipationMode::ReconstructedLoad;
 }
 
 int Severity(StageStatus s) {
@@ -107,9 +114,23 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
     targets.pHat[i] = start[i].p + dt * start[i].v;
     targets.RHat[i] = start[i].R + dt * start[i].Rdot;
   }
+  StageDissipation dissipation;
+  dissipation.enabled = HasDissipation();
+  if (dissipation.enabled) {
+    targets.start.resize(models_.size());
+    for (size_t i = 0; i < models_.size(); ++i) {
+      RigidStageStart& s = targets.start[i];
+      s.p = start[i].p;
+      s.R = start[i].R;
+      s.Rinv = start[i].R.inverse();
+    }
+    dissipation.mode = ModeOf(settings_.eval);
+    dissipation.fadeFriction = settings_.eval.fadeFriction;
+  }
   RigidStageProblem problem(models_, dofOffset_, numDofs_, targets, settings_.gravity, &pipeline_,
-                            poses);
-  return MinimizeNewton(problem, settings_.solver, dt);
+                            poses, dissipation);
+  if (problem.IsPotential()) return MinimizeNewton(problem, settings_.solver, dt);
+  return SolveResidualNewton(problem, settings_.solver, dt);
 }
 
 bool Scene::Step(double h, StepReport* report, Error* error) {
@@ -251,15 +272,15 @@ std::vector<std::string> Scene::Notices() const {
   std::vector<std::string> out;
   for (const auto& m : models_)
     if (!m.notice.empty()) out.push_back(m.notice);
-  bool dissipation = false;
-  for (const auto& m : models_)
-    dissipation |= m.contact.coulombFrictionCoefficient > 0 ||
-                   m.contact.viscousFrictionCoefficient > 0 ||
-                   m.contact.normalViscousDampingCoefficient > 0;
-  if (dissipation)
-    out.push_back("friction and damping coefficients are not applied yet: contact is "
-                  "frictionless normal penalty only");
   return out;
+}
+
+bool Scene::HasDissipation() const {
+  for (const auto& m : models_)
+    if (m.contact.coulombFrictionCoefficient > 0 || m.contact.viscousFrictionCoefficient > 0 ||
+        m.contact.normalViscousDampingCoefficient > 0)
+      return true;
+  return false;
 }
 
 }  // namespace superdex

@@ -79,6 +79,9 @@ class Scene {
   Eigen::Vector3d TotalAngularMomentum() const;
   /// Contact statistics at the current state (one value-only pass of the pipeline).
   ContactStats ContactState();
+  /// True when some actor has a nonzero friction or damping coefficient (stages then carry
+  /// Δt_i R in the mode ExperimentalEvalParams selects).
+  bool HasDissipation() const;
   /// One-time notes about the scene (e.g. a collider type not supported yet).
   std::vector<std::string> Notices() const;
 

@@ -34,6 +34,18 @@ class StageProblem {
   /// s ← s ⊕ d.
   virtual void Commit(const Eigen::VectorXd& d) = 0;
 
+  /// True when the stage is the minimization of Value: Evaluate's gradient is ∇f and the stage
+  /// solves ∇f = 0. False for stages whose residual r is not a gradient (Value is then only a
+  /// diagnostic, and the residual solvers use EvaluateResidual / Residual).
+  virtual bool IsPotential() const { return true; }
+
+  /// r(s ⊕ d) without changing s (the gradient, for a potential). Default: not provided.
+  virtual void Residual(const Eigen::VectorXd& d, Eigen::VectorXd* r);
+
+  /// r(s) and its Jacobian J = ∂r(s ⊕ δ)/∂δ at δ = 0 (compressed column; not symmetric in
+  /// general). Default: not provided.
+  virtual void EvaluateResidual(Eigen::VectorXd* r, Eigen::SparseMatrix<double>* J);
+
   /// A norm of a step in length units [m], used for the step convergence test. Default: max-norm.
   virtual double StepNorm(const Eigen::VectorXd& d) const { return d.lpNorm<Eigen::Infinity>(); }
 };

@@ -1,0 +1,226 @@
+#include "core/rigid_dissipation.h"
+
+#include <ceres/jet.h>
+
+#include <Eigen/SVD>
+#include <cmath>
+
+namespace superdex {
+namespace {
+
+inline double ValueOf(double x) { return x; }
+template <int N>
+inline double ValueOf(const ceres::Jet<double, N>& x) {
+  return x.a;
+}
+
+template <typename T>
+using Vec3 = Eigen::Matrix<T, 3, 1>;
+template <typename T>
+using Mat3 = Eigen::Matrix<T, 3, 3>;
+
+template <typename T>
+Mat3<T> SkewT(const Vec3<T>& v) {
+  Mat3<T> S;
+  S << T(0.0), -v.z(), v.y(), v.z(), T(0.0), -v.x(), -v.y(), v.x(), T(0.0);
+  return S;
+}
+
+/// One sample of a current-geometry mode, as a function of the stencil's tangent step δ (first
+/// order retractions p + δp, (1 + [δθ]×) R, exact for first derivatives at δ = 0).
+struct CurrentModeSample {
+  const RigidPose* a = nullptr;
+  const RigidPose* b = nullptr;
+  Eigen::Vector3d X, normal;  // body frame of A
+  Eigen::Vector3d Y;          // current pullback at δ = 0
+  Eigen::Vector3d Y0;         // stage-start pullback
+  SdfSample field;            // Φ_B, G, ∇²Φ_B at Y
+  const DissipationSetup* setup = nullptr;
+  bool bDynamic = false;
+
+  /// World residual [f_A, r × f_A, −f_A, −d × f_A] with f_A = R_B ∂R/∂V (n = 6 or 12 entries).
+  template <typename T>
+  void Residual(const T* delta, T* out) const {
+    const DissipationSetup& s = *setup;
+    const Vec3<T> dpA(delta[0], delta[1], delta[2]);
+    const Vec3<T> dthA(delta[3], delta[4], delta[5]);
+    const Mat3<T> RA0 = a->R.cast<T>();
+    const Mat3<T> RA = RA0 + SkewT<T>(dthA) * RA0;
+    const Vec3<T> pA = a->p.cast<T>() + dpA;
+    Mat3<T> RB = b->R.cast<T>();
+    Vec3<T> pB = b->p.cast<T>();
+    if (bDynamic) {
+      const Vec3<T> dpB(delta[6], delta[7], delta[8]);
+      const Vec3<T> dthB(delta[9], delta[10], delta[11]);
+      RB = RB + SkewT<T>(dthB) * RB;
+      pB = pB + dpB;
+    }
+    const Vec3<T> r = RA * X.cast<T>();
+    const Vec3<T> d = pA + r - pB;
+    const Vec3<T> Yt = RB.transpose() * d;
+    const Vec3<T> dY = Yt - Y.cast<T>();
+    // Φ and G to first order about Y: exact values at δ = 0, exact first derivatives.
+    const T phi = T(field.value) + field.gradient.cast<T>().dot(dY);
+    const Vec3<T> G = field.gradient.cast<T>() + field.hessian.cast<T>() * dY;
+    const Vec3<T> Y0t = Y0.cast<T>();
+    // Normal load λ_n(φ_load) = −W'(φ_load), expanded to first order (λ' = −W'').
+    const T phiLoad =
+        s.mode == DissipationMode::ImplicitLoad ? phi : T(phi + G.dot(Y0t - Yt));
+    const double pl = ValueOf(phiLoad);
+    const PenaltyDensity pd = NormalPenaltyDensity(pl, s.penalty);
+    const T lambda = T(-pd.dW) - pd.d2W * (phiLoad - pl);
+    // Alignment s = G·N_A with N_A = R_Bᵀ R_A n_A (raw vectors).
+    const Vec3<T> NA = RB.transpose() * (RA * normal.cast<T>());
+    T factor = T(1.0);
+    if (s.fadeFriction && s.maxAlignment > -1.0)
+      factor = (T(s.maxAlignment) - G.dot(NA)) / (s.maxAlignment + 1.0);
+    using std::sqrt;
+    const Vec3<T> N = s.frictionWithColliderNormal ? Vec3<T>(G / sqrt(G.squaredNorm()))
+                                                   : Vec3<T>(-NA / sqrt(NA.squaredNorm()));
+    const Vec3<T> V = (Yt - Y0t) / s.dt;
+    const Vec3<T> g = DissipationGradient(T(factor * lambda), N, V, s.coefficients,
+                                          [](const T& x) { return ValueOf(x); });
+    const Vec3<T> f = RB * g;
+    const Vec3<T> tau = r.cross(f);
+    for (int k = 0; k < 3; ++k) {
+      out[k] = f[k];
+      out[3 + k] = tau[k];
+    }
+    if (bDynamic) {
+      const Vec3<T> tauB = d.cross(f);
+      for (int k = 0; k < 3; ++k) {
+        out[6 + k] = -f[k];
+        out[9 + k] = -tauB[k];
+      }
+    }
+  }
+};
+
+template <int N>
+void ResidualJacobian(const CurrentModeSample& sample, double w, StencilMatrix* jacobian) {
+  using Jet = ceres::Jet<double, N>;
+  Jet delta[N], out[N];
+  for (int i = 0; i < N; ++i) delta[i] = Jet(0.0, i);
+  sample.Residual(delta, out);
+  for (int i = 0; i < N; ++i)
+    for (int j = 0; j < N; ++j) (*jacobian)(i, j) += w * out[i].v[j];
+}
+
+}  // namespace
+
+const char* ToString(DissipationMode mode) {
+  switch (mode) {
+    case DissipationMode::ExplicitNormals: return "ExplicitNormals";
+    case DissipationMode::ReconstructedLoad: return "ReconstructedLoad";
+    case DissipationMode::ImplicitLoad: return "ImplicitLoad";
+  }
+  return "Unknown";
+}
+
+void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
+                                  const RigidStageStart& a0, const RigidBodyModel& B,
+                                  const RigidPose& b, const RigidStageStart& b0, bool bDynamic,
+                                  const DissipationSetup& setup, int order,
+                                  RigidPairDissipation* out) {
+  const int n = bDynamic ? 12 : 6;
+  out->value = 0.0;
+  out->activeSamples = 0;
+  out->maxCoulombRatio = 0.0;
+  out->residual.setZero(n);
+  if (order >= 2) out->jacobian.setZero(n, n);
+  if (!setup.coefficients.Any()) return;
+  const double delta = setup.penalty.delta;
+  const double dt = setup.dt;
+  const double m = setup.maxAlignment;
+  const double reach = B.collider.boundingRadius + delta;
+  const bool finiteReach = std::isfinite(reach);
+  const Eigen::Matrix3d RBt = b.R.transpose();
+  const Eigen::Matrix3d RBtRA = RBt * a.R;
+  const Eigen::Vector3d YA = RBt * (a.p - b.p);
+  const Eigen::Matrix3d R0BinvRA = b0.Rinv * a0.R;
+  const Eigen::Vector3d Y0A = b0.Rinv * (a0.p - b0.p);
+  const bool explicitNormals = setup.mode == DissipationMode::ExplicitNormals;
+
+  // Whole-pair rejection (exact SDFs are 1-Lipschitz): no sample of A can carry a load when both
+  // A's current and stage-start sample clouds stay farther than δ from B. The stage-start map
+  // R⁰_B⁻¹ R⁰_A may stretch (multistep affine start), so its largest singular value scales the
+  // radius.
+  const double stretch = R0BinvRA.jacobiSvd().singularValues()[0];
+  const bool nearNow = B.collider.Evaluate(YA).value - A.samplesRadius < delta;
+  const bool nearThen = B.collider.Evaluate(Y0A).value - stretch * A.samplesRadius < delta;
+  if (explicitNormals ? !nearThen : !(nearNow || nearThen)) return;
+
+  CurrentModeSample sample;
+  sample.a = &a;
+  sample.b = &b;
+  sample.setup = &setup;
+  sample.bDynamic = bDynamic;
+
+  for (const SurfaceSample& q : A.samples) {
+    const Eigen::Vector3d Y = YA + RBtRA * q.X;
+    const Eigen::Vector3d Y0 = Y0A + R0BinvRA * q.X;
+    double lambdaHat = 0.0;
+    Eigen::Vector3d N;
+    if (explicitNormals) {
+      if (finiteReach && Y0.squaredNorm() >= reach * reach) continue;
+      const SdfSample f0 = B.collider.Evaluate(Y0);
+      if (f0.value >= delta) continue;
+      const Eigen::Vector3d nA0 = (a0.R * q.normal).normalized();  // world normal at stage start
+      const Eigen::Vector3d NA0 = b0.Rinv * nA0;
+      const double s = f0.gradient.dot(NA0);
+      if (s > m) continue;  // rejected
+      const double factor = setup.fadeFriction && m > -1.0 ? (m - s) / (m + 1.0) : 1.0;
+      lambdaHat = factor * NormalPenaltyDensity(f0.value, setup.penalty).lambdaN;
+      N = setup.frictionWithColliderNormal ? f0.gradient.normalized() : Eigen::Vector3d(-NA0.normalized());
+    } else {
+      if (finiteReach && Y.squaredNorm() >= reach * reach && Y0.squaredNorm() >= reach * reach)
+        continue;
+      const SdfSample f = B.collider.Evaluate(Y);
+      const double phiLoad = setup.mode == DissipationMode::ImplicitLoad
+                                 ? f.value
+                                 : f.value + f.gradient.dot(Y0 - Y);
+      if (phiLoad >= delta) continue;
+      const Eigen::Vector3d NA = RBtRA * q.normal;
+      const double s = f.gradient.dot(NA);
+      if (s > m) continue;
+      const double factor = setup.fadeFriction && m > -1.0 ? (m - s) / (m + 1.0) : 1.0;
+      lambdaHat = factor * NormalPenaltyDensity(phiLoad, setup.penalty).lambdaN;
+      N = setup.frictionWithColliderNormal ? f.gradient.normalized() : Eigen::Vector3d(-NA.normalized());
+      sample.X = q.X;
+      sample.normal = q.normal;
+      sample.Y = Y;
+      sample.Y0 = Y0;
+      sample.field = f;
+    }
+    if (lambdaHat == 0.0) continue;
+    ++out->activeSamples;
+    const Eigen::Vector3d V = (Y - Y0) / dt;
+    const DissipationDensity D =
+        EvaluateDissipation(lambdaHat, N, V, setup.coefficients, explicitNormals && order >= 2);
+    out->value += q.weight * dt * D.R;
+    if (setup.coefficients.mu > 0.0 && lambdaHat > 0.0)
+      out->maxCoulombRatio = std::max(
+          out->maxCoulombRatio, D.coulomb.norm() / (setup.coefficients.mu * lambdaHat));
+    if (order == 0) continue;
+    const Eigen::Vector3d r = a.R * q.X;
+    const Eigen::Vector3d d = a.p + r - b.p;
+    if (explicitNormals) {
+      // ∂(Δt R)/∂Y = ∂R/∂V;  ∂²(Δt R)/∂Y² = ∂²R/∂V² / Δt.
+      const Eigen::Matrix3d HY = D.hessian / dt;
+      AddFunctionOfPullback(r, d, b.R, D.gradient, order >= 2 ? &HY : nullptr, bDynamic,
+                            q.weight, &out->residual, order >= 2 ? &out->jacobian : nullptr);
+    } else {
+      AddFunctionOfPullback(r, d, b.R, D.gradient, nullptr, bDynamic, q.weight, &out->residual,
+                            nullptr);
+      if (order >= 2) {
+        if (bDynamic) {
+          ResidualJacobian<12>(sample, q.weight, &out->jacobian);
+        } else {
+          ResidualJacobian<6>(sample, q.weight, &out->jacobian);
+        }
+      }
+    }
+  }
+}
+
+}  // namespace superdex

@@ -1,0 +1,67 @@
+// Stage-discrete contact dissipation between a colliding rigid actor's surface samples and a rigid
+// collider (spec: "Friction and Damping", "Stage-Discrete Dissipation").
+//
+// Per sample (X, n_A in A's body frame, quadrature weight w [m²]):
+//   Y  = R_Bᵀ (p_A + R_A X − p_B)            current pullback X_B,i(x_A,i)             [m]
+//   Y⁰ = (R⁰_B)⁻¹ (p⁰_A + R⁰_A X − p⁰_B)     stage-start pullback X⁰_B,i(x⁰_A,i)       [m]
+//   V_rel = (Y − Y⁰)/Δt_i                                                              [m/s]
+// (x⁰ is the integrator's stage-start state; for multistep methods an affine combination of
+// poses, whose R⁰ need not be a rotation: the exact inverse of R⁰ is used.)
+// The stage contributes Δt_i Σ w R(V_rel) with λ̂_n, N taken per DissipationMode:
+//   ExplicitNormals      N, alignment, λ_n from the stage-start sample Y⁰ (φ⁰ = Φ_B(Y⁰)); the
+//                        contact set is the samples with φ⁰ < δ. Exact potential: the residual is
+//                        ∇_q(Δt_i Σ w R) and the Hessian is its exact (symmetric) second derivative.
+//   ReconstructedLoad    (default) N, alignment from the current Y; λ_n at the stage-start
+//                        distance reconstructed to first order, φ⁰ ≈ Φ(Y) + G(Y)·(Y⁰ − Y).
+//   ImplicitLoad         N, alignment and λ_n from the current Y.
+// In the last two modes only ∂R/∂V enters the residual (r = w J_Yᵀ ∂R/∂V); it is not a gradient.
+// Its Jacobian, including the dependence of λ̂_n and N on the state, is computed exactly by
+// forward-mode automatic differentiation of the world forces and torques.
+#pragma once
+
+#include "core/rigid_body.h"
+#include "core/rigid_contact.h"
+#include "energies/contact_dissipation.h"
+#include "energies/normal_penalty.h"
+#include "energies/stencil.h"
+
+namespace superdex {
+
+enum class DissipationMode { ExplicitNormals, ReconstructedLoad, ImplicitLoad };
+const char* ToString(DissipationMode mode);
+
+/// A body's stage-start pose x⁰ = (p⁰, R⁰) and (R⁰)⁻¹.
+struct RigidStageStart {
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  Eigen::Matrix3d Rinv = Eigen::Matrix3d::Identity();
+};
+
+/// Everything one ordered pair needs besides the bodies.
+struct DissipationSetup {
+  DissipationMode mode = DissipationMode::ReconstructedLoad;
+  bool fadeFriction = true;                ///< alignment factor a = (m − s)/(m + 1)
+  double dt = 0.0;                         ///< stage step Δt_i [s]
+  PenaltyParams penalty;                   ///< for λ_n = −W'(φ)
+  DissipationCoefficients coefficients;
+  double maxAlignment = 0.0;               ///< m, the collider's
+  bool frictionWithColliderNormal = true;  ///< split on N_B (true) or −N_A (false)
+};
+
+struct RigidPairDissipation {
+  double value = 0.0;        ///< Δt_i Σ w R [J] (the potential in ExplicitNormals mode)
+  StencilVector residual;    ///< [N, N·m]: w J_Yᵀ ∂R/∂V summed
+  StencilMatrix jacobian;    ///< ExplicitNormals: Hessian of `value` (symmetric, unprojected);
+                             ///< otherwise ∂residual/∂q (not symmetric)
+  int activeSamples = 0;     ///< samples with a positive dissipative load
+  double maxCoulombRatio = 0.0;  ///< max over samples of ‖T_C‖ / (μ λ̂_n) (<= 1 by construction)
+};
+
+/// order: 0 value only, 1 with the residual, 2 with the residual and its Jacobian.
+void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
+                                  const RigidStageStart& a0, const RigidBodyModel& B,
+                                  const RigidPose& b, const RigidStageStart& b0, bool bDynamic,
+                                  const DissipationSetup& setup, int order,
+                                  RigidPairDissipation* out);
+
+}  // namespace superdex

@@ -1,0 +1,197 @@
+#include "optim/residual_newton.h"
+
+#include <Eigen/UmfPackSupport>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+namespace superdex {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using SparseMatrix = Eigen::SparseMatrix<double>;
+
+double SecondsSince(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+constexpr int kMaxShiftRetries = 12;
+constexpr double kInitialShift = 1e-8;
+constexpr double kRoundoffBand = 1e-14;
+
+/// UMFPACK LU with the symbolic analysis reused while the sparsity pattern is unchanged.
+class LuSolver {
+ public:
+  bool Factorize(const SparseMatrix& J) {
+    if (!SamePattern(J)) {
+      lu_.analyzePattern(J);
+      outer_.assign(J.outerIndexPtr(), J.outerIndexPtr() + J.outerSize() + 1);
+      inner_.assign(J.innerIndexPtr(), J.innerIndexPtr() + J.nonZeros());
+    }
+    lu_.factorize(J);
+    return lu_.info() == Eigen::Success;
+  }
+  Eigen::VectorXd Solve(const Eigen::VectorXd& b) { return lu_.solve(b); }
+
+ private:
+  bool SamePattern(const SparseMatrix& J) const {
+    return static_cast<Eigen::Index>(outer_.size()) == J.outerSize() + 1 &&
+           static_cast<Eigen::Index>(inner_.size()) == J.nonZeros() &&
+           std::equal(outer_.begin(), outer_.end(), J.outerIndexPtr()) &&
+           std::equal(inner_.begin(), inner_.end(), J.innerIndexPtr());
+  }
+  Eigen::UmfPackLU<SparseMatrix> lu_;
+  std::vector<SparseMatrix::StorageIndex> outer_, inner_;
+};
+
+/// Adds explicit zeros on the diagonal so that J and J + τI share one pattern (Eigen keeps the
+/// explicit zeros of a sum's union pattern).
+void CompleteDiagonal(SparseMatrix* J) {
+  SparseMatrix I(J->rows(), J->cols());
+  I.setIdentity();
+  *J = *J + 0.0 * I;
+  J->makeCompressed();
+}
+
+}  // namespace
+
+SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverParams& params,
+                                double timeScale) {
+  SolverStats st;
+  auto diverge = [&st](const std::string& message) {
+    st.status = StageStatus::Diverged;
+    st.message = message;
+    return st;
+  };
+  if (std::string m = Validate(params); !m.empty()) return diverge("invalid parameters: " + m);
+  if (!(std::isfinite(timeScale) && timeScale > 0.0)) {
+    std::ostringstream s;
+    s << "invalid time scale: must be > 0, got " << timeScale;
+    return diverge(s.str());
+  }
+  const int n = problem.NumDofs();
+  Eigen::VectorXd r, rTrial, d(n), step(n);
+  SparseMatrix J, shifted;
+  LuSolver lu;
+  if (n == 0) {
+    st.status = StageStatus::Converged;
+    st.message = "no degrees of freedom";
+    return st;
+  }
+
+  for (int it = 0; it < params.maxIterations; ++it) {
+    Clock::time_point t0 = Clock::now();
+    problem.EvaluateResidual(&r, &J);
+    st.assemblySeconds += SecondsSince(t0);
+    if (r.size() != n || J.rows() != n || J.cols() != n)
+      return diverge("the stage problem provides no residual of the right size");
+    if (!r.allFinite()) return diverge("non-finite residual at iteration " + std::to_string(it + 1));
+    const double theta = 0.5 * r.squaredNorm();
+    st.finalValue = theta;
+    st.finalGradientNorm = r.lpNorm<Eigen::Infinity>();
+    if (it == 0) st.initialGradientNorm = st.finalGradientNorm;
+    if (st.finalGradientNorm == 0.0) {
+      st.status = StageStatus::Converged;
+      st.message = "residual is exactly zero";
+      return st;
+    }
+
+    t0 = Clock::now();
+    J.makeCompressed();
+    if (!Eigen::Map<const Eigen::VectorXd>(J.valuePtr(), J.nonZeros()).allFinite())
+      return diverge("non-finite Jacobian entry at iteration " + std::to_string(it + 1));
+    CompleteDiagonal(&J);
+    bool ok = false;
+    if (lu.Factorize(J)) {
+      d = -lu.Solve(r);
+      ok = d.allFinite();
+    }
+    if (!ok) {
+      ++st.regularizations;
+      double scale = 0.0;
+      for (Eigen::Index k = 0; k < n; ++k) scale = std::max(scale, std::abs(J.coeff(k, k)));
+      if (scale == 0.0) scale = 1.0;
+      double tau = kInitialShift * scale;
+      for (int k = 0; k < kMaxShiftRetries && !ok; ++k, tau *= 10.0) {
+        shifted = J;
+        for (Eigen::Index i = 0; i < n; ++i) shifted.coeffRef(i, i) += tau;
+        if (lu.Factorize(shifted)) {
+          d = -lu.Solve(r);
+          ok = d.allFinite();
+        }
+      }
+      if (!ok) {
+        st.factorizationSeconds += SecondsSince(t0);
+        return diverge("singular Jacobian at iteration " + std::to_string(it + 1));
+      }
+    }
+    st.factorizationSeconds += SecondsSince(t0);
+    st.iterations = it + 1;
+    const double decrement = 0.5 * std::abs(r.dot(d));
+    st.finalDecrement = decrement;
+
+    std::string converged;
+    const double stepVelocity = problem.StepNorm(d) / timeScale;
+    std::ostringstream why;
+    if (decrement <= params.absoluteTolerance) {
+      why << "residual decrement 0.5|r.d| = " << decrement << " <= absolute_tolerance";
+    } else if (st.finalGradientNorm <= params.relativeTolerance * st.initialGradientNorm) {
+      why << "residual norm |r|_inf = " << st.finalGradientNorm << " <= relative_tolerance * |r0|";
+    } else if (stepVelocity <= params.stepTolerance) {
+      why << "step StepNorm(d)/dt = " << stepVelocity << " m/s <= step_tolerance";
+    }
+    converged = why.str();
+    if (!converged.empty()) {
+      t0 = Clock::now();
+      problem.Residual(d, &rTrial);
+      const bool commit = rTrial.allFinite() && 0.5 * rTrial.squaredNorm() <= theta;
+      if (commit) {
+        problem.Commit(d);
+        st.finalValue = 0.5 * rTrial.squaredNorm();
+        st.finalGradientNorm = rTrial.lpNorm<Eigen::Infinity>();
+      }
+      st.lineSearchSeconds += SecondsSince(t0);
+      st.status = StageStatus::Converged;
+      st.message = converged + (commit ? "" : " (last step not taken: it would raise |r|)");
+      return st;
+    }
+
+    t0 = Clock::now();
+    double alpha = 1.0;
+    bool accepted = false;
+    double trialTheta = NAN;
+    const int trials = params.lineSearch == LineSearchKind::None ? 1 : params.maxLineSearchSteps;
+    for (int trial = 0; trial < trials; ++trial) {
+      step.noalias() = alpha * d;
+      problem.Residual(step, &rTrial);
+      trialTheta = 0.5 * rTrial.squaredNorm();
+      const bool finite = std::isfinite(trialTheta);
+      if (finite && (params.lineSearch == LineSearchKind::None ||
+                     trialTheta <= (1.0 - 2.0 * params.armijoConstant * alpha) * theta ||
+                     (std::abs(trialTheta - theta) <= kRoundoffBand * theta &&
+                      alpha * decrement <= kRoundoffBand * theta))) {
+        accepted = true;
+        break;
+      }
+      ++st.lineSearchSteps;
+      alpha *= params.backtrackFactor;
+    }
+    st.lineSearchSeconds += SecondsSince(t0);
+    if (!accepted) {
+      std::ostringstream s;
+      s << "merit line search rejected " << trials << " trials at iteration " << it + 1
+        << " (|r|_inf = " << st.finalGradientNorm << ", last trial 0.5|r|^2 = " << trialTheta
+        << ")";
+      return diverge(s.str());
+    }
+    problem.Commit(step);
+  }
+  st.status = StageStatus::Stopped;
+  std::ostringstream s;
+  s << "iteration cap max_iterations = " << params.maxIterations << " reached (|r|_inf = "
+    << st.finalGradientNorm << ", decrement " << st.finalDecrement << ")";
+  st.message = s.str();
+  return st;
+}
+
+}  // namespace superdex

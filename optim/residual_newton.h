@@ -1,0 +1,30 @@
+// Newton's method on a residual that is not a gradient (the dissipation modes without an
+// incremental potential, spec: "Stage-Discrete Dissipation").
+//
+// Each iteration k at state s_k:
+//   1. r, J ← problem.EvaluateResidual (J = ∂r/∂δ, not symmetric). Non-finite → Diverged.
+//   2. d = −J⁻¹ r with a sparse LU (UMFPACK; symbolic analysis kept while the pattern holds). If J
+//      is singular, J + τI with τ = 1e-8 max|J_ii| ×10 up to 12 times; none works → Diverged.
+//   3. Convergence tests on d before stepping, as the minimizer's (same parameters and units):
+//        a. ½ |r·d| <= absoluteTolerance  [J]  (the Newton decrement's analogue)
+//        b. ‖r‖∞ <= relativeTolerance ‖r_0‖∞
+//        c. StepNorm(d)/timeScale <= stepTolerance [m/s]
+//      On success the step d is still taken when it does not raise the merit θ.
+//   4. Line search on the merit θ(s) = ½‖r(s)‖²: α = 1, β, β², ... until
+//        θ(s ⊕ αd) <= (1 − 2cα) θ(s)   (c = armijoConstant; d is a descent direction of θ with
+//      slope −2θ because J d = −r), or |θ(s ⊕ αd) − θ(s)| within round-off of θ(s) while
+//      α‖d‖ is negligible. maxLineSearchSteps rejections → Diverged.
+//   Iteration cap → Stopped.
+#pragma once
+
+#include "optim/newton_solver.h"
+
+namespace superdex {
+
+/// Solves r(s) = 0 from the problem's current state; leaves it at the last accepted iterate.
+/// SolverStats fields keep their names: "gradient" norms are residual norms, finalDecrement is
+/// ½|r·d| [J], finalValue is θ = ½‖r‖².
+SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverParams& params,
+                                double timeScale);
+
+}  // namespace superdex

@@ -1,0 +1,188 @@
+#include <catch2/catch.hpp>
+#include <random>
+
+#include "core/rigid_dissipation.h"
+#include "core/rigid_math.h"
+#include "derivative_check.h"
+
+using namespace superdex;
+
+namespace {
+
+RigidBodyModel Build(RigidShape shape, bool dynamic) {
+  RigidActorDesc d;
+  d.name = "a";
+  d.dynamic = dynamic;
+  d.shape = shape;
+  RigidBodyModel m;
+  RigidBodyState s;
+  Error e;
+  REQUIRE(BuildRigidBody(d, "", &m, &s, &e));
+  return m;
+}
+
+RigidShape Box(Eigen::Vector3d h, int res) {
+  RigidShape s;
+  s.kind = RigidShapeKind::Box;
+  s.halfExtents = h;
+  s.surfaceResolution = res;
+  return s;
+}
+
+RigidStageStart StartOf(const RigidPose& p) {
+  RigidStageStart s;
+  s.p = p.p;
+  s.R = p.R;
+  s.Rinv = p.R.inverse();
+  return s;
+}
+
+struct Case {
+  RigidBodyModel A, B;
+  RigidPose a, b;        // current
+  RigidStageStart a0, b0;// stage start
+  bool bDynamic = false;
+  DissipationSetup setup;
+};
+
+RigidPose Retracted(const RigidPose& p, const Eigen::VectorXd& d, int o) {
+  RigidPose q = p;
+  q.p += d.segment<3>(o);
+  q.R = ExpSo3(d.segment<3>(o + 3)) * q.R;
+  return q;
+}
+
+RigidPairDissipation Eval(const Case& c, const Eigen::VectorXd& d, int order) {
+  RigidPairDissipation out;
+  const RigidPose a = Retracted(c.a, d, 0);
+  const RigidPose b = c.bDynamic ? Retracted(c.b, d, 6) : c.b;
+  EvaluateRigidPairDissipation(c.A, a, c.a0, c.B, b, c.b0, c.bDynamic, c.setup, order, &out);
+  return out;
+}
+
+void CheckCase(const Case& c) {
+  const int n = c.bDynamic ? 12 : 6;
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
+  const RigidPairDissipation out = Eval(c, zero, 2);
+  REQUIRE(out.activeSamples > 0);
+  CHECK(out.maxCoulombRatio <= 1.0 + 1e-12);
+  if (c.setup.mode == DissipationMode::ExplicitNormals) {
+    // Exact potential: residual = ∇(Δt Σ w R), Jacobian = its Hessian.
+    const auto check = test::CheckDerivatives(
+        [&](const Eigen::VectorXd& d) { return Eval(c, d, 0).value; },
+        Eigen::VectorXd(out.residual), Eigen::MatrixXd(out.jacobian), 1e-6);
+    INFO("gradient error " << check.gradientError << ", Hessian error " << check.hessianError);
+    CHECK(check.gradientError < 1e-6);
+    CHECK(check.hessianError < 1e-4);
+  } else {
+    // Not a potential: the Jacobian is checked against differences of the residual itself.
+    const Eigen::MatrixXd Jfd = FiniteDifferenceJacobian(
+        [&](const Eigen::VectorXd& d) { return Eigen::VectorXd(Eval(c, d, 1).residual); }, zero,
+        1e-7);
+    const double err = (Eigen::MatrixXd(out.jacobian) - Jfd).norm() / Jfd.norm();
+    INFO("Jacobian error " << err);
+    CHECK(err < 1e-5);
+    // And it is not symmetric (the residual is not a gradient) once friction acts.
+    CHECK((Jfd - Jfd.transpose()).norm() > 1e-6 * Jfd.norm());
+  }
+  if (c.bDynamic) {
+    // Balanced pair: forces sum to zero and torques about the origin sum to zero.
+    const Eigen::Vector3d fA = out.residual.segment<3>(0), fB = out.residual.segment<3>(6);
+    const Eigen::Vector3d tA = out.residual.segment<3>(3), tB = out.residual.segment<3>(9);
+    CHECK((fA + fB).norm() < 1e-12 * fA.norm());
+    CHECK((c.a.p.cross(fA) + tA + c.b.p.cross(fB) + tB).norm() < 1e-11 * fA.norm());
+  }
+}
+
+}  // namespace
+
+TEST_CASE("rigid pair dissipation: derivatives in every mode, both friction branches",
+          "[core][gradient][dissipation]") {
+  std::mt19937 rng(11);
+  std::normal_distribution<double> n01;
+  auto smallRot = [&](double s) {
+    return ExpSo3(s * Eigen::Vector3d(n01(rng), n01(rng), n01(rng)));
+  };
+  const DissipationMode modes[3] = {DissipationMode::ExplicitNormals,
+                                    DissipationMode::ReconstructedLoad,
+                                    DissipationMode::ImplicitLoad};
+  for (DissipationMode mode : modes) {
+    for (double slip : {0.004, 0.3}) {  // below and above V_f = 0.01 m/s
+      for (bool dynamicCollider : {false, true}) {
+        for (bool colliderNormal : {true, false}) {
+          Case c;
+          c.A = Build(Box({0.1, 0.08, 0.06}, 2), true);
+          c.B = Build(Box({0.5, 0.4, 0.2}, 1), dynamicCollider);
+          c.bDynamic = dynamicCollider;
+          c.b.R = smallRot(0.3);
+          c.b.p = Eigen::Vector3d(0.02, -0.01, 0.0);
+          // A rests slightly tilted on B's top face, penetrating a little.
+          c.a.R = c.b.R * smallRot(0.05);
+          c.a.p = c.b.p + c.b.R * Eigen::Vector3d(0.05, 0.03, 0.2 + 0.06 - 0.003);
+          // Stage start: A displaced tangentially (slip·Δt) and normally, B a little rotated.
+          c.setup.dt = 0.01;
+          c.setup.mode = mode;
+          c.setup.penalty.k = 1e5;
+          c.setup.coefficients = {0.5, 0.2, 1.5, 0.01};
+          c.setup.frictionWithColliderNormal = colliderNormal;
+          c.setup.maxAlignment = 0.0;
+          RigidPose a0 = c.a, b0 = c.b;
+          a0.p -= c.b.R * Eigen::Vector3d(slip * c.setup.dt, 0.3 * slip * c.setup.dt, 0.002);
+          a0.R = smallRot(0.01) * a0.R;
+          if (dynamicCollider) b0.R = smallRot(0.01) * b0.R;
+          c.a0 = StartOf(a0);
+          c.b0 = StartOf(b0);
+          DYNAMIC_SECTION(ToString(mode) << " slip " << slip << (dynamicCollider ? " dynamic" : " static")
+                                         << (colliderNormal ? " N_B" : " -N_A")) {
+            CheckCase(c);
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST_CASE("rigid pair dissipation: alignment rejection and fading", "[core][dissipation]") {
+  Case c;
+  c.A = Build(Box({0.1, 0.1, 0.1}, 1), true);
+  RigidShape plane;
+  plane.kind = RigidShapeKind::Plane;
+  c.B = Build(plane, false);
+  c.a.p = Eigen::Vector3d(0, 0, 0.1 - 0.002);
+  c.setup.dt = 0.01;
+  c.setup.penalty.k = 1e5;
+  c.setup.coefficients = {0.5, 0.0, 0.0, 0.01};
+  c.setup.mode = DissipationMode::ImplicitLoad;
+  RigidPose a0 = c.a;
+  a0.p.x() -= 0.001;  // sliding at 0.1 m/s along +x
+  c.a0 = StartOf(a0);
+  c.b0 = StartOf(c.b);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(6);
+  // Bottom-face samples: s = G·N_A = −1 → a = (m − s)/(m + 1) = 1 at m = 0. The friction force
+  // is μ times the normal force of the same samples.
+  RigidPairDissipation full = Eval(c, zero, 1);
+  RigidPairPenalty pen;
+  PenaltyParams pp = c.setup.penalty;
+  EvaluateRigidPairPenalty(c.A, c.a, c.B, c.b, false, pp, 1, &pen, 0.0);
+  REQUIRE(full.activeSamples > 0);
+  CHECK(full.residual[0] == Approx(0.5 * std::abs(pen.gradient[2])).epsilon(1e-12));
+  // Tilt the box by 60° about y: the faces that reach the plane have normals with
+  // s = −cos 60° = −0.5 (bottom face) and s = −cos 30° ≈ −0.866 (+x face).
+  c.a.R = ExpSo3(Eigen::Vector3d(0, M_PI / 3, 0));
+  a0.R = c.a.R;
+  a0.p = c.a.p + Eigen::Vector3d(-0.001, 0, 0);
+  c.a0 = StartOf(a0);
+  c.setup.maxAlignment = -0.9;  // s > m everywhere: every sample rejected
+  REQUIRE(Eval(c, zero, 1).activeSamples == 0);
+  c.setup.maxAlignment = -0.6;  // only the +x face's samples remain
+  const int plusX = Eval(c, zero, 1).activeSamples;
+  CHECK(plusX > 0);
+  c.setup.maxAlignment = 0.0;
+  CHECK(Eval(c, zero, 1).activeSamples > plusX);  // accepted with factor 0.5 (and the edge region's own normals)
+  c.setup.fadeFriction = false;
+  const double unfaded = Eval(c, zero, 1).residual.norm();
+  c.setup.fadeFriction = true;
+  const double faded = Eval(c, zero, 1).residual.norm();
+  CHECK(faded < unfaded);
+  CHECK(faded > 0.0);
+}

@@ -1,0 +1,104 @@
+#include <Eigen/Eigenvalues>
+#include <catch2/catch.hpp>
+#include <random>
+
+#include "derivative_check.h"
+#include "energies/contact_dissipation.h"
+
+using namespace superdex;
+
+TEST_CASE("friction ramp: values, C2 join at V_f, slope and curvature", "[energies][dissipation]") {
+  const double vf = 0.01;
+  // Spec: ρ(V) = V²/V_f − V³/(3V_f²) below V_f, V − V_f/3 above.
+  for (double V : {0.0, 0.001, 0.005, 0.0099, 0.01, 0.02, 1.0}) {
+    const FrictionRamp r = EvaluateFrictionRamp(V, vf);
+    const double expected = V < vf ? V * V / vf - V * V * V / (3 * vf * vf) : V - vf / 3;
+    CHECK(r.rho == Approx(expected).margin(1e-18));
+    CHECK(r.drho >= 0.0);
+    CHECK(r.drho <= 1.0);
+    // Derivatives by central differences (away from V = 0, where ρ is one-sided).
+    if (V > 1e-4) {
+      const double h = 1e-7;
+      const auto p = EvaluateFrictionRamp(V + h, vf), m = EvaluateFrictionRamp(V - h, vf);
+      CHECK(r.drho == Approx((p.rho - m.rho) / (2 * h)).epsilon(1e-6));
+      if (V != vf) CHECK(r.d2rho == Approx((p.drho - m.drho) / (2 * h)).margin(1e-2));
+      CHECK(r.slope * V == Approx(r.drho).epsilon(1e-14));
+      CHECK(r.curvature == Approx(r.d2rho - r.slope).margin(1e-9));
+    }
+  }
+  // C² at the join: value, slope and curvature agree from both sides.
+  const auto below = EvaluateFrictionRamp(vf * (1 - 1e-12), vf);
+  const auto above = EvaluateFrictionRamp(vf, vf);
+  CHECK(below.rho == Approx(above.rho).epsilon(1e-10));
+  CHECK(below.drho == Approx(above.drho).epsilon(1e-10));
+  CHECK(below.d2rho == Approx(above.d2rho).margin(1e-8));
+  CHECK(EvaluateFrictionRamp(0.0, vf).slope == Approx(2.0 / vf));
+}
+
+TEST_CASE("dissipation potential: gradient, Hessian and tractions against the spec",
+          "[energies][dissipation][gradient]") {
+  std::mt19937 rng(3);
+  std::normal_distribution<double> n01;
+  DissipationCoefficients c;
+  c.mu = 0.6;
+  c.ct = 0.3;
+  c.cn = 2.0;
+  c.vf = 0.01;
+  const double lambda = 1.7e4;
+  for (int trial = 0; trial < 40; ++trial) {
+    const Eigen::Vector3d N = Eigen::Vector3d(n01(rng), n01(rng), n01(rng)).normalized();
+    // Tangential speeds on both branches of ρ, including near zero and near V_f.
+    const double scales[5] = {1e-4, 3e-3, 0.0099, 0.0101, 0.5};
+    Eigen::Vector3d V = Eigen::Vector3d(n01(rng), n01(rng), n01(rng));
+    V -= V.dot(N) * N;
+    V = V.normalized() * scales[trial % 5] + 0.02 * n01(rng) * N;
+    const DissipationDensity d = EvaluateDissipation(lambda, N, V, c, true);
+    // T_diss = −∂R/∂V, split as the spec writes it.
+    const double Vn = V.dot(N);
+    const Eigen::Vector3d Vt = V - Vn * N;
+    const FrictionRamp r = EvaluateFrictionRamp(Vt.norm(), c.vf);
+    CHECK((d.viscousNormal + c.cn * lambda * Vn * N).norm() < 1e-9);
+    CHECK((d.viscousTangential + c.ct * lambda * Vt).norm() < 1e-9);
+    CHECK((d.coulomb + c.mu * lambda * r.drho * Vt.normalized()).norm() < 1e-9 * lambda);
+    CHECK(d.coulomb.norm() <= c.mu * lambda * (1 + 1e-12));
+    const auto check = test::CheckDerivatives(
+        [&](const Eigen::VectorXd& dv) {
+          return EvaluateDissipation(lambda, N, V + dv, c, false).R;
+        },
+        d.gradient, d.hessian, 1e-4 * std::max(1e-3, Vt.norm()));
+    INFO("trial " << trial << " |Vt| " << Vt.norm());
+    CHECK(check.gradientError < 1e-6);
+    CHECK(check.hessianError < 1e-4);
+    // The template used for automatic differentiation gives the same gradient.
+    const Eigen::Vector3d g2 = DissipationGradient<double>(
+        lambda, N, V, c, [](double x) { return x; });
+    CHECK((g2 - d.gradient).norm() < 1e-12 * d.gradient.norm());
+    // R is convex in V: the Hessian is positive semi-definite.
+    CHECK(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(d.hessian).eigenvalues().minCoeff() >
+          -1e-9 * d.hessian.norm());
+  }
+  // V_t = 0: no Coulomb traction, finite Hessian 2μλ/V_f on the tangent plane.
+  const Eigen::Vector3d N(0, 0, 1);
+  const DissipationDensity d0 = EvaluateDissipation(lambda, N, Eigen::Vector3d(0, 0, -0.3), c, true);
+  CHECK(d0.coulomb.norm() == 0.0);
+  CHECK(d0.hessian(0, 0) == Approx(lambda * (2 * c.mu / c.vf + c.ct)));
+  CHECK(d0.hessian(2, 2) == Approx(lambda * c.cn));
+}
+
+TEST_CASE("Hunt-Crossley calibration: rational formula and its closed-form inverse",
+          "[energies][dissipation]") {
+  for (double v : {0.1, 1.0, 4.0}) {
+    for (double e : {0.01, 0.1, 0.5, 0.9, 0.999, 1.0}) {
+      const double cn = HuntCrossleyDampingFromRestitution(e, v);
+      CHECK(cn >= 0.0);
+      CHECK(HuntCrossleyRestitutionFromDamping(cn, v) == Approx(e).epsilon(1e-12));
+    }
+  }
+  // The limits the spec names: c_n ≈ 3/2 (1 − e)/v as e → 1, and e v ≈ 1/c_n as e → 0.
+  CHECK(HuntCrossleyDampingFromRestitution(0.999, 2.0) == Approx(1.5 * 0.001 / 2.0).epsilon(2e-3));
+  CHECK(HuntCrossleyRestitutionFromDamping(1e4, 1.0) * 1.0 == Approx(1.0 / 1e4).epsilon(2e-3));
+  CHECK(HuntCrossleyRestitutionFromDamping(0.0, 1.0) == 1.0);
+  CHECK(std::isnan(HuntCrossleyDampingFromRestitution(0.0, 1.0)));
+  CHECK(std::isnan(HuntCrossleyDampingFromRestitution(0.5, -1.0)));
+  CHECK(std::isnan(HuntCrossleyRestitutionFromDamping(-1.0, 1.0)));
+}
