@@ -57,7 +57,7 @@ void ContactPipeline::FindPairs(const std::vector<RigidPose>& poses,
     boxes_[i] = WorldBounds(models[i], poses[i].p, poses[i].R);
     if (sweep) {
       const RigidStageStart& s = (*dissipation->start)[i];
-      const Aabb b0 = WorldBounds(models[i], s.p, s.R);
+      const Aabb b0 = WorldBounds(models[i], s.last.p, s.last.R);
       boxes_[i].Extend(b0.min);
       boxes_[i].Extend(b0.max);
     }

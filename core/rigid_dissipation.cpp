@@ -2,7 +2,6 @@
 
 #include <ceres/jet.h>
 
-#include <Eigen/SVD>
 #include <cmath>
 
 namespace superdex {
@@ -33,7 +32,8 @@ struct CurrentModeSample {
   const RigidPose* b = nullptr;
   Eigen::Vector3d X, normal;  // body frame of A
   Eigen::Vector3d Y;          // current pullback at δ = 0
-  Eigen::Vector3d Y0;         // stage-start pullback
+  Eigen::Vector3d Y0;         // stage-start pullback (velocity reference)
+  Eigen::Vector3d Yn;         // pullback at the last actual configuration (geometry reference)
   SdfSample field;            // Φ_B, G, ∇²Φ_B at Y
   const DissipationSetup* setup = nullptr;
   bool bDynamic = false;
@@ -65,7 +65,7 @@ struct CurrentModeSample {
     const Vec3<T> Y0t = Y0.cast<T>();
     // Normal load λ_n(φ_load) = −W'(φ_load), expanded to first order (λ' = −W'').
     const T phiLoad =
-        s.mode == DissipationMode::ImplicitLoad ? phi : T(phi + G.dot(Y0t - Yt));
+        s.mode == DissipationMode::ImplicitLoad ? phi : T(phi + G.dot(Yn.cast<T>() - Yt));
     const double pl = ValueOf(phiLoad);
     const PenaltyDensity pd = NormalPenaltyDensity(pl, s.penalty);
     const T lambda = T(-pd.dW) - pd.d2W * (phiLoad - pl);
@@ -139,15 +139,14 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
   const Eigen::Vector3d YA = RBt * (a.p - b.p);
   const Eigen::Matrix3d R0BinvRA = b0.Rinv * a0.R;
   const Eigen::Vector3d Y0A = b0.Rinv * (a0.p - b0.p);
+  const Eigen::Matrix3d RnBtRA = b0.last.R.transpose() * a0.last.R;
+  const Eigen::Vector3d YnA = b0.last.R.transpose() * (a0.last.p - b0.last.p);
   const bool explicitNormals = setup.mode == DissipationMode::ExplicitNormals;
 
   // Whole-pair rejection (exact SDFs are 1-Lipschitz): no sample of A can carry a load when both
-  // A's current and stage-start sample clouds stay farther than δ from B. The stage-start map
-  // R⁰_B⁻¹ R⁰_A may stretch (multistep affine start), so its largest singular value scales the
-  // radius.
-  const double stretch = R0BinvRA.jacobiSvd().singularValues()[0];
+  // A's current and last actual sample clouds stay farther than δ from B.
   const bool nearNow = B.collider.Evaluate(YA).value - A.samplesRadius < delta;
-  const bool nearThen = B.collider.Evaluate(Y0A).value - stretch * A.samplesRadius < delta;
+  const bool nearThen = B.collider.Evaluate(YnA).value - A.samplesRadius < delta;
   if (explicitNormals ? !nearThen : !(nearNow || nearThen)) return;
 
   CurrentModeSample sample;
@@ -159,26 +158,26 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
   for (const SurfaceSample& q : A.samples) {
     const Eigen::Vector3d Y = YA + RBtRA * q.X;
     const Eigen::Vector3d Y0 = Y0A + R0BinvRA * q.X;
+    const Eigen::Vector3d Yn = YnA + RnBtRA * q.X;
     double lambdaHat = 0.0;
     Eigen::Vector3d N;
     if (explicitNormals) {
-      if (finiteReach && Y0.squaredNorm() >= reach * reach) continue;
-      const SdfSample f0 = B.collider.Evaluate(Y0);
+      if (finiteReach && Yn.squaredNorm() >= reach * reach) continue;
+      const SdfSample f0 = B.collider.Evaluate(Yn);
       if (f0.value >= delta) continue;
-      const Eigen::Vector3d nA0 = (a0.R * q.normal).normalized();  // world normal at stage start
-      const Eigen::Vector3d NA0 = b0.Rinv * nA0;
+      const Eigen::Vector3d NA0 = RnBtRA * q.normal;
       const double s = f0.gradient.dot(NA0);
       if (s > m) continue;  // rejected
       const double factor = setup.fadeFriction && m > -1.0 ? (m - s) / (m + 1.0) : 1.0;
       lambdaHat = factor * NormalPenaltyDensity(f0.value, setup.penalty).lambdaN;
       N = setup.frictionWithColliderNormal ? f0.gradient.normalized() : Eigen::Vector3d(-NA0.normalized());
     } else {
-      if (finiteReach && Y.squaredNorm() >= reach * reach && Y0.squaredNorm() >= reach * reach)
+      if (finiteReach && Y.squaredNorm() >= reach * reach && Yn.squaredNorm() >= reach * reach)
         continue;
       const SdfSample f = B.collider.Evaluate(Y);
       const double phiLoad = setup.mode == DissipationMode::ImplicitLoad
                                  ? f.value
-                                 : f.value + f.gradient.dot(Y0 - Y);
+                                 : f.value + f.gradient.dot(Yn - Y);
       if (phiLoad >= delta) continue;
       const Eigen::Vector3d NA = RBtRA * q.normal;
       const double s = f.gradient.dot(NA);
@@ -190,6 +189,7 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
       sample.normal = q.normal;
       sample.Y = Y;
       sample.Y0 = Y0;
+      sample.Yn = Yn;
       sample.field = f;
     }
     if (lambdaHat == 0.0) continue;

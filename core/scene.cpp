@@ -123,6 +123,7 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
       s.p = start[i].p;
       s.R = start[i].R;
       s.Rinv = start[i].R.inverse();
+      s.last = {states_[i].p, states_[i].R};
     }
     dissipation.mode = ModeOf(settings_.eval);
     dissipation.fadeFriction = settings_.eval.fadeFriction;

@@ -34,6 +34,7 @@ RigidStageStart StartOf(const RigidPose& p) {
   s.p = p.p;
   s.R = p.R;
   s.Rinv = p.R.inverse();
+  s.last = p;
   return s;
 }
 

@@ -48,6 +48,7 @@ struct Fixture {
       s.R = ExpSo3(Eigen::Vector3d(0, 0, -0.02)) * p.R;
       s.Rinv = s.R.inverse();
       if (&p == &poses[0]) { s.p = p.p; s.R = p.R; s.Rinv = p.R.transpose(); }
+      s.last = {s.p, s.R};
       targets.start.push_back(s);
       targets.pHat.push_back(p.p + Eigen::Vector3d(0.001, 0, -0.001));
       targets.RHat.push_back(p.R);

@@ -1,0 +1,156 @@
+// Friction and damping against analytic expectations: the incline (sliding acceleration and the
+// creep of regularized static friction) in every dissipation mode.
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "core/scene.h"
+#include "energies/contact_dissipation.h"
+
+using namespace superdex;
+
+namespace {
+
+constexpr double kG = 9.81;
+const double kTheta = M_PI / 6;  // 30°
+
+struct InclineRun {
+  std::vector<double> t, s;  // time [s], distance travelled down the slope by the centre of the
+                             // cube's bottom face [m] (insensitive to the cube's rocking)
+  int worstStatus = 0;
+  double maxRock = 0.0;      // largest rotation away from the initial orientation [rad]
+};
+
+// A 0.2 m, 1 kg cube on a 30° incline (plane through the origin with normal (sin θ, 0, cos θ)),
+// released at rest, face down.
+InclineRun RunIncline(const ExperimentalEvalParams& eval, double mu, double vf, double cn,
+                      double duration, double dt,
+                      IntegrationMethod method = IntegrationMethod::BDF2) {
+  SceneSettings settings;
+  settings.integrator = method;
+  settings.eval = eval;
+  Scene scene(settings);
+  Error e;
+  const Eigen::Vector3d n(std::sin(kTheta), 0, std::cos(kTheta));
+  const Eigen::Vector3d down(std::cos(kTheta), 0, -std::sin(kTheta));
+  RigidActorDesc ground;
+  ground.name = "incline";
+  ground.dynamic = false;
+  ground.shape.kind = RigidShapeKind::Plane;
+  ground.shape.planeNormal = n;
+  ground.contact.coulombFrictionCoefficient = mu;
+  ground.contact.normalViscousDampingCoefficient = cn;
+  REQUIRE(scene.AddRigidActor(ground, &e).IsValid());
+  RigidActorDesc cube;
+  cube.name = "cube";
+  cube.shape.kind = RigidShapeKind::Box;
+  cube.shape.halfExtents = Eigen::Vector3d::Constant(0.1);
+  cube.shape.surfaceResolution = 2;
+  cube.mass = 1.0;
+  cube.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(kTheta, Eigen::Vector3d::UnitY()));
+  cube.position = n * (0.1 + 1e-5);
+  cube.contact.coulombFrictionCoefficient = mu;
+  cube.contact.frictionFalloffVel = vf;
+  cube.contact.normalViscousDampingCoefficient = cn;
+  REQUIRE(scene.AddRigidActor(cube, &e).IsValid());
+  const ActorHandle h{1};
+  const Eigen::Vector3d p0 = scene.State(h).p;
+  const Eigen::Matrix3d R0 = scene.State(h).R;
+  const Eigen::Vector3d bottom0 = p0 + R0 * Eigen::Vector3d(0, 0, -0.1);
+  InclineRun run;
+  const int steps = static_cast<int>(std::lround(duration / dt));
+  for (int i = 0; i < steps; ++i) {
+    StepReport r;
+    REQUIRE(scene.Step(dt, &r, &e));
+    INFO("step " << i << ": " << r.message);
+    REQUIRE(r.status == StageStatus::Converged);
+    run.t.push_back(scene.Time());
+    const Eigen::Vector3d bottom = scene.State(h).p + scene.State(h).R * Eigen::Vector3d(0, 0, -0.1);
+    run.s.push_back((bottom - bottom0).dot(down));
+    const Eigen::AngleAxisd rock(scene.State(h).R * R0.transpose());
+    run.maxRock = std::max(run.maxRock, std::abs(rock.angle()));
+  }
+  return run;
+}
+
+// Least-squares fit s = c0 + c1 t + c2 t² over t in [t0, t1]; returns (c1, 2 c2) at t = 0 basis.
+Eigen::Vector3d QuadraticFit(const InclineRun& run, double t0, double t1) {
+  Eigen::MatrixXd A(0, 3);
+  std::vector<Eigen::Vector3d> rows;
+  std::vector<double> b;
+  for (size_t i = 0; i < run.t.size(); ++i)
+    if (run.t[i] >= t0 && run.t[i] <= t1) {
+      rows.emplace_back(1.0, run.t[i], run.t[i] * run.t[i]);
+      b.push_back(run.s[i]);
+    }
+  A.resize(rows.size(), 3);
+  Eigen::VectorXd y(rows.size());
+  for (size_t i = 0; i < rows.size(); ++i) {
+    A.row(i) = rows[i].transpose();
+    y[i] = b[i];
+  }
+  return A.colPivHouseholderQr().solve(y);
+}
+
+ExperimentalEvalParams Mode(int m) {
+  ExperimentalEvalParams e;
+  e.explicitNormals = m == 0;
+  e.implicitNormalForceForDissipation = m == 2;
+  return e;
+}
+const char* kModeNames[3] = {"explicit normals", "reconstructed load (default)",
+                             "implicit load"};
+
+}  // namespace
+
+// What the cube does: released face down, it pitches forward onto its downhill edge region (the
+// friction torque μ N h exceeds what a linear pressure profile over the face can balance, N L/6)
+// and rocks at about 4 Hz with up to ~7 mrad, because at the default smoothing ε = 5 mm the
+// contact is soft at the rest load (rotational stiffness ~1.6e2 N·m/rad); c_n = 1 s/m damps it
+// only weakly. The bottom-face centre barely moves with the rocking, so distances are measured
+// there. In the two stage-start-load modes the load lags the current one by a step; correlated
+// with the rocking's normal damping it biases the mean friction by O(Δt): measured a = 0.6484
+// (−1.3%) at Δt = 2e-3, 0.6536 (−0.54%) at 1e-3, 0.6565 (−0.09%) at 5e-4; without normal damping
+// the three modes agree within 0.22% at 2e-3. The implicit-load mode: −0.02% at 2e-3.
+TEST_CASE("incline, mu = 0.5: sliding acceleration g (sin30 - mu cos30) within 1%",
+          "[core][physics][friction]") {
+  const double expected = kG * (std::sin(kTheta) - 0.5 * std::cos(kTheta));
+  for (int m = 0; m < 3; ++m) {
+    DYNAMIC_SECTION(kModeNames[m]) {
+      const InclineRun run = RunIncline(Mode(m), 0.5, 0.01, 1.0, 1.0, 1e-3);
+      const Eigen::Vector3d c = QuadraticFit(run, 0.3, 1.0);
+      const double a = 2 * c[2];
+      INFO("measured a = " << a << " m/s^2, expected " << expected << ", max rocking "
+                           << run.maxRock << " rad");
+      CHECK(std::abs(a - expected) < 0.01 * expected);
+    }
+  }
+}
+
+TEST_CASE("incline, mu = 0.7: regularized friction creeps at the speed where "
+          "mu cos30 rho'(v) = sin30",
+          "[core][physics][friction]") {
+  // ρ'(v) = 2u − u², u = v/V_f: u = 1 − √(1 − tan30/μ).
+  const double mu = 0.7, vf = 0.01;
+  const double u = 1 - std::sqrt(1 - std::tan(kTheta) / mu);
+  const double expected = u * vf;
+  for (int m = 0; m < 3; ++m) {
+    DYNAMIC_SECTION(kModeNames[m]) {
+      const InclineRun run = RunIncline(Mode(m), mu, vf, 1.0, 1.0, 2e-3);
+      const Eigen::Vector3d c = QuadraticFit(run, 0.5, 1.0);
+      const double v = c[1] + 2 * c[2] * 1.0;  // speed at t = 1 s
+      INFO("creep speed " << v << " m/s, expected " << expected << "; acceleration " << 2 * c[2]);
+      CHECK(std::abs(v - expected) < 0.03 * expected);
+    }
+  }
+  SECTION("V_f = 1e-4 m/s: the cube moves less than 0.1 mm in 1 s (BackwardEuler)") {
+    // Under BackwardEuler the release pitch is damped at once and the face creeps at the
+    // regularized speed (5.8e-5 m/s). Under BDF2 (not asserted here; see the closing notes) the
+    // release pitch lets the face slip about 0.5 mm within 0.05 s and the undamped rocking that
+    // follows unloads the face periodically, so it creeps at about 1.2e-4 m/s.
+    const InclineRun run = RunIncline(Mode(1), mu, 1e-4, 1.0, 1.0, 2e-3,
+                                      IntegrationMethod::BackwardEuler);
+    INFO("moved " << run.s.back() * 1e3 << " mm in 1 s");
+    CHECK(std::abs(run.s.back()) < 1e-4);
+    CHECK(run.s.back() > 0.5 * 1e-4 * u);  // it does creep, at the regularized speed's order
+  }
+}
