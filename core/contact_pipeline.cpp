@@ -47,7 +47,8 @@ void ContactPipeline::Configure(const std::vector<RigidBodyModel>* models) {
 }
 
 void ContactPipeline::FindPairs(const std::vector<RigidPose>& poses,
-                                const DissipationContext* dissipation) {
+                                const DissipationContext* dissipation,
+                                const std::vector<RigidStageStart>* stageStart) {
   const std::vector<RigidBodyModel>& models = *models_;
   const size_t n = models.size();
   boxes_.resize(n);
@@ -56,7 +57,7 @@ void ContactPipeline::FindPairs(const std::vector<RigidPose>& poses,
   for (size_t i = 0; i < n; ++i) {
     boxes_[i] = WorldBounds(models[i], poses[i].p, poses[i].R);
     if (sweep) {
-      const RigidStageStart& s = (*dissipation->start)[i];
+      const RigidStageStart& s = (*stageStart)[i];
       const Aabb b0 = WorldBounds(models[i], s.last.p, s.last.R);
       boxes_[i].Extend(b0.min);
       boxes_[i].Extend(b0.max);
@@ -89,12 +90,14 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
                                  PsdProjection projection, Eigen::VectorXd* gradient,
                                  std::vector<Eigen::Triplet<double>>* triplets,
                                  ContactStats* stats, const DissipationContext* dissipation,
-                                 Eigen::VectorXd* dissipationResidual) {
+                                 Eigen::VectorXd* dissipationResidual,
+                                 const std::vector<RigidStageStart>* stageStart) {
   const std::vector<RigidBodyModel>& models = *models_;
-  FindPairs(poses, dissipation);
+  FindPairs(poses, dissipation, stageStart);
   results_.resize(pairs_.size());
   dissipationResults_.resize(dissipation ? pairs_.size() : 0);
   const bool potential = !dissipation || dissipation->mode == DissipationMode::ExplicitNormals;
+  const std::vector<RigidStageStart>* reference = stageStart;
   size_t work = 0;
   for (const ContactPair& p : pairs_) work += models[p.colliding].samples.size();
 
@@ -107,8 +110,10 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
     const RigidBodyModel& A = models[cp.colliding];
     const RigidBodyModel& B = models[cp.collider];
     RigidPairPenalty& r = results_[k];
+    const RigidPose* aRef = reference ? &(*reference)[cp.colliding].last : nullptr;
+    const RigidPose* bRef = reference ? &(*reference)[cp.collider].last : nullptr;
     EvaluateRigidPairPenalty(A, poses[cp.colliding], B, poses[cp.collider], B.dynamic, pp, order,
-                             &r, cp.params.maxAlignmentNormals);
+                             &r, cp.params.maxAlignmentNormals, aRef, bRef);
     if (dissipation) {
       DissipationSetup setup;
       setup.mode = dissipation->mode;
@@ -122,7 +127,7 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
       setup.maxAlignment = cp.params.maxAlignmentNormals;
       setup.frictionWithColliderNormal = cp.params.frictionWithColliderNormal;
       RigidPairDissipation& d = dissipationResults_[k];
-      const std::vector<RigidStageStart>& start = *dissipation->start;
+      const std::vector<RigidStageStart>& start = *stageStart;
       EvaluateRigidPairDissipation(A, poses[cp.colliding], start[cp.colliding], B,
                                    poses[cp.collider], start[cp.collider], B.dynamic, setup, order,
                                    &d);

@@ -26,9 +26,9 @@ struct ContactStats {
   double maxCoulombRatio = 0.0;///< max ‖T_C‖/(μ λ̂_n) over samples (<= 1)
 };
 
-/// The stage data dissipation needs (spec: "Stage-Discrete Dissipation").
+/// The stage data dissipation needs (spec: "Stage-Discrete Dissipation"); the stage-start poses
+/// are Evaluate's `stageStart`.
 struct DissipationContext {
-  const std::vector<RigidStageStart>* start = nullptr;  ///< x⁰ per actor
   double dt = 0.0;                                      ///< Δt_i [s]
   DissipationMode mode = DissipationMode::ReconstructedLoad;
   bool fadeFriction = true;
@@ -47,7 +47,9 @@ class ContactPipeline {
   void Configure(const std::vector<RigidBodyModel>* models);
 
   /// Π = Σ over eligible ordered pairs of the penalty energy at the given poses, plus Δt_i Σ w R
-  /// when `dissipation` is not null. order 0: value; 1: also adds the penalty gradient into
+  /// when `dissipation` is not null (it then needs `stageStart`, x⁰ and x_n per actor). With
+  /// `stageStart`, the alignment rejection of the penalty is decided at x_n (see
+  /// EvaluateRigidPairPenalty); without, at the given poses. order 0: value; 1: also adds the penalty gradient into
   /// *gradient and the dissipative residual into *dissipationResidual (may alias *gradient;
   /// dofs at dofOffset[i], −1 for static actors); 2: also appends Jacobian triplets: each pair's
   /// penalty Hessian plus, in ExplicitNormals mode, its dissipation Hessian, projected per
@@ -58,13 +60,15 @@ class ContactPipeline {
                   int order, PsdProjection projection, Eigen::VectorXd* gradient,
                   std::vector<Eigen::Triplet<double>>* triplets, ContactStats* stats,
                   const DissipationContext* dissipation = nullptr,
-                  Eigen::VectorXd* dissipationResidual = nullptr);
+                  Eigen::VectorXd* dissipationResidual = nullptr,
+                  const std::vector<RigidStageStart>* stageStart = nullptr);
 
   /// The ordered pairs found by the last evaluation.
   const std::vector<ContactPair>& Pairs() const { return pairs_; }
 
  private:
-  void FindPairs(const std::vector<RigidPose>& poses, const DissipationContext* dissipation);
+  void FindPairs(const std::vector<RigidPose>& poses, const DissipationContext* dissipation,
+                 const std::vector<RigidStageStart>* stageStart);
 
   const std::vector<RigidBodyModel>* models_ = nullptr;
   std::vector<double> inflation_;  // per actor: its collider reach padding [m]

@@ -49,7 +49,8 @@ void AddFunctionOfPullback(const Eigen::Vector3d& r, const Eigen::Vector3d& d,
 
 void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& a, const RigidBodyModel& B,
                               const RigidPose& b, bool bDynamic, const PenaltyParams& params,
-                              int order, RigidPairPenalty* out, double maxAlignment) {
+                              int order, RigidPairPenalty* out, double maxAlignment,
+                              const RigidPose* aRef, const RigidPose* bRef) {
   const int n = bDynamic ? 12 : 6;
   out->value = 0.0;
   out->activeSamples = 0;
@@ -62,6 +63,11 @@ void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& a, const
   const Eigen::Matrix3d RBtRA = RBt * a.R;
   const Eigen::Vector3d YA = RBt * (a.p - b.p);  // A's centre in B's frame
   const bool alignmentTest = std::isfinite(maxAlignment);
+  const RigidPose& ar = aRef ? *aRef : a;
+  const RigidPose& br = bRef ? *bRef : b;
+  const Eigen::Matrix3d RBtRAref = br.R.transpose() * ar.R;
+  const Eigen::Vector3d YAref = br.R.transpose() * (ar.p - br.p);
+  const bool sameReference = !aRef && !bRef;
 
   // Whole-pair rejection: analytic fields are exact SDFs (1-Lipschitz), so every sample, lying
   // within samplesRadius of A's centre, has φ >= Φ_B(Y_A) − samplesRadius.
@@ -73,7 +79,12 @@ void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& a, const
     const SdfSample f = B.collider.Evaluate(Y);
     out->minPhi = std::min(out->minPhi, f.value);
     if (f.value >= delta) continue;
-    if (alignmentTest && f.gradient.dot(RBtRA * s.normal) > maxAlignment) continue;
+    if (alignmentTest) {
+      const Eigen::Vector3d G = sameReference
+                                    ? f.gradient
+                                    : B.collider.Evaluate(YAref + RBtRAref * s.X).gradient;
+      if (G.dot(RBtRAref * s.normal) > maxAlignment + kAlignmentRoundoff) continue;
+    }
     ++out->activeSamples;
     const PenaltyDensity W = NormalPenaltyDensity(f.value, params);
     out->value += s.weight * W.W;

@@ -34,13 +34,26 @@ struct RigidPairPenalty {
   double minPhi = INFINITY;///< smallest φ among the samples tested [m]
 };
 
-/// order: 0 value only, 1 with gradient, 2 with gradient and Hessian. A sample whose alignment
+/// Round-off allowance of the alignment test: a sample is rejected when s > m + this. A face
+/// exactly perpendicular to the collider's surface has s = 0 up to round-off.
+constexpr double kAlignmentRoundoff = 1e-9;
+
+/// order: 0 value only, 1 with gradient, 2 with gradient and Hessian.
+///
+/// Alignment rejection (spec: "Normal/Tangential Split"): a sample whose alignment
 /// s = G_B·N_A (N_A = R_Bᵀ R_A n_A, raw vectors) exceeds `maxAlignment` (the collider's m) is
-/// rejected entirely (spec: "Normal/Tangential Split"); +∞ disables the test.
+/// rejected entirely; +∞ disables the test. The test is evaluated at the reference poses
+/// (aRef, bRef), normally the stage-start configuration x_n, so that within one stage the set of
+/// rejected samples is fixed and the stage energy stays smooth: evaluated at the current iterate,
+/// the samples of a face perpendicular to the collider (s = 0 = m by default, e.g. the side faces
+/// of a box pressed into a plane deeper than their first sample row) would be rejected and
+/// accepted at random from one Newton iterate to the next, and the stage would not converge.
+/// Null references use the current poses.
 void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& poseA,
                               const RigidBodyModel& B, const RigidPose& poseB, bool bDynamic,
                               const PenaltyParams& params, int order, RigidPairPenalty* out,
-                              double maxAlignment = INFINITY);
+                              double maxAlignment = INFINITY, const RigidPose* aRef = nullptr,
+                              const RigidPose* bRef = nullptr);
 
 /// Chains a scalar function f(Y) of the pullback Y = R_Bᵀ(p_A + r − p_B), r = R_A X, through the
 /// rigid retractions (the stencil above): adds w·J_Yᵀ g_Y = w·[n, r × n, −n, −d × n] (n = R_B g_Y,

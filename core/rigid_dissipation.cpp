@@ -167,7 +167,7 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
       if (f0.value >= delta) continue;
       const Eigen::Vector3d NA0 = RnBtRA * q.normal;
       const double s = f0.gradient.dot(NA0);
-      if (s > m) continue;  // rejected
+      if (s > m + kAlignmentRoundoff) continue;  // rejected
       const double factor = setup.fadeFriction && m > -1.0 ? (m - s) / (m + 1.0) : 1.0;
       lambdaHat = factor * NormalPenaltyDensity(f0.value, setup.penalty).lambdaN;
       N = setup.frictionWithColliderNormal ? f0.gradient.normalized() : Eigen::Vector3d(-NA0.normalized());
@@ -181,7 +181,7 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
       if (phiLoad >= delta) continue;
       const Eigen::Vector3d NA = RBtRA * q.normal;
       const double s = f.gradient.dot(NA);
-      if (s > m) continue;
+      if (s > m + kAlignmentRoundoff) continue;
       const double factor = setup.fadeFriction && m > -1.0 ? (m - s) / (m + 1.0) : 1.0;
       lambdaHat = factor * NormalPenaltyDensity(phiLoad, setup.penalty).lambdaN;
       N = setup.frictionWithColliderNormal ? f.gradient.normalized() : Eigen::Vector3d(-NA.normalized());

@@ -20,7 +20,6 @@ RigidStageProblem::RigidStageProblem(const std::vector<RigidBodyModel>& models,
       poses_(poses),
       dissipation_(dissipation) {
   trial_ = *poses;
-  context_.start = &targets_.start;
   context_.dt = targets_.dt;
   context_.mode = dissipation_.mode;
   context_.fadeFriction = dissipation_.fadeFriction;
@@ -76,7 +75,8 @@ double RigidStageProblem::EvaluateAt(const std::vector<RigidPose>& poses, int or
         if (H(r, c) != 0.0) triplets_.emplace_back(o + r, o + c, H(r, c));
   }
   value += contact_->Evaluate(poses, dofOffset_, order, projection, gPot, &triplets_, nullptr,
-                              dissipation_.enabled ? &context_ : nullptr, rDiss);
+                              dissipation_.enabled ? &context_ : nullptr, rDiss,
+                              targets_.start.empty() ? nullptr : &targets_.start);
   return value;
 }
 

@@ -19,7 +19,8 @@ struct StageTargets {
   double dt = 0.0;
   std::vector<Eigen::Vector3d> pHat;
   std::vector<Eigen::Matrix3d> RHat;
-  std::vector<RigidStageStart> start;  ///< x⁰ per body (used by dissipation)
+  std::vector<RigidStageStart> start;  ///< x⁰ and x_n per body (dissipation, alignment test);
+                                       ///< may be empty without dissipation
 };
 
 /// Dissipation settings of a stage; `enabled` false gives the conservative stage.

@@ -114,17 +114,17 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
     targets.pHat[i] = start[i].p + dt * start[i].v;
     targets.RHat[i] = start[i].R + dt * start[i].Rdot;
   }
+  targets.start.resize(models_.size());
+  for (size_t i = 0; i < models_.size(); ++i) {
+    RigidStageStart& s = targets.start[i];
+    s.p = start[i].p;
+    s.R = start[i].R;
+    s.Rinv = start[i].R.inverse();
+    s.last = {states_[i].p, states_[i].R};
+  }
   StageDissipation dissipation;
   dissipation.enabled = HasDissipation();
   if (dissipation.enabled) {
-    targets.start.resize(models_.size());
-    for (size_t i = 0; i < models_.size(); ++i) {
-      RigidStageStart& s = targets.start[i];
-      s.p = start[i].p;
-      s.R = start[i].R;
-      s.Rinv = start[i].R.inverse();
-      s.last = {states_[i].p, states_[i].R};
-    }
     dissipation.mode = ModeOf(settings_.eval);
     dissipation.fadeFriction = settings_.eval.fadeFriction;
   }
