@@ -49,7 +49,7 @@ void RigidStageProblem::Retract(const Eigen::VectorXd& d, std::vector<RigidPose>
 
 double RigidStageProblem::EvaluateAt(const std::vector<RigidPose>& poses, int order,
                                      PsdProjection projection, Eigen::VectorXd* gPot,
-                                     Eigen::VectorXd* rDiss) {
+                                     Eigen::VectorXd* rDiss, ContactStats* stats) {
   const double w = 1.0 / (targets_.dt * targets_.dt);
   double value = 0.0;
   if (order >= 1) {
@@ -74,7 +74,7 @@ double RigidStageProblem::EvaluateAt(const std::vector<RigidPose>& poses, int or
       for (int r = 0; r < 6; ++r)
         if (H(r, c) != 0.0) triplets_.emplace_back(o + r, o + c, H(r, c));
   }
-  value += contact_->Evaluate(poses, dofOffset_, order, projection, gPot, &triplets_, nullptr,
+  value += contact_->Evaluate(poses, dofOffset_, order, projection, gPot, &triplets_, stats,
                               dissipation_.enabled ? &context_ : nullptr, rDiss,
                               targets_.start.empty() ? nullptr : &targets_.start);
   return value;
@@ -88,7 +88,8 @@ double RigidStageProblem::Value(const Eigen::VectorXd& d) {
 double RigidStageProblem::Evaluate(Eigen::VectorXd* gradient,
                                    Eigen::SparseMatrix<double>* hessian,
                                    PsdProjection projection) {
-  const double value = EvaluateAt(*poses_, hessian ? 2 : 1, projection, gradient, gradient);
+  const double value =
+      EvaluateAt(*poses_, hessian ? 2 : 1, projection, gradient, gradient, &lastStats_);
   if (hessian) {
     hessian->resize(numDofs_, numDofs_);
     hessian->setFromTriplets(triplets_.begin(), triplets_.end());
@@ -102,7 +103,7 @@ void RigidStageProblem::Residual(const Eigen::VectorXd& d, Eigen::VectorXd* r) {
 }
 
 void RigidStageProblem::EvaluateResidual(Eigen::VectorXd* r, Eigen::SparseMatrix<double>* J) {
-  EvaluateAt(*poses_, J ? 2 : 1, PsdProjection::None, r, &scratch_);
+  EvaluateAt(*poses_, J ? 2 : 1, PsdProjection::None, r, &scratch_, &lastStats_);
   if (J) {
     // The rotation entries of r are world torques τ. Along the retraction exp([δθ]×) R the torque
     // of a potential changes by (H − ½[τ]×) δθ, H its second derivative (assembled above); the

@@ -49,6 +49,9 @@ class RigidStageProblem : public StageProblem {
   /// J = ∂r/∂δ: the (unprojected) Hessian of the potential terms with the rotation blocks'
   /// trivialization term −½[τ]× (τ: that body's potential torque), plus the dissipation Jacobian.
   void EvaluateResidual(Eigen::VectorXd* r, Eigen::SparseMatrix<double>* J) override;
+  /// Contact statistics of the last evaluation at the current iterate (Evaluate or
+  /// EvaluateResidual), including the dissipative samples and the largest ‖T_C‖/(μ λ̂_n).
+  const ContactStats& LastContactStats() const { return lastStats_; }
   /// max over bodies of ‖δp‖∞ and ‖δθ‖ times the body's RMS radius √(tr J / m) [m].
   double StepNorm(const Eigen::VectorXd& d) const override;
 
@@ -58,7 +61,7 @@ class RigidStageProblem : public StageProblem {
   /// All terms at `poses`: value; order >= 1: potential gradient into *gPot and dissipative
   /// residual into *rDiss (may alias); order 2: triplets_.
   double EvaluateAt(const std::vector<RigidPose>& poses, int order, PsdProjection projection,
-                    Eigen::VectorXd* gPot, Eigen::VectorXd* rDiss);
+                    Eigen::VectorXd* gPot, Eigen::VectorXd* rDiss, ContactStats* stats = nullptr);
 
   const std::vector<RigidBodyModel>& models_;
   const std::vector<int>& dofOffset_;
@@ -72,6 +75,7 @@ class RigidStageProblem : public StageProblem {
   StageDissipation dissipation_;
   DissipationContext context_;
   Eigen::VectorXd scratch_;
+  ContactStats lastStats_;
 };
 
 }  // namespace superdex

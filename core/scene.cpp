@@ -105,7 +105,7 @@ std::vector<RigidPose> Scene::CurrentPoses() const {
 }
 
 SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& start,
-                              std::vector<RigidPose>* poses) {
+                              std::vector<RigidPose>* poses, ContactStats* contact) {
   StageTargets targets;
   targets.dt = dt;
   targets.pHat.resize(models_.size());
@@ -130,8 +130,10 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
   }
   RigidStageProblem problem(models_, dofOffset_, numDofs_, targets, settings_.gravity, &pipeline_,
                             poses, dissipation);
-  if (problem.IsPotential()) return MinimizeNewton(problem, settings_.solver, dt);
-  return SolveResidualNewton(problem, settings_.solver, dt);
+  const SolverStats st = problem.IsPotential() ? MinimizeNewton(problem, settings_.solver, dt)
+                                               : SolveResidualNewton(problem, settings_.solver, dt);
+  *contact = problem.LastContactStats();
+  return st;
 }
 
 bool Scene::Step(double h, StepReport* report, Error* error) {
@@ -145,7 +147,11 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
   Prepare();
   StepReport rep;
   rep.dt = h;
+  ContactStats stageContact;
   auto account = [&](const SolverStats& st) {
+    rep.maxCoulombRatio = std::max(rep.maxCoulombRatio, stageContact.maxCoulombRatio);
+    rep.dissipativeSamples = std::max(rep.dissipativeSamples, stageContact.dissipativeSamples);
+    rep.dissipation += stageContact.dissipation;
     ++rep.stages;
     rep.newtonIterations += st.iterations;
     rep.lineSearchSteps += st.lineSearchSteps;
@@ -164,7 +170,7 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
 
   switch (method) {
     case IntegrationMethod::BackwardEuler: {
-      account(SolveStage(h, states_, &poses));
+      account(SolveStage(h, states_, &poses, &stageContact));
       for (size_t i = 0; i < n; ++i) {
         if (!models_[i].dynamic) continue;
         next[i].p = poses[i].p;
@@ -184,7 +190,7 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
       const double dt = h * (1 + w) / (1 + 2 * w);
       std::vector<RigidBodyState> start(n);
       for (size_t i = 0; i < n; ++i) start[i] = Affine(a, states_[i], -b, previous_[i]);
-      account(SolveStage(dt, start, &poses));
+      account(SolveStage(dt, start, &poses, &stageContact));
       for (size_t i = 0; i < n; ++i) {
         if (!models_[i].dynamic) continue;
         next[i].p = poses[i].p;
@@ -199,7 +205,7 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
       // in the Lie algebra: R_{n+1} = exp(2 log(R_y R_nᵀ)) R_n = R_y R_nᵀ R_y) and
       // v_{n+1} = 2 v_y − v_n with v_y = (y − x_n)/(h/2); the spin as below.
       const double dt = 0.5 * h;
-      account(SolveStage(dt, states_, &poses));
+      account(SolveStage(dt, states_, &poses, &stageContact));
       for (size_t i = 0; i < n; ++i) {
         if (!models_[i].dynamic) continue;
         const RigidBodyState& s = states_[i];

@@ -38,7 +38,13 @@ struct StepReport {
   StageStatus status = StageStatus::Converged;  ///< worst over the stages
   std::string message;         ///< the solver's message for a non-converged stage
   double finalGradientNorm = 0.0;  ///< largest over the stages
-  ContactStats contact;        ///< at the end of the step
+  ContactStats contact;        ///< at the end of the step (penalty only)
+  /// The stages' contact evaluations at their last iterates (with dissipation): largest
+  /// ‖T_C‖/(μ λ̂_n) and most dissipative samples over the stages; the dissipation Δt_i Σ w R [J]
+  /// summed over the stages.
+  double maxCoulombRatio = 0.0;
+  int dissipativeSamples = 0;
+  double dissipation = 0.0;
   double wallSeconds = 0.0;
 };
 
@@ -90,7 +96,7 @@ class Scene {
   // x̂ = x⁰ + dt v⁰ taken from `start` (x⁰, v⁰ in material-point form), from the initial guess in
   // *poses; on return *poses holds the stage solution.
   SolverStats SolveStage(double dt, const std::vector<RigidBodyState>& start,
-                         std::vector<RigidPose>* poses);
+                         std::vector<RigidPose>* poses, ContactStats* contact);
   void Prepare();
   std::vector<RigidPose> CurrentPoses() const;
 

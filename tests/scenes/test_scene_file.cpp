@@ -101,7 +101,7 @@ TEST_CASE("command line: bad scene files exit with code 2", "[scenes][cli]") {
 }
 
 TEST_CASE("shipped scenes meet their expectations", "[scenes][shipped]") {
-  for (const char* name : {"drop", "box_rest", "stack"}) {
+  for (const char* name : {"drop", "box_rest", "stack", "slide_to_rest"}) {
     SceneFile f;
     Error e;
     REQUIRE(LoadSceneFile(std::string(SUPERDEX_SOURCE_DIR) + "/scenes/data/" + name + ".json", &f, &e));
@@ -127,4 +127,41 @@ TEST_CASE("the 1000-sphere pile loads and its first steps converge", "[scenes][s
   REQUIRE(RunScene(&f, o, &s, &e));
   CHECK(s.stopped + s.diverged == 0);
   CHECK(s.maxPenetration < 0.01);
+}
+
+TEST_CASE("no energy gain under BackwardEuler in the dissipative shipped scenes",
+          "[scenes][shipped][dissipation]") {
+  // Every shipped scene is dissipative (the default μ = 0.5, plus damping where set). Under
+  // BackwardEuler the total energy (kinetic + gravity + penalty) must not rise by more than 1e-6
+  // of its initial magnitude from one step to the next. Each scene runs for up to 1 s (the pile:
+  // its first 0.05 s); the friction bound ‖T_C‖ <= μ λ̂_n is checked at every stage as well.
+  for (const char* name : {"drop", "box_rest", "stack", "slide_to_rest", "incline",
+                           "incline_creep", "damping_sweep", "pile"}) {
+    SceneFile f;
+    Error e;
+    REQUIRE(LoadSceneFile(std::string(SUPERDEX_SOURCE_DIR) + "/scenes/data/" + name + ".json", &f,
+                          &e));
+    Scene& scene = *f.scene;
+    REQUIRE(scene.HasDissipation());
+    REQUIRE(scene.SetIntegrator(IntegrationMethod::BackwardEuler, &e));
+    const double duration = std::string(name) == "pile" ? 0.05 : std::min(1.0, f.duration);
+    const int steps = static_cast<int>(std::lround(duration / f.dt));
+    double previous = scene.Energies().Total();
+    const double scale = std::abs(previous);
+    double worstRise = -INFINITY, worstRatio = 0.0;
+    for (int i = 0; i < steps; ++i) {
+      StepReport r;
+      REQUIRE(scene.Step(f.dt, &r, &e));
+      INFO(name << " step " << i << ": " << r.message);
+      REQUIRE(r.status == StageStatus::Converged);
+      const double energy = scene.Energies().Total();
+      worstRise = std::max(worstRise, energy - previous);
+      worstRatio = std::max(worstRatio, r.maxCoulombRatio);
+      previous = energy;
+    }
+    INFO(name << ": largest step-to-step energy change " << worstRise << " J (initial |E| "
+              << scale << " J), largest |T_C|/(mu lambda) " << worstRatio);
+    CHECK(worstRise <= 1e-6 * scale);
+    CHECK(worstRatio <= 1.0 + 1e-12);
+  }
 }
