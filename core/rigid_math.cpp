@@ -55,4 +55,19 @@ Eigen::Matrix3d NearestRotation(const Eigen::Matrix3d& A) {
   return U * V.transpose();
 }
 
+Eigen::Matrix3d LeftJacobianSo3(const Eigen::Vector3d& theta) {
+  const double t2 = theta.squaredNorm();
+  const Eigen::Matrix3d K = Skew(theta);
+  double a, b;  // (1 − cos t)/t², (t − sin t)/t³
+  if (t2 < 1e-8) {
+    a = 0.5 - t2 / 24.0;
+    b = 1.0 / 6.0 - t2 / 120.0;
+  } else {
+    const double t = std::sqrt(t2);
+    a = (1.0 - std::cos(t)) / t2;
+    b = (t - std::sin(t)) / (t2 * t);
+  }
+  return Eigen::Matrix3d::Identity() + a * K + b * K * K;
+}
+
 }  // namespace superdex

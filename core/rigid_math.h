@@ -13,6 +13,9 @@ Eigen::Vector3d Axial(const Eigen::Matrix3d& A);
 Eigen::Matrix3d ExpSo3(const Eigen::Vector3d& theta);
 /// θ with exp([θ]×) = R, |θ| <= π.
 Eigen::Vector3d LogSo3(const Eigen::Matrix3d& R);
+/// Left Jacobian of SO(3): exp([θ + ε]×) = exp([J_l(θ) ε]×) exp([θ]×) + O(ε²),
+///   J_l(θ) = I + (1 − cos t)/t² [θ]× + (t − sin t)/t³ [θ]×²,  t = |θ|   (series near t = 0).
+Eigen::Matrix3d LeftJacobianSo3(const Eigen::Vector3d& theta);
 /// Nearest rotation to A (polar factor), used to re-orthonormalize after accumulated round-off.
 Eigen::Matrix3d NearestRotation(const Eigen::Matrix3d& A);
 

@@ -125,6 +125,25 @@ void RigidStageProblem::EvaluateResidual(Eigen::VectorXd* r, Eigen::SparseMatrix
   *r += scratch_;
 }
 
+void RigidStageProblem::MoveInChart(const Eigen::VectorXd& d) {
+  for (size_t i = 0; i < models_.size(); ++i) {
+    const int o = dofOffset_[i];
+    (*poses_)[i] = origin_[i];
+    if (o < 0) continue;
+    (*poses_)[i].p += d.segment<3>(o);
+    (*poses_)[i].R = ExpSo3(d.segment<3>(o + 3)) * origin_[i].R;
+  }
+}
+
+Eigen::MatrixXd RigidStageProblem::ChartTangentMap(const Eigen::VectorXd& d) const {
+  Eigen::MatrixXd T = Eigen::MatrixXd::Identity(numDofs_, numDofs_);
+  for (size_t i = 0; i < models_.size(); ++i) {
+    const int o = dofOffset_[i];
+    if (o >= 0) T.block<3, 3>(o + 3, o + 3) = LeftJacobianSo3(d.segment<3>(o + 3));
+  }
+  return T;
+}
+
 void RigidStageProblem::Commit(const Eigen::VectorXd& d) {
   Retract(d, &trial_);
   *poses_ = trial_;

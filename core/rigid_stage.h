@@ -49,6 +49,13 @@ class RigidStageProblem : public StageProblem {
   /// J = ∂r/∂δ: the (unprojected) Hessian of the potential terms with the rotation blocks'
   /// trivialization term −½[τ]× (τ: that body's potential torque), plus the dissipation Jacobian.
   void EvaluateResidual(Eigen::VectorXd* r, Eigen::SparseMatrix<double>* J) override;
+  bool SupportsChart() const override { return true; }
+  void SetChartOrigin() override { origin_ = *poses_; }
+  /// p = p₀ + δp, R = exp([δθ]×) R₀.
+  void MoveInChart(const Eigen::VectorXd& d) override;
+  /// Block diagonal: I for δp, the left Jacobian J_l(δθ) of SO(3) for δθ.
+  Eigen::MatrixXd ChartTangentMap(const Eigen::VectorXd& d) const override;
+
   /// Contact statistics of the last evaluation at the current iterate (Evaluate or
   /// EvaluateResidual), including the dissipative samples and the largest ‖T_C‖/(μ λ̂_n).
   const ContactStats& LastContactStats() const { return lastStats_; }
@@ -76,6 +83,7 @@ class RigidStageProblem : public StageProblem {
   DissipationContext context_;
   Eigen::VectorXd scratch_;
   ContactStats lastStats_;
+  std::vector<RigidPose> origin_;
 };
 
 }  // namespace superdex

@@ -8,6 +8,8 @@
 
 #include "core/rigid_math.h"
 #include "core/rigid_stage.h"
+#include "optim/ceres_stage_solver.h"
+#include "optim/ipopt_stage_solver.h"
 #include "optim/residual_newton.h"
 
 namespace superdex {
@@ -50,7 +52,33 @@ std::string Validate(const SceneSettings& s, const std::string& prefix) {
   return "";
 }
 
+const char* ToString(StageSolverKind kind) {
+  switch (kind) {
+    case StageSolverKind::Newton: return "newton";
+    case StageSolverKind::Ipopt: return "ipopt";
+    case StageSolverKind::Ceres: return "ceres";
+  }
+  return "unknown";
+}
+
+bool ParseStageSolver(const std::string& name, StageSolverKind* kind) {
+  if (name == "newton" || name == "Newton") *kind = StageSolverKind::Newton;
+  else if (name == "ipopt" || name == "Ipopt") *kind = StageSolverKind::Ipopt;
+  else if (name == "ceres" || name == "Ceres") *kind = StageSolverKind::Ceres;
+  else return false;
+  return true;
+}
+
 Scene::Scene(const SceneSettings& settings) : settings_(settings) {}
+
+bool Scene::SetStageSolver(StageSolverKind kind, Error* error) {
+  if (kind == StageSolverKind::Ipopt && HasDissipation() && !settings_.eval.explicitNormals)
+    return Fail(error, "stage_solver: ipopt minimizes potential stages only, and this scene's "
+                       "dissipation is not a potential (explicit_normals = false); use newton or "
+                       "ceres, or set experimental_eval_params.explicit_normals = true");
+  settings_.stageSolver = kind;
+  return true;
+}
 
 ActorHandle Scene::AddRigidActor(const RigidActorDesc& desc, Error* error) {
   RigidBodyModel model;
@@ -130,8 +158,19 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
   }
   RigidStageProblem problem(models_, dofOffset_, numDofs_, targets, settings_.gravity, &pipeline_,
                             poses, dissipation);
-  const SolverStats st = problem.IsPotential() ? MinimizeNewton(problem, settings_.solver, dt)
-                                               : SolveResidualNewton(problem, settings_.solver, dt);
+  SolverStats st;
+  switch (settings_.stageSolver) {
+    case StageSolverKind::Newton:
+      st = problem.IsPotential() ? MinimizeNewton(problem, settings_.solver, dt)
+                                 : SolveResidualNewton(problem, settings_.solver, dt);
+      break;
+    case StageSolverKind::Ipopt:
+      st = MinimizeIpopt(problem, IpoptStageParams());
+      break;
+    case StageSolverKind::Ceres:
+      st = SolveCeres(problem, CeresStageParams());
+      break;
+  }
   *contact = problem.LastContactStats();
   return st;
 }
@@ -143,6 +182,8 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
     return Fail(error, s.str());
   }
   if (std::string m = Validate(settings_); !m.empty()) return Fail(error, m);
+  if (settings_.stageSolver == StageSolverKind::Ipopt && !SetStageSolver(settings_.stageSolver, error))
+    return false;
   const auto t0 = std::chrono::steady_clock::now();
   Prepare();
   StepReport rep;

@@ -19,10 +19,19 @@ struct ActorHandle {
   bool IsValid() const { return index >= 0; }
 };
 
+/// Which solver runs each implicit stage. Newton is the production solver (projected Newton for
+/// potential stages, residual Newton otherwise); Ipopt (potential stages only) and Ceres (every
+/// stage) are independent checks for small scenes (dense, at most 600 degrees of freedom).
+enum class StageSolverKind { Newton, Ipopt, Ceres };
+const char* ToString(StageSolverKind kind);
+/// "newton", "ipopt" or "ceres" (also the CamelCase names); false for anything else.
+bool ParseStageSolver(const std::string& name, StageSolverKind* kind);
+
 struct SceneSettings {
   Eigen::Vector3d gravity = Eigen::Vector3d(0.0, 0.0, -9.81);  ///< [m/s²]
   IntegrationMethod integrator = IntegrationMethod::BDF2;
   NonlinearSolverParams solver;
+  StageSolverKind stageSolver = StageSolverKind::Newton;
   ExperimentalEvalParams eval;
 };
 /// "" when valid, else a message naming the field.
@@ -75,6 +84,9 @@ class Scene {
   const std::vector<RigidBodyModel>& Models() const { return models_; }
   const std::vector<RigidBodyState>& States() const { return states_; }
   const SceneSettings& Settings() const { return settings_; }
+  /// Changes the stage solver. Ipopt is refused for a scene whose stages are not a potential
+  /// (dissipation without explicit normals), with the reason.
+  bool SetStageSolver(StageSolverKind kind, Error* error);
   /// Changes the integrator (validated); the next step starts without BDF history.
   bool SetIntegrator(IntegrationMethod method, Error* error);
   /// Replaces the state of an actor (e.g. to restart from a recorded state); clears BDF history.

@@ -46,6 +46,23 @@ class StageProblem {
   /// general). Default: not provided.
   virtual void EvaluateResidual(Eigen::VectorXd* r, Eigen::SparseMatrix<double>* J);
 
+  // --- Chart interface, for general-purpose solvers (Ipopt, Ceres) that iterate on a vector d of
+  // a fixed chart s = s₀ ⊕ d. The chart's derivatives follow from the local ones by the tangent
+  // map T(d), defined by s₀ ⊕ (d + ε) = (s₀ ⊕ d) ⊕ (T(d) ε) + O(ε²):
+  //   ∇_d f = Tᵀ g,   ∂r/∂d = J T,   ∇²_d f = Tᵀ H T + (terms proportional to g, which vanish at
+  //   a stationary point).
+
+  /// Whether SetChartOrigin / MoveInChart / ChartTangentMap are provided.
+  virtual bool SupportsChart() const { return false; }
+  /// s₀ ← s.
+  virtual void SetChartOrigin() {}
+  /// s ← s₀ ⊕ d.
+  virtual void MoveInChart(const Eigen::VectorXd& /*d*/) {}
+  /// T(d) as a dense matrix (n × n; identity for vector spaces).
+  virtual Eigen::MatrixXd ChartTangentMap(const Eigen::VectorXd& d) const {
+    return Eigen::MatrixXd::Identity(d.size(), d.size());
+  }
+
   /// A norm of a step in length units [m], used for the step convergence test. Default: max-norm.
   virtual double StepNorm(const Eigen::VectorXd& d) const { return d.lpNorm<Eigen::Infinity>(); }
 };

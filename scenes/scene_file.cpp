@@ -295,7 +295,8 @@ bool LoadSceneText(const std::string& text, const std::string& baseDir, SceneFil
     if (j.contains("settings")) {
       const json& s = j.at("settings");
       CheckObject(s, "settings",
-                  {"dt", "duration", "integrator", "gravity", "solver", "experimental_eval_params"});
+                  {"dt", "duration", "integrator", "gravity", "solver", "stage_solver",
+                   "experimental_eval_params"});
       out->dt = Positive(s, "settings", "dt", out->dt);
       out->duration = Positive(s, "settings", "duration", out->duration);
       settings.integrator = Enum(s, "settings", "integrator", settings.integrator);
@@ -319,6 +320,12 @@ bool LoadSceneText(const std::string& text, const std::string& baseDir, SceneFil
         else if (pp == "Abs") n.psdProjection = PsdProjection::Abs;
         else if (pp == "None") n.psdProjection = PsdProjection::None;
         else Throw(p + ".psd_projection", "unknown value \"" + pp + "\" (expected one of: None, Clamp, Abs)");
+      }
+      if (s.contains("stage_solver")) {
+        const std::string name = String(s, "settings", "stage_solver", std::string("newton"));
+        if (!ParseStageSolver(name, &settings.stageSolver))
+          Throw("settings.stage_solver",
+                "unknown value \"" + name + "\" (expected one of: newton, ipopt, ceres)");
       }
       if (s.contains("experimental_eval_params")) {
         const json& v = s.at("experimental_eval_params");

@@ -1,5 +1,6 @@
 // The `superdex` command-line tool.
-//   superdex run SCENE.json [--dt S] [--duration S] [--integrator NAME] [--out FILE] [--quiet]
+//   superdex run SCENE.json [--dt S] [--duration S] [--integrator NAME] [--solver NAME]
+//                [--out FILE] [--quiet]
 // Exit codes: 0 success; 2 invalid input (scene file, options); 3 a stage did not converge
 // (Stopped or Diverged); 4 a scene expectation failed.
 #include <CLI/CLI.hpp>
@@ -58,6 +59,10 @@ int main(int argc, char** argv) {
                   "IntegrationMethod (overrides settings.integrator): BackwardEuler, BDF2, "
                   "SymplecticDIRK12");
   run->add_option("--out", out, "Trajectory file (JSON Lines); overrides output.path");
+  std::string solver;
+  run->add_option("--solver", solver,
+                  "Stage solver (overrides settings.stage_solver): newton, ipopt (potential "
+                  "stages only), ceres; the last two are dense checks for small scenes");
   run->add_flag("--quiet", quiet, "No progress bar");
   try {
     app.parse(argc, argv);
@@ -85,6 +90,18 @@ int main(int argc, char** argv) {
     }
     if (!file.scene->SetIntegrator(m, &error)) {
       std::cerr << "error: --integrator: " << error.message << "\n";
+      return 2;
+    }
+  }
+  if (run->count("--solver")) {
+    superdex::StageSolverKind kind;
+    if (!superdex::ParseStageSolver(solver, &kind)) {
+      std::cerr << "error: --solver: unknown value \"" << solver
+                << "\" (expected one of: newton, ipopt, ceres)\n";
+      return 2;
+    }
+    if (!file.scene->SetStageSolver(kind, &error)) {
+      std::cerr << "error: --solver: " << error.message << "\n";
       return 2;
     }
   }
