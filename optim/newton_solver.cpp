@@ -116,6 +116,16 @@ std::string Validate(const NonlinearSolverParams& p) {
   return "";
 }
 
+std::string ValidateSolverInput(const NonlinearSolverParams& params, double timeScale) {
+  if (std::string m = Validate(params); !m.empty()) return "invalid parameters: " + m;
+  if (!(std::isfinite(timeScale) && timeScale > 0.0)) {
+    std::ostringstream s;
+    s << "invalid time scale: must be > 0, got " << timeScale;
+    return s.str();
+  }
+  return "";
+}
+
 SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& params,
                            double timeScale) {
   SolverStats st;
@@ -124,12 +134,7 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
     st.message = message;
     return st;
   };
-  if (std::string m = Validate(params); !m.empty()) return diverge("invalid parameters: " + m);
-  if (!(std::isfinite(timeScale) && timeScale > 0.0)) {
-    std::ostringstream s;
-    s << "invalid time scale: must be > 0, got " << timeScale;
-    return diverge(s.str());
-  }
+  if (std::string m = ValidateSolverInput(params, timeScale); !m.empty()) return diverge(m);
 
   const int n = problem.NumDofs();
   Eigen::VectorXd g(n), d(n), step(n);

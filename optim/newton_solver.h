@@ -92,4 +92,8 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
 /// maxLineSearchSteps >= 1; the enums hold a named value.
 std::string Validate(const NonlinearSolverParams& params);
 
+/// The input checks every stage solver makes first: "" if valid, else "invalid parameters: ..."
+/// or "invalid time scale: must be > 0, got ...".
+std::string ValidateSolverInput(const NonlinearSolverParams& params, double timeScale);
+
 }  // namespace superdex

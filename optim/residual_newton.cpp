@@ -63,12 +63,7 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
     st.message = message;
     return st;
   };
-  if (std::string m = Validate(params); !m.empty()) return diverge("invalid parameters: " + m);
-  if (!(std::isfinite(timeScale) && timeScale > 0.0)) {
-    std::ostringstream s;
-    s << "invalid time scale: must be > 0, got " << timeScale;
-    return diverge(s.str());
-  }
+  if (std::string m = ValidateSolverInput(params, timeScale); !m.empty()) return diverge(m);
   const int n = problem.NumDofs();
   Eigen::VectorXd r, rTrial, d(n), step(n);
   SparseMatrix J, shifted;

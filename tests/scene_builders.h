@@ -16,4 +16,27 @@ inline RigidActorDesc StaticGround(double k = 1e9, double mu = 0.5) {
   return d;
 }
 
+/// A static plane through the origin with outward normal n, penalty coefficient k [Pa/m], Coulomb
+/// coefficient mu and normal damping cn [s/m].
+inline RigidActorDesc Ground(const Eigen::Vector3d& n, double k, double mu, double cn) {
+  RigidActorDesc d = StaticGround(k, mu);
+  d.shape.planeNormal = n;
+  d.contact.normalViscousDampingCoefficient = cn;
+  return d;
+}
+
+/// A dynamic cube "cube" of edge 0.2 m and 1 kg, 2 × 2 quadrature cells per face.
+inline RigidActorDesc Cube(double k, double mu, double cn) {
+  RigidActorDesc d;
+  d.name = "cube";
+  d.shape.kind = RigidShapeKind::Box;
+  d.shape.halfExtents = Eigen::Vector3d::Constant(0.1);
+  d.shape.surfaceResolution = 2;
+  d.mass = 1.0;
+  d.contact.penaltyCoefficient = k;
+  d.contact.coulombFrictionCoefficient = mu;
+  d.contact.normalViscousDampingCoefficient = cn;
+  return d;
+}
+
 }  // namespace superdex::test

@@ -5,6 +5,7 @@
 
 #include "core/scene.h"
 #include "energies/contact_dissipation.h"
+#include "scene_builders.h"
 
 using namespace superdex;
 
@@ -32,25 +33,11 @@ InclineRun RunIncline(const ExperimentalEvalParams& eval, double mu, double vf, 
   Error e;
   const Eigen::Vector3d n(std::sin(kTheta), 0, std::cos(kTheta));
   const Eigen::Vector3d down(std::cos(kTheta), 0, -std::sin(kTheta));
-  RigidActorDesc ground;
-  ground.name = "incline";
-  ground.dynamic = false;
-  ground.shape.kind = RigidShapeKind::Plane;
-  ground.shape.planeNormal = n;
-  ground.contact.coulombFrictionCoefficient = mu;
-  ground.contact.normalViscousDampingCoefficient = cn;
-  REQUIRE(scene.AddRigidActor(ground, &e).IsValid());
-  RigidActorDesc cube;
-  cube.name = "cube";
-  cube.shape.kind = RigidShapeKind::Box;
-  cube.shape.halfExtents = Eigen::Vector3d::Constant(0.1);
-  cube.shape.surfaceResolution = 2;
-  cube.mass = 1.0;
+  REQUIRE(scene.AddRigidActor(test::Ground(n, 1e9, mu, cn), &e).IsValid());
+  RigidActorDesc cube = test::Cube(1e9, mu, cn);
   cube.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(kTheta, Eigen::Vector3d::UnitY()));
   cube.position = n * (0.1 + 1e-5);
-  cube.contact.coulombFrictionCoefficient = mu;
   cube.contact.frictionFalloffVel = vf;
-  cube.contact.normalViscousDampingCoefficient = cn;
   REQUIRE(scene.AddRigidActor(cube, &e).IsValid());
   const ActorHandle h{1};
   const Eigen::Vector3d p0 = scene.State(h).p;

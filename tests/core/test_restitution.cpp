@@ -8,6 +8,7 @@
 
 #include "core/scene.h"
 #include "energies/contact_dissipation.h"
+#include "scene_builders.h"
 
 using namespace superdex;
 
@@ -28,21 +29,8 @@ Bounce Launch(double v, double cn, double dt, const ExperimentalEvalParams& eval
   settings.eval = eval;
   Scene scene(settings);
   Error e;
-  RigidActorDesc ground;
-  ground.name = "ground";
-  ground.dynamic = false;
-  ground.shape.kind = RigidShapeKind::Plane;
-  ground.contact.penaltyCoefficient = 1e6;
-  ground.contact.normalViscousDampingCoefficient = cn;
-  REQUIRE(scene.AddRigidActor(ground, &e).IsValid());
-  RigidActorDesc cube;
-  cube.name = "cube";
-  cube.shape.kind = RigidShapeKind::Box;
-  cube.shape.halfExtents = Eigen::Vector3d::Constant(0.1);
-  cube.shape.surfaceResolution = 2;
-  cube.mass = 1.0;
-  cube.contact.penaltyCoefficient = 1e6;
-  cube.contact.normalViscousDampingCoefficient = cn;
+  REQUIRE(scene.AddRigidActor(test::Ground(Eigen::Vector3d::UnitZ(), 1e6, 0.5, cn), &e).IsValid());
+  RigidActorDesc cube = test::Cube(1e6, 0.5, cn);
   const double delta = cube.contact.penaltyThresholdDefault;
   cube.position = Eigen::Vector3d(0, 0, 0.1 + delta + 1e-4);
   cube.linearVelocity = Eigen::Vector3d(0, 0, -v);
