@@ -143,6 +143,45 @@ TEST_CASE("rigid pair dissipation: derivatives in every mode, both friction bran
   }
 }
 
+TEST_CASE("rigid pair dissipation: derivatives on every alignment branch",
+          "[core][gradient][dissipation]") {
+  // Fading on with m = 0 and m = 0.5, fading off (a = 1), and m = −1 (a = 1 by the spec's
+  // m > −1 rule; every sample with s > −1 rejected): a box tilted by 0.2 rad so that its bottom
+  // and side samples have distinct alignments.
+  const DissipationMode modes[3] = {DissipationMode::ExplicitNormals,
+                                    DissipationMode::ReconstructedLoad,
+                                    DissipationMode::ImplicitLoad};
+  struct Branch { double m; bool fade; const char* name; };
+  const Branch branches[4] = {{0.0, true, "fade m=0"}, {0.5, true, "fade m=0.5"},
+                              {0.0, false, "no fade"}, {-1.0, true, "m=-1"}};
+  for (DissipationMode mode : modes) {
+    for (const Branch& br : branches) {
+      Case c;
+      c.A = Build(Box({0.1, 0.1, 0.1}, 2), true);
+      RigidShape plane;
+      plane.kind = RigidShapeKind::Plane;
+      c.B = Build(plane, false);
+      c.a.R = ExpSo3(Eigen::Vector3d(0.0, 0.2, 0.05));
+      c.a.p = Eigen::Vector3d(0, 0, 0.1 * (std::cos(0.2) + std::sin(0.2)) - 0.004);
+      c.setup.dt = 0.01;
+      c.setup.mode = mode;
+      c.setup.penalty.k = 1e5;
+      c.setup.coefficients = {0.5, 0.2, 1.5, 0.01};
+      c.setup.maxAlignment = br.m;
+      c.setup.fadeFriction = br.fade;
+      RigidPose a0 = c.a;
+      a0.p -= Eigen::Vector3d(0.003, 0.001, 0.001);
+      c.a0 = StartOf(a0);
+      c.b0 = StartOf(c.b);
+      if (br.m == -1.0) {
+        CHECK(Eval(c, Eigen::VectorXd::Zero(6), 1).activeSamples == 0);
+        continue;
+      }
+      DYNAMIC_SECTION(ToString(mode) << " " << br.name) { CheckCase(c); }
+    }
+  }
+}
+
 TEST_CASE("rigid pair dissipation: alignment rejection and fading", "[core][dissipation]") {
   Case c;
   c.A = Build(Box({0.1, 0.1, 0.1}, 1), true);
