@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/integrators.h"
 #include "core/rigid_math.h"
 #include "core/rigid_stage.h"
 #include "optim/ceres_stage_solver.h"
@@ -31,6 +32,18 @@ DissipationMode ModeOf(const ExperimentalEvalParams& e) {
                                              : DissipationMode::ReconstructedLoad;
 }
 
+// Spin angular momentum of a material-point rigid state (about its centre of mass, world frame):
+// L = axial(Ṙ J Rᵀ − R J Ṙᵀ) [kg·m²/s] for the second moment J.
+Eigen::Vector3d SpinMomentum(const Eigen::Matrix3d& R, const Eigen::Matrix3d& Rdot,
+                             const Eigen::Matrix3d& J) {
+  return Axial(Rdot * J * R.transpose() - R * J * Rdot.transpose());
+}
+
+// World inertia tensor R (tr(J) 1 − J) Rᵀ [kg·m²]: L = I_w ω for Ṙ = [ω]× R.
+Eigen::Matrix3d WorldInertia(const Eigen::Matrix3d& R, const Eigen::Matrix3d& J) {
+  return R * (J.trace() * Eigen::Matrix3d::Identity() - J) * R.transpose();
+}
+
 int Severity(StageStatus s) {
   return s == StageStatus::Converged ? 0 : s == StageStatus::Stopped ? 1 : 2;
 }
@@ -41,14 +54,9 @@ std::string Validate(const SceneSettings& s, const std::string& prefix) {
   if (!s.gravity.allFinite()) return prefix + "gravity: must be finite";
   if (std::string m = Validate(s.solver); !m.empty()) return prefix + "solver." + m;
   if (std::string m = Validate(s.eval, prefix + "experimental_eval_params."); !m.empty()) return m;
-  switch (s.integrator) {
-    case IntegrationMethod::BackwardEuler:
-    case IntegrationMethod::BDF2:
-    case IntegrationMethod::SymplecticDIRK12: break;
-    default:
-      return prefix + "integrator: " + ToString(s.integrator) +
-             " is not supported yet (supported: BackwardEuler, BDF2, SymplecticDIRK12)";
-  }
+  IntegrationMethod check;
+  if (!Parse(ToString(s.integrator), &check))
+    return prefix + "integrator: must be one of " + AllNames(s.integrator);
   return "";
 }
 
@@ -87,7 +95,7 @@ ActorHandle Scene::AddRigidActor(const RigidActorDesc& desc, Error* error) {
   models_.push_back(std::move(model));
   states_.push_back(state);
   prepared_ = false;
-  hasHistory_ = false;
+  ClearHistory();
   return {static_cast<int>(models_.size()) - 1};
 }
 
@@ -96,7 +104,7 @@ bool Scene::SetIntegrator(IntegrationMethod method, Error* error) {
   s.integrator = method;
   if (std::string m = Validate(s); !m.empty()) return Fail(error, m);
   settings_ = s;
-  hasHistory_ = false;
+  ClearHistory();
   return true;
 }
 
@@ -109,7 +117,7 @@ bool Scene::SetState(ActorHandle a, const RigidBodyState& state, Error* error) {
       state.R.determinant() <= 0)
     return Fail(error, "state.R: must be a rotation matrix");
   states_[a.index] = state;
-  hasHistory_ = false;
+  ClearHistory();
   return true;
 }
 
@@ -133,7 +141,8 @@ std::vector<RigidPose> Scene::CurrentPoses() const {
 }
 
 SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& start,
-                              std::vector<RigidPose>* poses, ContactStats* contact) {
+                              const std::vector<RigidPose>& last, std::vector<RigidPose>* poses,
+                              ContactStats* contact) {
   StageTargets targets;
   targets.dt = dt;
   targets.pHat.resize(models_.size());
@@ -148,7 +157,7 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
     s.p = start[i].p;
     s.R = start[i].R;
     s.Rinv = start[i].R.inverse();
-    s.last = {states_[i].p, states_[i].R};
+    s.last = last[i];
   }
   StageDissipation dissipation;
   dissipation.enabled = HasDissipation();
@@ -205,75 +214,106 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
 
   const size_t n = models_.size();
   std::vector<RigidPose> poses = CurrentPoses();
+  const std::vector<RigidPose> stepStart = poses;
   std::vector<RigidBodyState> next = states_;
-  IntegrationMethod method = settings_.integrator;
-  if (method == IntegrationMethod::BDF2 && !hasHistory_) method = IntegrationMethod::BackwardEuler;
+  const IntegrationMethod method = settings_.integrator;
 
-  switch (method) {
-    case IntegrationMethod::BackwardEuler: {
-      account(SolveStage(h, states_, &poses, &stageContact));
-      for (size_t i = 0; i < n; ++i) {
-        if (!models_[i].dynamic) continue;
-        next[i].p = poses[i].p;
-        next[i].R = poses[i].R;
-        next[i].v = (poses[i].p - states_[i].p) / h;
-        next[i].Rdot = (poses[i].R - states_[i].R) / h;
-      }
-      break;
+  // BDF3 starts with DIRK33 steps while its history fills: a Backward Euler start (local error
+  // O(h²)) would cap its global order at 2. BDF2 starts with one BDF1 (Backward Euler) step, whose
+  // O(h²) local error is within BDF2's own global order.
+  const bool bdf3Startup = method == IntegrationMethod::BDF3 && history_.size() < 2;
+  if (IsMultistep(method) && !bdf3Startup) {
+    // BDF-k with variable steps.
+    const int k = std::min<int>(BdfSteps(method), static_cast<int>(history_.size()) + 1);
+    std::vector<double> times = {time_ + h, time_};
+    for (int j = 0; j + 1 < k; ++j) times.push_back(historyTimes_[j]);
+    std::vector<double> weights;
+    const double dt = BdfCoefficients(times, &weights);
+    std::vector<RigidBodyState> start(n);
+    for (size_t i = 0; i < n; ++i) {
+      start[i] = Affine(weights[0], states_[i], 0.0, states_[i]);
+      for (int j = 1; j < k; ++j) start[i] = Affine(1.0, start[i], weights[j], history_[j - 1][i]);
     }
-    case IntegrationMethod::BDF2: {
-      // Variable-step BDF2, ω = h_n / h_{n−1}:
-      //   x_{n+1} − a x_n + b x_{n−1} = Δt v_{n+1},  a = (1+ω)²/(1+2ω), b = ω²/(1+2ω),
-      //   Δt = h (1+ω)/(1+2ω); the same for v. Stage: x⁰ = a x_n − b x_{n−1}, v⁰ likewise.
-      const double w = h / previousDt_;
-      const double a = (1 + w) * (1 + w) / (1 + 2 * w);
-      const double b = w * w / (1 + 2 * w);
-      const double dt = h * (1 + w) / (1 + 2 * w);
-      std::vector<RigidBodyState> start(n);
-      for (size_t i = 0; i < n; ++i) start[i] = Affine(a, states_[i], -b, previous_[i]);
-      account(SolveStage(dt, start, &poses, &stageContact));
-      for (size_t i = 0; i < n; ++i) {
-        if (!models_[i].dynamic) continue;
-        next[i].p = poses[i].p;
-        next[i].R = poses[i].R;
-        next[i].v = (poses[i].p - start[i].p) / dt;
-        next[i].Rdot = (poses[i].R - start[i].R) / dt;
-      }
-      break;
+    account(SolveStage(dt, start, stepStart, &poses, &stageContact));
+    for (size_t i = 0; i < n; ++i) {
+      if (!models_[i].dynamic) continue;
+      next[i].p = poses[i].p;
+      next[i].R = poses[i].R;
+      next[i].v = (poses[i].p - start[i].p) / dt;
+      next[i].Rdot = (poses[i].R - start[i].R) / dt;
     }
-    case IntegrationMethod::SymplecticDIRK12: {
-      // Implicit midpoint: a Backward Euler stage of h/2 to y, then x_{n+1} = 2y − x_n (rotations
-      // in the Lie algebra: R_{n+1} = exp(2 log(R_y R_nᵀ)) R_n = R_y R_nᵀ R_y) and
-      // v_{n+1} = 2 v_y − v_n with v_y = (y − x_n)/(h/2); the spin as below.
-      const double dt = 0.5 * h;
-      account(SolveStage(dt, states_, &poses, &stageContact));
+  } else {
+    // DIRK stages (core/integrators.h) in material-point form; see RigidDirkStep below.
+    const DirkTableau& T = TableauOf(bdf3Startup ? IntegrationMethod::DIRK33 : method);
+    std::vector<std::vector<RigidBodyState>> VK(T.stages, std::vector<RigidBodyState>(n));
+    std::vector<std::vector<Eigen::Vector3d>> torque(T.stages, std::vector<Eigen::Vector3d>(n));
+    std::vector<std::vector<RigidPose>> Q(T.stages);
+    for (int st = 0; st < T.stages; ++st) {
+      std::vector<RigidBodyState> start = states_;
+      for (size_t i = 0; i < n; ++i)
+        for (int j = 0; j < st; ++j) {
+          const double c = h * T.a[st][j];
+          start[i].p += c * VK[j][i].p;
+          start[i].R += c * VK[j][i].R;
+          start[i].v += c * VK[j][i].v;
+          start[i].Rdot += c * VK[j][i].Rdot;
+        }
+      const double dt = h * T.a[st][st];
+      // Dissipation geometry: the last configuration the bodies occupied (x_n, then Q_{i−1}).
+      const std::vector<RigidPose> last = st == 0 ? stepStart : Q[st - 1];
+      account(SolveStage(dt, start, last, &poses, &stageContact));
+      Q[st] = poses;
       for (size_t i = 0; i < n; ++i) {
-        if (!models_[i].dynamic) continue;
-        const RigidBodyState& s = states_[i];
-        const Eigen::Vector3d vy = (poses[i].p - s.p) / dt;
-        const Eigen::Matrix3d Rdy = (poses[i].R - s.R) / dt;
-        next[i].p = 2.0 * poses[i].p - s.p;
-        next[i].R = NearestRotation(poses[i].R * s.R.transpose() * poses[i].R);
-        next[i].v = 2.0 * vy - s.v;
-        // Material-point midpoint conserves the spin angular momentum of the affine end state
-        // (2R_y − R_n, 2Ṙ_y − Ṙ_n) exactly; on SO(3) the same momentum is carried by
-        // Ṙ = [ω] R_{n+1} with I_world ω = axial(Ṙ' J R'ᵀ − R' J Ṙ'ᵀ).
-        const Eigen::Matrix3d Ra = 2.0 * poses[i].R - s.R;
-        const Eigen::Matrix3d Rda = 2.0 * Rdy - s.Rdot;
+        RigidBodyState& vk = VK[st][i];
+        vk.p = (poses[i].p - start[i].p) / dt;
+        vk.v = (vk.p - start[i].v) / dt;
+        if (!models_[i].dynamic) {
+          vk.R.setZero();
+          vk.Rdot.setZero();
+          torque[st][i].setZero();
+          continue;
+        }
         const Eigen::Matrix3d& J = models_[i].secondMoment;
-        const Eigen::Vector3d spin = Axial(Rda * J * Ra.transpose() - Ra * J * Rda.transpose());
-        const Eigen::Matrix3d Iw =
-            next[i].R * (J.trace() * Eigen::Matrix3d::Identity() - J) * next[i].R.transpose();
-        next[i].Rdot = Skew(Iw.ldlt().solve(spin)) * next[i].R;
+        const Eigen::Matrix3d& Rq = poses[i].R;
+        const Eigen::Matrix3d V = (poses[i].R - start[i].R) / dt;
+        // The stage's world torque on the body: its stationarity makes the rotational inertia
+        // force K = (V − v⁰)/Δt_i balance it, τ = axial(K J Qᵀ − Q J Kᵀ).
+        const Eigen::Matrix3d Kraw = (V - start[i].Rdot) / dt;
+        torque[st][i] = SpinMomentum(Rq, Kraw, J);
+        // The stage velocity, made tangent to SO(3) at Q with the same spin momentum.
+        vk.R = Skew(WorldInertia(Rq, J).ldlt().solve(SpinMomentum(Rq, V, J))) * Rq;
+        vk.Rdot = (vk.R - start[i].Rdot) / dt;
       }
-      break;
     }
-    default:
-      return Fail(error, std::string("integrator: ") + ToString(method) + " is not supported yet");
+    for (size_t i = 0; i < n; ++i) {
+      if (!models_[i].dynamic) continue;
+      const RigidBodyState& s = states_[i];
+      RigidBodyState end = s;  // q_n + h Σ b_i V_i, v_n + h Σ b_i K_i
+      Eigen::Vector3d spin = SpinMomentum(s.R, s.Rdot, models_[i].secondMoment);
+      for (int st = 0; st < T.stages; ++st) {
+        end.p += h * T.b[st] * VK[st][i].p;
+        end.R += h * T.b[st] * VK[st][i].R;
+        end.v += h * T.b[st] * VK[st][i].v;
+        end.Rdot += h * T.b[st] * VK[st][i].Rdot;
+        spin += h * T.b[st] * torque[st][i];  // L̇ = τ, by the method's own weights
+      }
+      next[i].p = end.p;
+      next[i].v = end.v;
+      next[i].R = T.stifflyAccurate ? Q[T.stages - 1][i].R : NearestRotation(end.R);
+      // Keep the end velocity, corrected along the tangent directions [δω] R so that it carries
+      // exactly the integrated spin momentum.
+      const Eigen::Matrix3d& J = models_[i].secondMoment;
+      const Eigen::Vector3d missing = spin - SpinMomentum(next[i].R, end.Rdot, J);
+      next[i].Rdot = end.Rdot + Skew(WorldInertia(next[i].R, J).ldlt().solve(missing)) * next[i].R;
+    }
   }
-  previous_ = states_;
-  previousDt_ = h;
-  hasHistory_ = true;
+  // History for the multistep methods: x_{n}, x_{n−1} with their times.
+  history_.insert(history_.begin(), states_);
+  historyTimes_.insert(historyTimes_.begin(), time_);
+  if (history_.size() > 2) {
+    history_.resize(2);
+    historyTimes_.resize(2);
+  }
   states_ = std::move(next);
   time_ += h;
   rep.time = time_;

@@ -107,17 +107,23 @@ class Scene {
   // Solves one stage: minimizes the incremental potential with step dt, inertial target
   // x̂ = x⁰ + dt v⁰ taken from `start` (x⁰, v⁰ in material-point form), from the initial guess in
   // *poses; on return *poses holds the stage solution.
+  // `last` is the last configuration the bodies occupied (the dissipation geometry).
   SolverStats SolveStage(double dt, const std::vector<RigidBodyState>& start,
-                         std::vector<RigidPose>* poses, ContactStats* contact);
+                         const std::vector<RigidPose>& last, std::vector<RigidPose>* poses,
+                         ContactStats* contact);
+  void ClearHistory() {
+    history_.clear();
+    historyTimes_.clear();
+  }
   void Prepare();
   std::vector<RigidPose> CurrentPoses() const;
 
   SceneSettings settings_;
   std::vector<RigidBodyModel> models_;
   std::vector<RigidBodyState> states_;
-  std::vector<RigidBodyState> previous_;  // x_{n−1}, v_{n−1} for BDF2
-  double previousDt_ = 0.0;
-  bool hasHistory_ = false;
+  // Multistep history: history_[j] = state at step n−1−j, at time historyTimes_[j] (at most 2).
+  std::vector<std::vector<RigidBodyState>> history_;
+  std::vector<double> historyTimes_;
   double time_ = 0.0;
   bool prepared_ = false;
   std::vector<int> dofOffset_;

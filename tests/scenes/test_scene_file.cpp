@@ -69,9 +69,10 @@ TEST_CASE("scene file: each defect gives one error with its JSON path", "[scenes
   CHECK(LoadError(Replace(kGood, R"("dynamic": false, "shape": {"type": "plane"})",
                           R"("shape": {"type": "plane"})")) ==
         "actors[0].shape: a plane can only be a static actor");
-  CHECK(LoadError(Replace(kGood, R"("duration": 0.01})", R"("duration": 0.01, "integrator": "DIRK22"})")) ==
-        "settings.integrator: DIRK22 is not supported yet (supported: BackwardEuler, BDF2, "
-        "SymplecticDIRK12)");
+  CHECK(LoadError(Replace(kGood, R"("duration": 0.01})", R"("duration": 0.01, "integrator": "DIRK32"})"))
+            .rfind("settings.integrator: unknown value \"DIRK32\"", 0) == 0);
+  CHECK(LoadError(Replace(kGood, R"("duration": 0.01})", R"("duration": 0.01, "stage_solver": "lbfgs"})")) ==
+        "settings.stage_solver: unknown value \"lbfgs\" (expected one of: newton, ipopt, ceres)");
   CHECK(LoadError(Replace(kGood, R"("duration": 0.01})",
                           R"("duration": 0.01, "experimental_eval_params": {"explicit_normals": true, "implicit_normal_force_for_dissipation": true}})")) ==
         "settings.experimental_eval_params.explicit_normals, implicit_normal_force_for_dissipation: "
