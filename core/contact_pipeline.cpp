@@ -34,8 +34,10 @@ void AddBlocks(const StencilVector& g, const int offs[2], int blocks, Eigen::Vec
 
 }  // namespace
 
-void ContactPipeline::Configure(const std::vector<RigidBodyModel>* models) {
+void ContactPipeline::Configure(const std::vector<RigidBodyModel>* models,
+                                const ContactFilter* filter) {
   models_ = models;
+  filter_ = filter;
   const size_t n = models->size();
   inflation_.assign(n, 0.0);
   for (size_t i = 0; i < n; ++i) {
@@ -71,6 +73,7 @@ void ContactPipeline::FindPairs(const std::vector<RigidPose>& poses,
     const RigidBodyModel& B = models[b];
     if (!IsColliding(A) || !IsCollider(B)) return;
     if (!A.dynamic && !B.dynamic) return;
+    if (filter_ && !filter_->Allowed(a, b)) return;
     ContactPair p;
     p.colliding = a;
     p.collider = b;

@@ -7,6 +7,7 @@
 #include <Eigen/SparseCore>
 #include <vector>
 
+#include "core/contact_filter.h"
 #include "core/rigid_body.h"
 #include "core/rigid_contact.h"
 #include "core/rigid_dissipation.h"
@@ -44,7 +45,8 @@ struct ContactPair {
 class ContactPipeline {
  public:
   /// Precomputes per-actor data. `models` must outlive the pipeline's use.
-  void Configure(const std::vector<RigidBodyModel>* models);
+  /// `filter` (may be null: everything eligible) is read at every evaluation.
+  void Configure(const std::vector<RigidBodyModel>* models, const ContactFilter* filter = nullptr);
 
   /// Π = Σ over eligible ordered pairs of the penalty energy at the given poses, plus Δt_i Σ w R
   /// when `dissipation` is not null (it then needs `stageStart`, x⁰ and x_n per actor). With
@@ -71,6 +73,7 @@ class ContactPipeline {
                  const std::vector<RigidStageStart>* stageStart);
 
   const std::vector<RigidBodyModel>* models_ = nullptr;
+  const ContactFilter* filter_ = nullptr;
   std::vector<double> inflation_;  // per actor: its collider reach padding [m]
   std::vector<Aabb> boxes_;
   std::vector<std::pair<int, int>> overlaps_;

@@ -88,15 +88,77 @@ bool Scene::SetStageSolver(StageSolverKind kind, Error* error) {
   return true;
 }
 
-ActorHandle Scene::AddRigidActor(const RigidActorDesc& desc, Error* error) {
+ActorHandle Scene::AddRigidActor(const RigidActorDesc& desc, Error* error, ActorHandle parent) {
+  if (parent.index >= NumActors()) {
+    Fail(error, "parent: invalid actor handle " + std::to_string(parent.index));
+    return {};
+  }
   RigidBodyModel model;
   RigidBodyState state;
   if (!BuildRigidBody(desc, "", &model, &state, error)) return {};
+  filter_.AddActor(desc.contactLayer, parent.index);
   models_.push_back(std::move(model));
   states_.push_back(state);
   prepared_ = false;
   ClearHistory();
   return {static_cast<int>(models_.size()) - 1};
+}
+
+namespace {
+bool ValidHandle(ActorHandle a, int n, const char* field, Error* error) {
+  if (a.index >= 0 && a.index < n) return true;
+  return Fail(error, std::string(field) + ": invalid actor handle " + std::to_string(a.index));
+}
+}  // namespace
+
+bool Scene::SetContactLayer(ActorHandle actor, const std::string& layer, Error* error) {
+  if (!ValidHandle(actor, NumActors(), "actor", error)) return false;
+  filter_.SetLayer(actor.index, layer);
+  models_[actor.index].contactLayer = layer;
+  return true;
+}
+
+const std::string& Scene::ContactLayer(ActorHandle actor) const {
+  return filter_.Layer(actor.index);
+}
+
+bool Scene::EnableLayerContactAsymmetric(const std::string& layerA, const std::string& layerB,
+                                         bool enable, Error*) {
+  filter_.EnableLayer(layerA, layerB, enable);
+  return true;
+}
+
+bool Scene::EnableLayerContactSymmetric(const std::string& layerA, const std::string& layerB,
+                                        bool enable, Error*) {
+  filter_.EnableLayer(layerA, layerB, enable);
+  filter_.EnableLayer(layerB, layerA, enable);
+  return true;
+}
+
+bool Scene::EnableActorContactAsymmetric(ActorHandle a, ActorHandle b, bool enable,
+                                         IncludeNestedActors nested, Error* error) {
+  if (!ValidHandle(a, NumActors(), "A", error) || !ValidHandle(b, NumActors(), "B", error))
+    return false;
+  filter_.EnableActors(a.index, b.index, enable, nested == IncludeNestedActors::Yes);
+  return true;
+}
+
+bool Scene::EnableActorContactSymmetric(ActorHandle a, ActorHandle b, bool enable,
+                                        IncludeNestedActors nested, Error* error) {
+  if (!ValidHandle(a, NumActors(), "A", error) || !ValidHandle(b, NumActors(), "B", error))
+    return false;
+  filter_.EnableActors(a.index, b.index, enable, nested == IncludeNestedActors::Yes);
+  filter_.EnableActors(b.index, a.index, enable, nested == IncludeNestedActors::Yes);
+  return true;
+}
+
+void Scene::DisableAdjacentContact(ActorHandle a, ActorHandle b) {
+  filter_.EnableActors(a.index, b.index, false, false);
+  filter_.EnableActors(b.index, a.index, false, false);
+}
+
+bool Scene::ContactAllowed(ActorHandle a, ActorHandle b) const {
+  return filter_.Allowed(a.index, b.index);
 }
 
 bool Scene::SetIntegrator(IntegrationMethod method, Error* error) {
@@ -130,7 +192,7 @@ void Scene::Prepare() {
       dofOffset_[i] = numDofs_;
       numDofs_ += 6;
     }
-  pipeline_.Configure(&models_);
+  pipeline_.Configure(&models_, &filter_);
   prepared_ = true;
 }
 

@@ -69,8 +69,31 @@ class Scene {
  public:
   explicit Scene(const SceneSettings& settings = SceneSettings());
 
-  /// Adds a rigid actor; returns an invalid handle and fills *error on bad input.
-  ActorHandle AddRigidActor(const RigidActorDesc& desc, Error* error);
+  /// Adds a rigid actor; returns an invalid handle and fills *error on bad input. A valid
+  /// `parent` nests the actor under it (for IncludeNestedActors::Yes).
+  ActorHandle AddRigidActor(const RigidActorDesc& desc, Error* error,
+                            ActorHandle parent = ActorHandle());
+
+  // --- Contact filtering (spec: "Contact Filtering"; core/contact_filter.h). Each returns false
+  // and fills *error for an invalid handle.
+  /// Actor::SetContactLayer: an arbitrary string.
+  bool SetContactLayer(ActorHandle actor, const std::string& layer, Error* error);
+  const std::string& ContactLayer(ActorHandle actor) const;
+  /// The ordered interaction layerA (colliding) against layerB (collider); not the reverse.
+  bool EnableLayerContactAsymmetric(const std::string& layerA, const std::string& layerB,
+                                    bool enable, Error* error);
+  bool EnableLayerContactSymmetric(const std::string& layerA, const std::string& layerB,
+                                   bool enable, Error* error);
+  /// The actor-pair gate for A colliding against B, over the cross-product of the resolved sets.
+  bool EnableActorContactAsymmetric(ActorHandle a, ActorHandle b, bool enable,
+                                    IncludeNestedActors includeNestedActors, Error* error);
+  bool EnableActorContactSymmetric(ActorHandle a, ActorHandle b, bool enable,
+                                   IncludeNestedActors includeNestedActors, Error* error);
+  /// The automatic disabling of adjacent links / skinned parts: the same actor gate, so that a
+  /// later setting overrides it.
+  void DisableAdjacentContact(ActorHandle a, ActorHandle b);
+  /// Whether the ordered pair (a colliding, b collider) passes both gates.
+  bool ContactAllowed(ActorHandle a, ActorHandle b) const;
 
   /// Advances by dt [s] (> 0; may differ from step to step) with the scene's integrator.
   /// Returns false (and fills *error) only for invalid input; a stage that did not converge is
@@ -129,6 +152,7 @@ class Scene {
   std::vector<int> dofOffset_;
   int numDofs_ = 0;
   ContactPipeline pipeline_;
+  ContactFilter filter_;
 };
 
 }  // namespace superdex

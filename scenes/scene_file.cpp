@@ -210,7 +210,7 @@ void ReadActors(const json& actors, const std::string& baseDir, SceneFile* out) 
     CheckObject(a, path,
                 {"name", "type", "dynamic", "shape", "density", "mass", "inertia", "position",
                  "orientation", "euler_deg", "velocity", "angular_velocity", "contact",
-                 "collider_type", "boundary_element_type", "contact_layer", "grid"});
+                 "collider_type", "boundary_element_type", "contact_layer", "parent", "grid"});
     const std::string type = String(a, path, "type", std::string("rigid"));
     if (type != "rigid")
       Throw(Join(path, "type"), "unknown value \"" + type + "\" (supported: rigid)");
@@ -233,6 +233,14 @@ void ReadActors(const json& actors, const std::string& baseDir, SceneFile* out) 
     d.colliderType = Enum(a, path, "collider_type", ColliderType::Auto);
     d.boundaryElementType = Enum(a, path, "boundary_element_type", ActorBoundaryElementType::P1Q3);
     d.contactLayer = String(a, path, "contact_layer", std::string("default"));
+    ActorHandle parent;
+    if (a.contains("parent")) {
+      const std::string p = String(a, path, "parent");
+      for (size_t k = 0; k < out->actorNames.size(); ++k)
+        if (out->actorNames[k] == p) parent.index = static_cast<int>(k);
+      if (!parent.IsValid())
+        Throw(Join(path, "parent"), "no earlier actor named \"" + p + "\"");
+    }
 
     // Optional replication on a grid: count [nx, ny, nz], spacing [m], jitter [m] (uniform in
     // [−jitter, jitter] per axis, fixed seed), names "<name>_<k>".
@@ -268,9 +276,52 @@ void ReadActors(const json& actors, const std::string& baseDir, SceneFile* out) 
           }
           if (!names.insert(di.name).second) Throw(Join(path, "name"), "duplicate actor name \"" + di.name + "\"");
           Error err;
-          if (!out->scene->AddRigidActor(di, &err).IsValid()) throw LoadError{path + "." + err.message};
+          if (!out->scene->AddRigidActor(di, &err, parent).IsValid())
+            throw LoadError{path + "." + err.message};
           out->actorNames.push_back(di.name);
         }
+  }
+}
+
+// "contact_filter": [{"layers": [a, b] | "actors": [A, B], "enable": bool, "symmetric": bool,
+//                     "include_nested": bool (actors only)}, ...], applied in order.
+void ReadContactFilter(const json& list, SceneFile* out) {
+  if (!list.is_array()) Throw("contact_filter", std::string("must be an array, got ") + TypeName(list));
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string path = "contact_filter[" + std::to_string(i) + "]";
+    const json& f = list[i];
+    CheckObject(f, path, {"layers", "actors", "enable", "symmetric", "include_nested"});
+    if (f.contains("layers") == f.contains("actors"))
+      Throw(path, "give exactly one of \"layers\" and \"actors\"");
+    const std::string key = f.contains("layers") ? "layers" : "actors";
+    const json& pair = f.at(key);
+    if (!pair.is_array() || pair.size() != 2 || !pair[0].is_string() || !pair[1].is_string())
+      Throw(Join(path, key), "must be an array of two names");
+    const bool enable = Bool(f, path, "enable", false);
+    const bool symmetric = Bool(f, path, "symmetric", true);
+    Scene& scene = *out->scene;
+    Error err;
+    if (key == "layers") {
+      if (f.contains("include_nested"))
+        Throw(Join(path, "include_nested"), "applies to actor pairs only");
+      const std::string a = pair[0], b = pair[1];
+      if (symmetric) scene.EnableLayerContactSymmetric(a, b, enable, &err);
+      else scene.EnableLayerContactAsymmetric(a, b, enable, &err);
+      continue;
+    }
+    ActorHandle h[2];
+    for (int k = 0; k < 2; ++k) {
+      const std::string name = pair[k];
+      for (size_t n = 0; n < out->actorNames.size(); ++n)
+        if (out->actorNames[n] == name) h[k].index = static_cast<int>(n);
+      if (!h[k].IsValid())
+        Throw(Join(path, "actors") + "[" + std::to_string(k) + "]", "no actor named \"" + name + "\"");
+    }
+    const IncludeNestedActors nested =
+        Bool(f, path, "include_nested", false) ? IncludeNestedActors::Yes : IncludeNestedActors::No;
+    const bool ok = symmetric ? scene.EnableActorContactSymmetric(h[0], h[1], enable, nested, &err)
+                              : scene.EnableActorContactAsymmetric(h[0], h[1], enable, nested, &err);
+    if (!ok) Throw(path, err.message);
   }
 }
 
@@ -278,6 +329,10 @@ void ReadActors(const json& actors, const std::string& baseDir, SceneFile* out) 
 
 bool LoadSceneText(const std::string& text, const std::string& baseDir, SceneFile* out,
                    Error* error) {
+  // A reused SceneFile starts empty (its path, set by LoadSceneFile, is kept).
+  const std::string path = out->path;
+  *out = SceneFile();
+  out->path = path;
   try {
     json j;
     try {
@@ -285,7 +340,8 @@ bool LoadSceneText(const std::string& text, const std::string& baseDir, SceneFil
     } catch (const json::parse_error& e) {
       return Fail(error, std::string("(file): not valid JSON: ") + e.what());
     }
-    CheckObject(j, "", {"format", "description", "settings", "actors", "output", "expect"});
+    CheckObject(j, "",
+                {"format", "description", "settings", "actors", "contact_filter", "output", "expect"});
     const std::string format = String(j, "", "format", std::string("superdex-scene/1"));
     if (format != "superdex-scene/1")
       Throw("format", "unsupported \"" + format + "\" (expected superdex-scene/1)");
@@ -342,6 +398,8 @@ bool LoadSceneText(const std::string& text, const std::string& baseDir, SceneFil
 
     if (!j.contains("actors")) Throw("actors", "missing required field");
     ReadActors(j.at("actors"), baseDir, out);
+
+    if (j.contains("contact_filter")) ReadContactFilter(j.at("contact_filter"), out);
 
     if (j.contains("output")) {
       const json& o = j.at("output");

@@ -166,3 +166,31 @@ TEST_CASE("no energy gain under BackwardEuler in the dissipative shipped scenes"
     CHECK(worstRatio <= 1.0 + 1e-12);
   }
 }
+
+TEST_CASE("scene file: layers, parents and the contact_filter controls", "[scenes][filter]") {
+  const std::string text = R"({"format": "superdex-scene/1",
+    "actors": [
+      {"name": "ground", "dynamic": false, "shape": {"type": "plane"}, "contact_layer": "ground"},
+      {"name": "arm", "shape": {"type": "box", "size": [0.2, 0.2, 0.2]}},
+      {"name": "hand", "parent": "arm", "shape": {"type": "box", "size": [0.1, 0.1, 0.1]}},
+      {"name": "ghost", "shape": {"type": "sphere", "radius": 0.1}, "contact_layer": "ghosts"}],
+    "contact_filter": [
+      {"layers": ["ghosts", "ground"], "enable": false, "symmetric": false},
+      {"actors": ["arm", "arm"], "enable": false, "include_nested": true}]})";
+  SceneFile f;
+  Error e;
+  REQUIRE(LoadSceneText(text, ".", &f, &e));
+  const Scene& s = *f.scene;
+  CHECK_FALSE(s.ContactAllowed({3}, {0}));  // ghost against ground
+  CHECK(s.ContactAllowed({0}, {3}));
+  CHECK_FALSE(s.ContactAllowed({1}, {2}));  // arm and hand, both ways
+  CHECK_FALSE(s.ContactAllowed({2}, {1}));
+  CHECK(s.ContactAllowed({1}, {3}));
+  CHECK(s.ContactLayer({3}) == "ghosts");
+  SceneFile bad;
+  CHECK_FALSE(LoadSceneText(Replace(text, R"("actors": ["arm", "arm"])", R"("actors": ["arm", "leg"])"),
+                            ".", &bad, &e));
+  CHECK(e.message == "contact_filter[1].actors[1]: no actor named \"leg\"");
+  CHECK_FALSE(LoadSceneText(Replace(text, R"("parent": "arm")", R"("parent": "hand")"), ".", &bad, &e));
+  CHECK(e.message == "actors[2].parent: no earlier actor named \"hand\"");
+}
