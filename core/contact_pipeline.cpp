@@ -184,4 +184,26 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
   return energy;
 }
 
+void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,
+                                     std::vector<ContactSampleRecord>* records) {
+  const std::vector<RigidBodyModel>& models = *models_;
+  FindPairs(poses, nullptr, nullptr);
+  records->clear();
+  RigidPairPenalty scratch;
+  for (const ContactPair& cp : pairs_) {
+    PenaltyParams pp;
+    pp.k = cp.params.penaltyCoefficient;
+    pp.eps = cp.params.smoothingHalfDistance;
+    pp.delta = cp.params.threshold;
+    const size_t first = records->size();
+    EvaluateRigidPairPenalty(models[cp.colliding], poses[cp.colliding], models[cp.collider],
+                             poses[cp.collider], models[cp.collider].dynamic, pp, 0, &scratch,
+                             cp.params.maxAlignmentNormals, nullptr, nullptr, records);
+    for (size_t k = first; k < records->size(); ++k) {
+      (*records)[k].colliding = cp.colliding;
+      (*records)[k].collider = cp.collider;
+    }
+  }
+}
+
 }  // namespace superdex

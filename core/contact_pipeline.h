@@ -65,6 +65,10 @@ class ContactPipeline {
                   Eigen::VectorXd* dissipationResidual = nullptr,
                   const std::vector<RigidStageStart>* stageStart = nullptr);
 
+  /// Every active contact sample at the given poses (serial; for reporting).
+  void CollectSamples(const std::vector<RigidPose>& poses,
+                      std::vector<ContactSampleRecord>* records);
+
   /// The ordered pairs found by the last evaluation.
   const std::vector<ContactPair>& Pairs() const { return pairs_; }
 

@@ -50,7 +50,8 @@ void AddFunctionOfPullback(const Eigen::Vector3d& r, const Eigen::Vector3d& d,
 void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& a, const RigidBodyModel& B,
                               const RigidPose& b, bool bDynamic, const PenaltyParams& params,
                               int order, RigidPairPenalty* out, double maxAlignment,
-                              const RigidPose* aRef, const RigidPose* bRef) {
+                              const RigidPose* aRef, const RigidPose* bRef,
+                              std::vector<ContactSampleRecord>* records) {
   const int n = bDynamic ? 12 : 6;
   out->value = 0.0;
   out->activeSamples = 0;
@@ -88,6 +89,16 @@ void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& a, const
     ++out->activeSamples;
     const PenaltyDensity W = NormalPenaltyDensity(f.value, params);
     out->value += s.weight * W.W;
+    if (records) {
+      ContactSampleRecord rec;
+      rec.position = a.p + a.R * s.X;
+      rec.normal = b.R * f.gradient.normalized();
+      rec.phi = f.value;
+      rec.lambdaN = W.lambdaN;
+      rec.traction = W.lambdaN * (b.R * f.gradient);
+      rec.weight = s.weight;
+      records->push_back(rec);
+    }
     if (order == 0) continue;
     const Eigen::Vector3d r = a.R * s.X;
     const Eigen::Vector3d d = a.p + r - b.p;

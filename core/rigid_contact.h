@@ -1,6 +1,8 @@
 // Normal penalty between a colliding rigid actor's surface samples and a rigid collider's field.
 #pragma once
 
+#include <vector>
+
 #include "core/rigid_body.h"
 #include "energies/normal_penalty.h"
 #include "energies/stencil.h"
@@ -34,6 +36,18 @@ struct RigidPairPenalty {
   double minPhi = INFINITY;///< smallest φ among the samples tested [m]
 };
 
+/// One active contact sample (φ < δ, not rejected), in the world frame, for reporting.
+struct ContactSampleRecord {
+  int colliding = -1;        ///< actor index of A (filled by the pipeline)
+  int collider = -1;         ///< actor index of B
+  Eigen::Vector3d position;  ///< x_A [m]
+  Eigen::Vector3d normal;    ///< R_B N_B: the collider field's unit direction
+  double phi = 0.0;          ///< φ_B(x_A) [m]
+  double lambdaN = 0.0;      ///< normal-load coefficient λ_n [Pa]
+  Eigen::Vector3d traction;  ///< nominal normal traction on A, t_n = λ_n R_B G_B [Pa]
+  double weight = 0.0;       ///< reference-area weight w_q [m²]; force = w_q t_n
+};
+
 /// Round-off allowance of the alignment test: a sample is rejected when s > m + this. A face
 /// exactly perpendicular to the collider's surface has s = 0 up to round-off.
 constexpr double kAlignmentRoundoff = 1e-9;
@@ -53,7 +67,8 @@ void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& poseA,
                               const RigidBodyModel& B, const RigidPose& poseB, bool bDynamic,
                               const PenaltyParams& params, int order, RigidPairPenalty* out,
                               double maxAlignment = INFINITY, const RigidPose* aRef = nullptr,
-                              const RigidPose* bRef = nullptr);
+                              const RigidPose* bRef = nullptr,
+                              std::vector<ContactSampleRecord>* records = nullptr);
 
 /// Chains a scalar function f(Y) of the pullback Y = R_Bᵀ(p_A + r − p_B), r = R_A X, through the
 /// rigid retractions (the stencil above): adds w·J_Yᵀ g_Y = w·[n, r × n, −n, −d × n] (n = R_B g_Y,

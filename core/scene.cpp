@@ -393,6 +393,13 @@ ContactStats Scene::ContactState() {
   return st;
 }
 
+std::vector<ContactSampleRecord> Scene::ContactSamples() {
+  Prepare();
+  std::vector<ContactSampleRecord> out;
+  pipeline_.CollectSamples(CurrentPoses(), &out);
+  return out;
+}
+
 EnergyReport Scene::Energies() {
   EnergyReport e;
   for (size_t i = 0; i < models_.size(); ++i) {

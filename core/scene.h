@@ -123,6 +123,8 @@ class Scene {
   /// True when some actor has a nonzero friction or damping coefficient (stages then carry
   /// Δt_i R in the mode ExperimentalEvalParams selects).
   bool HasDissipation() const;
+  /// Every active contact sample at the current state, with its normal traction (world frame).
+  std::vector<ContactSampleRecord> ContactSamples();
   /// One-time notes about the scene (e.g. a collider type not supported yet).
   std::vector<std::string> Notices() const;
 
