@@ -1,0 +1,439 @@
+// Scene, actors, stepping and running, with states and trajectories as numpy arrays.
+#include <pybind11/eigen.h>
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include "bindings.h"
+#include "core/rigid_math.h"
+#include "core/scene.h"
+#include "geometry/triangle_mesh.h"
+#include "scenes/scene_file.h"
+
+namespace superdex::python {
+namespace {
+
+/// A handle to an actor of a Scene (the Python Actor). Keeps its scene alive.
+struct Actor {
+  Scene* scene = nullptr;
+  int index = -1;
+  ActorHandle Handle() const { return {index}; }
+};
+
+Eigen::Vector3d AngularVelocity(const RigidBodyState& s) {
+  return Axial(s.Rdot * s.R.transpose());  // Ṙ = [ω]× R
+}
+
+Eigen::Vector4d Quaternion(const Eigen::Matrix3d& R) {
+  const Eigen::Quaterniond q(R);
+  return Eigen::Vector4d(q.x(), q.y(), q.z(), q.w());
+}
+
+void RaiseOnFailure(const StepReport& r) {
+  if (r.status != StageStatus::Converged)
+    throw std::runtime_error(std::string("stage ") + ToString(r.status) + " at t = " +
+                             std::to_string(r.time) + " s: " + r.message);
+}
+
+py::dict Energies(Scene& s) {
+  const EnergyReport e = s.Energies();
+  py::dict d;
+  d["kinetic"] = e.kinetic;
+  d["gravity"] = e.gravity;
+  d["contact"] = e.contact;
+  d["total"] = e.Total();
+  return d;
+}
+
+// Runs for `duration` with step dt, recording every `every`-th state (and the first and last)
+// straight into numpy arrays.
+py::dict Run(Scene& s, double duration, double dt, int every,
+             const std::function<void(double, const StepReport&)>& progress) {
+  if (!(duration > 0) || !(dt > 0)) throw py::value_error("duration, dt: must be > 0");
+  if (every < 1) throw py::value_error("every: must be >= 1, got " + std::to_string(every));
+  const int steps = static_cast<int>(std::ceil(duration / dt - 1e-9));
+  const int frames = 1 + (steps + every - 1) / every + ((steps % every) != 0 ? 0 : 0);
+  const int A = s.NumActors();
+  py::array_t<double> t(frames), p({frames, A, 3}), q({frames, A, 4}), v({frames, A, 3}),
+      w({frames, A, 3}), energy(frames);
+  auto T = t.mutable_unchecked<1>();
+  auto P = p.mutable_unchecked<3>();
+  auto Q = q.mutable_unchecked<3>();
+  auto V = v.mutable_unchecked<3>();
+  auto W = w.mutable_unchecked<3>();
+  auto E = energy.mutable_unchecked<1>();
+  int frame = 0;
+  auto record = [&]() {
+    T(frame) = s.Time();
+    for (int a = 0; a < A; ++a) {
+      const RigidBodyState& st = s.States()[a];
+      const Eigen::Vector4d qa = Quaternion(st.R);
+      const Eigen::Vector3d wa = AngularVelocity(st);
+      for (int k = 0; k < 3; ++k) {
+        P(frame, a, k) = st.p[k];
+        V(frame, a, k) = st.v[k];
+        W(frame, a, k) = wa[k];
+      }
+      for (int k = 0; k < 4; ++k) Q(frame, a, k) = qa[k];
+    }
+    E(frame) = s.Energies().Total();
+    ++frame;
+  };
+  record();
+  for (int i = 1; i <= steps; ++i) {
+    StepReport r;
+    Error e;
+    const double h = std::min(dt, duration - (i - 1) * dt);
+    bool ok;
+    {
+      py::gil_scoped_release release;
+      ok = s.Step(h > 1e-12 * dt ? h : dt, &r, &e);
+    }
+    if (!ok) throw py::value_error(e.message);
+    RaiseOnFailure(r);
+    if ((i % every == 0 || i == steps) && frame < frames) record();
+    if (progress) progress(double(i) / steps, r);
+  }
+  py::dict d;
+  d["t"] = t[py::slice(0, frame, 1)];
+  d["p"] = p[py::slice(0, frame, 1)];
+  d["q"] = q[py::slice(0, frame, 1)];
+  d["v"] = v[py::slice(0, frame, 1)];
+  d["w"] = w[py::slice(0, frame, 1)];
+  d["energy"] = energy[py::slice(0, frame, 1)];
+  return d;
+}
+
+py::dict ContactSamples(Scene& s) {
+  const std::vector<ContactSampleRecord> r = s.ContactSamples();
+  const py::ssize_t n = static_cast<py::ssize_t>(r.size());
+  py::array_t<int> colliding(n), collider(n);
+  py::array_t<double> position({n, py::ssize_t(3)}), normal({n, py::ssize_t(3)}),
+      traction({n, py::ssize_t(3)}), phi(n), lambdaN(n), weight(n);
+  for (py::ssize_t i = 0; i < n; ++i) {
+    colliding.mutable_at(i) = r[i].colliding;
+    collider.mutable_at(i) = r[i].collider;
+    phi.mutable_at(i) = r[i].phi;
+    lambdaN.mutable_at(i) = r[i].lambdaN;
+    weight.mutable_at(i) = r[i].weight;
+    for (int k = 0; k < 3; ++k) {
+      position.mutable_at(i, k) = r[i].position[k];
+      normal.mutable_at(i, k) = r[i].normal[k];
+      traction.mutable_at(i, k) = r[i].traction[k];
+    }
+  }
+  py::dict d;
+  d["colliding"] = colliding;
+  d["collider"] = collider;
+  d["position"] = position;
+  d["normal"] = normal;
+  d["phi"] = phi;
+  d["lambda_n"] = lambdaN;
+  d["traction"] = traction;
+  d["weight"] = weight;
+  return d;
+}
+
+RigidShape MakeShape(RigidShapeKind kind) {
+  RigidShape s;
+  s.kind = kind;
+  return s;
+}
+
+}  // namespace
+
+void BindScene(py::module_& m) {
+  py::class_<RigidShape>(m, "RigidShape",
+                         "Geometry of a rigid actor in its own frame; make one with sphere(), "
+                         "box(), plane() or mesh().")
+      .def_static(
+          "sphere",
+          [](double radius, int surfaceResolution) {
+            RigidShape s = MakeShape(RigidShapeKind::Sphere);
+            s.radius = radius;
+            s.surfaceResolution = surfaceResolution;
+            return s;
+          },
+          py::arg("radius"), py::arg("surface_resolution") = 3,
+          "A sphere of the given radius [m]; surface_resolution icosphere subdivisions (0-7).")
+      .def_static(
+          "box",
+          [](const Eigen::Vector3d& size, int surfaceResolution) {
+            RigidShape s = MakeShape(RigidShapeKind::Box);
+            s.halfExtents = 0.5 * size;
+            s.surfaceResolution = surfaceResolution;
+            return s;
+          },
+          py::arg("size"), py::arg("surface_resolution") = 2,
+          "A box of edge lengths size = [x, y, z] [m]; surface_resolution cells per edge.")
+      .def_static(
+          "plane",
+          [](const Eigen::Vector3d& normal) {
+            RigidShape s = MakeShape(RigidShapeKind::Plane);
+            s.planeNormal = normal;
+            return s;
+          },
+          py::arg("normal") = Eigen::Vector3d::UnitZ(),
+          "The half space below the plane through the actor's position (static actors only).")
+      .def_static(
+          "mesh",
+          [](const std::string& path, double scale) {
+            auto mesh = std::make_shared<TriangleMesh>();
+            std::string error;
+            if (!ReadObj(path, mesh.get(), &error)) throw py::value_error(error);
+            for (auto& x : mesh->vertices) x *= scale;
+            RigidShape s = MakeShape(RigidShapeKind::Mesh);
+            s.mesh = mesh;
+            return s;
+          },
+          py::arg("path"), py::arg("scale") = 1.0, "A closed triangle mesh read from an OBJ file.")
+      .def_property_readonly("kind", [](const RigidShape& s) {
+        const char* names[] = {"sphere", "box", "mesh", "plane"};
+        return std::string(names[static_cast<int>(s.kind)]);
+      });
+
+  py::class_<RigidActorDesc>(m, "RigidActorDesc",
+                             "What a rigid actor is made from. Units: kg, m, m/s, rad/s.")
+      .def(py::init([](const std::string& name, const RigidShape& shape, bool dynamic) {
+             RigidActorDesc d;
+             d.name = name;
+             d.shape = shape;
+             d.dynamic = dynamic;
+             return d;
+           }),
+           py::arg("name"), py::arg("shape"), py::arg("dynamic") = true)
+      .def_readwrite("name", &RigidActorDesc::name)
+      .def_readwrite("dynamic", &RigidActorDesc::dynamic)
+      .def_readwrite("shape", &RigidActorDesc::shape)
+      .def_readwrite("density", &RigidActorDesc::density, "[kg/m^3], used without mass")
+      .def_readwrite("mass", &RigidActorDesc::mass, "[kg] or None (then from density)")
+      .def_readwrite("position", &RigidActorDesc::position, "shape frame origin [m]")
+      .def_property(
+          "orientation",
+          [](const RigidActorDesc& d) {
+            return Eigen::Vector4d(d.orientation.x(), d.orientation.y(), d.orientation.z(),
+                                   d.orientation.w());
+          },
+          [](RigidActorDesc& d, const Eigen::Vector4d& q) {
+            if (!(q.norm() > 0)) throw py::value_error("orientation: must be a non-zero quaternion");
+            d.orientation = Eigen::Quaterniond(q[3], q[0], q[1], q[2]).normalized();
+          },
+          "quaternion [x, y, z, w]")
+      .def_readwrite("velocity", &RigidActorDesc::linearVelocity, "of the centre of mass [m/s]")
+      .def_readwrite("angular_velocity", &RigidActorDesc::angularVelocity, "world frame [rad/s]")
+      .def_readwrite("contact", &RigidActorDesc::contact, "ContactParams")
+      .def_readwrite("collider_type", &RigidActorDesc::colliderType)
+      .def_readwrite("boundary_element_type", &RigidActorDesc::boundaryElementType)
+      .def_readwrite("contact_layer", &RigidActorDesc::contactLayer);
+
+  py::class_<NonlinearSolverParams>(m, "NonlinearSolverParams", "Stage solver settings.")
+      .def(py::init<>())
+      .def_readwrite("max_iterations", &NonlinearSolverParams::maxIterations)
+      .def_readwrite("absolute_tolerance", &NonlinearSolverParams::absoluteTolerance,
+                     "Newton decrement tolerance [J]. Default 1e-12.")
+      .def_readwrite("relative_tolerance", &NonlinearSolverParams::relativeTolerance,
+                     "gradient reduction tolerance [-]. Default 1e-10.")
+      .def_readwrite("step_tolerance", &NonlinearSolverParams::stepTolerance,
+                     "step velocity tolerance [m/s]. Default 1e-9.");
+
+  py::class_<SceneSettings>(m, "SceneSettings", "Scene-wide settings.")
+      .def(py::init<>())
+      .def_readwrite("gravity", &SceneSettings::gravity, "[m/s^2]. Default [0, 0, -9.81].")
+      .def_readwrite("integrator", &SceneSettings::integrator, "Default IntegrationMethod.BDF2.")
+      .def_readwrite("solver", &SceneSettings::solver)
+      .def_readwrite("experimental_eval_params", &SceneSettings::eval)
+      .def_property(
+          "stage_solver", [](const SceneSettings& s) { return std::string(ToString(s.stageSolver)); },
+          [](SceneSettings& s, const std::string& name) {
+            if (!ParseStageSolver(name, &s.stageSolver))
+              throw py::value_error("stage_solver: unknown value \"" + name +
+                                    "\" (expected one of: newton, ipopt, ceres)");
+          },
+          "'newton' (default), 'ipopt' (potential stages) or 'ceres'.");
+
+  py::class_<StepReport>(m, "StepReport", "What one step did.")
+      .def_readonly("time", &StepReport::time)
+      .def_readonly("dt", &StepReport::dt)
+      .def_readonly("stages", &StepReport::stages)
+      .def_readonly("newton_iterations", &StepReport::newtonIterations)
+      .def_property_readonly("status", [](const StepReport& r) { return ToString(r.status); })
+      .def_readonly("message", &StepReport::message)
+      .def_property_readonly("active_samples", [](const StepReport& r) { return r.contact.activeSamples; })
+      .def_property_readonly("min_signed_distance",
+                             [](const StepReport& r) { return r.contact.minSignedDistance; })
+      .def_readonly("max_coulomb_ratio", &StepReport::maxCoulombRatio)
+      .def_readonly("wall_seconds", &StepReport::wallSeconds);
+
+  py::class_<Actor>(m, "Actor", "A handle to an actor of a Scene.")
+      .def_property_readonly("index", [](const Actor& a) { return a.index; })
+      .def_property_readonly("name", [](const Actor& a) { return a.scene->Models()[a.index].name; })
+      .def_property_readonly("mass", [](const Actor& a) { return a.scene->Models()[a.index].mass; })
+      .def_property_readonly("dynamic", [](const Actor& a) { return a.scene->Models()[a.index].dynamic; })
+      .def_property_readonly("contact_layer",
+                             [](const Actor& a) { return a.scene->ContactLayer(a.Handle()); })
+      .def(
+          "set_contact_layer",
+          [](Actor& a, const std::string& layer) {
+            Error e;
+            if (!a.scene->SetContactLayer(a.Handle(), layer, &e)) throw py::value_error(e.message);
+          },
+          py::arg("layer"), "Actor::SetContactLayer: any string.")
+      .def_property_readonly("position", [](const Actor& a) { return a.scene->State(a.Handle()).p; },
+                             "centre of mass [m]")
+      .def_property_readonly("rotation", [](const Actor& a) { return a.scene->State(a.Handle()).R; })
+      .def_property_readonly("orientation",
+                             [](const Actor& a) { return Quaternion(a.scene->State(a.Handle()).R); },
+                             "quaternion [x, y, z, w]")
+      .def_property_readonly("velocity", [](const Actor& a) { return a.scene->State(a.Handle()).v; },
+                             "centre-of-mass velocity [m/s]")
+      .def_property_readonly("angular_velocity",
+                             [](const Actor& a) { return AngularVelocity(a.scene->State(a.Handle())); },
+                             "world angular velocity [rad/s]")
+      .def("__repr__", [](const Actor& a) {
+        return "<superdex.Actor " + std::to_string(a.index) + " '" +
+               a.scene->Models()[a.index].name + "'>";
+      });
+
+  py::class_<Scene>(m, "Scene", "Actors, settings and time stepping.")
+      .def(py::init([](const SceneSettings& s) {
+             CheckValue(Validate(s, "settings."));
+             return std::make_unique<Scene>(s);
+           }),
+           py::arg("settings") = SceneSettings())
+      .def(
+          "add_rigid_actor",
+          [](Scene& s, const RigidActorDesc& d, std::optional<Actor> parent) {
+            Error e;
+            const ActorHandle h =
+                s.AddRigidActor(d, &e, parent ? parent->Handle() : ActorHandle());
+            if (!h.IsValid()) throw py::value_error(e.message);
+            return Actor{&s, h.index};
+          },
+          py::arg("desc"), py::arg("parent") = py::none(), py::keep_alive<0, 1>(),
+          "Adds a rigid actor (nested under `parent` if given); raises ValueError on bad input.")
+      .def_property_readonly("actors",
+                             [](Scene& s) {
+                               std::vector<Actor> out;
+                               for (int i = 0; i < s.NumActors(); ++i) out.push_back({&s, i});
+                               return out;
+                             },
+                             py::return_value_policy::reference_internal)
+      .def(
+          "actor",
+          [](Scene& s, const std::string& name) {
+            for (int i = 0; i < s.NumActors(); ++i)
+              if (s.Models()[i].name == name) return Actor{&s, i};
+            throw py::value_error("no actor named \"" + name + "\"");
+          },
+          py::arg("name"), py::keep_alive<0, 1>())
+      .def_property_readonly("time", &Scene::Time, "simulated time [s]")
+      .def(
+          "step",
+          [](Scene& s, double dt, bool check) {
+            StepReport r;
+            Error e;
+            bool ok;
+            {
+              py::gil_scoped_release release;
+              ok = s.Step(dt, &r, &e);
+            }
+            if (!ok) throw py::value_error(e.message);
+            if (check) RaiseOnFailure(r);
+            return r;
+          },
+          py::arg("dt"), py::arg("check") = true,
+          "Advances by dt [s]. A stage that does not converge raises RuntimeError (check=False\n"
+          "returns the report instead).")
+      .def("run", &Run, py::arg("duration"), py::arg("dt"), py::arg("every") = 1,
+           py::arg("progress") = nullptr,
+           "Runs for `duration` [s] with step `dt` [s]; returns a dict of numpy arrays over the\n"
+           "recorded frames (the initial state, every `every`-th step and the last):\n"
+           "t (F,), p (F, A, 3), q (F, A, 4) quaternions [x, y, z, w], v (F, A, 3),\n"
+           "w (F, A, 3) world angular velocities, energy (F,). progress(fraction, report) is\n"
+           "called after every step. A non-converged stage raises RuntimeError.")
+      .def("energies", &Energies, "kinetic, gravity, contact and total energy [J]")
+      .def("total_linear_momentum", &Scene::TotalLinearMomentum)
+      .def("total_angular_momentum", &Scene::TotalAngularMomentum)
+      .def("contact_samples", &ContactSamples,
+           "Active contact samples at the current state as numpy arrays: colliding, collider\n"
+           "(actor indices), position (n, 3) [m], normal (n, 3), phi [m], lambda_n [Pa],\n"
+           "traction (n, 3) normal traction on the colliding actor [Pa], weight [m^2]\n"
+           "(force = weight * traction).")
+      .def("has_dissipation", &Scene::HasDissipation)
+      .def(
+          "set_integrator",
+          [](Scene& s, IntegrationMethod m) {
+            Error e;
+            if (!s.SetIntegrator(m, &e)) throw py::value_error(e.message);
+          },
+          py::arg("method"))
+      .def(
+          "set_stage_solver",
+          [](Scene& s, const std::string& name) {
+            StageSolverKind k;
+            Error e;
+            if (!ParseStageSolver(name, &k))
+              throw py::value_error("stage_solver: unknown value \"" + name + "\"");
+            if (!s.SetStageSolver(k, &e)) throw py::value_error(e.message);
+          },
+          py::arg("name"))
+      .def(
+          "enable_layer_contact_asymmetric",
+          [](Scene& s, const std::string& a, const std::string& b, bool enable) {
+            Error e;
+            if (!s.EnableLayerContactAsymmetric(a, b, enable, &e)) throw py::value_error(e.message);
+          },
+          py::arg("layer_a"), py::arg("layer_b"), py::arg("enable"),
+          "Layer A colliding against layer B as collider; not the reverse.")
+      .def(
+          "enable_layer_contact_symmetric",
+          [](Scene& s, const std::string& a, const std::string& b, bool enable) {
+            Error e;
+            if (!s.EnableLayerContactSymmetric(a, b, enable, &e)) throw py::value_error(e.message);
+          },
+          py::arg("layer_a"), py::arg("layer_b"), py::arg("enable"))
+      .def(
+          "enable_actor_contact_asymmetric",
+          [](Scene& s, const Actor& a, const Actor& b, bool enable, IncludeNestedActors n) {
+            Error e;
+            if (!s.EnableActorContactAsymmetric(a.Handle(), b.Handle(), enable, n, &e))
+              throw py::value_error(e.message);
+          },
+          py::arg("a"), py::arg("b"), py::arg("enable"),
+          py::arg("include_nested_actors") = IncludeNestedActors::No,
+          "The actor-pair gate for A colliding against B (cannot re-enable a layer-disabled pair).")
+      .def(
+          "enable_actor_contact_symmetric",
+          [](Scene& s, const Actor& a, const Actor& b, bool enable, IncludeNestedActors n) {
+            Error e;
+            if (!s.EnableActorContactSymmetric(a.Handle(), b.Handle(), enable, n, &e))
+              throw py::value_error(e.message);
+          },
+          py::arg("a"), py::arg("b"), py::arg("enable"),
+          py::arg("include_nested_actors") = IncludeNestedActors::No)
+      .def(
+          "contact_allowed",
+          [](const Scene& s, const Actor& a, const Actor& b) {
+            return s.ContactAllowed(a.Handle(), b.Handle());
+          },
+          py::arg("a"), py::arg("b"));
+
+  py::class_<SceneFile>(m, "SceneFile", "A loaded superdex-scene/1 file.")
+      .def_property_readonly("scene", [](SceneFile& f) { return f.scene.get(); },
+                             py::return_value_policy::reference_internal)
+      .def_readonly("dt", &SceneFile::dt)
+      .def_readonly("duration", &SceneFile::duration)
+      .def_readonly("description", &SceneFile::description)
+      .def_readonly("actor_names", &SceneFile::actorNames);
+  m.def(
+      "load_scene",
+      [](const std::string& path) {
+        auto f = std::make_unique<SceneFile>();
+        Error e;
+        if (!LoadSceneFile(path, f.get(), &e)) throw py::value_error(e.message);
+        return f;
+      },
+      py::arg("path"), "Loads a scene file; raises ValueError naming the JSON path and the rule.");
+}
+
+}  // namespace superdex::python

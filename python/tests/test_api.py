@@ -1,0 +1,124 @@
+"""The Python API: names, defaults and enums against the spec's tables, and its errors."""
+import math
+import os
+
+import pytest
+import superdex as sd
+
+SOURCE = os.environ.get("SUPERDEX_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+
+
+def test_contact_params_defaults_match_the_spec_table():
+    c = sd.ContactParams()
+    assert c.penalty_coefficient == 1e9
+    assert c.penalty_smoothing_half_distance == 0.005
+    assert c.penalty_threshold_default == 0.001
+    assert c.penalty_threshold_extra_padding == 0.0
+    assert c.friction_with_collider_normal is True
+    assert c.max_alignment_normals == 0.0
+    assert c.viscous_friction_coefficient == 0.0
+    assert c.coulomb_friction_coefficient == 0.5
+    assert c.friction_falloff_vel == 0.01
+    assert c.normal_viscous_damping_coefficient == 0.0
+    assert c.distance_error_bound == 0.0
+    assert c.colliding_penalty_length_scale == 1.0
+
+
+def test_other_parameter_defaults():
+    e = sd.ExperimentalEvalParams()
+    assert (e.explicit_normals, e.implicit_normal_force_for_dissipation, e.fade_friction) == (
+        False, False, True)
+    p = sd.PointCloudColliderParams()
+    assert (p.radius, p.self_contact_exclusion_ratio, p.spatial_hash_load_factor) == (
+        0.01, 1.5, 0.0625)
+    assert p.self_contact is False and p.collider_triangle_element_type is None
+    g = sd.GridSdfParams()
+    assert g.min_grid_resolution >= 2 and g.resolution_delta > 0
+
+
+def test_enums_carry_the_spec_names():
+    assert set(sd.ColliderType.__members__) == {
+        "Auto", "None", "Sphere", "Box", "Plane", "Mesh", "Sdf", "PointCloud"}
+    assert set(sd.ActorBoundaryElementType.__members__) == {
+        "P1Q1", "P1Q3", "P1Q6", "ExperimentalP1Q7", "ExperimentalP1Q12", "ExperimentalP1Q16"}
+    assert set(sd.IntegrationMethod.__members__) == {
+        "BackwardEuler", "BDF2", "BDF3", "DIRK22", "DIRK23", "DIRK33", "SymplecticDIRK12",
+        "SymplecticDIRK22"}
+    assert set(sd.IncludeNestedActors.__members__) == {"No", "Yes"}
+    assert sd.SceneSettings().integrator == sd.IntegrationMethod.BDF2
+
+
+def test_help_shows_units_and_defaults():
+    doc = sd.ContactParams.penalty_coefficient.__doc__
+    assert "[Pa/m]" in doc and "Default 1e9" in doc
+    assert "[s/m]" in sd.ContactParams.normal_viscous_damping_coefficient.__doc__
+
+
+def test_bad_values_raise_value_error_naming_the_field_and_rule():
+    c = sd.ContactParams()
+    with pytest.raises(ValueError, match=r"^penalty_coefficient: must be > 0, got -3$"):
+        c.penalty_coefficient = -3
+    assert c.penalty_coefficient == 1e9  # rolled back
+    with pytest.raises(ValueError, match="max_alignment_normals"):
+        c.max_alignment_normals = 1.5
+    s = sd.SceneSettings()
+    s.experimental_eval_params.explicit_normals = True
+    with pytest.raises(ValueError, match=r"the combination \(true, true\) is unsupported"):
+        s.experimental_eval_params.implicit_normal_force_for_dissipation = True
+    assert s.experimental_eval_params.implicit_normal_force_for_dissipation is False
+    with pytest.raises(ValueError, match="stage_solver"):
+        sd.SceneSettings().stage_solver = "lbfgs"
+    with pytest.raises(ValueError, match="no actor named"):
+        sd.Scene().actor("nobody")
+
+
+def test_solver_failure_raises_runtime_error():
+    s = sd.SceneSettings()
+    s.solver.max_iterations = 1
+    s.solver.absolute_tolerance = 0.0
+    s.solver.relative_tolerance = 0.0
+    s.solver.step_tolerance = 0.0
+    scene = sd.Scene(s)
+    d = sd.RigidActorDesc("ball", sd.RigidShape.sphere(0.1))
+    d.mass = 1.0
+    d.angular_velocity = [0.0, 3.0, 1.0]
+    scene.add_rigid_actor(d)
+    with pytest.raises(RuntimeError, match="Stopped"):
+        scene.step(0.01)
+    report = scene.step(0.01, check=False)
+    assert report.status == "Stopped"
+
+
+def test_hunt_crossley_helpers_are_inverse():
+    for v in (0.5, 2.0):
+        for e in (0.2, 0.6, 0.95):
+            cn = sd.hunt_crossley_damping_from_restitution(e, v)
+            assert sd.hunt_crossley_restitution_from_damping(cn, v) == pytest.approx(e, rel=1e-12)
+    assert math.isnan(sd.hunt_crossley_damping_from_restitution(0.0, 1.0))
+
+
+def test_load_and_run_a_shipped_scene_with_progress():
+    f = sd.load_scene(os.path.join(SOURCE, "scenes", "data", "slide_to_rest.json"))
+    assert f.actor_names == ["ground", "box"]
+    seen = []
+    traj = f.scene.run(0.05, f.dt, every=10, progress=lambda frac, r: seen.append(frac))
+    assert seen[-1] == pytest.approx(1.0)
+    assert traj["p"].shape == (len(traj["t"]), 2, 3)
+    assert traj["t"][0] == 0.0 and traj["t"][-1] == pytest.approx(0.05)
+    with pytest.raises(ValueError, match="cannot open"):
+        sd.load_scene("/nonexistent/scene.json")
+
+
+def test_filtering_methods():
+    scene = sd.Scene()
+    ground = scene.add_rigid_actor(sd.RigidActorDesc("ground", sd.RigidShape.plane(), False))
+    arm = scene.add_rigid_actor(sd.RigidActorDesc("arm", sd.RigidShape.box([0.2, 0.2, 0.2])))
+    hand = scene.add_rigid_actor(sd.RigidActorDesc("hand", sd.RigidShape.box([0.1, 0.1, 0.1])),
+                                 parent=arm)
+    scene.enable_actor_contact_symmetric(arm, arm, False, sd.IncludeNestedActors.Yes)
+    assert not scene.contact_allowed(arm, hand) and not scene.contact_allowed(hand, arm)
+    assert scene.contact_allowed(hand, ground)
+    hand.set_contact_layer("ghost")
+    assert hand.contact_layer == "ghost"
+    scene.enable_layer_contact_asymmetric("ghost", "default", False)
+    assert not scene.contact_allowed(hand, ground) and scene.contact_allowed(ground, hand)

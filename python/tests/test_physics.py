@@ -1,0 +1,91 @@
+"""Physics through the Python API: incline acceleration, restitution trend, resting tractions."""
+import math
+
+import numpy as np
+import pytest
+import superdex as sd
+
+
+def rotation(q):
+    x, y, z, w = q
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                     [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                     [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+
+
+def cube(name, mu=0.5, cn=0.0, k=1e9):
+    d = sd.RigidActorDesc(name, sd.RigidShape.box([0.2, 0.2, 0.2], surface_resolution=2))
+    d.mass = 1.0
+    d.contact.penalty_coefficient = k
+    d.contact.coulomb_friction_coefficient = mu
+    d.contact.normal_viscous_damping_coefficient = cn
+    return d
+
+
+def test_incline_sliding_acceleration_within_one_percent():
+    th = math.pi / 6
+    n = np.array([math.sin(th), 0, math.cos(th)])
+    down = np.array([math.cos(th), 0, -math.sin(th)])
+    scene = sd.Scene()
+    g = sd.RigidActorDesc("incline", sd.RigidShape.plane(n), dynamic=False)
+    g.contact.normal_viscous_damping_coefficient = 1.0
+    scene.add_rigid_actor(g)
+    c = cube("cube", mu=0.5, cn=1.0)
+    c.orientation = [0, math.sin(th / 2), 0, math.cos(th / 2)]
+    c.position = n * (0.1 + 1e-5)
+    scene.add_rigid_actor(c)
+    traj = scene.run(1.0, 1e-3)
+    # Distance travelled by the bottom-face centre (insensitive to the cube's rocking).
+    bottom = np.array([traj["p"][i, 1] + rotation(traj["q"][i, 1]) @ [0, 0, -0.1]
+                       for i in range(len(traj["t"]))])
+    s = (bottom - bottom[0]) @ down
+    window = traj["t"] >= 0.3
+    a = 2 * np.polyfit(traj["t"][window], s[window], 2)[0]
+    expected = 9.81 * (math.sin(th) - 0.5 * math.cos(th))
+    assert a == pytest.approx(expected, rel=0.01)
+
+
+def launch(cn, v=1.0):
+    s = sd.SceneSettings()
+    s.gravity = [0, 0, 0]
+    scene = sd.Scene(s)
+    g = sd.RigidActorDesc("ground", sd.RigidShape.plane(), dynamic=False)
+    g.contact.penalty_coefficient = 1e6
+    g.contact.normal_viscous_damping_coefficient = cn
+    scene.add_rigid_actor(g)
+    c = cube("cube", cn=cn, k=1e6)
+    c.position = [0, 0, 0.1 + 0.001 + 1e-4]
+    c.velocity = [0, 0, -v]
+    box = scene.add_rigid_actor(c)
+    touched = False
+    while scene.time < 1.0:
+        r = scene.step(1e-4)
+        if r.active_samples > 0:
+            touched = True
+        elif touched:
+            return box.velocity[2] / v
+    raise AssertionError("no rebound")
+
+
+def test_restitution_follows_the_rational_formula_and_falls_with_damping():
+    previous = 1.0
+    for cnv in (0.25, 1.0, 2.5):
+        e = launch(cnv)
+        assert e == pytest.approx(sd.hunt_crossley_restitution_from_damping(cnv, 1.0), rel=0.03)
+        assert e < previous
+        previous = e
+
+
+def test_contact_tractions_of_a_resting_cube_sum_to_its_weight():
+    s = sd.SceneSettings()
+    s.integrator = sd.IntegrationMethod.BackwardEuler
+    scene = sd.Scene(s)
+    scene.add_rigid_actor(sd.RigidActorDesc("ground", sd.RigidShape.plane(), dynamic=False))
+    c = cube("cube")
+    c.position = [0, 0, 0.101]
+    scene.add_rigid_actor(c)
+    scene.run(2.0, 5e-3, every=400)
+    samples = scene.contact_samples()
+    force = (samples["weight"][:, None] * samples["traction"]).sum(axis=0)
+    assert force[2] == pytest.approx(9.81, rel=1e-6)
+    assert np.all(samples["colliding"] == 1) and np.all(samples["collider"] == 0)
