@@ -2,6 +2,8 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <map>
+#include <tuple>
 #include <limits>
 #include <sstream>
 
@@ -64,6 +66,35 @@ void MeshSamples(const TriangleMesh& mesh, const Eigen::Vector3d& offset,
       out->push_back({x - offset, nf, area * rule.weights[q]});
     }
   }
+}
+
+// Groups the samples by a grid of cell samplesRadius/2 in the body frame (a deterministic order:
+// cells by their integer coordinates, samples in their original order within a cell).
+void ClusterSamples(RigidBodyModel* m) {
+  m->sampleClusters.clear();
+  if (m->samples.empty()) return;
+  const double cell = std::max(0.5 * m->samplesRadius, 1e-12);
+  std::map<std::tuple<long, long, long>, std::vector<int>> cells;
+  for (int i = 0; i < static_cast<int>(m->samples.size()); ++i) {
+    const Eigen::Vector3d c = (m->samples[i].X / cell).array().floor();
+    cells[{long(c.x()), long(c.y()), long(c.z())}].push_back(i);
+  }
+  std::vector<SurfaceSample> sorted;
+  sorted.reserve(m->samples.size());
+  for (const auto& [key, members] : cells) {
+    SampleCluster c;
+    c.begin = static_cast<int>(sorted.size());
+    Aabb box;
+    for (int i : members) {
+      sorted.push_back(m->samples[i]);
+      box.Extend(m->samples[i].X);
+    }
+    c.end = static_cast<int>(sorted.size());
+    c.center = 0.5 * (box.min + box.max);
+    for (int i : members) c.radius = std::max(c.radius, (m->samples[i].X - c.center).norm());
+    m->sampleClusters.push_back(c);
+  }
+  m->samples = std::move(sorted);
 }
 
 }  // namespace
@@ -235,6 +266,7 @@ bool BuildRigidBody(const RigidActorDesc& d, const std::string& prefix, RigidBod
   }
 
   for (const SurfaceSample& s : m->samples) m->samplesRadius = std::max(m->samplesRadius, s.X.norm());
+  ClusterSamples(m);
 
   // Initial state.
   *st = RigidBodyState();

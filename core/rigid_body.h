@@ -52,6 +52,15 @@ struct RigidActorDesc {
   std::string contactLayer = "default";
 };
 
+/// A contiguous range [begin, end) of a body's samples with a bounding sphere in the body frame,
+/// so that a narrow phase can skip whole groups: with a 1-Lipschitz collider field, every sample
+/// of the group has φ >= φ(centre) − radius.
+struct SampleCluster {
+  int begin = 0, end = 0;
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();  ///< [m]
+  double radius = 0.0;                               ///< [m]
+};
+
 /// One colliding quadrature sample in the body frame (origin at the centre of mass).
 struct SurfaceSample {
   Eigen::Vector3d X;       ///< reference position [m]
@@ -80,6 +89,9 @@ struct RigidBodyModel {
   Eigen::Vector3d shapeOffset = Eigen::Vector3d::Zero();    ///< [m]
   std::vector<SurfaceSample> samples;                       ///< colliding role (empty if none)
   double samplesRadius = 0.0;                               ///< max |X| over the samples [m]
+  /// The samples grouped by a body-frame grid of cell samplesRadius/2 (samples are stored cluster
+  /// by cluster).
+  std::vector<SampleCluster> sampleClusters;
   Aabb localBounds;                                         ///< body-frame bounds of the shape
   RigidCollider collider;                                   ///< collider role
   ColliderType requestedCollider = ColliderType::Auto;

@@ -74,7 +74,11 @@ void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& a, const
   // within samplesRadius of A's centre, has φ >= Φ_B(Y_A) − samplesRadius.
   if (B.collider.Evaluate(YA).value - A.samplesRadius >= delta) return;
 
-  for (const SurfaceSample& s : A.samples) {
+  for (const SampleCluster& c : A.sampleClusters) {
+    // Cluster culling: every sample of the cluster has φ >= φ(centre) − radius.
+    if (B.collider.Evaluate(YA + RBtRA * c.center).value - c.radius >= delta) continue;
+    for (int k = c.begin; k < c.end; ++k) {
+    const SurfaceSample& s = A.samples[k];
     const Eigen::Vector3d Y = YA + RBtRA * s.X;
     if (std::isfinite(reach) && Y.squaredNorm() >= reach * reach) continue;
     const SdfSample f = B.collider.Evaluate(Y);
@@ -108,6 +112,7 @@ void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& a, const
     if (order >= 2) HY = W.d2W * f.gradient * f.gradient.transpose() + W.dW * f.hessian;
     AddFunctionOfPullback(r, d, b.R, gY, order >= 2 ? &HY : nullptr, bDynamic, s.weight,
                           &out->gradient, order >= 2 ? &out->hessian : nullptr);
+    }
   }
 }
 

@@ -155,7 +155,18 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
   sample.setup = &setup;
   sample.bDynamic = bDynamic;
 
-  for (const SurfaceSample& q : A.samples) {
+  // Cluster culling bounds (1-Lipschitz fields): the reconstructed distance φ + G·(Y_n − Y) is at
+  // least φ − |Y_n − Y|, and |Y_n − Y| <= |Y_n,A − Y_A| + ‖R_n,BᵀR_n,A − R_BᵀR_A‖_F |X|.
+  const double shift = (YnA - YA).norm() + (RnBtRA - RBtRA).norm() * A.samplesRadius;
+  for (const SampleCluster& c : A.sampleClusters) {
+    if (explicitNormals) {
+      if (B.collider.Evaluate(YnA + RnBtRA * c.center).value - c.radius >= delta) continue;
+    } else {
+      const double slack = setup.mode == DissipationMode::ImplicitLoad ? 0.0 : shift;
+      if (B.collider.Evaluate(YA + RBtRA * c.center).value - c.radius - slack >= delta) continue;
+    }
+    for (int k = c.begin; k < c.end; ++k) {
+    const SurfaceSample& q = A.samples[k];
     const Eigen::Vector3d Y = YA + RBtRA * q.X;
     const Eigen::Vector3d Y0 = Y0A + R0BinvRA * q.X;
     const Eigen::Vector3d Yn = YnA + RnBtRA * q.X;
@@ -219,6 +230,7 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
           ResidualJacobian<6>(sample, q.weight, &out->jacobian);
         }
       }
+    }
     }
   }
 }

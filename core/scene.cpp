@@ -267,6 +267,9 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
     ++rep.stages;
     rep.newtonIterations += st.iterations;
     rep.lineSearchSteps += st.lineSearchSteps;
+    rep.assemblySeconds += st.assemblySeconds;
+    rep.factorizationSeconds += st.factorizationSeconds;
+    rep.lineSearchSeconds += st.lineSearchSeconds;
     rep.finalGradientNorm = std::max(rep.finalGradientNorm, st.finalGradientNorm);
     if (Severity(st.status) > Severity(rep.status)) {
       rep.status = st.status;

@@ -55,6 +55,9 @@ struct StepReport {
   int dissipativeSamples = 0;
   double dissipation = 0.0;
   double wallSeconds = 0.0;
+  double assemblySeconds = 0.0;       ///< stage solvers: energy/residual and derivative assembly
+  double factorizationSeconds = 0.0;  ///< stage solvers: linear solves (Cholesky / LU)
+  double lineSearchSeconds = 0.0;     ///< stage solvers: line-search evaluations
 };
 
 /// Energies of the current state [J].

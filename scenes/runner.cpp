@@ -30,6 +30,9 @@ bool RunScene(SceneFile* file, const RunOptions& options, RunSummary* summary, E
     if (!scene.Step(dt, &rep, error)) return false;
     ++s.steps;
     s.newtonIterations += rep.newtonIterations;
+    s.assemblySeconds += rep.assemblySeconds;
+    s.factorizationSeconds += rep.factorizationSeconds;
+    s.lineSearchSeconds += rep.lineSearchSeconds;
     s.maxNewtonIterations = std::max(s.maxNewtonIterations, rep.newtonIterations);
     (rep.status == StageStatus::Converged ? s.converged
      : rep.status == StageStatus::Stopped ? s.stopped
@@ -96,6 +99,12 @@ void PrintSummary(const SceneFile& file, const RunSummary& s, std::ostream& os) 
      << s.wallSeconds / std::max(s.simulatedSeconds, 1e-300) << " s per simulated second)\n";
   os << "Newton iterations " << double(s.newtonIterations) / std::max(1, s.steps)
      << " per step (max " << s.maxNewtonIterations << ")\n";
+  if (s.wallSeconds > 0) {
+    const double w = 100.0 / s.wallSeconds;
+    os << "time split        assembly " << s.assemblySeconds * w << " %, linear solves "
+       << s.factorizationSeconds * w << " %, line search " << s.lineSearchSeconds * w
+       << " % of the wall time\n";
+  }
   os << "stages            " << s.converged << " converged, " << s.stopped << " stopped, "
      << s.diverged << " diverged\n";
   os << "max penetration   " << s.maxPenetration * 1e3 << " mm (max of −φ at step ends)\n";

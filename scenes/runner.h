@@ -22,6 +22,7 @@ struct RunSummary {
   double simulatedSeconds = 0.0;
   double wallSeconds = 0.0;
   long newtonIterations = 0;
+  double assemblySeconds = 0.0, factorizationSeconds = 0.0, lineSearchSeconds = 0.0;
   int maxNewtonIterations = 0;
   int converged = 0, stopped = 0, diverged = 0;  ///< stages by outcome
   double maxPenetration = 0.0;        ///< max over steps of max(0, −min φ) [m]
