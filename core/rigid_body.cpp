@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <tuple>
 #include <limits>
@@ -104,6 +105,8 @@ SdfSample RigidCollider::Evaluate(const Eigen::Vector3d& X) const {
     case ColliderType::Sphere: return sphere.Evaluate(X);
     case ColliderType::Box: return box.Evaluate(X);
     case ColliderType::Plane: return plane.Evaluate(X);
+    case ColliderType::Mesh: return mesh->Evaluate(X);
+    case ColliderType::Sdf: return grid->Evaluate(X);
     default: {
       SdfSample s;
       s.value = std::numeric_limits<double>::infinity();
@@ -219,17 +222,15 @@ bool BuildRigidBody(const RigidActorDesc& d, const std::string& prefix, RigidBod
       case RigidShapeKind::Sphere: want = ColliderType::Sphere; break;
       case RigidShapeKind::Box: want = ColliderType::Box; break;
       case RigidShapeKind::Plane: want = ColliderType::Plane; break;
-      case RigidShapeKind::Mesh:
-        want = ColliderType::None;
-        m->notice = "actor '" + d.name + "': collider_type Auto resolves to Sdf for a mesh, which "
-                    "is not supported yet; the actor collides only as the colliding side";
-        break;
+      case RigidShapeKind::Mesh: want = ColliderType::Sdf; break;  // spec: Sdf for rigid meshes
     }
   }
-  if (want == ColliderType::Mesh || want == ColliderType::Sdf || want == ColliderType::PointCloud)
-    return Fail(error, prefix + "collider_type: " + ToString(want) +
-                           " is not supported yet (supported: Auto, None, Sphere, Box, Plane)");
-  const bool match = want == ColliderType::None ||
+  if (want == ColliderType::PointCloud)
+    return Fail(error, prefix + "collider_type: PointCloud is not supported yet (supported: "
+                                "Auto, None, Sphere, Box, Plane, Mesh, Sdf)");
+  const bool analytic = want == ColliderType::Sphere || want == ColliderType::Box ||
+                        want == ColliderType::Plane;
+  const bool match = want == ColliderType::None || !analytic ||
                      (want == ColliderType::Sphere && shape.kind == RigidShapeKind::Sphere) ||
                      (want == ColliderType::Box && shape.kind == RigidShapeKind::Box) ||
                      (want == ColliderType::Plane && shape.kind == RigidShapeKind::Plane);
@@ -239,6 +240,10 @@ bool BuildRigidBody(const RigidActorDesc& d, const std::string& prefix, RigidBod
                             : want == ColliderType::Box  ? "box"
                                                          : "plane") +
                            " shape, got " + shapeName);
+  if ((want == ColliderType::Mesh || want == ColliderType::Sdf) &&
+      shape.kind == RigidShapeKind::Plane)
+    return Fail(error, prefix + "collider_type: " + ToString(want) +
+                           " needs a closed shape, got plane");
   c.type = want;
   c.sphere.radius = shape.radius;
   c.box.halfExtents = shape.halfExtents;
@@ -248,6 +253,63 @@ bool BuildRigidBody(const RigidActorDesc& d, const std::string& prefix, RigidBod
                          ? std::numeric_limits<double>::infinity()
                          : std::max(m->localBounds.min.norm(), m->localBounds.max.norm());
   if (shape.kind == RigidShapeKind::Sphere) c.boundingRadius = shape.radius;
+  if (want == ColliderType::Mesh || want == ColliderType::Sdf) {
+    // The shape's closed mesh in the body frame (origin at the centre of mass).
+    TriangleMesh mesh = shape.kind == RigidShapeKind::Mesh ? *shape.mesh
+                        : shape.kind == RigidShapeKind::Sphere
+                            ? MakeIcosphere(shape.radius, shape.surfaceResolution)
+                            : MakeBoxMesh(shape.halfExtents, shape.surfaceResolution);
+    for (Eigen::Vector3d& x : mesh.vertices) x -= com;
+    std::string why;
+    auto exact = MeshSdf::Build(mesh, &why);
+    if (!exact) return Fail(error, prefix + "shape." + why);
+    c.boundingRadius = exact->BoundingRadius();
+    if (want == ColliderType::Mesh) {
+      c.mesh = exact;
+    } else {
+      if (std::string m2 = Validate(d.gridSdf, prefix + "grid_sdf."); !m2.empty())
+        return Fail(error, m2);
+      const GridSdfParams& g = d.gridSdf;
+      const Aabb bounds = mesh.Bounds();
+      const Eigen::Vector3d extent = bounds.max - bounds.min;
+      double reference = extent.maxCoeff() / 64.0;
+      if (g.resolutionMode == GridSdfResolutionMode::MeanEdgeLength) {
+        double sum = 0.0;
+        for (const Eigen::Vector3i& f : mesh.faces)
+          for (int k = 0; k < 3; ++k)
+            sum += (mesh.vertices[f[k]] - mesh.vertices[f[(k + 1) % 3]]).norm();
+        reference = sum / (3.0 * mesh.faces.size());
+      }
+      double h = g.resolutionDelta * reference;
+      const Eigen::Vector3d padded = extent + Eigen::Vector3d::Constant(2 * g.boundaryPaddingDist);
+      // At least minGridResolution voxels along every axis.
+      h = std::min(h, padded.minCoeff() / g.minGridResolution);
+      Eigen::Vector3i nodes;
+      for (int a = 0; a < 3; ++a) nodes[a] = static_cast<int>(std::ceil(padded[a] / h)) + 1;
+      const double count = double(nodes.x()) * nodes.y() * nodes.z();
+      if (count > 64e6)
+        return Fail(error, prefix + "grid_sdf: the grid would hold " + std::to_string(count) +
+                               " nodes (limit 64e6); raise resolution_delta");
+      const Eigen::Vector3d origin = bounds.min - Eigen::Vector3d::Constant(g.boundaryPaddingDist);
+      std::function<double(const Eigen::Vector3d&)> phi;
+      if (shape.kind == RigidShapeKind::Sphere) {
+        const SphereSdf sp{shape.radius};
+        phi = [sp](const Eigen::Vector3d& X) { return sp.Evaluate(X).value; };
+      } else if (shape.kind == RigidShapeKind::Box) {
+        const BoxSdf bx{shape.halfExtents};
+        phi = [bx](const Eigen::Vector3d& X) { return bx.Evaluate(X).value; };
+      } else {
+        phi = [exact](const Eigen::Vector3d& X) { return exact->Value(X); };
+      }
+      c.grid = std::make_shared<GridSdf>(GridSdf::Build(phi, origin, h, nodes));
+      c.lipschitz = std::sqrt(3.0);
+      std::ostringstream note;
+      note << "actor '" << d.name << "': grid SDF " << nodes.x() << " x " << nodes.y() << " x "
+           << nodes.z() << " nodes, voxel " << h << " m, " << c.grid->MemoryBytes() / 1048576.0
+           << " MiB";
+      m->notice = note.str();
+    }
+  }
 
   // Colliding role: dynamic rigid actors only (spec: "Default Roles by Actor Type").
   if (d.dynamic) {

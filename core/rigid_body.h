@@ -12,7 +12,10 @@
 #include "core/enums.h"
 #include "core/error.h"
 #include "geometry/aabb.h"
+#include "core/collider_params.h"
 #include "geometry/analytic_sdf.h"
+#include "geometry/grid_sdf.h"
+#include "geometry/mesh_sdf.h"
 #include "geometry/triangle_mesh.h"
 
 namespace superdex {
@@ -50,6 +53,7 @@ struct RigidActorDesc {
   ColliderType colliderType = ColliderType::Auto;
   ActorBoundaryElementType boundaryElementType = ActorBoundaryElementType::P1Q3;
   std::string contactLayer = "default";
+  GridSdfParams gridSdf;  ///< used when the collider resolves to Sdf
 };
 
 /// A contiguous range [begin, end) of a body's samples with a bounding sphere in the body frame,
@@ -70,10 +74,15 @@ struct SurfaceSample {
 
 /// The analytic field of a rigid collider, in the body frame.
 struct RigidCollider {
-  ColliderType type = ColliderType::None;  ///< resolved: None, Sphere, Box or Plane
+  ColliderType type = ColliderType::None;  ///< resolved: None, Sphere, Box, Plane, Mesh or Sdf
   SphereSdf sphere;
   BoxSdf box;
   PlaneSdf plane;
+  std::shared_ptr<const MeshSdf> mesh;     ///< Mesh: exact distance to the shape's mesh
+  std::shared_ptr<const GridSdf> grid;     ///< Sdf: trilinear grid
+  /// Bound on |∇Φ| used by the culling tests: 1 for exact distance fields, √3 for a trilinear
+  /// grid (each partial derivative of the interpolant is a node difference over h).
+  double lipschitz = 1.0;
   double boundingRadius = 0.0;  ///< max |X| over the shape (infinite for a plane) [m]
   SdfSample Evaluate(const Eigen::Vector3d& X) const;
 };

@@ -72,11 +72,12 @@ void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& a, const
 
   // Whole-pair rejection: analytic fields are exact SDFs (1-Lipschitz), so every sample, lying
   // within samplesRadius of A's centre, has φ >= Φ_B(Y_A) − samplesRadius.
-  if (B.collider.Evaluate(YA).value - A.samplesRadius >= delta) return;
+  const double L = B.collider.lipschitz;
+  if (B.collider.Evaluate(YA).value - L * A.samplesRadius >= delta) return;
 
   for (const SampleCluster& c : A.sampleClusters) {
     // Cluster culling: every sample of the cluster has φ >= φ(centre) − radius.
-    if (B.collider.Evaluate(YA + RBtRA * c.center).value - c.radius >= delta) continue;
+    if (B.collider.Evaluate(YA + RBtRA * c.center).value - L * c.radius >= delta) continue;
     for (int k = c.begin; k < c.end; ++k) {
     const SurfaceSample& s = A.samples[k];
     const Eigen::Vector3d Y = YA + RBtRA * s.X;

@@ -145,8 +145,9 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
 
   // Whole-pair rejection (exact SDFs are 1-Lipschitz): no sample of A can carry a load when both
   // A's current and last actual sample clouds stay farther than δ from B.
-  const bool nearNow = B.collider.Evaluate(YA).value - A.samplesRadius < delta;
-  const bool nearThen = B.collider.Evaluate(YnA).value - A.samplesRadius < delta;
+  const double L = B.collider.lipschitz;
+  const bool nearNow = B.collider.Evaluate(YA).value - L * A.samplesRadius < delta;
+  const bool nearThen = B.collider.Evaluate(YnA).value - L * A.samplesRadius < delta;
   if (explicitNormals ? !nearThen : !(nearNow || nearThen)) return;
 
   CurrentModeSample sample;
@@ -160,10 +161,11 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
   const double shift = (YnA - YA).norm() + (RnBtRA - RBtRA).norm() * A.samplesRadius;
   for (const SampleCluster& c : A.sampleClusters) {
     if (explicitNormals) {
-      if (B.collider.Evaluate(YnA + RnBtRA * c.center).value - c.radius >= delta) continue;
+      if (B.collider.Evaluate(YnA + RnBtRA * c.center).value - L * c.radius >= delta) continue;
     } else {
-      const double slack = setup.mode == DissipationMode::ImplicitLoad ? 0.0 : shift;
-      if (B.collider.Evaluate(YA + RBtRA * c.center).value - c.radius - slack >= delta) continue;
+      const double slack = setup.mode == DissipationMode::ImplicitLoad ? 0.0 : L * shift;
+      if (B.collider.Evaluate(YA + RBtRA * c.center).value - L * c.radius - slack >= delta)
+        continue;
     }
     for (int k = c.begin; k < c.end; ++k) {
     const SurfaceSample& q = A.samples[k];
