@@ -262,7 +262,11 @@ bool BuildRigidBody(const RigidActorDesc& d, const std::string& prefix, RigidBod
     for (Eigen::Vector3d& x : mesh.vertices) x -= com;
     std::string why;
     auto exact = MeshSdf::Build(mesh, &why);
-    if (!exact) return Fail(error, prefix + "shape." + why);
+    if (!exact)
+      return Fail(error, prefix + "shape." + why +
+                             (shape.meshSource.empty() ? "" : " in " + shape.meshSource) +
+                             "; collider_type " + ToString(want) + " needs a closed, outward "
+                             "oriented mesh (or collider_type None)");
     c.boundingRadius = exact->BoundingRadius();
     if (want == ColliderType::Mesh) {
       c.mesh = exact;

@@ -31,6 +31,7 @@ struct RigidShape {
   Eigen::Vector3d halfExtents = Eigen::Vector3d::Constant(0.5);  ///< Box [m]
   Eigen::Vector3d planeNormal = Eigen::Vector3d::UnitZ();   ///< Plane (unit after creation)
   std::shared_ptr<const TriangleMesh> mesh;                 ///< Mesh
+  std::string meshSource;                                   ///< Mesh: its file, for messages
   /// Surface resolution of the colliding samples: icosphere subdivisions for a Sphere, grid
   /// divisions per box edge for a Box; ignored for Mesh (its own faces) and Plane (no samples).
   int surfaceResolution = 3;

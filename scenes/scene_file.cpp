@@ -7,6 +7,8 @@
 #include <set>
 #include <sstream>
 
+#include "geometry/mesh_io.h"
+
 namespace superdex {
 namespace {
 
@@ -177,10 +179,11 @@ RigidShape ReadShape(const json& j, const std::string& path, const std::string& 
     if (!file.empty() && file[0] != '/' && !baseDir.empty()) file = baseDir + "/" + file;
     auto mesh = std::make_shared<TriangleMesh>();
     std::string err;
-    if (!ReadObj(file, mesh.get(), &err)) Throw(Join(path, "file"), err);
+    if (!ReadMeshFile(file, mesh.get(), &err)) Throw(Join(path, "file"), err);
     const double scale = Positive(j, path, "scale", 1.0);
     for (auto& v : mesh->vertices) v *= scale;
     s.mesh = mesh;
+    s.meshSource = file;
   } else {
     Throw(Join(path, "type"), "unknown value \"" + type + "\" (expected one of: sphere, box, plane, mesh)");
   }
@@ -210,7 +213,8 @@ void ReadActors(const json& actors, const std::string& baseDir, SceneFile* out) 
     CheckObject(a, path,
                 {"name", "type", "dynamic", "shape", "density", "mass", "inertia", "position",
                  "orientation", "euler_deg", "velocity", "angular_velocity", "contact",
-                 "collider_type", "boundary_element_type", "contact_layer", "parent", "grid"});
+                 "collider_type", "boundary_element_type", "contact_layer", "parent", "grid",
+                 "grid_sdf"});
     const std::string type = String(a, path, "type", std::string("rigid"));
     if (type != "rigid")
       Throw(Join(path, "type"), "unknown value \"" + type + "\" (supported: rigid)");
@@ -233,6 +237,20 @@ void ReadActors(const json& actors, const std::string& baseDir, SceneFile* out) 
     d.colliderType = Enum(a, path, "collider_type", ColliderType::Auto);
     d.boundaryElementType = Enum(a, path, "boundary_element_type", ActorBoundaryElementType::P1Q3);
     d.contactLayer = String(a, path, "contact_layer", std::string("default"));
+    if (a.contains("grid_sdf")) {
+      const json& g = a.at("grid_sdf");
+      const std::string gp = Join(path, "grid_sdf");
+      CheckObject(g, gp, {"resolution_mode", "resolution_delta", "min_grid_resolution",
+                          "boundary_padding_dist"});
+      const std::string mode = String(g, gp, "resolution_mode", std::string("MeanEdgeLength"));
+      if (mode == "MeanEdgeLength") d.gridSdf.resolutionMode = GridSdfResolutionMode::MeanEdgeLength;
+      else if (mode == "BoundingExtent") d.gridSdf.resolutionMode = GridSdfResolutionMode::BoundingExtent;
+      else Throw(Join(gp, "resolution_mode"), "unknown value \"" + mode + "\" (expected one of: MeanEdgeLength, BoundingExtent)");
+      d.gridSdf.resolutionDelta = Number(g, gp, "resolution_delta", d.gridSdf.resolutionDelta);
+      d.gridSdf.minGridResolution = Integer(g, gp, "min_grid_resolution", d.gridSdf.minGridResolution, 2, 4096);
+      d.gridSdf.boundaryPaddingDist = Number(g, gp, "boundary_padding_dist", d.gridSdf.boundaryPaddingDist);
+      if (std::string m = Validate(d.gridSdf, gp + "."); !m.empty()) throw LoadError{m};
+    }
     ActorHandle parent;
     if (a.contains("parent")) {
       const std::string p = String(a, path, "parent");

@@ -7,6 +7,7 @@
 #include "bindings.h"
 #include "core/rigid_math.h"
 #include "core/scene.h"
+#include "geometry/mesh_io.h"
 #include "geometry/triangle_mesh.h"
 #include "scenes/scene_file.h"
 
@@ -180,13 +181,14 @@ void BindScene(py::module_& m) {
           [](const std::string& path, double scale) {
             auto mesh = std::make_shared<TriangleMesh>();
             std::string error;
-            if (!ReadObj(path, mesh.get(), &error)) throw py::value_error(error);
+            if (!ReadMeshFile(path, mesh.get(), &error)) throw py::value_error(error);
             for (auto& x : mesh->vertices) x *= scale;
             RigidShape s = MakeShape(RigidShapeKind::Mesh);
             s.mesh = mesh;
+            s.meshSource = path;
             return s;
           },
-          py::arg("path"), py::arg("scale") = 1.0, "A closed triangle mesh read from an OBJ file.")
+          py::arg("path"), py::arg("scale") = 1.0, "A closed triangle mesh read from an OBJ, OFF, STL or PLY file.")
       .def_property_readonly("kind", [](const RigidShape& s) {
         const char* names[] = {"sphere", "box", "mesh", "plane"};
         return std::string(names[static_cast<int>(s.kind)]);

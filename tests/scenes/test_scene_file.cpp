@@ -194,3 +194,30 @@ TEST_CASE("scene file: layers, parents and the contact_filter controls", "[scene
   CHECK_FALSE(LoadSceneText(Replace(text, R"("parent": "arm")", R"("parent": "hand")"), ".", &bad, &e));
   CHECK(e.message == "actors[2].parent: no earlier actor named \"hand\"");
 }
+
+TEST_CASE("scene file: an open mesh used as a collider names the file and the defect",
+          "[scenes][mesh]") {
+  const std::string dir = std::string(SUPERDEX_BINARY_DIR);
+  const std::string open = dir + "/open_tet.obj";
+  std::ofstream(open) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n";
+  const std::string closed = dir + "/closed_tet.obj";
+  std::ofstream(closed) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  auto text = [](const std::string& file, const std::string& collider) {
+    return R"({"format": "superdex-scene/1", "actors": [{"name": "rock", "dynamic": false,
+      "shape": {"type": "mesh", "file": ")" + file + R"("}, "collider_type": ")" + collider + R"("}]})";
+  };
+  SceneFile f;
+  Error e;
+  CHECK_FALSE(LoadSceneText(text(open, "Auto"), ".", &f, &e));
+  CHECK(e.message.rfind("actors[0].shape.mesh: not closed (boundary edge", 0) == 0);
+  CHECK(e.message.find("in " + open + "; collider_type Sdf needs a closed") != std::string::npos);
+  REQUIRE(LoadSceneText(text(closed, "Auto"), ".", &f, &e));
+  CHECK(f.scene->Model({0}).collider.type == ColliderType::Sdf);
+  REQUIRE(LoadSceneText(text(closed, "Mesh"), ".", &f, &e));
+  CHECK(f.scene->Model({0}).collider.type == ColliderType::Mesh);
+  // The grid's size and memory are reported.
+  bool reported = false;
+  REQUIRE(LoadSceneText(text(closed, "Sdf"), ".", &f, &e));
+  for (const auto& n : f.scene->Notices()) reported |= n.find("MiB") != std::string::npos;
+  CHECK(reported);
+}
