@@ -5,12 +5,15 @@
 //               pressed 0.5 mm into its neighbours and the lowest layer into the ground
 //   tori 200    200 non-convex tori (R = 0.1 m, r = 0.03 m, mesh shapes, Sdf colliders) in
 //               stacks of two, each resting 0.5 mm into the one below or the ground
+// SUPERDEX_EXPLICIT_NORMALS=1 runs the explicit-normals mode (exact potential, Cholesky).
 // Columns: steps timed (after one warm-up step), wall seconds per step, Newton iterations per
 // step, active samples (penalty) at the end, and microseconds per active sample per Newton
-// iteration: the figure that should stay flat if the cost is linear in the active samples.
+// iteration: the figure that should stay flat if the cost is linear in the active samples; and
+// the wall-time shares of assembly, linear solves and line search.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <memory>
 
@@ -46,22 +49,33 @@ void Measure(const char* name, Scene& scene, int steps) {
   }
   long newton = 0;
   int failed = 0;
+  double assembly = 0, solve = 0, search = 0;
   const auto t0 = std::chrono::steady_clock::now();
   for (int i = 0; i < steps; ++i) {
     scene.Step(1e-2, &r, &e);
     newton += r.newtonIterations;
     failed += r.status != StageStatus::Converged;
+    assembly += r.assemblySeconds;
+    solve += r.factorizationSeconds;
+    search += r.lineSearchSeconds;
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const int active = r.contact.activeSamples;
-  std::printf("%-12s %7d %6d %12.4g %10.2f %10d %16.3f %5d\n", name, scene.NumActors(), steps,
-              wall / steps, double(newton) / steps, active,
-              1e6 * wall / std::max(1L, newton) / std::max(1, active), failed);
+  std::printf("%-12s %7d %6d %12.4g %10.2f %10d %16.3f %5d   %3.0f/%3.0f/%3.0f\n", name,
+              scene.NumActors(), steps, wall / steps, double(newton) / steps, active,
+              1e6 * wall / std::max(1L, newton) / std::max(1, active), failed,
+              100 * assembly / wall, 100 * solve / wall, 100 * search / wall);
   std::fflush(stdout);
 }
 
+SceneSettings Settings() {
+  SceneSettings s;
+  if (std::getenv("SUPERDEX_EXPLICIT_NORMALS")) s.eval.explicitNormals = true;
+  return s;
+}
+
 std::unique_ptr<Scene> Spheres(int n) {
-  auto scene = std::make_unique<Scene>();
+  auto scene = std::make_unique<Scene>(Settings());
   Error e;
   RigidActorDesc ground;
   ground.name = "ground";
@@ -85,7 +99,7 @@ std::unique_ptr<Scene> Spheres(int n) {
 }
 
 std::unique_ptr<Scene> Tori(int n) {
-  auto scene = std::make_unique<Scene>();
+  auto scene = std::make_unique<Scene>(Settings());
   Error e;
   RigidActorDesc ground;
   ground.name = "ground";
@@ -113,8 +127,9 @@ std::unique_ptr<Scene> Tori(int n) {
 
 int main(int argc, char** argv) {
   const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
-  std::printf("%-12s %7s %6s %12s %10s %10s %16s %5s\n", "scene", "actors", "steps", "wall/step s",
-              "Newton/st", "active", "us/sample/iter", "fail");
+  std::printf("%-12s %7s %6s %12s %10s %10s %16s %5s   %s\n", "scene", "actors", "steps",
+              "wall/step s", "Newton/st", "active", "us/sample/iter", "fail",
+              "assembly/solve/line search %");
   Measure("spheres", *Spheres(1000), quick ? 1 : 3);
   if (!quick) Measure("spheres", *Spheres(4000), 2);
   Measure("tori (Sdf)", *Tori(200), quick ? 1 : 3);

@@ -121,7 +121,7 @@ void BindParams(py::module_& m) {
         "Alignment-based attenuation a = (m - s)/(m + 1) of dissipation. Default True.");
 
   py::class_<GridSdfParams> gp(m, "GridSdfParams",
-                               "Grid SDF construction (the Sdf collider is not implemented yet).");
+                               "Grid SDF construction for Sdf colliders (RigidActorDesc.grid_sdf).");
   gp.def(py::init<>());
   Field(gp, "resolution_mode", &GridSdfParams::resolutionMode,
         "Reference length for the voxel size. Default MeanEdgeLength.");

@@ -226,7 +226,8 @@ void BindScene(py::module_& m) {
       .def_readwrite("contact", &RigidActorDesc::contact, "ContactParams")
       .def_readwrite("collider_type", &RigidActorDesc::colliderType)
       .def_readwrite("boundary_element_type", &RigidActorDesc::boundaryElementType)
-      .def_readwrite("contact_layer", &RigidActorDesc::contactLayer);
+      .def_readwrite("contact_layer", &RigidActorDesc::contactLayer)
+      .def_readwrite("grid_sdf", &RigidActorDesc::gridSdf, "GridSdfParams for an Sdf collider");
 
   py::class_<NonlinearSolverParams>(m, "NonlinearSolverParams", "Stage solver settings.")
       .def(py::init<>())

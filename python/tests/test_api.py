@@ -122,3 +122,19 @@ def test_filtering_methods():
     assert hand.contact_layer == "ghost"
     scene.enable_layer_contact_asymmetric("ghost", "default", False)
     assert not scene.contact_allowed(hand, ground) and scene.contact_allowed(ground, hand)
+
+
+def test_mesh_and_sdf_colliders_from_python(tmp_path):
+    obj = tmp_path / "tet.obj"
+    obj.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
+    scene = sd.Scene()
+    d = sd.RigidActorDesc("rock", sd.RigidShape.mesh(str(obj), scale=0.2), dynamic=False)
+    d.grid_sdf.min_grid_resolution = 8
+    rock = scene.add_rigid_actor(d)
+    assert rock.dynamic is False
+    open_obj = tmp_path / "open.obj"
+    open_obj.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n")
+    bad = sd.RigidActorDesc("bad", sd.RigidShape.mesh(str(open_obj)), dynamic=False)
+    bad.collider_type = sd.ColliderType.Mesh
+    with pytest.raises(ValueError, match="not closed"):
+        scene.add_rigid_actor(bad)
