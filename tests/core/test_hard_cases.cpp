@@ -1,0 +1,179 @@
+// Hard cases: each asserts no NaN, every stage converged, and a stated penetration or motion bound.
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "core/scene.h"
+#include "scene_builders.h"
+
+using namespace superdex;
+
+namespace {
+
+struct Outcome {
+  int notConverged = 0;
+  double maxPenetration = 0.0;  // max over steps of −min φ [m]
+  bool finite = true;
+};
+
+Outcome Run(Scene& scene, double dt, double duration) {
+  Outcome o;
+  Error e;
+  const int steps = static_cast<int>(std::lround(duration / dt));
+  for (int i = 0; i < steps; ++i) {
+    StepReport r;
+    REQUIRE(scene.Step(dt, &r, &e));
+    o.notConverged += r.status != StageStatus::Converged;
+    if (r.status != StageStatus::Converged) WARN("step " << i << ": " << r.message);
+    o.maxPenetration = std::max(o.maxPenetration, -r.contact.minSignedDistance);
+    for (const auto& s : scene.States()) o.finite &= s.p.allFinite() && s.R.allFinite();
+  }
+  return o;
+}
+
+RigidActorDesc Box(const std::string& name, double side, double mass, const Eigen::Vector3d& p) {
+  RigidActorDesc d = test::Cube(1e9, 0.5, 0.0);
+  d.name = name;
+  d.shape.halfExtents = Eigen::Vector3d::Constant(side / 2);
+  d.mass = mass;
+  d.position = p;
+  return d;
+}
+
+}  // namespace
+
+TEST_CASE("hard case: 1000:1 mass ratio, a 1000 kg box on a 1 kg box", "[core][hard]") {
+  Scene scene;
+  Error e;
+  REQUIRE(scene.AddRigidActor(test::StaticGround(), &e).IsValid());
+  REQUIRE(scene.AddRigidActor(Box("light", 0.2, 1.0, {0, 0, 0.1 + 1e-5}), &e).IsValid());
+  REQUIRE(scene.AddRigidActor(Box("heavy", 0.2, 1000.0, {0, 0, 0.3 + 2e-5}), &e).IsValid());
+  const Outcome o = Run(scene, 1e-2, 2.0);
+  INFO("max penetration " << o.maxPenetration * 1e3 << " mm, heavy at z = "
+                          << scene.State({2}).p.z());
+  CHECK(o.finite);
+  CHECK(o.notConverged == 0);
+  CHECK(o.maxPenetration < 0.01);
+  CHECK(std::abs(scene.State({2}).p.z() - 0.3) < 0.01);
+}
+
+TEST_CASE("hard case: mu = 1 box on a 40 degree incline with V_f = 1e-5 m/s holds",
+          "[core][hard][friction]") {
+  const double th = 40.0 * M_PI / 180.0;
+  const Eigen::Vector3d n(std::sin(th), 0, std::cos(th)), down(std::cos(th), 0, -std::sin(th));
+  SceneSettings settings;
+  settings.integrator = IntegrationMethod::BackwardEuler;
+  Scene scene(settings);
+  Error e;
+  REQUIRE(scene.AddRigidActor(test::Ground(n, 1e9, 1.0, 1.0), &e).IsValid());
+  // A flat box (0.3 × 0.3 × 0.1 m): a 0.2 m cube is close to tipping on 40° (it must carry its
+  // load 0.1 tan 40° = 0.084 m downhill of the centre, and its outermost quadrature samples lie
+  // at 0.083 m (2 cells per edge) or 0.092 m (4 cells): measured, it tips over in both cases).
+  RigidActorDesc cube = test::Cube(1e9, 1.0, 1.0);
+  cube.shape.halfExtents = Eigen::Vector3d(0.15, 0.15, 0.05);
+  cube.shape.surfaceResolution = 3;
+  cube.contact.frictionFalloffVel = 1e-5;
+  cube.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(th, Eigen::Vector3d::UnitY()));
+  cube.position = n * (0.05 + 1e-5);
+  REQUIRE(scene.AddRigidActor(cube, &e).IsValid());
+  const auto bottom = [&]() -> Eigen::Vector3d {
+    return scene.State({1}).p + scene.State({1}).R * Eigen::Vector3d(0, 0, -0.05);
+  };
+  Outcome o = Run(scene, 1e-2, 0.5);  // release transient
+  const Eigen::Vector3d b0 = bottom();
+  const Outcome o2 = Run(scene, 1e-2, 1.0);
+  const double creep = (bottom() - b0).dot(down);  // over 1 s
+  INFO("creep " << creep * 1e3 << " mm/s after the release; penetration "
+                << std::max(o.maxPenetration, o2.maxPenetration) * 1e3 << " mm");
+  CHECK(o.finite);
+  CHECK(o.notConverged + o2.notConverged == 0);
+  CHECK(std::abs(creep) < 1e-5);
+}
+
+TEST_CASE("hard case: stiff contact k = 1e11 and a coarse step 1/30 s", "[core][hard]") {
+  SECTION("k = 1e11, box resting") {
+    Scene scene;
+    Error e;
+    REQUIRE(scene.AddRigidActor(test::StaticGround(1e11, 0.5), &e).IsValid());
+    RigidActorDesc b = Box("box", 0.2, 1.0, {0, 0, 0.101});
+    b.contact.penaltyCoefficient = 1e11;
+    REQUIRE(scene.AddRigidActor(b, &e).IsValid());
+    const Outcome o = Run(scene, 5e-3, 1.0);
+    CHECK(o.finite);
+    CHECK(o.notConverged == 0);
+    CHECK(o.maxPenetration < 1e-3);
+  }
+  SECTION("dt = 1/30 s, a stack of 5 boxes stands") {
+    Scene scene;
+    Error e;
+    REQUIRE(scene.AddRigidActor(test::StaticGround(), &e).IsValid());
+    for (int k = 0; k < 5; ++k)
+      REQUIRE(scene.AddRigidActor(Box("b" + std::to_string(k), 0.2, 1.0, {0, 0, 0.1 + 0.2 * k + 1e-5 * (k + 1)}), &e).IsValid());
+    const Outcome o = Run(scene, 1.0 / 30, 3.0);
+    INFO("top at z = " << scene.State({5}).p.z());
+    CHECK(o.finite);
+    CHECK(o.notConverged == 0);
+    CHECK(std::abs(scene.State({5}).p.z() - 0.9) < 0.01);
+    CHECK(std::abs(scene.State({5}).p.x()) < 1e-3);
+  }
+}
+
+TEST_CASE("hard case: a box spinning on a plane stops at the friction-torque rate",
+          "[core][hard][friction]") {
+  // Uniform pressure m g / A on the bottom face; sliding friction torque Σ μ (m g / A) w_q |r_q|
+  // over the bottom samples (the quadrature's own ∫|r| dA), I = m a²/6.
+  SceneSettings settings;
+  Scene scene(settings);
+  Error e;
+  REQUIRE(scene.AddRigidActor(test::StaticGround(1e9, 0.5), &e).IsValid());
+  RigidActorDesc b = Box("box", 0.2, 1.0, {0, 0, 0.1000165});
+  b.angularVelocity = Eigen::Vector3d(0, 0, 20.0);
+  REQUIRE(scene.AddRigidActor(b, &e).IsValid());
+  double integral = 0.0;  // Σ w |r| over the bottom face
+  for (const SurfaceSample& s : scene.Model({1}).samples)
+    if (s.normal.z() < -0.5) integral += s.weight * s.X.head<2>().norm();
+  const double I = 1.0 * 0.04 / 6.0, A = 0.04;
+  const double expected = 0.5 * 9.81 * 1.0 / A * integral / I;  // [rad/s²]
+  Run(scene, 2e-3, 0.05);  // settle the spin-up of the contact
+  const double w0 = scene.State({1}).Rdot.norm() / std::sqrt(2.0);
+  const double t0 = scene.Time();
+  const Outcome o = Run(scene, 2e-3, 0.15);
+  const double w1 = scene.State({1}).Rdot.norm() / std::sqrt(2.0);
+  const double rate = (w0 - w1) / (scene.Time() - t0);
+  INFO("spin-down " << rate << " rad/s², expected " << expected << "; ω " << w0 << " → " << w1);
+  CHECK(o.notConverged == 0);
+  CHECK(std::abs(rate - expected) < 0.02 * expected);
+}
+
+TEST_CASE("hard case: a 20 m/s sphere does not tunnel through a 1 cm static plate",
+          "[core][hard]") {
+  // Sphere r = 0.05 m, 1 kg; plate 1 × 1 × 0.01 m. At Δt = 1e-4 s the sphere moves 2 mm per
+  // step, a fifth of the plate, so its samples cannot skip the plate's interior. The penalty
+  // must also be able to absorb the 200 J within half the plate (beyond the mid-plane the box
+  // SDF pushes towards the far face): with the default k = 1e9 Pa/m the work over 5 mm is about
+  // ½ k d (π 2 r d) d ≈ 20 J and the sphere tunnels (measured); k = 1e11 stops it.
+  Scene scene;
+  Error e;
+  RigidActorDesc plate;
+  plate.name = "plate";
+  plate.dynamic = false;
+  plate.shape.kind = RigidShapeKind::Box;
+  plate.shape.halfExtents = Eigen::Vector3d(0.5, 0.5, 0.005);
+  REQUIRE(scene.AddRigidActor(plate, &e).IsValid());
+  RigidActorDesc ball;
+  ball.name = "ball";
+  ball.shape.radius = 0.05;
+  ball.shape.surfaceResolution = 3;
+  ball.mass = 1.0;
+  ball.position = Eigen::Vector3d(0, 0, 0.005 + 0.05 + 0.01);
+  ball.linearVelocity = Eigen::Vector3d(0, 0, -20.0);
+  ball.contact.penaltyCoefficient = 1e11;  // k of a static collider's pair: the colliding actor's
+  REQUIRE(scene.AddRigidActor(ball, &e).IsValid());
+  const Outcome o = Run(scene, 1e-4, 0.05);
+  INFO("ball at z = " << scene.State({1}).p.z() << ", v_z = " << scene.State({1}).v.z()
+                      << ", max penetration " << o.maxPenetration * 1e3 << " mm");
+  CHECK(o.finite);
+  CHECK(o.notConverged == 0);
+  CHECK(scene.State({1}).p.z() > 0.005);  // above the plate
+  CHECK(scene.State({1}).v.z() > 0.0);    // bounced
+  CHECK(o.maxPenetration < 0.005);        // less than half the plate
+}
