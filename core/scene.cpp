@@ -232,8 +232,32 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
   SolverStats st;
   switch (settings_.stageSolver) {
     case StageSolverKind::Newton:
-      st = problem.IsPotential() ? MinimizeNewton(problem, settings_.solver, dt)
-                                 : SolveResidualNewton(problem, settings_.solver, dt);
+      if (problem.IsPotential()) {
+        st = MinimizeNewton(problem, settings_.solver, dt);
+        break;
+      }
+      {
+        const std::vector<RigidPose> guess = *poses;
+        st = SolveResidualNewton(problem, settings_.solver, dt);
+        if (st.status != StageStatus::Converged) {
+          // Fallback: the residual modes have no potential to globalize Newton with. Re-solve
+          // this stage with stage-start normals and load (the explicit-normals potential,
+          // minimized by projected Newton) and say so in the report.
+          *poses = guess;
+          StageDissipation potential = dissipation;
+          potential.mode = DissipationMode::ExplicitNormals;
+          RigidStageProblem retry(models_, dofOffset_, numDofs_, targets, settings_.gravity,
+                                  &pipeline_, poses, potential);
+          const SolverStats second = MinimizeNewton(retry, settings_.solver, dt);
+          const std::string why = st.message;
+          st = second;
+          st.message = "residual solve failed (" + why + "); stage re-solved with explicit "
+                       "normals" + (second.status == StageStatus::Converged ? "" : ": " + second.message);
+          st.fallback = true;
+          *contact = retry.LastContactStats();
+          return st;
+        }
+      }
       break;
     case StageSolverKind::Ipopt:
       st = MinimizeIpopt(problem, IpoptStageParams());
@@ -267,6 +291,10 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
     ++rep.stages;
     rep.newtonIterations += st.iterations;
     rep.lineSearchSteps += st.lineSearchSteps;
+    if (st.fallback) {
+      ++rep.fallbacks;
+      if (rep.fallbackMessage.empty()) rep.fallbackMessage = st.message;
+    }
     rep.assemblySeconds += st.assemblySeconds;
     rep.factorizationSeconds += st.factorizationSeconds;
     rep.lineSearchSeconds += st.lineSearchSeconds;

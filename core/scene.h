@@ -46,6 +46,9 @@ struct StepReport {
   int lineSearchSteps = 0;
   StageStatus status = StageStatus::Converged;  ///< worst over the stages
   std::string message;         ///< the solver's message for a non-converged stage
+  int fallbacks = 0;           ///< stages re-solved with explicit normals after a failed
+                               ///< residual solve (see Scene::SolveStage)
+  std::string fallbackMessage; ///< the first such stage's message
   double finalGradientNorm = 0.0;  ///< largest over the stages
   ContactStats contact;        ///< at the end of the step (penalty only)
   /// The stages' contact evaluations at their last iterates (with dissipation): largest

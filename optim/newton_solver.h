@@ -75,6 +75,7 @@ struct SolverStats {
   double factorizationSeconds = 0.0;
   double lineSearchSeconds = 0.0;
   std::string message;                 ///< why it stopped, in words
+  bool fallback = false;               ///< set by a caller that re-solved the stage another way
 };
 
 /// Minimizes the problem from its current state. The problem is left at the last accepted iterate.

@@ -30,6 +30,7 @@ bool RunScene(SceneFile* file, const RunOptions& options, RunSummary* summary, E
     if (!scene.Step(dt, &rep, error)) return false;
     ++s.steps;
     s.newtonIterations += rep.newtonIterations;
+    s.fallbacks += rep.fallbacks;
     s.assemblySeconds += rep.assemblySeconds;
     s.factorizationSeconds += rep.factorizationSeconds;
     s.lineSearchSeconds += rep.lineSearchSeconds;
@@ -99,6 +100,9 @@ void PrintSummary(const SceneFile& file, const RunSummary& s, std::ostream& os) 
      << s.wallSeconds / std::max(s.simulatedSeconds, 1e-300) << " s per simulated second)\n";
   os << "Newton iterations " << double(s.newtonIterations) / std::max(1, s.steps)
      << " per step (max " << s.maxNewtonIterations << ")\n";
+  if (s.fallbacks > 0)
+    os << "fallbacks         " << s.fallbacks
+       << " stages: residual solve failed, re-solved with explicit normals\n";
   if (s.wallSeconds > 0) {
     const double w = 100.0 / s.wallSeconds;
     os << "time split        assembly " << s.assemblySeconds * w << " %, linear solves "

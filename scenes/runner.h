@@ -22,6 +22,7 @@ struct RunSummary {
   double simulatedSeconds = 0.0;
   double wallSeconds = 0.0;
   long newtonIterations = 0;
+  int fallbacks = 0;  ///< stages re-solved with explicit normals after a failed residual solve
   double assemblySeconds = 0.0, factorizationSeconds = 0.0, lineSearchSeconds = 0.0;
   int maxNewtonIterations = 0;
   int converged = 0, stopped = 0, diverged = 0;  ///< stages by outcome
