@@ -464,11 +464,20 @@ std::vector<std::string> Scene::Notices() const {
 }
 
 bool Scene::HasDissipation() const {
-  for (const auto& m : models_)
-    if (m.contact.coulombFrictionCoefficient > 0 || m.contact.viscousFrictionCoefficient > 0 ||
-        m.contact.normalViscousDampingCoefficient > 0)
-      return true;
-  return false;
+  // A pair's μ, c_t and c_n are geometric means: dissipation needs two actors, one of them
+  // dynamic, that both have a nonzero coefficient of the same kind.
+  auto twoWith = [&](auto coefficient) {
+    int count = 0, dynamic = 0;
+    for (const auto& m : models_)
+      if (coefficient(m.contact) > 0) {
+        ++count;
+        dynamic += m.dynamic;
+      }
+    return count >= 2 && dynamic >= 1;
+  };
+  return twoWith([](const ContactParams& c) { return c.coulombFrictionCoefficient; }) ||
+         twoWith([](const ContactParams& c) { return c.viscousFrictionCoefficient; }) ||
+         twoWith([](const ContactParams& c) { return c.normalViscousDampingCoefficient; });
 }
 
 }  // namespace superdex

@@ -1,4 +1,5 @@
-// Sparse symmetric solves: CHOLMOD supernodal LLᵀ first, Eigen's SimplicialLDLT as the fallback.
+// Symmetric solves: a dense Cholesky for small systems (<= 48 unknowns); otherwise CHOLMOD
+// supernodal LLᵀ first, Eigen's SimplicialLDLT as the fallback.
 //
 // Both backends read only the lower triangle of H (the full symmetric matrix is stored). The
 // symbolic analysis (fill-reducing ordering, elimination tree, supernode structure) depends only
@@ -6,6 +7,7 @@
 // those of the last analysis; the numeric factorization is redone on every call.
 #include "optim/linear_solver.h"
 
+#include <Eigen/Cholesky>
 #include <Eigen/CholmodSupport>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
@@ -17,13 +19,17 @@ namespace {
 
 using SparseMatrix = Eigen::SparseMatrix<double>;
 
-enum class BackendKind { None, Cholmod, Ldlt };
+enum class BackendKind { None, Dense, Cholmod, Ldlt };
+
+// Below this size a dense Cholesky is cheaper than CHOLMOD's setup (a single rigid body: 6 dofs).
+constexpr Eigen::Index kDenseLimit = 48;
 
 }  // namespace
 
 struct SymmetricSolver::Impl {
   Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> cholmod;
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower> ldlt;
+  Eigen::LLT<Eigen::MatrixXd, Eigen::Lower> dense;
   // Pattern (rows, outer and inner index arrays) of the last symbolic analysis.
   Eigen::Index rows = -1;
   std::vector<SparseMatrix::StorageIndex> outer, inner;
@@ -91,6 +97,14 @@ bool SymmetricSolver::Factorize(const Eigen::SparseMatrix<double>& H) {
   }
   // A non-finite entry cannot be factorized meaningfully by either backend.
   if (!Eigen::Map<const Eigen::VectorXd>(A->valuePtr(), A->nonZeros()).allFinite()) return false;
+  if (A->rows() <= kDenseLimit) {
+    s.dense.compute(Eigen::MatrixXd(*A));
+    if (s.dense.info() == Eigen::Success) {
+      s.backend = BackendKind::Dense;
+      return true;
+    }
+    // Not positive definite: fall through to the sparse backends, which report the same.
+  }
   if (!s.SamePattern(*A)) s.StorePattern(*A);
   if (s.FactorizeCholmod(*A)) {
     s.backend = BackendKind::Cholmod;
@@ -105,6 +119,7 @@ bool SymmetricSolver::Factorize(const Eigen::SparseMatrix<double>& H) {
 
 Eigen::VectorXd SymmetricSolver::Solve(const Eigen::VectorXd& b) const {
   switch (impl_->backend) {
+    case BackendKind::Dense: return impl_->dense.solve(b);
     case BackendKind::Cholmod: return impl_->cholmod.solve(b);
     case BackendKind::Ldlt: return impl_->ldlt.solve(b);
     case BackendKind::None: break;
@@ -115,6 +130,7 @@ Eigen::VectorXd SymmetricSolver::Solve(const Eigen::VectorXd& b) const {
 
 const char* SymmetricSolver::Backend() const {
   switch (impl_->backend) {
+    case BackendKind::Dense: return "dense";
     case BackendKind::Cholmod: return "cholmod";
     case BackendKind::Ldlt: return "ldlt";
     case BackendKind::None: break;

@@ -22,7 +22,8 @@ class SymmetricSolver {
   /// Solves H x = b with the last factorization; all NaN if the last Factorize returned false
   /// (a failed attempt overwrites the previous factors).
   Eigen::VectorXd Solve(const Eigen::VectorXd& b) const;
-  /// "cholmod" or "ldlt": the backend of the last factorization; "none" if it failed.
+  /// "dense" (<= 48 unknowns), "cholmod" or "ldlt": the backend of the last factorization;
+  /// "none" if it failed.
   const char* Backend() const;
 
  private:

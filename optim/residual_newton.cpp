@@ -1,5 +1,6 @@
 #include "optim/residual_newton.h"
 
+#include <Eigen/LU>
 #include <Eigen/UmfPackSupport>
 #include <chrono>
 #include <cmath>
@@ -22,6 +23,8 @@ constexpr double kRoundoffBand = 1e-14;
 /// UMFPACK LU with the symbolic analysis reused while the sparsity pattern is unchanged.
 class LuSolver {
  public:
+  /// Below this size a dense partial-pivoting LU is cheaper than UMFPACK's setup.
+  static constexpr Eigen::Index kDenseLimit = 48;
   LuSolver() {
     // The stage Jacobians are structurally symmetric (the contact graph) and nearly symmetric in
     // value: UMFPACK's symmetric strategy (ordering of A + Aᵀ, diagonal pivots preferred) with a
@@ -30,6 +33,13 @@ class LuSolver {
     lu_.umfpackControl()(UMFPACK_ORDERING) = UMFPACK_ORDERING_METIS;
   }
   bool Factorize(const SparseMatrix& J) {
+    dense_ = J.rows() <= kDenseLimit;
+    if (dense_) {
+      denseLu_.compute(Eigen::MatrixXd(J));
+      // PartialPivLU does not report singularity: check the pivots.
+      const Eigen::VectorXd pivots = denseLu_.matrixLU().diagonal().cwiseAbs();
+      return pivots.minCoeff() > 1e-14 * std::max(pivots.maxCoeff(), 1e-300);
+    }
     if (!SamePattern(J)) {
       lu_.analyzePattern(J);
       outer_.assign(J.outerIndexPtr(), J.outerIndexPtr() + J.outerSize() + 1);
@@ -38,7 +48,9 @@ class LuSolver {
     lu_.factorize(J);
     return lu_.info() == Eigen::Success;
   }
-  Eigen::VectorXd Solve(const Eigen::VectorXd& b) { return lu_.solve(b); }
+  Eigen::VectorXd Solve(const Eigen::VectorXd& b) {
+    return dense_ ? Eigen::VectorXd(denseLu_.solve(b)) : Eigen::VectorXd(lu_.solve(b));
+  }
 
  private:
   bool SamePattern(const SparseMatrix& J) const {
@@ -48,6 +60,8 @@ class LuSolver {
            std::equal(inner_.begin(), inner_.end(), J.innerIndexPtr());
   }
   Eigen::UmfPackLU<SparseMatrix> lu_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> denseLu_;
+  bool dense_ = false;
   std::vector<SparseMatrix::StorageIndex> outer_, inner_;
 };
 

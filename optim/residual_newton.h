@@ -3,7 +3,8 @@
 //
 // Each iteration k at state s_k:
 //   1. r, J ← problem.EvaluateResidual (J = ∂r/∂δ, not symmetric). Non-finite → Diverged.
-//   2. d = −J⁻¹ r with a sparse LU (UMFPACK; symbolic analysis kept while the pattern holds). If J
+//   2. d = −J⁻¹ r with a sparse LU (UMFPACK; symbolic analysis kept while the pattern holds; a
+//      dense partial-pivoting LU up to 48 unknowns). If J
 //      is singular, J + τI with τ = 1e-8 max|J_ii| ×10 up to 12 times; none works → Diverged.
 //   3. Convergence tests on d before stepping, as the minimizer's (same parameters and units):
 //        a. ½ |r·d| <= absoluteTolerance  [J]  (the Newton decrement's analogue)
