@@ -353,10 +353,17 @@ Eigen::Vector3d LinearMomentum(const RigidBodyModel& m, const RigidBodyState& s)
   return m.mass * s.v;
 }
 
+Eigen::Vector3d SpinMomentum(const Eigen::Matrix3d& R, const Eigen::Matrix3d& Rdot,
+                             const Eigen::Matrix3d& J) {
+  return Axial(Rdot * J * R.transpose() - R * J * Rdot.transpose());
+}
+
+Eigen::Matrix3d WorldInertia(const Eigen::Matrix3d& R, const Eigen::Matrix3d& J) {
+  return R * (J.trace() * Eigen::Matrix3d::Identity() - J) * R.transpose();
+}
+
 Eigen::Vector3d AngularMomentum(const RigidBodyModel& m, const RigidBodyState& s) {
-  const Eigen::Matrix3d A =
-      s.Rdot * m.secondMoment * s.R.transpose() - s.R * m.secondMoment * s.Rdot.transpose();
-  return m.mass * s.p.cross(s.v) + Axial(A);
+  return m.mass * s.p.cross(s.v) + SpinMomentum(s.R, s.Rdot, m.secondMoment);
 }
 
 Aabb WorldBounds(const RigidBodyModel& m, const Eigen::Vector3d& p, const Eigen::Matrix3d& R) {

@@ -134,6 +134,12 @@ double KineticEnergy(const RigidBodyModel& model, const RigidBodyState& state);
 /// m p × v + axial(Ṙ J Rᵀ − R J Ṙᵀ) [kg·m²/s] (the integral of x × v dm over material points).
 Eigen::Vector3d LinearMomentum(const RigidBodyModel& model, const RigidBodyState& state);
 Eigen::Vector3d AngularMomentum(const RigidBodyModel& model, const RigidBodyState& state);
+/// Spin angular momentum about the centre of mass of a material-point state (R, Ṙ), world frame:
+/// L = axial(Ṙ J Rᵀ − R J Ṙᵀ) [kg·m²/s] for the second moment J (R, Ṙ may be affine).
+Eigen::Vector3d SpinMomentum(const Eigen::Matrix3d& R, const Eigen::Matrix3d& Rdot,
+                             const Eigen::Matrix3d& J);
+/// World inertia tensor R (tr(J) 1 − J) Rᵀ [kg·m²]: L = I_w ω for Ṙ = [ω]× R.
+Eigen::Matrix3d WorldInertia(const Eigen::Matrix3d& R, const Eigen::Matrix3d& J);
 
 /// World AABB of the shape at the given pose (infinite for a plane).
 Aabb WorldBounds(const RigidBodyModel& model, const Eigen::Vector3d& p, const Eigen::Matrix3d& R);

@@ -79,40 +79,40 @@ void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& a, const
     // Cluster culling: every sample of the cluster has φ >= φ(centre) − radius.
     if (B.collider.Evaluate(YA + RBtRA * c.center).value - L * c.radius >= delta) continue;
     for (int k = c.begin; k < c.end; ++k) {
-    const SurfaceSample& s = A.samples[k];
-    const Eigen::Vector3d Y = YA + RBtRA * s.X;
-    if (std::isfinite(reach) && Y.squaredNorm() >= reach * reach) continue;
-    const SdfSample f = B.collider.Evaluate(Y);
-    out->minPhi = std::min(out->minPhi, f.value);
-    if (f.value >= delta) continue;
-    if (alignmentTest) {
-      const Eigen::Vector3d G = sameReference
-                                    ? f.gradient
-                                    : B.collider.Evaluate(YAref + RBtRAref * s.X).gradient;
-      if (G.dot(RBtRAref * s.normal) > maxAlignment + kAlignmentRoundoff) continue;
-    }
-    ++out->activeSamples;
-    const PenaltyDensity W = NormalPenaltyDensity(f.value, params);
-    out->value += s.weight * W.W;
-    if (records) {
-      ContactSampleRecord rec;
-      rec.position = a.p + a.R * s.X;
-      rec.normal = b.R * f.gradient.normalized();
-      rec.phi = f.value;
-      rec.lambdaN = W.lambdaN;
-      rec.traction = W.lambdaN * (b.R * f.gradient);
-      rec.weight = s.weight;
-      records->push_back(rec);
-    }
-    if (order == 0) continue;
-    const Eigen::Vector3d r = a.R * s.X;
-    const Eigen::Vector3d d = a.p + r - b.p;
-    // W(Φ(Y)): g_Y = W' G, H_Y = W'' G Gᵀ + W' ∇²Φ.
-    const Eigen::Vector3d gY = W.dW * f.gradient;
-    Eigen::Matrix3d HY;
-    if (order >= 2) HY = W.d2W * f.gradient * f.gradient.transpose() + W.dW * f.hessian;
-    AddFunctionOfPullback(r, d, b.R, gY, order >= 2 ? &HY : nullptr, bDynamic, s.weight,
-                          &out->gradient, order >= 2 ? &out->hessian : nullptr);
+      const SurfaceSample& s = A.samples[k];
+      const Eigen::Vector3d Y = YA + RBtRA * s.X;
+      if (std::isfinite(reach) && Y.squaredNorm() >= reach * reach) continue;
+      const SdfSample f = B.collider.Evaluate(Y);
+      out->minPhi = std::min(out->minPhi, f.value);
+      if (f.value >= delta) continue;
+      if (alignmentTest) {
+        const Eigen::Vector3d G = sameReference
+                                      ? f.gradient
+                                      : B.collider.Evaluate(YAref + RBtRAref * s.X).gradient;
+        if (G.dot(RBtRAref * s.normal) > maxAlignment + kAlignmentRoundoff) continue;
+      }
+      ++out->activeSamples;
+      const PenaltyDensity W = NormalPenaltyDensity(f.value, params);
+      out->value += s.weight * W.W;
+      if (records) {
+        ContactSampleRecord rec;
+        rec.position = a.p + a.R * s.X;
+        rec.normal = b.R * f.gradient.normalized();
+        rec.phi = f.value;
+        rec.lambdaN = W.lambdaN;
+        rec.traction = W.lambdaN * (b.R * f.gradient);
+        rec.weight = s.weight;
+        records->push_back(rec);
+      }
+      if (order == 0) continue;
+      const Eigen::Vector3d r = a.R * s.X;
+      const Eigen::Vector3d d = a.p + r - b.p;
+      // W(Φ(Y)): g_Y = W' G, H_Y = W'' G Gᵀ + W' ∇²Φ.
+      const Eigen::Vector3d gY = W.dW * f.gradient;
+      Eigen::Matrix3d HY;
+      if (order >= 2) HY = W.d2W * f.gradient * f.gradient.transpose() + W.dW * f.hessian;
+      AddFunctionOfPullback(r, d, b.R, gY, order >= 2 ? &HY : nullptr, bDynamic, s.weight,
+                            &out->gradient, order >= 2 ? &out->hessian : nullptr);
     }
   }
 }

@@ -25,6 +25,23 @@ Mat3<T> SkewT(const Vec3<T>& v) {
   return S;
 }
 
+/// The dissipative alignment factor a = (m − s)/(m + 1) when fading is on and m > −1, else 1
+/// (spec: "Normal/Tangential Split"), for doubles and jets alike.
+template <typename T>
+T AlignmentFactor(const T& s, const DissipationSetup& setup) {
+  if (!setup.fadeFriction || !(setup.maxAlignment > -1.0)) return T(1.0);
+  return (T(setup.maxAlignment) - s) / (setup.maxAlignment + 1.0);
+}
+
+/// The unit split direction: N_B = G_B/|G_B| by default, −N_A/|N_A| with
+/// frictionWithColliderNormal = false.
+template <typename T>
+Vec3<T> SplitDirection(const Vec3<T>& G, const Vec3<T>& NA, const DissipationSetup& setup) {
+  using std::sqrt;
+  return setup.frictionWithColliderNormal ? Vec3<T>(G / sqrt(G.squaredNorm()))
+                                          : Vec3<T>(-NA / sqrt(NA.squaredNorm()));
+}
+
 /// One sample of a current-geometry mode, as a function of the stencil's tangent step δ (first
 /// order retractions p + δp, (1 + [δθ]×) R, exact for first derivatives at δ = 0).
 struct CurrentModeSample {
@@ -71,12 +88,8 @@ struct CurrentModeSample {
     const T lambda = T(-pd.dW) - pd.d2W * (phiLoad - pl);
     // Alignment s = G·N_A with N_A = R_Bᵀ R_A n_A (raw vectors).
     const Vec3<T> NA = RB.transpose() * (RA * normal.cast<T>());
-    T factor = T(1.0);
-    if (s.fadeFriction && s.maxAlignment > -1.0)
-      factor = (T(s.maxAlignment) - G.dot(NA)) / (s.maxAlignment + 1.0);
-    using std::sqrt;
-    const Vec3<T> N = s.frictionWithColliderNormal ? Vec3<T>(G / sqrt(G.squaredNorm()))
-                                                   : Vec3<T>(-NA / sqrt(NA.squaredNorm()));
+    const T factor = AlignmentFactor<T>(G.dot(NA), s);
+    const Vec3<T> N = SplitDirection<T>(G, NA, s);
     const Vec3<T> V = (Yt - Y0t) / s.dt;
     const Vec3<T> g = DissipationGradient(T(factor * lambda), N, V, s.coefficients,
                                           [](const T& x) { return ValueOf(x); });
@@ -168,71 +181,71 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
         continue;
     }
     for (int k = c.begin; k < c.end; ++k) {
-    const SurfaceSample& q = A.samples[k];
-    const Eigen::Vector3d Y = YA + RBtRA * q.X;
-    const Eigen::Vector3d Y0 = Y0A + R0BinvRA * q.X;
-    const Eigen::Vector3d Yn = YnA + RnBtRA * q.X;
-    double lambdaHat = 0.0;
-    Eigen::Vector3d N;
-    if (explicitNormals) {
-      if (finiteReach && Yn.squaredNorm() >= reach * reach) continue;
-      const SdfSample f0 = B.collider.Evaluate(Yn);
-      if (f0.value >= delta) continue;
-      const Eigen::Vector3d NA0 = RnBtRA * q.normal;
-      const double s = f0.gradient.dot(NA0);
-      if (s > m + kAlignmentRoundoff) continue;  // rejected
-      const double factor = setup.fadeFriction && m > -1.0 ? (m - s) / (m + 1.0) : 1.0;
-      lambdaHat = factor * NormalPenaltyDensity(f0.value, setup.penalty).lambdaN;
-      N = setup.frictionWithColliderNormal ? f0.gradient.normalized() : Eigen::Vector3d(-NA0.normalized());
-    } else {
-      if (finiteReach && Y.squaredNorm() >= reach * reach && Yn.squaredNorm() >= reach * reach)
-        continue;
-      const SdfSample f = B.collider.Evaluate(Y);
-      const double phiLoad = setup.mode == DissipationMode::ImplicitLoad
-                                 ? f.value
-                                 : f.value + f.gradient.dot(Yn - Y);
-      if (phiLoad >= delta) continue;
-      const Eigen::Vector3d NA = RBtRA * q.normal;
-      const double s = f.gradient.dot(NA);
-      if (s > m + kAlignmentRoundoff) continue;
-      const double factor = setup.fadeFriction && m > -1.0 ? (m - s) / (m + 1.0) : 1.0;
-      lambdaHat = factor * NormalPenaltyDensity(phiLoad, setup.penalty).lambdaN;
-      N = setup.frictionWithColliderNormal ? f.gradient.normalized() : Eigen::Vector3d(-NA.normalized());
-      sample.X = q.X;
-      sample.normal = q.normal;
-      sample.Y = Y;
-      sample.Y0 = Y0;
-      sample.Yn = Yn;
-      sample.field = f;
-    }
-    if (lambdaHat == 0.0) continue;
-    ++out->activeSamples;
-    const Eigen::Vector3d V = (Y - Y0) / dt;
-    const DissipationDensity D =
-        EvaluateDissipation(lambdaHat, N, V, setup.coefficients, explicitNormals && order >= 2);
-    out->value += q.weight * dt * D.R;
-    if (setup.coefficients.mu > 0.0 && lambdaHat > 0.0)
-      out->maxCoulombRatio = std::max(
-          out->maxCoulombRatio, D.coulomb.norm() / (setup.coefficients.mu * lambdaHat));
-    if (order == 0) continue;
-    const Eigen::Vector3d r = a.R * q.X;
-    const Eigen::Vector3d d = a.p + r - b.p;
-    if (explicitNormals) {
-      // ∂(Δt R)/∂Y = ∂R/∂V;  ∂²(Δt R)/∂Y² = ∂²R/∂V² / Δt.
-      const Eigen::Matrix3d HY = D.hessian / dt;
-      AddFunctionOfPullback(r, d, b.R, D.gradient, order >= 2 ? &HY : nullptr, bDynamic,
-                            q.weight, &out->residual, order >= 2 ? &out->jacobian : nullptr);
-    } else {
-      AddFunctionOfPullback(r, d, b.R, D.gradient, nullptr, bDynamic, q.weight, &out->residual,
-                            nullptr);
-      if (order >= 2) {
-        if (bDynamic) {
-          ResidualJacobian<12>(sample, q.weight, &out->jacobian);
-        } else {
-          ResidualJacobian<6>(sample, q.weight, &out->jacobian);
+      const SurfaceSample& q = A.samples[k];
+      const Eigen::Vector3d Y = YA + RBtRA * q.X;
+      const Eigen::Vector3d Y0 = Y0A + R0BinvRA * q.X;
+      const Eigen::Vector3d Yn = YnA + RnBtRA * q.X;
+      double lambdaHat = 0.0;
+      Eigen::Vector3d N;
+      if (explicitNormals) {
+        if (finiteReach && Yn.squaredNorm() >= reach * reach) continue;
+        const SdfSample f0 = B.collider.Evaluate(Yn);
+        if (f0.value >= delta) continue;
+        const Eigen::Vector3d NA0 = RnBtRA * q.normal;
+        const double s = f0.gradient.dot(NA0);
+        if (s > m + kAlignmentRoundoff) continue;  // rejected
+        lambdaHat =
+            AlignmentFactor(s, setup) * NormalPenaltyDensity(f0.value, setup.penalty).lambdaN;
+        N = SplitDirection(f0.gradient, NA0, setup);
+      } else {
+        if (finiteReach && Y.squaredNorm() >= reach * reach && Yn.squaredNorm() >= reach * reach)
+          continue;
+        const SdfSample f = B.collider.Evaluate(Y);
+        const double phiLoad = setup.mode == DissipationMode::ImplicitLoad
+                                   ? f.value
+                                   : f.value + f.gradient.dot(Yn - Y);
+        if (phiLoad >= delta) continue;
+        const Eigen::Vector3d NA = RBtRA * q.normal;
+        const double s = f.gradient.dot(NA);
+        if (s > m + kAlignmentRoundoff) continue;
+        lambdaHat =
+            AlignmentFactor(s, setup) * NormalPenaltyDensity(phiLoad, setup.penalty).lambdaN;
+        N = SplitDirection(f.gradient, NA, setup);
+        sample.X = q.X;
+        sample.normal = q.normal;
+        sample.Y = Y;
+        sample.Y0 = Y0;
+        sample.Yn = Yn;
+        sample.field = f;
+      }
+      if (lambdaHat == 0.0) continue;
+      ++out->activeSamples;
+      const Eigen::Vector3d V = (Y - Y0) / dt;
+      const DissipationDensity D =
+          EvaluateDissipation(lambdaHat, N, V, setup.coefficients, explicitNormals && order >= 2);
+      out->value += q.weight * dt * D.R;
+      if (setup.coefficients.mu > 0.0 && lambdaHat > 0.0)
+        out->maxCoulombRatio = std::max(
+            out->maxCoulombRatio, D.coulomb.norm() / (setup.coefficients.mu * lambdaHat));
+      if (order == 0) continue;
+      const Eigen::Vector3d r = a.R * q.X;
+      const Eigen::Vector3d d = a.p + r - b.p;
+      if (explicitNormals) {
+        // ∂(Δt R)/∂Y = ∂R/∂V;  ∂²(Δt R)/∂Y² = ∂²R/∂V² / Δt.
+        const Eigen::Matrix3d HY = D.hessian / dt;
+        AddFunctionOfPullback(r, d, b.R, D.gradient, order >= 2 ? &HY : nullptr, bDynamic,
+                              q.weight, &out->residual, order >= 2 ? &out->jacobian : nullptr);
+      } else {
+        AddFunctionOfPullback(r, d, b.R, D.gradient, nullptr, bDynamic, q.weight, &out->residual,
+                              nullptr);
+        if (order >= 2) {
+          if (bDynamic) {
+            ResidualJacobian<12>(sample, q.weight, &out->jacobian);
+          } else {
+            ResidualJacobian<6>(sample, q.weight, &out->jacobian);
+          }
         }
       }
-    }
     }
   }
 }

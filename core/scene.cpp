@@ -32,18 +32,6 @@ DissipationMode ModeOf(const ExperimentalEvalParams& e) {
                                              : DissipationMode::ReconstructedLoad;
 }
 
-// Spin angular momentum of a material-point rigid state (about its centre of mass, world frame):
-// L = axial(Ṙ J Rᵀ − R J Ṙᵀ) [kg·m²/s] for the second moment J.
-Eigen::Vector3d SpinMomentum(const Eigen::Matrix3d& R, const Eigen::Matrix3d& Rdot,
-                             const Eigen::Matrix3d& J) {
-  return Axial(Rdot * J * R.transpose() - R * J * Rdot.transpose());
-}
-
-// World inertia tensor R (tr(J) 1 − J) Rᵀ [kg·m²]: L = I_w ω for Ṙ = [ω]× R.
-Eigen::Matrix3d WorldInertia(const Eigen::Matrix3d& R, const Eigen::Matrix3d& J) {
-  return R * (J.trace() * Eigen::Matrix3d::Identity() - J) * R.transpose();
-}
-
 int Severity(StageStatus s) {
   return s == StageStatus::Converged ? 0 : s == StageStatus::Stopped ? 1 : 2;
 }
@@ -193,6 +181,7 @@ void Scene::Prepare() {
       numDofs_ += 6;
     }
   pipeline_.Configure(&models_, &filter_);
+  hasDissipation_ = HasDissipation();  // actors' contact parameters are fixed once added
   prepared_ = true;
 }
 
@@ -222,7 +211,7 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
     s.last = last[i];
   }
   StageDissipation dissipation;
-  dissipation.enabled = HasDissipation();
+  dissipation.enabled = hasDissipation_;
   if (dissipation.enabled) {
     dissipation.mode = ModeOf(settings_.eval);
     dissipation.fadeFriction = settings_.eval.fadeFriction;
@@ -336,7 +325,7 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
       next[i].Rdot = (poses[i].R - start[i].R) / dt;
     }
   } else {
-    // DIRK stages (core/integrators.h) in material-point form; see RigidDirkStep below.
+    // DIRK stages in material-point form, with the three rotation rules of core/integrators.h.
     const DirkTableau& T = TableauOf(bdf3Startup ? IntegrationMethod::DIRK33 : method);
     std::vector<std::vector<RigidBodyState>> VK(T.stages, std::vector<RigidBodyState>(n));
     std::vector<std::vector<Eigen::Vector3d>> torque(T.stages, std::vector<Eigen::Vector3d>(n));

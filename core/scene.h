@@ -157,6 +157,7 @@ class Scene {
   std::vector<double> historyTimes_;
   double time_ = 0.0;
   bool prepared_ = false;
+  bool hasDissipation_ = false;  // HasDissipation(), cached by Prepare
   std::vector<int> dofOffset_;
   int numDofs_ = 0;
   ContactPipeline pipeline_;

@@ -21,10 +21,6 @@ struct Actor {
   ActorHandle Handle() const { return {index}; }
 };
 
-Eigen::Vector3d AngularVelocity(const RigidBodyState& s) {
-  return Axial(s.Rdot * s.R.transpose());  // Ṙ = [ω]× R
-}
-
 Eigen::Vector4d Quaternion(const Eigen::Matrix3d& R) {
   const Eigen::Quaterniond q(R);
   return Eigen::Vector4d(q.x(), q.y(), q.z(), q.w());
@@ -69,7 +65,7 @@ py::dict Run(Scene& s, double duration, double dt, int every,
     for (int a = 0; a < A; ++a) {
       const RigidBodyState& st = s.States()[a];
       const Eigen::Vector4d qa = Quaternion(st.R);
-      const Eigen::Vector3d wa = AngularVelocity(st);
+      const Eigen::Vector3d wa = st.AngularVelocity();
       for (int k = 0; k < 3; ++k) {
         P(frame, a, k) = st.p[k];
         V(frame, a, k) = st.v[k];
@@ -290,7 +286,7 @@ void BindScene(py::module_& m) {
       .def_property_readonly("velocity", [](const Actor& a) { return a.scene->State(a.Handle()).v; },
                              "centre-of-mass velocity [m/s]")
       .def_property_readonly("angular_velocity",
-                             [](const Actor& a) { return AngularVelocity(a.scene->State(a.Handle())); },
+                             [](const Actor& a) { return a.scene->State(a.Handle()).AngularVelocity(); },
                              "world angular velocity [rad/s]")
       .def("__repr__", [](const Actor& a) {
         return "<superdex.Actor " + std::to_string(a.index) + " '" +
