@@ -135,7 +135,6 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
                                    poses[cp.collider], start[cp.collider], B.dynamic, setup, order,
                                    &d);
       if (order >= 2 && potential && d.activeSamples > 0) {
-        if (r.activeSamples == 0) r.hessian.setZero(d.jacobian.rows(), d.jacobian.cols());
         r.hessian += d.jacobian;
       }
     }
