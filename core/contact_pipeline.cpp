@@ -35,9 +35,14 @@ void AddBlocks(const StencilVector& g, const int offs[2], int blocks, Eigen::Vec
 }  // namespace
 
 void ContactPipeline::Configure(const std::vector<RigidBodyModel>* models,
-                                const ContactFilter* filter) {
+                                const ContactFilter* filter,
+                                const std::vector<SoftBodyModel>* softModels,
+                                std::vector<int> rigidActor, std::vector<int> softActor) {
   models_ = models;
   filter_ = filter;
+  softModels_ = softModels && !softModels->empty() ? softModels : nullptr;
+  rigidActor_ = std::move(rigidActor);
+  softActor_ = std::move(softActor);
   const size_t n = models->size();
   inflation_.assign(n, 0.0);
   for (size_t i = 0; i < n; ++i) {
@@ -50,10 +55,12 @@ void ContactPipeline::Configure(const std::vector<RigidBodyModel>* models,
 
 void ContactPipeline::FindPairs(const std::vector<RigidPose>& poses,
                                 const DissipationContext* dissipation,
-                                const std::vector<RigidStageStart>* stageStart) {
+                                const std::vector<RigidStageStart>* stageStart,
+                                const SoftView* soft) {
   const std::vector<RigidBodyModel>& models = *models_;
   const size_t n = models.size();
-  boxes_.resize(n);
+  const size_t ns = soft && softModels_ ? softModels_->size() : 0;
+  boxes_.resize(n + ns);
   // Explicit normals retain the stage-start contacts: the boxes sweep from x⁰ to x.
   const bool sweep = dissipation && dissipation->mode == DissipationMode::ExplicitNormals;
   for (size_t i = 0; i < n; ++i) {
@@ -66,14 +73,31 @@ void ContactPipeline::FindPairs(const std::vector<RigidPose>& poses,
     }
     boxes_[i].Inflate(inflation_[i]);
   }
+  // Soft actors after the rigid ones; a soft actor is colliding only, so no padding of its own.
+  for (size_t s = 0; s < ns; ++s) {
+    boxes_[n + s] = SoftBounds((*soft->x)[s]);
+    if (soft->xLast) boxes_[n + s].Extend(SoftBounds((*soft->xLast)[s]));
+  }
   FindOverlappingPairs(boxes_, &overlaps_);
   pairs_.clear();
+  softPairs_.clear();
+  auto considerSoft = [&](int s, int b) {
+    const RigidBodyModel& B = models[b];
+    if (!IsCollider(B)) return;
+    if (filter_ && !filter_->Allowed(softActor_[s], RigidActor(b))) return;
+    SoftContactPair p;
+    p.soft = s;
+    p.collider = b;
+    // A soft actor's collider is None (the only role supported).
+    p.params = CombineContactParams((*softModels_)[s].contact, B.contact, !B.dynamic, true);
+    softPairs_.push_back(p);
+  };
   auto consider = [&](int a, int b) {
     const RigidBodyModel& A = models[a];
     const RigidBodyModel& B = models[b];
     if (!IsColliding(A) || !IsCollider(B)) return;
     if (!A.dynamic && !B.dynamic) return;
-    if (filter_ && !filter_->Allowed(a, b)) return;
+    if (filter_ && !filter_->Allowed(RigidActor(a), RigidActor(b))) return;
     ContactPair p;
     p.colliding = a;
     p.collider = b;
@@ -83,9 +107,34 @@ void ContactPipeline::FindPairs(const std::vector<RigidPose>& poses,
     pairs_.push_back(p);
   };
   for (const auto& [i, j] : overlaps_) {
-    consider(i, j);
-    consider(j, i);
+    const bool si = i >= static_cast<int>(n), sj = j >= static_cast<int>(n);
+    if (!si && !sj) {
+      consider(i, j);
+      consider(j, i);
+    } else if (si && !sj) {
+      considerSoft(i - static_cast<int>(n), j);
+    } else if (!si && sj) {
+      considerSoft(j - static_cast<int>(n), i);
+    }
   }
+}
+
+DissipationSetup ContactPipeline::MakeSetup(const PairContactParams& params,
+                                            const DissipationContext& dissipation) const {
+  DissipationSetup setup;
+  setup.mode = dissipation.mode;
+  setup.fadeFriction = dissipation.fadeFriction;
+  setup.dt = dissipation.dt;
+  setup.penalty.k = params.penaltyCoefficient;
+  setup.penalty.eps = params.smoothingHalfDistance;
+  setup.penalty.delta = params.threshold;
+  setup.coefficients.mu = params.coulombFrictionCoefficient;
+  setup.coefficients.ct = params.viscousFrictionCoefficient;
+  setup.coefficients.cn = params.normalViscousDampingCoefficient;
+  setup.coefficients.vf = params.frictionFalloffVel;
+  setup.maxAlignment = params.maxAlignmentNormals;
+  setup.frictionWithColliderNormal = params.frictionWithColliderNormal;
+  return setup;
 }
 
 double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
@@ -94,9 +143,10 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
                                  std::vector<Eigen::Triplet<double>>* triplets,
                                  ContactStats* stats, const DissipationContext* dissipation,
                                  Eigen::VectorXd* dissipationResidual,
-                                 const std::vector<RigidStageStart>* stageStart) {
+                                 const std::vector<RigidStageStart>* stageStart,
+                                 const SoftView* soft) {
   const std::vector<RigidBodyModel>& models = *models_;
-  FindPairs(poses, dissipation, stageStart);
+  FindPairs(poses, dissipation, stageStart, soft);
   results_.resize(pairs_.size());
   dissipationResults_.resize(dissipation ? pairs_.size() : 0);
   const bool potential = !dissipation || dissipation->mode == DissipationMode::ExplicitNormals;
@@ -118,17 +168,7 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
     EvaluateRigidPairPenalty(A, poses[cp.colliding], B, poses[cp.collider], B.dynamic, pp, order,
                              &r, cp.params.maxAlignmentNormals, aRef, bRef);
     if (dissipation) {
-      DissipationSetup setup;
-      setup.mode = dissipation->mode;
-      setup.fadeFriction = dissipation->fadeFriction;
-      setup.dt = dissipation->dt;
-      setup.penalty = pp;
-      setup.coefficients.mu = cp.params.coulombFrictionCoefficient;
-      setup.coefficients.ct = cp.params.viscousFrictionCoefficient;
-      setup.coefficients.cn = cp.params.normalViscousDampingCoefficient;
-      setup.coefficients.vf = cp.params.frictionFalloffVel;
-      setup.maxAlignment = cp.params.maxAlignmentNormals;
-      setup.frictionWithColliderNormal = cp.params.frictionWithColliderNormal;
+      const DissipationSetup setup = MakeSetup(cp.params, *dissipation);
       RigidPairDissipation& d = dissipationResults_[k];
       const std::vector<RigidStageStart>& start = *stageStart;
       EvaluateRigidPairDissipation(A, poses[cp.colliding], start[cp.colliding], B,
@@ -179,14 +219,108 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
     if (order >= 2 && (r.activeSamples > 0 || (d && potential)))
       AppendBlocks(r.hessian, offs, blocks, triplets);
   }
+  // Soft colliding actors against rigid colliders, face by face.
+  softResults_.resize(softPairs_.size());
+  auto evaluateSoft = [&](size_t k) {
+    const SoftContactPair& sp = softPairs_[k];
+    PenaltyParams pp;
+    pp.k = sp.params.penaltyCoefficient;
+    pp.eps = sp.params.smoothingHalfDistance;
+    pp.delta = sp.params.threshold;
+    SoftPairInput in;
+    in.model = &(*softModels_)[sp.soft];
+    in.x = &(*soft->x)[sp.soft];
+    in.xLast = soft->xLast ? &(*soft->xLast)[sp.soft] : nullptr;
+    in.x0 = soft->x0 ? &(*soft->x0)[sp.soft] : nullptr;
+    const RigidBodyModel& B = models[sp.collider];
+    DissipationSetup setup;
+    if (dissipation) setup = MakeSetup(sp.params, *dissipation);
+    const RigidStageStart* b0 = stageStart ? &(*stageStart)[sp.collider] : nullptr;
+    SoftPairContact& r = softResults_[k];
+    EvaluateSoftRigidPair(in, B, poses[sp.collider], b0, B.dynamic, pp,
+                          sp.params.maxAlignmentNormals, dissipation ? &setup : nullptr, order, &r);
+    if (order < 2) return;
+    for (int f = 0; f < r.numFaces; ++f) {
+      SoftFaceContact& fc = r.faces[f];
+      if (potential && fc.dissipationActive) fc.penaltyHessian += fc.dissipationJacobian;
+      if ((fc.penaltyActive || (potential && fc.dissipationActive)) &&
+          projection != PsdProjection::None)
+        ProjectToPsd(&fc.penaltyHessian, projection == PsdProjection::Abs);
+    }
+  };
+  if (softPairs_.size() > 1) {
+    tbb::parallel_for(size_t(0), softPairs_.size(), evaluateSoft);
+  } else {
+    for (size_t k = 0; k < softPairs_.size(); ++k) evaluateSoft(k);
+  }
+  st.candidatePairs += static_cast<int>(softPairs_.size());
+  for (size_t k = 0; k < softPairs_.size(); ++k) {
+    const SoftContactPair& sp = softPairs_[k];
+    const SoftPairContact& r = softResults_[k];
+    const SoftBodyModel& A = (*softModels_)[sp.soft];
+    st.minSignedDistance = std::min(st.minSignedDistance, r.minPhi);
+    if (r.activeSamples > 0) {
+      ++st.activePairs;
+      st.activeSamples += r.activeSamples;
+      st.energy += r.penaltyValue;
+      energy += r.penaltyValue;
+    }
+    if (r.dissipativeSamples > 0) {
+      st.dissipativeSamples += r.dissipativeSamples;
+      st.dissipation += r.dissipationValue;
+      st.maxCoulombRatio = std::max(st.maxCoulombRatio, r.maxCoulombRatio);
+      energy += r.dissipationValue;
+    }
+    if (order == 0) continue;
+    // The face stencil's dofs: three nodes, then B's [δp, δθ] (dynamic B only).
+    const int softOffset = (*soft->dofOffset)[sp.soft];
+    const int bOffset = dofOffset[sp.collider];
+    const bool bDynamic = models[sp.collider].dynamic;
+    const int blocks = bDynamic ? 5 : 3;
+    for (int f = 0; f < r.numFaces; ++f) {
+      const SoftFaceContact& fc = r.faces[f];
+      int offs[5];
+      for (int a = 0; a < 3; ++a) {
+        const int free = A.freeIndex[A.faces[fc.face][a]];
+        offs[a] = free < 0 ? -1 : softOffset + 3 * free;
+      }
+      if (bDynamic) {
+        offs[3] = bOffset;
+        offs[4] = bOffset + 3;
+      }
+      Eigen::VectorXd* dr = dissipationResidual ? dissipationResidual : gradient;
+      for (int bi = 0; bi < blocks; ++bi) {
+        if (offs[bi] < 0) continue;
+        if (fc.penaltyActive) gradient->segment<3>(offs[bi]) += fc.penaltyGradient.segment<3>(3 * bi);
+        if (fc.dissipationActive) dr->segment<3>(offs[bi]) += fc.dissipationResidual.segment<3>(3 * bi);
+      }
+      if (order < 2) continue;
+      const bool hess = fc.penaltyActive || (potential && fc.dissipationActive);
+      const bool jac = !potential && fc.dissipationActive;
+      for (int bi = 0; bi < blocks; ++bi) {
+        if (offs[bi] < 0) continue;
+        for (int bj = 0; bj < blocks; ++bj) {
+          if (offs[bj] < 0) continue;
+          for (int c = 0; c < 3; ++c)
+            for (int rr = 0; rr < 3; ++rr) {
+              double v = 0.0;
+              if (hess) v += fc.penaltyHessian(3 * bi + rr, 3 * bj + c);
+              if (jac) v += fc.dissipationJacobian(3 * bi + rr, 3 * bj + c);
+              if (v != 0.0) triplets->emplace_back(offs[bi] + rr, offs[bj] + c, v);
+            }
+        }
+      }
+    }
+  }
   if (stats) *stats = st;
   return energy;
 }
 
 void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,
-                                     std::vector<ContactSampleRecord>* records) {
+                                     std::vector<ContactSampleRecord>* records,
+                                     const SoftView* soft) {
   const std::vector<RigidBodyModel>& models = *models_;
-  FindPairs(poses, nullptr, nullptr);
+  FindPairs(poses, nullptr, nullptr, soft);
   records->clear();
   RigidPairPenalty scratch;
   for (const ContactPair& cp : pairs_) {
@@ -199,8 +333,26 @@ void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,
                              poses[cp.collider], models[cp.collider].dynamic, pp, 0, &scratch,
                              cp.params.maxAlignmentNormals, nullptr, nullptr, records);
     for (size_t k = first; k < records->size(); ++k) {
-      (*records)[k].colliding = cp.colliding;
-      (*records)[k].collider = cp.collider;
+      (*records)[k].colliding = RigidActor(cp.colliding);
+      (*records)[k].collider = RigidActor(cp.collider);
+    }
+  }
+  SoftPairContact scratchSoft;
+  for (const SoftContactPair& sp : softPairs_) {
+    PenaltyParams pp;
+    pp.k = sp.params.penaltyCoefficient;
+    pp.eps = sp.params.smoothingHalfDistance;
+    pp.delta = sp.params.threshold;
+    SoftPairInput in;
+    in.model = &(*softModels_)[sp.soft];
+    in.x = &(*soft->x)[sp.soft];
+    const size_t first = records->size();
+    EvaluateSoftRigidPair(in, models[sp.collider], poses[sp.collider], nullptr,
+                          models[sp.collider].dynamic, pp, sp.params.maxAlignmentNormals, nullptr,
+                          0, &scratchSoft, records);
+    for (size_t k = first; k < records->size(); ++k) {
+      (*records)[k].colliding = softActor_[sp.soft];
+      (*records)[k].collider = RigidActor(sp.collider);
     }
   }
 }

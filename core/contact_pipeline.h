@@ -11,6 +11,7 @@
 #include "core/rigid_body.h"
 #include "core/rigid_contact.h"
 #include "core/rigid_dissipation.h"
+#include "core/soft_contact.h"
 #include "optim/stage_problem.h"
 
 namespace superdex {
@@ -42,11 +43,32 @@ struct ContactPair {
   PairContactParams params;
 };
 
+/// Ordered pair (soft A colliding, rigid B collider).
+struct SoftContactPair {
+  int soft = -1;      ///< index into the soft models
+  int collider = -1;  ///< index into the rigid models
+  PairContactParams params;
+};
+
+/// The soft actors' positions for one evaluation. Node i of soft actor s owns the dofs
+/// dofOffset[s] + 3 freeIndex[i] (none when freeIndex is −1: a prescribed node).
+struct SoftView {
+  const std::vector<Eigen::VectorXd>* x = nullptr;      ///< current positions
+  const std::vector<Eigen::VectorXd>* xLast = nullptr;  ///< last actual positions x_n (or null)
+  const std::vector<Eigen::VectorXd>* x0 = nullptr;     ///< stage start (dissipation; or null)
+  const std::vector<int>* dofOffset = nullptr;          ///< per soft actor
+};
+
 class ContactPipeline {
  public:
   /// Precomputes per-actor data. `models` must outlive the pipeline's use.
   /// `filter` (may be null: everything eligible) is read at every evaluation.
-  void Configure(const std::vector<RigidBodyModel>* models, const ContactFilter* filter = nullptr);
+  /// `softModels` (may be null) are colliding soft actors. The filter sees actor indices:
+  /// rigidActor[i] for rigid model i and softActor[s] for soft model s (empty: rigid model i is
+  /// actor i, as in a scene of rigid actors only).
+  void Configure(const std::vector<RigidBodyModel>* models, const ContactFilter* filter = nullptr,
+                 const std::vector<SoftBodyModel>* softModels = nullptr,
+                 std::vector<int> rigidActor = {}, std::vector<int> softActor = {});
 
   /// Π = Σ over eligible ordered pairs of the penalty energy at the given poses, plus Δt_i Σ w R
   /// when `dissipation` is not null (it then needs `stageStart`, x⁰ and x_n per actor). With
@@ -63,18 +85,23 @@ class ContactPipeline {
                   std::vector<Eigen::Triplet<double>>* triplets, ContactStats* stats,
                   const DissipationContext* dissipation = nullptr,
                   Eigen::VectorXd* dissipationResidual = nullptr,
-                  const std::vector<RigidStageStart>* stageStart = nullptr);
+                  const std::vector<RigidStageStart>* stageStart = nullptr,
+                  const SoftView* soft = nullptr);
 
-  /// Every active contact sample at the given poses (serial; for reporting).
+  /// Every active contact sample at the given poses (serial; for reporting). Records carry actor
+  /// indices (see Configure) and, for soft colliding actors, the boundary face.
   void CollectSamples(const std::vector<RigidPose>& poses,
-                      std::vector<ContactSampleRecord>* records);
+                      std::vector<ContactSampleRecord>* records, const SoftView* soft = nullptr);
 
   /// The ordered pairs found by the last evaluation.
   const std::vector<ContactPair>& Pairs() const { return pairs_; }
 
  private:
   void FindPairs(const std::vector<RigidPose>& poses, const DissipationContext* dissipation,
-                 const std::vector<RigidStageStart>* stageStart);
+                 const std::vector<RigidStageStart>* stageStart, const SoftView* soft);
+  int RigidActor(int i) const { return rigidActor_.empty() ? i : rigidActor_[i]; }
+  DissipationSetup MakeSetup(const PairContactParams& params,
+                             const DissipationContext& dissipation) const;
 
   const std::vector<RigidBodyModel>* models_ = nullptr;
   const ContactFilter* filter_ = nullptr;
@@ -84,6 +111,11 @@ class ContactPipeline {
   std::vector<ContactPair> pairs_;
   std::vector<RigidPairPenalty> results_;
   std::vector<RigidPairDissipation> dissipationResults_;
+  const std::vector<SoftBodyModel>* softModels_ = nullptr;
+  std::vector<int> rigidActor_, softActor_;
+  std::vector<SoftContactPair> softPairs_;
+  std::vector<SoftPairContact> softResults_;
+  std::vector<int> dofs_;  // scratch: a face stencil's global dofs
 };
 
 }  // namespace superdex

@@ -46,6 +46,7 @@ struct ContactSampleRecord {
   double lambdaN = 0.0;      ///< normal-load coefficient λ_n [Pa]
   Eigen::Vector3d traction;  ///< nominal normal traction on A, t_n = λ_n R_B G_B [Pa]
   double weight = 0.0;       ///< reference-area weight w_q [m²]; force = w_q t_n
+  int face = -1;             ///< soft colliding actor: its boundary face; −1 for rigid actors
 };
 
 /// Round-off allowance of the alignment test: a sample is rejected when s > m + this. A face

@@ -8,7 +8,7 @@
 
 #include "core/integrators.h"
 #include "core/rigid_math.h"
-#include "core/rigid_stage.h"
+#include "core/scene_stage.h"
 #include "optim/ceres_stage_solver.h"
 #include "optim/ipopt_stage_solver.h"
 #include "optim/residual_newton.h"
@@ -85,11 +85,62 @@ ActorHandle Scene::AddRigidActor(const RigidActorDesc& desc, Error* error, Actor
   RigidBodyState state;
   if (!BuildRigidBody(desc, "", &model, &state, error)) return {};
   filter_.AddActor(desc.contactLayer, parent.index);
+  actors_.push_back({false, static_cast<int>(models_.size())});
   models_.push_back(std::move(model));
   states_.push_back(state);
   prepared_ = false;
   ClearHistory();
-  return {static_cast<int>(models_.size()) - 1};
+  return {NumActors() - 1};
+}
+
+ActorHandle Scene::AddSoftActor(const SoftActorDesc& desc, Error* error, ActorHandle parent) {
+  if (parent.index >= NumActors()) {
+    Fail(error, "parent: invalid actor handle " + std::to_string(parent.index));
+    return {};
+  }
+  SoftBodyModel model;
+  SoftBodyState state;
+  if (!BuildSoftBody(desc, "", &model, &state, error)) return {};
+  filter_.AddActor(desc.contactLayer, parent.index);
+  actors_.push_back({true, static_cast<int>(softModels_.size())});
+  softModels_.push_back(std::move(model));
+  softInitial_.push_back(state.x);
+  softStates_.push_back(std::move(state));
+  prepared_ = false;
+  ClearHistory();
+  return {NumActors() - 1};
+}
+
+std::vector<ActorHandle> Scene::RigidActors() const {
+  std::vector<ActorHandle> out;
+  for (int i = 0; i < NumActors(); ++i)
+    if (!actors_[i].soft) out.push_back({i});
+  return out;
+}
+
+Eigen::Vector3d Scene::CenterOfMass(ActorHandle a) const {
+  const ActorRef& r = actors_[a.index];
+  if (!r.soft) return states_[r.local].p;
+  const SoftBodyModel& m = softModels_[r.local];
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (int i = 0; i < m.NumNodes(); ++i) c += m.nodeMass[i] * softStates_[r.local].x.segment<3>(3 * i);
+  return c / m.mass;
+}
+
+Eigen::Vector3d Scene::CenterOfMassVelocity(ActorHandle a) const {
+  const ActorRef& r = actors_[a.index];
+  if (!r.soft) return states_[r.local].v;
+  const SoftBodyModel& m = softModels_[r.local];
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (int i = 0; i < m.NumNodes(); ++i) c += m.nodeMass[i] * softStates_[r.local].v.segment<3>(3 * i);
+  return c / m.mass;
+}
+
+std::vector<ActorHandle> Scene::SoftActors() const {
+  std::vector<ActorHandle> out;
+  for (int i = 0; i < NumActors(); ++i)
+    if (actors_[i].soft) out.push_back({i});
+  return out;
 }
 
 namespace {
@@ -102,7 +153,11 @@ bool ValidHandle(ActorHandle a, int n, const char* field, Error* error) {
 bool Scene::SetContactLayer(ActorHandle actor, const std::string& layer, Error* error) {
   if (!ValidHandle(actor, NumActors(), "actor", error)) return false;
   filter_.SetLayer(actor.index, layer);
-  models_[actor.index].contactLayer = layer;
+  if (actors_[actor.index].soft) {
+    softModels_[actors_[actor.index].local].contactLayer = layer;
+  } else {
+    models_[actors_[actor.index].local].contactLayer = layer;
+  }
   return true;
 }
 
@@ -160,13 +215,14 @@ bool Scene::SetIntegrator(IntegrationMethod method, Error* error) {
 
 bool Scene::SetState(ActorHandle a, const RigidBodyState& state, Error* error) {
   if (a.index < 0 || a.index >= NumActors()) return Fail(error, "actor: invalid handle");
+  if (actors_[a.index].soft) return Fail(error, "actor: a soft actor has no rigid state");
   if (!state.p.allFinite() || !state.R.allFinite() || !state.v.allFinite() ||
       !state.Rdot.allFinite())
     return Fail(error, "state: must be finite");
   if ((state.R.transpose() * state.R - Eigen::Matrix3d::Identity()).norm() > 1e-9 ||
       state.R.determinant() <= 0)
     return Fail(error, "state.R: must be a rotation matrix");
-  states_[a.index] = state;
+  states_[actors_[a.index].local] = state;
   ClearHistory();
   return true;
 }
@@ -180,9 +236,57 @@ void Scene::Prepare() {
       dofOffset_[i] = numDofs_;
       numDofs_ += 6;
     }
-  pipeline_.Configure(&models_, &filter_);
+  // Soft free nodes after every rigid dof (the stage's step norm relies on this order).
+  softDofOffset_.assign(softModels_.size(), 0);
+  for (size_t s = 0; s < softModels_.size(); ++s) {
+    softDofOffset_[s] = numDofs_;
+    numDofs_ += 3 * softModels_[s].numFree;
+  }
+  std::vector<int> rigidActor, softActor;
+  for (int i = 0; i < NumActors(); ++i) (actors_[i].soft ? softActor : rigidActor).push_back(i);
+  pipeline_.Configure(&models_, &filter_, &softModels_, rigidActor, softActor);
   hasDissipation_ = HasDissipation();  // actors' contact parameters are fixed once added
   prepared_ = true;
+}
+
+std::vector<Eigen::VectorXd> Scene::CurrentSoftPositions() const {
+  std::vector<Eigen::VectorXd> x(softStates_.size());
+  for (size_t s = 0; s < softStates_.size(); ++s) x[s] = softStates_[s].x;
+  return x;
+}
+
+SoftStage Scene::MakeSoftStage(double dt, const std::vector<SoftBodyState>& start,
+                               const std::vector<Eigen::VectorXd>& last) const {
+  SoftStage st;
+  st.models = &softModels_;
+  st.dofOffset = softDofOffset_;
+  st.targets.resize(softModels_.size());
+  for (size_t s = 0; s < softModels_.size(); ++s) {
+    SoftStageTarget& t = st.targets[s];
+    t.xHat = start[s].x + dt * start[s].v;
+    t.x0 = start[s].x;
+    t.xLast = last[s];
+    PrepareSoftDamping(softModels_[s], &t);
+  }
+  st.x0.resize(softModels_.size());
+  st.xLast = last;
+  for (size_t s = 0; s < softModels_.size(); ++s) st.x0[s] = start[s].x;
+  return st;
+}
+
+void Scene::ApplyConstraints(double t, std::vector<Eigen::VectorXd>* x) const {
+  for (size_t s = 0; s < softModels_.size(); ++s)
+    ApplyNodeConstraints(softModels_[s], softInitial_[s], t, &(*x)[s]);
+}
+
+double Scene::MinDetF() const {
+  double minDet = INFINITY;
+  for (size_t s = 0; s < softModels_.size(); ++s) {
+    double md = INFINITY;
+    ElasticEnergy(softModels_[s], softStates_[s].x, &md);
+    minDet = std::min(minDet, md);
+  }
+  return minDet;
 }
 
 std::vector<RigidPose> Scene::CurrentPoses() const {
@@ -193,7 +297,8 @@ std::vector<RigidPose> Scene::CurrentPoses() const {
 
 SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& start,
                               const std::vector<RigidPose>& last, std::vector<RigidPose>* poses,
-                              ContactStats* contact) {
+                              ContactStats* contact, const SoftStage* soft,
+                              std::vector<Eigen::VectorXd>* softX) {
   StageTargets targets;
   targets.dt = dt;
   targets.pHat.resize(models_.size());
@@ -216,8 +321,8 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
     dissipation.mode = ModeOf(settings_.eval);
     dissipation.fadeFriction = settings_.eval.fadeFriction;
   }
-  RigidStageProblem problem(models_, dofOffset_, numDofs_, targets, settings_.gravity, &pipeline_,
-                            poses, dissipation);
+  SceneStageProblem problem(models_, dofOffset_, numDofs_, targets, settings_.gravity, &pipeline_,
+                            poses, dissipation, soft, softX);
   SolverStats st;
   switch (settings_.stageSolver) {
     case StageSolverKind::Newton:
@@ -227,16 +332,18 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
       }
       {
         const std::vector<RigidPose> guess = *poses;
+        const std::vector<Eigen::VectorXd> softGuess = softX ? *softX : std::vector<Eigen::VectorXd>();
         st = SolveResidualNewton(problem, settings_.solver, dt);
         if (st.status != StageStatus::Converged) {
           // Fallback: the residual modes have no potential to globalize Newton with. Re-solve
           // this stage with stage-start normals and load (the explicit-normals potential,
           // minimized by projected Newton) and say so in the report.
           *poses = guess;
+          if (softX) *softX = softGuess;
           StageDissipation potential = dissipation;
           potential.mode = DissipationMode::ExplicitNormals;
-          RigidStageProblem retry(models_, dofOffset_, numDofs_, targets, settings_.gravity,
-                                  &pipeline_, poses, potential);
+          SceneStageProblem retry(models_, dofOffset_, numDofs_, targets, settings_.gravity,
+                                  &pipeline_, poses, potential, soft, softX);
           const SolverStats second = MinimizeNewton(retry, settings_.solver, dt);
           const std::string why = st.message;
           st = second;
@@ -295,9 +402,13 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
   };
 
   const size_t n = models_.size();
+  const size_t ns = softModels_.size();
   std::vector<RigidPose> poses = CurrentPoses();
   const std::vector<RigidPose> stepStart = poses;
   std::vector<RigidBodyState> next = states_;
+  std::vector<Eigen::VectorXd> softX = CurrentSoftPositions();
+  const std::vector<Eigen::VectorXd> softStepStart = softX;
+  std::vector<SoftBodyState> softNext = softStates_;
   const IntegrationMethod method = settings_.integrator;
 
   // BDF3 starts with DIRK33 steps while its history fills: a Backward Euler start (local error
@@ -316,7 +427,22 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
       start[i] = Affine(weights[0], states_[i], 0.0, states_[i]);
       for (int j = 1; j < k; ++j) start[i] = Affine(1.0, start[i], weights[j], history_[j - 1][i]);
     }
-    account(SolveStage(dt, start, stepStart, &poses, &stageContact));
+    std::vector<SoftBodyState> softStart(ns);
+    for (size_t s = 0; s < ns; ++s) {
+      softStart[s].x = weights[0] * softStates_[s].x;
+      softStart[s].v = weights[0] * softStates_[s].v;
+      for (int j = 1; j < k; ++j) {
+        softStart[s].x += weights[j] * softHistory_[j - 1][s].x;
+        softStart[s].v += weights[j] * softHistory_[j - 1][s].v;
+      }
+    }
+    ApplyConstraints(time_ + h, &softX);
+    const SoftStage soft = MakeSoftStage(dt, softStart, softStepStart);
+    account(SolveStage(dt, start, stepStart, &poses, &stageContact, &soft, &softX));
+    for (size_t s = 0; s < ns; ++s) {
+      softNext[s].x = softX[s];
+      softNext[s].v = (softX[s] - softStart[s].x) / dt;
+    }
     for (size_t i = 0; i < n; ++i) {
       if (!models_[i].dynamic) continue;
       next[i].p = poses[i].p;
@@ -330,6 +456,9 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
     std::vector<std::vector<RigidBodyState>> VK(T.stages, std::vector<RigidBodyState>(n));
     std::vector<std::vector<Eigen::Vector3d>> torque(T.stages, std::vector<Eigen::Vector3d>(n));
     std::vector<std::vector<RigidPose>> Q(T.stages);
+    // Soft nodes: stage slopes (position, velocity) per stage and actor, as for p and v.
+    std::vector<std::vector<SoftBodyState>> softVK(T.stages, std::vector<SoftBodyState>(ns));
+    std::vector<Eigen::VectorXd> softLast = softStepStart;
     for (int st = 0; st < T.stages; ++st) {
       std::vector<RigidBodyState> start = states_;
       for (size_t i = 0; i < n; ++i)
@@ -340,11 +469,27 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
           start[i].v += c * VK[j][i].v;
           start[i].Rdot += c * VK[j][i].Rdot;
         }
+      std::vector<SoftBodyState> softStart = softStates_;
+      double cStage = 0.0;  // the stage's abscissa c_i = Σ_j a_ij
+      for (int j = 0; j <= st; ++j) cStage += T.a[st][j];
+      for (size_t s = 0; s < ns; ++s)
+        for (int j = 0; j < st; ++j) {
+          const double c = h * T.a[st][j];
+          softStart[s].x += c * softVK[j][s].x;
+          softStart[s].v += c * softVK[j][s].v;
+        }
       const double dt = h * T.a[st][st];
       // Dissipation geometry: the last configuration the bodies occupied (x_n, then Q_{i−1}).
       const std::vector<RigidPose> last = st == 0 ? stepStart : Q[st - 1];
-      account(SolveStage(dt, start, last, &poses, &stageContact));
+      ApplyConstraints(time_ + cStage * h, &softX);
+      const SoftStage soft = MakeSoftStage(dt, softStart, softLast);
+      account(SolveStage(dt, start, last, &poses, &stageContact, &soft, &softX));
       Q[st] = poses;
+      for (size_t s = 0; s < ns; ++s) {
+        softVK[st][s].x = (softX[s] - softStart[s].x) / dt;
+        softVK[st][s].v = (softVK[st][s].x - softStart[s].v) / dt;
+      }
+      softLast = softX;
       for (size_t i = 0; i < n; ++i) {
         RigidBodyState& vk = VK[st][i];
         vk.p = (poses[i].p - start[i].p) / dt;
@@ -388,15 +533,31 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
       const Eigen::Vector3d missing = spin - SpinMomentum(next[i].R, end.Rdot, J);
       next[i].Rdot = end.Rdot + Skew(WorldInertia(next[i].R, J).ldlt().solve(missing)) * next[i].R;
     }
+    for (size_t s = 0; s < ns; ++s) {
+      softNext[s] = softStates_[s];
+      for (int st = 0; st < T.stages; ++st) {
+        softNext[s].x += h * T.b[st] * softVK[st][s].x;
+        softNext[s].v += h * T.b[st] * softVK[st][s].v;
+      }
+    }
+    // Prescribed nodes sit exactly on their path at the step's end.
+    std::vector<Eigen::VectorXd> endX(ns);
+    for (size_t s = 0; s < ns; ++s) endX[s] = softNext[s].x;
+    ApplyConstraints(time_ + h, &endX);
+    for (size_t s = 0; s < ns; ++s) softNext[s].x = endX[s];
   }
   // History for the multistep methods: x_{n}, x_{n−1} with their times.
   history_.insert(history_.begin(), states_);
+  softHistory_.insert(softHistory_.begin(), softStates_);
   historyTimes_.insert(historyTimes_.begin(), time_);
   if (history_.size() > 2) {
     history_.resize(2);
+    softHistory_.resize(2);
     historyTimes_.resize(2);
   }
   states_ = std::move(next);
+  softStates_ = std::move(softNext);
+  if (!softModels_.empty()) rep.minDetF = MinDetF();
   time_ += h;
   rep.time = time_;
   rep.contact = ContactState();
@@ -409,15 +570,36 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
 ContactStats Scene::ContactState() {
   Prepare();
   ContactStats st;
-  pipeline_.Evaluate(CurrentPoses(), dofOffset_, 0, PsdProjection::None, nullptr, nullptr, &st);
+  const std::vector<Eigen::VectorXd> x = CurrentSoftPositions();
+  SoftView view;
+  view.x = &x;
+  view.dofOffset = &softDofOffset_;
+  pipeline_.Evaluate(CurrentPoses(), dofOffset_, 0, PsdProjection::None, nullptr, nullptr, &st,
+                     nullptr, nullptr, nullptr, &view);
   return st;
 }
 
 std::vector<ContactSampleRecord> Scene::ContactSamples() {
   Prepare();
   std::vector<ContactSampleRecord> out;
-  pipeline_.CollectSamples(CurrentPoses(), &out);
+  const std::vector<Eigen::VectorXd> x = CurrentSoftPositions();
+  SoftView view;
+  view.x = &x;
+  view.dofOffset = &softDofOffset_;
+  pipeline_.CollectSamples(CurrentPoses(), &out, &view);
   return out;
+}
+
+bool Scene::SoftFaceTractions(ActorHandle a, std::vector<Eigen::Vector3d>* tractions,
+                              Error* error) {
+  if (a.index < 0 || a.index >= NumActors() || !actors_[a.index].soft)
+    return Fail(error, "actor: not a soft actor handle");
+  const SoftBodyModel& m = softModels_[actors_[a.index].local];
+  tractions->assign(m.faces.size(), Eigen::Vector3d::Zero());
+  for (const ContactSampleRecord& r : ContactSamples())
+    if (r.colliding == a.index && r.face >= 0)
+      (*tractions)[r.face] += r.weight * r.traction / m.faceArea[r.face];
+  return true;
 }
 
 EnergyReport Scene::Energies() {
@@ -427,6 +609,13 @@ EnergyReport Scene::Energies() {
     e.kinetic += KineticEnergy(models_[i], states_[i]);
     e.gravity += -models_[i].mass * settings_.gravity.dot(states_[i].p);
   }
+  for (size_t s = 0; s < softModels_.size(); ++s) {
+    const SoftBodyModel& m = softModels_[s];
+    e.kinetic += KineticEnergy(m, softStates_[s]);
+    for (int i = 0; i < m.NumNodes(); ++i)
+      e.gravity += -m.nodeMass[i] * settings_.gravity.dot(softStates_[s].x.segment<3>(3 * i));
+    e.elastic += ElasticEnergy(m, softStates_[s].x, nullptr);
+  }
   e.contact = ContactState().energy;
   return e;
 }
@@ -435,6 +624,9 @@ Eigen::Vector3d Scene::TotalLinearMomentum() const {
   Eigen::Vector3d L = Eigen::Vector3d::Zero();
   for (size_t i = 0; i < models_.size(); ++i)
     if (models_[i].dynamic) L += LinearMomentum(models_[i], states_[i]);
+  for (size_t s = 0; s < softModels_.size(); ++s)
+    for (int a = 0; a < softModels_[s].NumNodes(); ++a)
+      L += softModels_[s].nodeMass[a] * softStates_[s].v.segment<3>(3 * a);
   return L;
 }
 
@@ -442,6 +634,10 @@ Eigen::Vector3d Scene::TotalAngularMomentum() const {
   Eigen::Vector3d L = Eigen::Vector3d::Zero();
   for (size_t i = 0; i < models_.size(); ++i)
     if (models_[i].dynamic) L += AngularMomentum(models_[i], states_[i]);
+  for (size_t s = 0; s < softModels_.size(); ++s)
+    for (int a = 0; a < softModels_[s].NumNodes(); ++a)
+      L += softModels_[s].nodeMass[a] *
+           softStates_[s].x.segment<3>(3 * a).cross(softStates_[s].v.segment<3>(3 * a));
   return L;
 }
 
@@ -461,6 +657,11 @@ bool Scene::HasDissipation() const {
       if (coefficient(m.contact) > 0) {
         ++count;
         dynamic += m.dynamic;
+      }
+    for (const auto& m : softModels_)  // soft actors are always dynamic
+      if (coefficient(m.contact) > 0) {
+        ++count;
+        ++dynamic;
       }
     return count >= 2 && dynamic >= 1;
   };

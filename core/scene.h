@@ -10,6 +10,8 @@
 #include "core/error.h"
 #include "core/eval_params.h"
 #include "core/rigid_body.h"
+#include "core/scene_stage.h"
+#include "core/soft_body.h"
 #include "optim/newton_solver.h"
 
 namespace superdex {
@@ -61,6 +63,8 @@ struct StepReport {
   double assemblySeconds = 0.0;       ///< stage solvers: energy/residual and derivative assembly
   double factorizationSeconds = 0.0;  ///< stage solvers: linear solves (Cholesky / LU)
   double lineSearchSeconds = 0.0;     ///< stage solvers: line-search evaluations
+  double minDetF = INFINITY;          ///< smallest det F over the soft tets at the end of the step
+                                      ///< (<= 0: an inverted tet); +∞ without soft actors
 };
 
 /// Energies of the current state [J].
@@ -68,7 +72,8 @@ struct EnergyReport {
   double kinetic = 0.0;
   double gravity = 0.0;  ///< Σ −m g·p
   double contact = 0.0;  ///< penalty energy Σ Π_{A,B}
-  double Total() const { return kinetic + gravity + contact; }
+  double elastic = 0.0;  ///< soft actors: Σ V Ψ(F)
+  double Total() const { return kinetic + gravity + contact + elastic; }
 };
 
 class Scene {
@@ -79,6 +84,9 @@ class Scene {
   /// `parent` nests the actor under it (for IncludeNestedActors::Yes).
   ActorHandle AddRigidActor(const RigidActorDesc& desc, Error* error,
                             ActorHandle parent = ActorHandle());
+  /// Adds a soft (tet FEM) actor; returns an invalid handle and fills *error on bad input.
+  ActorHandle AddSoftActor(const SoftActorDesc& desc, Error* error,
+                           ActorHandle parent = ActorHandle());
 
   // --- Contact filtering (spec: "Contact Filtering"; core/contact_filter.h). Each returns false
   // and fills *error for an invalid handle.
@@ -107,11 +115,32 @@ class Scene {
   bool Step(double dt, StepReport* report, Error* error);
 
   double Time() const { return time_; }
-  int NumActors() const { return static_cast<int>(models_.size()); }
-  const RigidBodyModel& Model(ActorHandle a) const { return models_[a.index]; }
-  const RigidBodyState& State(ActorHandle a) const { return states_[a.index]; }
+  /// Every actor, rigid and soft; handles index this range in the order of creation.
+  int NumActors() const { return static_cast<int>(actors_.size()); }
+  bool IsSoft(ActorHandle a) const { return actors_[a.index].soft; }
+  /// Rigid actors (a must be one).
+  const RigidBodyModel& Model(ActorHandle a) const { return models_[actors_[a.index].local]; }
+  const RigidBodyState& State(ActorHandle a) const { return states_[actors_[a.index].local]; }
+  /// Soft actors (a must be one).
+  const SoftBodyModel& SoftModel(ActorHandle a) const {
+    return softModels_[actors_[a.index].local];
+  }
+  const SoftBodyState& SoftState(ActorHandle a) const {
+    return softStates_[actors_[a.index].local];
+  }
+  /// The rigid actors' models and states, in creation order among rigid actors; RigidActors()[i]
+  /// is the handle of Models()[i].
   const std::vector<RigidBodyModel>& Models() const { return models_; }
   const std::vector<RigidBodyState>& States() const { return states_; }
+  std::vector<ActorHandle> RigidActors() const;
+  /// Centre of mass [m] and its velocity [m/s] of any actor (soft: of the lumped node masses).
+  Eigen::Vector3d CenterOfMass(ActorHandle a) const;
+  Eigen::Vector3d CenterOfMassVelocity(ActorHandle a) const;
+  std::vector<ActorHandle> SoftActors() const;
+  /// Per boundary face of soft actor a, the contact traction on it averaged over the face's
+  /// reference area, Σ_q w_q t_q / A_f [Pa] (world frame; zero for faces out of contact), from the
+  /// active penalty samples at the current state.
+  bool SoftFaceTractions(ActorHandle a, std::vector<Eigen::Vector3d>* tractions, Error* error);
   const SceneSettings& Settings() const { return settings_; }
   /// Changes the stage solver. Ipopt is refused for a scene whose stages are not a potential
   /// (dissipation without explicit normals), with the reason.
@@ -141,17 +170,36 @@ class Scene {
   // `last` is the last configuration the bodies occupied (the dissipation geometry).
   SolverStats SolveStage(double dt, const std::vector<RigidBodyState>& start,
                          const std::vector<RigidPose>& last, std::vector<RigidPose>* poses,
-                         ContactStats* contact);
+                         ContactStats* contact, const SoftStage* soft = nullptr,
+                         std::vector<Eigen::VectorXd>* softX = nullptr);
   void ClearHistory() {
     history_.clear();
+    softHistory_.clear();
     historyTimes_.clear();
   }
   void Prepare();
   std::vector<RigidPose> CurrentPoses() const;
+  std::vector<Eigen::VectorXd> CurrentSoftPositions() const;
+  struct ActorRef {
+    bool soft = false;
+    int local = 0;  ///< index into models_/states_ or softModels_/softStates_
+  };
+  // Soft stage data: targets from the stage start, geometry from the last configuration.
+  SoftStage MakeSoftStage(double dt, const std::vector<SoftBodyState>& start,
+                          const std::vector<Eigen::VectorXd>& last) const;
+  // Prescribed node positions at time t written into x.
+  void ApplyConstraints(double t, std::vector<Eigen::VectorXd>* x) const;
+  double MinDetF() const;
 
   SceneSettings settings_;
   std::vector<RigidBodyModel> models_;
   std::vector<RigidBodyState> states_;
+  std::vector<SoftBodyModel> softModels_;
+  std::vector<SoftBodyState> softStates_;
+  std::vector<Eigen::VectorXd> softInitial_;  // positions at creation (node constraints)
+  std::vector<ActorRef> actors_;
+  std::vector<int> softDofOffset_;
+  std::vector<std::vector<SoftBodyState>> softHistory_;
   // Multistep history: history_[j] = state at step n−1−j, at time historyTimes_[j] (at most 2).
   std::vector<std::vector<RigidBodyState>> history_;
   std::vector<double> historyTimes_;

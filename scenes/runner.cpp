@@ -2,9 +2,11 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <iomanip>
 
 #include "scenes/trajectory_writer.h"
+#include "scenes/vtk_writer.h"
 
 namespace superdex {
 
@@ -21,6 +23,15 @@ bool RunScene(SceneFile* file, const RunOptions& options, RunSummary* summary, E
     if (!writer.Open(s.trajectoryPath, scene, file->actorNames, dt, error)) return false;
     writer.WriteFrame(scene, 0, nullptr);
   }
+  s.vtkDirectory = options.vtk.value_or(file->output.vtk);
+  auto writeVtk = [&](int step) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "/frame_%06d.vtk", step);
+    if (!WriteVtkFrame(scene, s.vtkDirectory + name, error)) return false;
+    ++s.vtkFrames;
+    return true;
+  };
+  if (!s.vtkDirectory.empty() && !writeVtk(0)) return false;
   s.initialEnergy = scene.Energies().Total();
   s.maxPenetration = std::max(0.0, -scene.ContactState().minSignedDistance);
   const int steps = std::max(1, static_cast<int>(std::llround(duration / dt)));
@@ -38,10 +49,13 @@ bool RunScene(SceneFile* file, const RunOptions& options, RunSummary* summary, E
     (rep.status == StageStatus::Converged ? s.converged
      : rep.status == StageStatus::Stopped ? s.stopped
                                           : s.diverged) += 1;
+    s.minDetF = std::min(s.minDetF, rep.minDetF);
     if (std::isfinite(rep.contact.minSignedDistance))
       s.maxPenetration = std::max(s.maxPenetration, -rep.contact.minSignedDistance);
     if (writer.IsOpen() && (k % file->output.every == 0 || k == steps))
       writer.WriteFrame(scene, k, &rep);
+    if (!s.vtkDirectory.empty() && (k % file->output.vtkEvery == 0 || k == steps) && !writeVtk(k))
+      return false;
     if (options.progress) options.progress(rep, double(k) / steps);
   }
   s.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -73,7 +87,7 @@ bool RunScene(SceneFile* file, const RunOptions& options, RunSummary* summary, E
   for (const auto& r : e.finalPositions) {
     for (size_t i = 0; i < file->actorNames.size(); ++i) {
       if (file->actorNames[i] != r.actor) continue;
-      const Eigen::Vector3d p = scene.States()[i].p;
+      const Eigen::Vector3d p = scene.CenterOfMass({static_cast<int>(i)});
       const double err = (p - r.position).norm();
       if (err > r.tolerance) {
         m.str("");
@@ -112,11 +126,17 @@ void PrintSummary(const SceneFile& file, const RunSummary& s, std::ostream& os) 
   os << "stages            " << s.converged << " converged, " << s.stopped << " stopped, "
      << s.diverged << " diverged\n";
   os << "max penetration   " << s.maxPenetration * 1e3 << " mm (max of −φ at step ends)\n";
+  if (std::isfinite(s.minDetF))
+    os << "soft tets         min det F " << s.minDetF
+       << (s.minDetF > 0 ? " (no tet inverted)" : " (INVERTED TETS)") << "\n";
   const double drift = s.finalEnergy - s.initialEnergy;
   os << "energy            " << s.initialEnergy << " J -> " << s.finalEnergy << " J (drift "
      << drift << " J, " << 100.0 * drift / std::max(std::abs(s.initialEnergy), 1e-300)
      << " %)\n";
   if (!s.trajectoryPath.empty()) os << "trajectory        " << s.trajectoryPath << "\n";
+  if (s.vtkFrames > 0)
+    os << "VTK frames        " << s.vtkFrames << " in " << s.vtkDirectory
+       << "/ (open the series in ParaView; cell data: traction, pressure)\n";
   if (s.expectationFailures.empty()) {
     os << "expectations      " << (file.expect.maxPenetration || file.expect.allConverged ||
                                    file.expect.maxRelativeEnergyDrift ||

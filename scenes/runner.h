@@ -13,6 +13,7 @@ struct RunOptions {
   std::optional<double> dt;          ///< overrides the file's settings.dt [s]
   std::optional<double> duration;    ///< overrides settings.duration [s]
   std::optional<std::string> out;    ///< overrides output.path ("" = no file)
+  std::optional<std::string> vtk;    ///< overrides output.vtk ("" = no frames)
   /// Called after every step with the step's report and the fraction done in [0, 1].
   std::function<void(const StepReport&, double)> progress;
 };
@@ -27,9 +28,12 @@ struct RunSummary {
   int maxNewtonIterations = 0;
   int converged = 0, stopped = 0, diverged = 0;  ///< stages by outcome
   double maxPenetration = 0.0;        ///< max over steps of max(0, −min φ) [m]
+  double minDetF = INFINITY;          ///< smallest det F over soft tets at step ends (+∞: none)
   double initialEnergy = 0.0, finalEnergy = 0.0;  ///< total mechanical energy [J]
   std::vector<std::string> expectationFailures;   ///< empty when every expectation holds
   std::string trajectoryPath;
+  std::string vtkDirectory;  ///< where the VTK frames went ("" = none)
+  int vtkFrames = 0;
 };
 
 /// Runs to the end. Returns false only for I/O or input errors (then *error says which).

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "geometry/mesh_io.h"
+#include "geometry/tet_mesh.h"
 
 namespace superdex {
 namespace {
@@ -204,12 +205,171 @@ Eigen::Quaterniond ReadOrientation(const json& j, const std::string& path) {
   return Eigen::Quaterniond(q[3], q[0], q[1], q[2]).normalized();
 }
 
+// A soft actor's tet mesh: {"type": "file", "file": F (.msh, .node/.ele), "scale"},
+// {"type": "box", "half_extents" | "size", "cells": [nx, ny, nz]},
+// {"type": "sphere", "radius", "edge_length"} or {"type": "surface", "file": F (closed surface
+// mesh), "edge_length", "scale"} (tetrahedralized by CGAL's Mesh_3).
+std::shared_ptr<TetMesh> ReadTetMeshSpec(const json& j, const std::string& path,
+                                         const std::string& baseDir, std::string* source) {
+  if (!j.is_object()) Throw(path, std::string("must be an object, got ") + TypeName(j));
+  auto mesh = std::make_shared<TetMesh>();
+  const std::string type = String(j, path, "type");
+  auto resolve = [&](std::string file) {
+    if (!file.empty() && file[0] != '/' && !baseDir.empty()) file = baseDir + "/" + file;
+    return file;
+  };
+  if (type == "file") {
+    CheckObject(j, path, {"type", "file", "scale"});
+    const std::string file = resolve(String(j, path, "file"));
+    std::string err;
+    if (!ReadTetMeshFile(file, mesh.get(), &err)) Throw(Join(path, "file"), err);
+    const double scale = Positive(j, path, "scale", 1.0);
+    for (auto& v : mesh->vertices) v *= scale;
+    *source = file;
+  } else if (type == "box") {
+    CheckObject(j, path, {"type", "half_extents", "size", "cells"});
+    if (j.contains("size") == j.contains("half_extents"))
+      Throw(path, "give exactly one of \"size\" and \"half_extents\"");
+    const bool full = j.contains("size");
+    const Eigen::Vector3d e =
+        Vector<3>(j, path, full ? "size" : "half_extents", Eigen::Vector3d::Zero());
+    if (!(e.minCoeff() > 0)) Throw(Join(path, full ? "size" : "half_extents"), "must be > 0");
+    const Eigen::Vector3d c = Vector<3>(j, path, "cells", Eigen::Vector3d(4, 4, 4));
+    Eigen::Vector3i cells;
+    for (int k = 0; k < 3; ++k) {
+      if (c[k] < 1 || c[k] > 200 || c[k] != std::floor(c[k]))
+        Throw(Join(path, "cells"), "must hold integers in [1, 200]");
+      cells[k] = static_cast<int>(c[k]);
+    }
+    *mesh = MakeTetBox(full ? Eigen::Vector3d(0.5 * e) : e, cells);
+    *source = "tet box";
+  } else if (type == "sphere") {
+    CheckObject(j, path, {"type", "radius", "edge_length"});
+    const double r = Positive(j, path, "radius");
+    const double h = Positive(j, path, "edge_length");
+    if (r / h > 200) Throw(Join(path, "edge_length"), "too small for the radius (radius/edge_length > 200)");
+    *mesh = MakeTetSphere(r, h);
+    *source = "tet sphere";
+  } else if (type == "surface") {
+    CheckObject(j, path, {"type", "file", "edge_length", "scale"});
+    const std::string file = resolve(String(j, path, "file"));
+    TriangleMesh surface;
+    std::string err;
+    if (!ReadMeshFile(file, &surface, &err)) Throw(Join(path, "file"), err);
+    const double scale = Positive(j, path, "scale", 1.0);
+    for (auto& v : surface.vertices) v *= scale;
+    const double h = Positive(j, path, "edge_length");
+    if (!MeshTetsFromSurface(surface, h, mesh.get(), &err)) Throw(path, file + ": " + err);
+    *source = file;
+  } else {
+    Throw(Join(path, "type"), "unknown value \"" + type + "\" (expected one of: file, box, sphere, surface)");
+  }
+  return mesh;
+}
+
+// "constraints": [{"nodes": [i, ...] | "region": {"min": [..], "max": [..]} (world coordinates at
+// creation), "path": [[t, dx, dy, dz], ...] (omitted: pinned)}, ...]
+std::vector<NodeConstraint> ReadConstraints(const json& list, const std::string& path,
+                                            const TetMesh& mesh, const Eigen::Vector3d& position,
+                                            const Eigen::Quaterniond& orientation) {
+  if (!list.is_array()) Throw(path, "must be an array");
+  std::vector<NodeConstraint> out;
+  const Eigen::Matrix3d R = orientation.toRotationMatrix();
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string p = path + "[" + std::to_string(i) + "]";
+    const json& c = list[i];
+    CheckObject(c, p, {"nodes", "region", "path"});
+    NodeConstraint k;
+    if (c.contains("nodes") == c.contains("region"))
+      Throw(p, "give exactly one of \"nodes\" and \"region\"");
+    if (c.contains("nodes")) {
+      const json& n = c.at("nodes");
+      if (!n.is_array()) Throw(Join(p, "nodes"), "must be an array of node indices");
+      for (const json& v : n) {
+        if (!v.is_number_integer()) Throw(Join(p, "nodes"), "must be an array of node indices");
+        k.nodes.push_back(v.get<int>());
+      }
+    } else {
+      const json& r = c.at("region");
+      const std::string rp = Join(p, "region");
+      CheckObject(r, rp, {"min", "max"});
+      const Eigen::Vector3d lo = Vector<3>(r, rp, "min", Eigen::Vector3d::Zero());
+      const Eigen::Vector3d hi = Vector<3>(r, rp, "max", Eigen::Vector3d::Zero());
+      for (int v = 0; v < mesh.NumVertices(); ++v) {
+        const Eigen::Vector3d x = position + R * mesh.vertices[v];
+        if ((x.array() >= lo.array()).all() && (x.array() <= hi.array()).all()) k.nodes.push_back(v);
+      }
+      if (k.nodes.empty()) Throw(rp, "selects no node");
+    }
+    if (c.contains("path")) {
+      const json& kp = c.at("path");
+      if (!kp.is_array()) Throw(Join(p, "path"), "must be an array of [t, dx, dy, dz]");
+      for (const json& f : kp) {
+        if (!f.is_array() || f.size() != 4) Throw(Join(p, "path"), "must be an array of [t, dx, dy, dz]");
+        for (const json& v : f)
+          if (!v.is_number()) Throw(Join(p, "path"), "must be an array of [t, dx, dy, dz]");
+        k.path.push_back({f[0].get<double>(), Eigen::Vector3d(f[1].get<double>(), f[2].get<double>(),
+                                                               f[3].get<double>())});
+      }
+    }
+    out.push_back(std::move(k));
+  }
+  return out;
+}
+
+void ReadSoftActor(const json& a, const std::string& path, const std::string& baseDir,
+                   ActorHandle parent, SceneFile* out) {
+  CheckObject(a, path,
+              {"name", "type", "mesh", "material", "position", "orientation", "euler_deg",
+               "velocity", "contact", "collider_type", "boundary_element_type", "contact_layer",
+               "parent", "constraints"});
+  SoftActorDesc d;
+  d.name = String(a, path, "name");
+  if (!a.contains("mesh")) Throw(Join(path, "mesh"), "missing required field");
+  d.mesh = ReadTetMeshSpec(a.at("mesh"), Join(path, "mesh"), baseDir, &d.meshSource);
+  if (a.contains("material")) {
+    const json& m = a.at("material");
+    const std::string mp = Join(path, "material");
+    CheckObject(m, mp, {"youngs_modulus", "poisson_ratio", "density", "stiffness_damping"});
+    d.material.youngsModulus = Number(m, mp, "youngs_modulus", d.material.youngsModulus);
+    d.material.poissonRatio = Number(m, mp, "poisson_ratio", d.material.poissonRatio);
+    d.material.density = Number(m, mp, "density", d.material.density);
+    d.material.stiffnessDamping = Number(m, mp, "stiffness_damping", d.material.stiffnessDamping);
+  }
+  d.position = Vector<3>(a, path, "position", Eigen::Vector3d::Zero());
+  d.orientation = ReadOrientation(a, path);
+  d.linearVelocity = Vector<3>(a, path, "velocity", Eigen::Vector3d::Zero());
+  if (a.contains("contact")) d.contact = ReadContact(a.at("contact"), Join(path, "contact"));
+  d.colliderType = Enum(a, path, "collider_type", ColliderType::None);
+  d.boundaryElementType = Enum(a, path, "boundary_element_type", ActorBoundaryElementType::P1Q3);
+  d.contactLayer = String(a, path, "contact_layer", std::string("default"));
+  if (a.contains("constraints"))
+    d.constraints = ReadConstraints(a.at("constraints"), Join(path, "constraints"), *d.mesh,
+                                    d.position, d.orientation);
+  Error err;
+  if (!out->scene->AddSoftActor(d, &err, parent).IsValid()) throw LoadError{path + "." + err.message};
+  out->actorNames.push_back(d.name);
+}
+
 void ReadActors(const json& actors, const std::string& baseDir, SceneFile* out) {
   if (!actors.is_array()) Throw("actors", std::string("must be an array, got ") + TypeName(actors));
   std::set<std::string> names;
   for (size_t i = 0; i < actors.size(); ++i) {
     const std::string path = "actors[" + std::to_string(i) + "]";
     const json& a = actors[i];
+    if (a.is_object() && a.contains("type") && a.at("type") == "soft") {
+      ActorHandle parent;
+      if (a.contains("parent")) {
+        const std::string p = String(a, path, "parent");
+        for (size_t k = 0; k < out->actorNames.size(); ++k)
+          if (out->actorNames[k] == p) parent.index = static_cast<int>(k);
+        if (!parent.IsValid()) Throw(Join(path, "parent"), "no earlier actor named \"" + p + "\"");
+      }
+      const std::string name = String(a, path, "name");
+      if (!names.insert(name).second) Throw(Join(path, "name"), "duplicate actor name \"" + name + "\"");
+      ReadSoftActor(a, path, baseDir, parent, out);
+      continue;
+    }
     CheckObject(a, path,
                 {"name", "type", "dynamic", "shape", "density", "mass", "inertia", "position",
                  "orientation", "euler_deg", "velocity", "angular_velocity", "contact",
@@ -217,7 +377,7 @@ void ReadActors(const json& actors, const std::string& baseDir, SceneFile* out) 
                  "grid_sdf"});
     const std::string type = String(a, path, "type", std::string("rigid"));
     if (type != "rigid")
-      Throw(Join(path, "type"), "unknown value \"" + type + "\" (supported: rigid)");
+      Throw(Join(path, "type"), "unknown value \"" + type + "\" (supported: rigid, soft)");
     RigidActorDesc d;
     d.name = String(a, path, "name");
     d.dynamic = Bool(a, path, "dynamic", true);
@@ -421,9 +581,11 @@ bool LoadSceneText(const std::string& text, const std::string& baseDir, SceneFil
 
     if (j.contains("output")) {
       const json& o = j.at("output");
-      CheckObject(o, "output", {"path", "every"});
+      CheckObject(o, "output", {"path", "every", "vtk", "vtk_every"});
       out->output.path = String(o, "output", "path", std::string());
       out->output.every = Integer(o, "output", "every", 1, 1, 1 << 30);
+      out->output.vtk = String(o, "output", "vtk", std::string());
+      out->output.vtkEvery = Integer(o, "output", "vtk_every", 10, 1, 1 << 30);
     }
     if (j.contains("expect")) {
       const json& e = j.at("expect");

@@ -14,6 +14,8 @@ namespace superdex {
 struct OutputSpec {
   std::string path;      ///< trajectory file (JSON Lines); empty: no file
   int every = 1;         ///< write every n-th step
+  std::string vtk;       ///< directory for VTK frames (frame_000000.vtk, ...); empty: none
+  int vtkEvery = 10;     ///< a frame every n-th step
 };
 
 /// Expected figures of a shipped scene (regression checks run by `superdex run` and the tests).

@@ -1,6 +1,6 @@
 // The `superdex` command-line tool.
 //   superdex run SCENE.json [--dt S] [--duration S] [--integrator NAME] [--solver NAME]
-//                [--out FILE] [--quiet]
+//                [--out FILE] [--vtk DIR] [--quiet]
 // Exit codes: 0 success; 2 invalid input (scene file, options); 3 a stage did not converge
 // (Stopped or Diverged); 4 a scene expectation failed.
 #include <CLI/CLI.hpp>
@@ -59,6 +59,9 @@ int main(int argc, char** argv) {
                   "IntegrationMethod (overrides settings.integrator): BackwardEuler, BDF2, "
                   "SymplecticDIRK12");
   run->add_option("--out", out, "Trajectory file (JSON Lines); overrides output.path");
+  std::string vtk;
+  run->add_option("--vtk", vtk, "Directory for VTK frames (surfaces with contact tractions); "
+                                "overrides output.vtk");
   std::string solver;
   run->add_option("--solver", solver,
                   "Stage solver (overrides settings.stage_solver): newton, ipopt (potential "
@@ -81,6 +84,7 @@ int main(int argc, char** argv) {
   if (run->count("--dt")) options.dt = dt;
   if (run->count("--duration")) options.duration = duration;
   if (run->count("--out")) options.out = out;
+  if (run->count("--vtk")) options.vtk = vtk;
   if (run->count("--integrator")) {
     superdex::IntegrationMethod m;
     if (!superdex::Parse(integrator, &m)) {

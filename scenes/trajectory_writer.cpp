@@ -27,8 +27,14 @@ bool TrajectoryWriter::Open(const std::string& path, const Scene& scene,
   h["gravity"] = Vec(scene.Settings().gravity);
   json actors = json::array();
   for (int i = 0; i < scene.NumActors(); ++i) {
-    const RigidBodyModel& m = scene.Models()[i];
-    actors.push_back({{"name", names[i]}, {"dynamic", m.dynamic}, {"mass", m.mass}});
+    if (scene.IsSoft({i})) {
+      const SoftBodyModel& m = scene.SoftModel({i});
+      actors.push_back({{"name", names[i]}, {"type", "soft"}, {"dynamic", true}, {"mass", m.mass},
+                        {"nodes", m.NumNodes()}, {"tets", m.rest.NumTets()}});
+      continue;
+    }
+    const RigidBodyModel& m = scene.Model({i});
+    actors.push_back({{"name", names[i]}, {"type", "rigid"}, {"dynamic", m.dynamic}, {"mass", m.mass}});
   }
   h["actors"] = actors;
   out_ << h.dump() << '\n';
@@ -41,7 +47,11 @@ void TrajectoryWriter::WriteFrame(Scene& scene, int step, const StepReport* repo
   f["step"] = step;
   json actors = json::array();
   for (int i = 0; i < scene.NumActors(); ++i) {
-    const RigidBodyState& s = scene.States()[i];
+    if (scene.IsSoft({i})) {  // centre of mass and its velocity; the nodes go to VTK frames
+      actors.push_back({{"p", Vec(scene.CenterOfMass({i}))}, {"v", Vec(scene.CenterOfMassVelocity({i}))}});
+      continue;
+    }
+    const RigidBodyState& s = scene.State({i});
     const Eigen::Quaterniond q(s.R);
     actors.push_back({{"p", Vec(s.p)},
                       {"q", json::array({q.x(), q.y(), q.z(), q.w()})},
@@ -51,7 +61,7 @@ void TrajectoryWriter::WriteFrame(Scene& scene, int step, const StepReport* repo
   f["actors"] = actors;
   const EnergyReport e = scene.Energies();
   f["energy"] = {{"kinetic", e.kinetic}, {"gravity", e.gravity}, {"contact", e.contact},
-                 {"total", e.Total()}};
+                 {"elastic", e.elastic}, {"total", e.Total()}};
   if (report) {
     f["stats"] = {{"newton_iterations", report->newtonIterations},
                   {"line_search_steps", report->lineSearchSteps},
@@ -62,6 +72,7 @@ void TrajectoryWriter::WriteFrame(Scene& scene, int step, const StepReport* repo
                        ? json(report->contact.minSignedDistance)
                        : json(nullptr)},
                   {"wall_seconds", report->wallSeconds}};
+    if (std::isfinite(report->minDetF)) f["stats"]["min_det_f"] = report->minDetF;
   }
   out_ << f.dump() << '\n';
 }

@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 
 #include "core/rigid_math.h"
-#include "core/rigid_stage.h"
+#include "core/scene_stage.h"
 #include "derivative_check.h"
 
 using namespace superdex;
@@ -69,7 +69,7 @@ TEST_CASE("rigid stage: residual Jacobian and potential gradient with dissipatio
       diss.enabled = true;
       diss.mode = mode;
       std::vector<RigidPose> poses = f.poses;
-      RigidStageProblem problem(f.models, f.dofOffset, 12, f.targets, Eigen::Vector3d(0, 0, -9.81),
+      SceneStageProblem problem(f.models, f.dofOffset, 12, f.targets, Eigen::Vector3d(0, 0, -9.81),
                                 &f.pipeline, &poses, diss);
       CHECK(problem.IsPotential() == (mode == DissipationMode::ExplicitNormals));
       Eigen::VectorXd r;

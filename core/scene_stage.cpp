@@ -1,4 +1,4 @@
-#include "core/rigid_stage.h"
+#include "core/scene_stage.h"
 
 #include "core/rigid_math.h"
 #include "energies/psd_projection.h"
@@ -6,11 +6,12 @@
 
 namespace superdex {
 
-RigidStageProblem::RigidStageProblem(const std::vector<RigidBodyModel>& models,
+SceneStageProblem::SceneStageProblem(const std::vector<RigidBodyModel>& models,
                                      const std::vector<int>& dofOffset, int numDofs,
                                      const StageTargets& targets, const Eigen::Vector3d& gravity,
                                      ContactPipeline* contact, std::vector<RigidPose>* poses,
-                                     const StageDissipation& dissipation)
+                                     const StageDissipation& dissipation, const SoftStage* soft,
+                                     std::vector<Eigen::VectorXd>* softX)
     : models_(models),
       dofOffset_(dofOffset),
       numDofs_(numDofs),
@@ -18,18 +19,24 @@ RigidStageProblem::RigidStageProblem(const std::vector<RigidBodyModel>& models,
       gravity_(gravity),
       contact_(contact),
       poses_(poses),
-      dissipation_(dissipation) {
+      dissipation_(dissipation),
+      soft_(soft && softX && !soft->targets.empty() ? soft : nullptr),
+      softX_(soft_ ? softX : nullptr) {
   trial_ = *poses;
+  if (soft_) {
+    softTrial_ = *softX_;
+    softScratch_.resize(soft_->targets.size());
+  }
   context_.dt = targets_.dt;
   context_.mode = dissipation_.mode;
   context_.fadeFriction = dissipation_.fadeFriction;
 }
 
-bool RigidStageProblem::IsPotential() const {
+bool SceneStageProblem::IsPotential() const {
   return !dissipation_.enabled || dissipation_.mode == DissipationMode::ExplicitNormals;
 }
 
-double RigidStageProblem::BodyEnergy(size_t i, const RigidPose& pose) const {
+double SceneStageProblem::BodyEnergy(size_t i, const RigidPose& pose) const {
   const RigidBodyModel& m = models_[i];
   const double w = 1.0 / (targets_.dt * targets_.dt);
   const RigidInertiaTerm t = RigidInertia(m.mass, m.secondMoment, pose.p, pose.R,
@@ -37,7 +44,18 @@ double RigidStageProblem::BodyEnergy(size_t i, const RigidPose& pose) const {
   return w * t.value + GravityPotential(m.mass, gravity_, pose.p);
 }
 
-void RigidStageProblem::Retract(const Eigen::VectorXd& d, std::vector<RigidPose>* out) const {
+void SceneStageProblem::Retract(const Eigen::VectorXd& d, std::vector<RigidPose>* out,
+                                std::vector<Eigen::VectorXd>* softOut) const {
+  if (soft_) {
+    for (size_t s = 0; s < soft_->targets.size(); ++s) {
+      const SoftBodyModel& m = (*soft_->models)[s];
+      Eigen::VectorXd& x = (*softOut)[s];
+      x = (*softX_)[s];
+      for (int a = 0; a < m.NumNodes(); ++a)
+        if (m.freeIndex[a] >= 0)
+          x.segment<3>(3 * a) += d.segment<3>(soft_->dofOffset[s] + 3 * m.freeIndex[a]);
+    }
+  }
   for (size_t i = 0; i < models_.size(); ++i) {
     const int o = dofOffset_[i];
     (*out)[i] = (*poses_)[i];
@@ -47,9 +65,11 @@ void RigidStageProblem::Retract(const Eigen::VectorXd& d, std::vector<RigidPose>
   }
 }
 
-double RigidStageProblem::EvaluateAt(const std::vector<RigidPose>& poses, int order,
+double SceneStageProblem::EvaluateAt(const std::vector<RigidPose>& poses,
+                                     const std::vector<Eigen::VectorXd>& softX, int order,
                                      PsdProjection projection, Eigen::VectorXd* gPot,
-                                     Eigen::VectorXd* rDiss, ContactStats* stats) {
+                                     Eigen::VectorXd* rDiss, ContactStats* stats,
+                                     double* minDetF) {
   const double w = 1.0 / (targets_.dt * targets_.dt);
   double value = 0.0;
   if (order >= 1) {
@@ -74,22 +94,39 @@ double RigidStageProblem::EvaluateAt(const std::vector<RigidPose>& poses, int or
       for (int r = 0; r < 6; ++r)
         if (H(r, c) != 0.0) triplets_.emplace_back(o + r, o + c, H(r, c));
   }
+  SoftView view;
+  if (soft_) {
+    double minDet = INFINITY;
+    for (size_t s = 0; s < soft_->targets.size(); ++s) {
+      double md = INFINITY;
+      value += EvaluateSoftStageTerms((*soft_->models)[s], soft_->targets[s], targets_.dt, gravity_,
+                                      softX[s], order, projection, soft_->dofOffset[s], gPot,
+                                      &triplets_, &softScratch_[s], &md);
+      minDet = std::min(minDet, md);
+    }
+    if (minDetF) *minDetF = minDet;
+    view.x = &softX;
+    view.xLast = &soft_->xLast;
+    view.x0 = &soft_->x0;
+    view.dofOffset = &soft_->dofOffset;
+  }
   value += contact_->Evaluate(poses, dofOffset_, order, projection, gPot, &triplets_, stats,
                               dissipation_.enabled ? &context_ : nullptr, rDiss,
-                              targets_.start.empty() ? nullptr : &targets_.start);
+                              targets_.start.empty() ? nullptr : &targets_.start,
+                              soft_ ? &view : nullptr);
   return value;
 }
 
-double RigidStageProblem::Value(const Eigen::VectorXd& d) {
-  Retract(d, &trial_);
-  return EvaluateAt(trial_, 0, PsdProjection::None, nullptr, nullptr);
+double SceneStageProblem::Value(const Eigen::VectorXd& d) {
+  Retract(d, &trial_, &softTrial_);
+  return EvaluateAt(trial_, softTrial_, 0, PsdProjection::None, nullptr, nullptr);
 }
 
-double RigidStageProblem::Evaluate(Eigen::VectorXd* gradient,
+double SceneStageProblem::Evaluate(Eigen::VectorXd* gradient,
                                    Eigen::SparseMatrix<double>* hessian,
                                    PsdProjection projection) {
-  const double value =
-      EvaluateAt(*poses_, hessian ? 2 : 1, projection, gradient, gradient, &lastStats_);
+  const double value = EvaluateAt(*poses_, SoftPositions(), hessian ? 2 : 1, projection,
+                                  gradient, gradient, &lastStats_, &lastMinDetF_);
   if (hessian) {
     hessian->resize(numDofs_, numDofs_);
     hessian->setFromTriplets(triplets_.begin(), triplets_.end());
@@ -97,13 +134,14 @@ double RigidStageProblem::Evaluate(Eigen::VectorXd* gradient,
   return value;
 }
 
-void RigidStageProblem::Residual(const Eigen::VectorXd& d, Eigen::VectorXd* r) {
-  Retract(d, &trial_);
-  EvaluateAt(trial_, 1, PsdProjection::None, r, r);
+void SceneStageProblem::Residual(const Eigen::VectorXd& d, Eigen::VectorXd* r) {
+  Retract(d, &trial_, &softTrial_);
+  EvaluateAt(trial_, softTrial_, 1, PsdProjection::None, r, r);
 }
 
-void RigidStageProblem::EvaluateResidual(Eigen::VectorXd* r, Eigen::SparseMatrix<double>* J) {
-  EvaluateAt(*poses_, J ? 2 : 1, PsdProjection::None, r, &scratch_, &lastStats_);
+void SceneStageProblem::EvaluateResidual(Eigen::VectorXd* r, Eigen::SparseMatrix<double>* J) {
+  EvaluateAt(*poses_, SoftPositions(), J ? 2 : 1, PsdProjection::None, r, &scratch_,
+             &lastStats_, &lastMinDetF_);
   if (J) {
     // The rotation entries of r are world torques τ. Along the retraction exp([δθ]×) R the torque
     // of a potential changes by (H − ½[τ]×) δθ, H its second derivative (assembled above); the
@@ -125,7 +163,18 @@ void RigidStageProblem::EvaluateResidual(Eigen::VectorXd* r, Eigen::SparseMatrix
   *r += scratch_;
 }
 
-void RigidStageProblem::MoveInChart(const Eigen::VectorXd& d) {
+void SceneStageProblem::SetChartOrigin() {
+  origin_ = *poses_;
+  if (soft_) softOrigin_ = *softX_;
+}
+
+void SceneStageProblem::MoveInChart(const Eigen::VectorXd& d) {
+  if (soft_) {
+    // Soft nodes live in a vector space: the chart is the identity.
+    *softX_ = softOrigin_;
+    Retract(d, &trial_, &softTrial_);
+    *softX_ = softTrial_;
+  }
   for (size_t i = 0; i < models_.size(); ++i) {
     const int o = dofOffset_[i];
     (*poses_)[i] = origin_[i];
@@ -135,7 +184,7 @@ void RigidStageProblem::MoveInChart(const Eigen::VectorXd& d) {
   }
 }
 
-Eigen::MatrixXd RigidStageProblem::ChartTangentMap(const Eigen::VectorXd& d) const {
+Eigen::MatrixXd SceneStageProblem::ChartTangentMap(const Eigen::VectorXd& d) const {
   Eigen::MatrixXd T = Eigen::MatrixXd::Identity(numDofs_, numDofs_);
   for (size_t i = 0; i < models_.size(); ++i) {
     const int o = dofOffset_[i];
@@ -144,12 +193,13 @@ Eigen::MatrixXd RigidStageProblem::ChartTangentMap(const Eigen::VectorXd& d) con
   return T;
 }
 
-void RigidStageProblem::Commit(const Eigen::VectorXd& d) {
-  Retract(d, &trial_);
+void SceneStageProblem::Commit(const Eigen::VectorXd& d) {
+  Retract(d, &trial_, &softTrial_);
   *poses_ = trial_;
+  if (soft_) *softX_ = softTrial_;
 }
 
-double RigidStageProblem::StepNorm(const Eigen::VectorXd& d) const {
+double SceneStageProblem::StepNorm(const Eigen::VectorXd& d) const {
   double norm = 0.0;
   for (size_t i = 0; i < models_.size(); ++i) {
     const int o = dofOffset_[i];
@@ -158,6 +208,10 @@ double RigidStageProblem::StepNorm(const Eigen::VectorXd& d) const {
     const double radius = std::sqrt(models_[i].secondMoment.trace() / models_[i].mass);
     norm = std::max(norm, d.segment<3>(o).lpNorm<Eigen::Infinity>());
     norm = std::max(norm, d.segment<3>(o + 3).norm() * radius);
+  }
+  if (soft_) {
+    const int begin = soft_->dofOffset.front();
+    norm = std::max(norm, d.segment(begin, numDofs_ - begin).lpNorm<Eigen::Infinity>());
   }
   return norm;
 }

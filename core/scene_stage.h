@@ -1,6 +1,8 @@
-// One implicit stage over the scene's rigid bodies, as a StageProblem for the optim/ solvers:
-//   Φ_i(q) = 1/(2Δt_i²) Σ_b E_inertia,b(q)  +  Σ_b U_gravity,b(q)  +  Π_contact(q)
-//            + Δt_i Σ w R(V_rel,i)                                                    [J]
+// One implicit stage over the scene's rigid and soft actors, as a StageProblem for the optim/
+// solvers:
+//   Φ_i(q) = 1/(2Δt_i²) Σ_b E_inertia,b(q)  +  Σ_b U_gravity,b(q)  +  Σ_s Φ_soft,s(q)
+//            + Π_contact(q) + Δt_i Σ w R(V_rel,i)                                     [J]
+// (Φ_soft: core/soft_terms.h). Dofs: 6 per dynamic rigid body [δp, δθ], then 3 per free soft node.
 // The last term is an exact potential only with ExplicitNormals; in the other dissipation modes
 // the stage is the residual r = ∇(Φ without R) + Σ w J_Yᵀ ∂R/∂V (core/rigid_dissipation.h).
 #pragma once
@@ -8,6 +10,7 @@
 #include <vector>
 
 #include "core/contact_pipeline.h"
+#include "core/soft_terms.h"
 #include "core/rigid_body.h"
 #include "optim/stage_problem.h"
 
@@ -30,14 +33,24 @@ struct StageDissipation {
   bool fadeFriction = true;
 };
 
-class RigidStageProblem : public StageProblem {
+/// The soft actors of a stage: models, their first dof, and per actor the stage data.
+struct SoftStage {
+  const std::vector<SoftBodyModel>* models = nullptr;
+  std::vector<int> dofOffset;
+  std::vector<SoftStageTarget> targets;
+  std::vector<Eigen::VectorXd> x0, xLast;  ///< copies of the targets' x⁰ and x_n (contact view)
+};
+
+class SceneStageProblem : public StageProblem {
  public:
   /// `poses` is the iterate, updated in place by Commit; dynamic bodies own 6 dofs each
-  /// [δp, δθ] at dofOffset[i] (−1 for static bodies).
-  RigidStageProblem(const std::vector<RigidBodyModel>& models, const std::vector<int>& dofOffset,
+  /// [δp, δθ] at dofOffset[i] (−1 for static bodies). `soft` and `softX` (node positions, the
+  /// soft part of the iterate; prescribed nodes already at their stage values) may be null.
+  SceneStageProblem(const std::vector<RigidBodyModel>& models, const std::vector<int>& dofOffset,
                     int numDofs, const StageTargets& targets, const Eigen::Vector3d& gravity,
                     ContactPipeline* contact, std::vector<RigidPose>* poses,
-                    const StageDissipation& dissipation = StageDissipation());
+                    const StageDissipation& dissipation = StageDissipation(),
+                    const SoftStage* soft = nullptr, std::vector<Eigen::VectorXd>* softX = nullptr);
 
   int NumDofs() const override { return numDofs_; }
   double Value(const Eigen::VectorXd& d) override;
@@ -50,7 +63,7 @@ class RigidStageProblem : public StageProblem {
   /// trivialization term −½[τ]× (τ: that body's potential torque), plus the dissipation Jacobian.
   void EvaluateResidual(Eigen::VectorXd* r, Eigen::SparseMatrix<double>* J) override;
   bool SupportsChart() const override { return true; }
-  void SetChartOrigin() override { origin_ = *poses_; }
+  void SetChartOrigin() override;
   /// p = p₀ + δp, R = exp([δθ]×) R₀.
   void MoveInChart(const Eigen::VectorXd& d) override;
   /// Block diagonal: I for δp, the left Jacobian J_l(δθ) of SO(3) for δθ.
@@ -59,16 +72,22 @@ class RigidStageProblem : public StageProblem {
   /// Contact statistics of the last evaluation at the current iterate (Evaluate or
   /// EvaluateResidual), including the dissipative samples and the largest ‖T_C‖/(μ λ̂_n).
   const ContactStats& LastContactStats() const { return lastStats_; }
-  /// max over bodies of ‖δp‖∞ and ‖δθ‖ times the body's RMS radius √(tr J / m) [m].
+  /// Smallest det F over the soft tets at the last Evaluate / EvaluateResidual (+∞ without).
+  double LastMinDetF() const { return lastMinDetF_; }
+  /// max over bodies of ‖δp‖∞ and ‖δθ‖ times the body's RMS radius √(tr J / m), and over soft
+  /// nodes of ‖δx‖∞ [m].
   double StepNorm(const Eigen::VectorXd& d) const override;
 
  private:
   double BodyEnergy(size_t i, const RigidPose& pose) const;
-  void Retract(const Eigen::VectorXd& d, std::vector<RigidPose>* out) const;
-  /// All terms at `poses`: value; order >= 1: potential gradient into *gPot and dissipative
-  /// residual into *rDiss (may alias); order 2: triplets_.
-  double EvaluateAt(const std::vector<RigidPose>& poses, int order, PsdProjection projection,
-                    Eigen::VectorXd* gPot, Eigen::VectorXd* rDiss, ContactStats* stats = nullptr);
+  void Retract(const Eigen::VectorXd& d, std::vector<RigidPose>* out,
+               std::vector<Eigen::VectorXd>* softOut) const;
+  /// All terms at `poses` and soft positions `softX`: value; order >= 1: potential gradient into
+  /// *gPot and dissipative residual into *rDiss (may alias); order 2: triplets_.
+  double EvaluateAt(const std::vector<RigidPose>& poses,
+                    const std::vector<Eigen::VectorXd>& softX, int order,
+                    PsdProjection projection, Eigen::VectorXd* gPot, Eigen::VectorXd* rDiss,
+                    ContactStats* stats = nullptr, double* minDetF = nullptr);
 
   const std::vector<RigidBodyModel>& models_;
   const std::vector<int>& dofOffset_;
@@ -84,6 +103,12 @@ class RigidStageProblem : public StageProblem {
   Eigen::VectorXd scratch_;
   ContactStats lastStats_;
   std::vector<RigidPose> origin_;
+  const std::vector<Eigen::VectorXd>& SoftPositions() const { return softX_ ? *softX_ : noSoft_; }
+  const SoftStage* soft_ = nullptr;
+  std::vector<Eigen::VectorXd>* softX_ = nullptr;
+  std::vector<Eigen::VectorXd> softTrial_, softOrigin_, noSoft_;
+  std::vector<SoftTermScratch> softScratch_;
+  double lastMinDetF_ = INFINITY;
 };
 
 }  // namespace superdex

@@ -1,0 +1,705 @@
+// Tetrahedral meshes (see tet_mesh.h): queries, validation, boundary, box generator, Gmsh and
+// TetGen files. Meshing of surfaces (CGAL Mesh_3) lives in tet_mesher.cpp.
+#include "geometry/tet_mesh.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cerrno>
+#include <climits>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <unordered_map>
+#include <utility>
+
+namespace superdex {
+
+// ---------------------------------------------------------------------------------------------
+// Queries
+
+double TetMesh::TetVolume(int t) const {
+  const Eigen::Vector4i& q = tets[t];
+  const Eigen::Vector3d& x0 = vertices[q[0]];
+  return (vertices[q[1]] - x0).dot((vertices[q[2]] - x0).cross(vertices[q[3]] - x0)) / 6.0;
+}
+
+Aabb TetMesh::Bounds() const {
+  Aabb b;
+  for (const auto& v : vertices) b.Extend(v);
+  return b;
+}
+
+namespace {
+
+// Short number for messages.
+std::string Num(double v) {
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+
+// Shortest decimal text that reads back to exactly v.
+std::string RoundTrip(double v) {
+  char buf[40];
+  for (int p = 15; p <= 17; ++p) {
+    std::snprintf(buf, sizeof buf, "%.*g", p, v);
+    if (std::strtod(buf, nullptr) == v) break;
+  }
+  return buf;
+}
+
+// Parses a whole token as a base-10 integer.
+bool ParseLong(const std::string& s, long* out) {
+  if (s.empty()) return false;
+  errno = 0;
+  char* end = nullptr;
+  const long v = std::strtol(s.c_str(), &end, 10);
+  if (errno != 0 || end != s.c_str() + s.size()) return false;
+  *out = v;
+  return true;
+}
+
+// Parses a whole token as a finite double.
+bool ParseDouble(const std::string& s, double* out) {
+  if (s.empty()) return false;
+  errno = 0;
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  if (errno != 0 || end != s.c_str() + s.size() || !std::isfinite(v)) return false;
+  *out = v;
+  return true;
+}
+
+std::vector<std::string> Split(const std::string& line) {
+  std::vector<std::string> out;
+  size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    size_t j = i;
+    while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
+    if (j > i) out.push_back(line.substr(i, j - i));
+    i = j;
+  }
+  return out;
+}
+
+// Reads a text file line by line, counting lines, skipping blank lines (and, if `hashComments`,
+// everything from '#' to the end of a line).
+class LineReader {
+ public:
+  LineReader(std::istream& in, bool hashComments) : in_(in), hashComments_(hashComments) {}
+  // Tokens of the next non-blank line; false at the end of the file.
+  bool Next(std::vector<std::string>* tokens) {
+    std::string line;
+    while (std::getline(in_, line)) {
+      ++line_;
+      if (hashComments_) {
+        const size_t hash = line.find('#');
+        if (hash != std::string::npos) line.erase(hash);
+      }
+      *tokens = Split(line);
+      if (!tokens->empty()) return true;
+    }
+    return false;
+  }
+  int Line() const { return line_; }
+  bool Bad() const { return in_.bad(); }
+
+ private:
+  std::istream& in_;
+  bool hashComments_;
+  int line_ = 0;
+};
+
+// Error reporting for one file: "<path>: <message>" or "<path>: line <n>: <message>".
+struct Failer {
+  std::string path;
+  std::string* error;
+  bool operator()(const std::string& message) const {
+    if (error) *error = path + ": " + message;
+    return false;
+  }
+  bool operator()(int line, const std::string& message) const {
+    if (error) *error = path + ": line " + std::to_string(line) + ": " + message;
+    return false;
+  }
+};
+
+std::string Quote(const std::vector<std::string>& tokens) {
+  std::string s;
+  for (size_t k = 0; k < tokens.size() && k < 8; ++k) s += (k ? " " : "") + tokens[k];
+  if (tokens.size() > 8) s += " ...";
+  return "\"" + s + "\"";
+}
+
+std::string Extension(const std::string& path) {
+  const size_t slash = path.find_last_of("/\\");
+  const size_t dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string ext = path.substr(dot + 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Gmsh
+
+const char* GmshTypeName(long type) {
+  switch (type) {
+    case 1: return "2-node line";
+    case 2: return "3-node triangle";
+    case 3: return "4-node quadrangle";
+    case 4: return "4-node tetrahedron";
+    case 5: return "8-node hexahedron";
+    case 6: return "6-node prism";
+    case 7: return "5-node pyramid";
+    case 8: return "3-node line";
+    case 9: return "6-node triangle";
+    case 11: return "10-node tetrahedron";
+    case 15: return "point";
+    default: return "other";
+  }
+}
+
+struct PendingTet {
+  int line;
+  long tag;
+  std::array<long, 4> nodes;
+};
+
+struct GmshState {
+  TetMesh mesh;
+  std::unordered_map<long, int> nodeIndex;  // Gmsh node tag -> 0-based vertex index
+  std::vector<PendingTet> tets;
+  std::map<long, long> ignored;  // element type -> count
+};
+
+bool AddNode(const Failer& fail, int line, long tag, const std::vector<std::string>& t,
+             size_t first, GmshState* s) {
+  double x[3];
+  for (int k = 0; k < 3; ++k)
+    if (first + k >= t.size() || !ParseDouble(t[first + k], &x[k]))
+      return fail(line, "malformed coordinates of node " + std::to_string(tag) + ": " + Quote(t));
+  if (!s->nodeIndex.emplace(tag, s->mesh.NumVertices()).second)
+    return fail(line, "node " + std::to_string(tag) + " is defined twice");
+  if (s->mesh.vertices.size() >= static_cast<size_t>(INT_MAX)) return fail(line, "too many nodes");
+  s->mesh.vertices.emplace_back(x[0], x[1], x[2]);
+  return true;
+}
+
+// Reads one element given its type, tag and node tokens (t[first..]).
+bool AddElement(const Failer& fail, int line, long tag, long type,
+                const std::vector<std::string>& t, size_t first, GmshState* s) {
+  if (type != 4) {
+    ++s->ignored[type];
+    return true;
+  }
+  if (t.size() - first != 4)
+    return fail(line, "element " + std::to_string(tag) + " (type 4, a 4-node tetrahedron) has " +
+                          std::to_string(t.size() - first) + " node tags, expected 4");
+  PendingTet p{line, tag, {}};
+  for (int k = 0; k < 4; ++k)
+    if (!ParseLong(t[first + k], &p.nodes[k]))
+      return fail(line, "malformed node tag \"" + t[first + k] + "\" in element " +
+                            std::to_string(tag));
+  s->tets.push_back(p);
+  return true;
+}
+
+// Reads the declared count(s) of a section header line.
+bool ParseCounts(const Failer& fail, LineReader& r, const char* section, size_t n,
+                 std::vector<long>* out) {
+  std::vector<std::string> t;
+  if (!r.Next(&t)) return fail(std::string("file ends inside ") + section);
+  out->assign(n, 0);
+  if (t.size() < n) return fail(r.Line(), std::string("malformed ") + section + " header " + Quote(t));
+  for (size_t k = 0; k < n; ++k)
+    if (!ParseLong(t[k], &(*out)[k]) || (*out)[k] < 0)
+      return fail(r.Line(), std::string("malformed ") + section + " header " + Quote(t));
+  return true;
+}
+
+// Next data line of a section that declared `expected` entries of which `got` were read.
+bool NextData(const Failer& fail, LineReader& r, const std::string& section, const char* what,
+              long expected, long got, std::vector<std::string>* t) {
+  if (!r.Next(t))
+    return fail("file ends inside " + section + " after " + std::to_string(got) + " of " +
+                std::to_string(expected) + " " + what);
+  if ((*t)[0][0] == '$')
+    return fail(r.Line(), section + " declares " + std::to_string(expected) + " " + what +
+                              " but " + (*t)[0] + " comes after " + std::to_string(got));
+  return true;
+}
+
+bool ExpectEnd(const Failer& fail, LineReader& r, const std::string& end) {
+  std::vector<std::string> t;
+  if (!r.Next(&t)) return fail("file ends before " + end);
+  if (t[0] != end) return fail(r.Line(), "expected " + end + ", got " + Quote(t));
+  return true;
+}
+
+bool ReadGmshNodes2(const Failer& fail, LineReader& r, GmshState* s) {
+  std::vector<long> c;
+  if (!ParseCounts(fail, r, "$Nodes", 1, &c)) return false;
+  std::vector<std::string> t;
+  for (long i = 0; i < c[0]; ++i) {
+    if (!NextData(fail, r, "$Nodes", "nodes", c[0], i, &t)) return false;
+    long tag;
+    if (!ParseLong(t[0], &tag)) return fail(r.Line(), "malformed node line " + Quote(t));
+    if (!AddNode(fail, r.Line(), tag, t, 1, s)) return false;
+  }
+  return ExpectEnd(fail, r, "$EndNodes");
+}
+
+bool ReadGmshElements2(const Failer& fail, LineReader& r, GmshState* s) {
+  std::vector<long> c;
+  if (!ParseCounts(fail, r, "$Elements", 1, &c)) return false;
+  std::vector<std::string> t;
+  for (long i = 0; i < c[0]; ++i) {
+    if (!NextData(fail, r, "$Elements", "elements", c[0], i, &t)) return false;
+    // elm-number elm-type number-of-tags <tags> node-number-list
+    long tag, type, ntags;
+    if (t.size() < 3 || !ParseLong(t[0], &tag) || !ParseLong(t[1], &type) ||
+        !ParseLong(t[2], &ntags) || ntags < 0 || 3 + static_cast<size_t>(ntags) > t.size())
+      return fail(r.Line(), "malformed element line " + Quote(t));
+    if (!AddElement(fail, r.Line(), tag, type, t, 3 + static_cast<size_t>(ntags), s)) return false;
+  }
+  return ExpectEnd(fail, r, "$EndElements");
+}
+
+bool ReadGmshNodes41(const Failer& fail, LineReader& r, GmshState* s) {
+  // numEntityBlocks numNodes minNodeTag maxNodeTag; per block
+  // "entityDim entityTag parametric numNodesInBlock", the tags, then the coordinates.
+  std::vector<long> c;
+  if (!ParseCounts(fail, r, "$Nodes", 4, &c)) return false;
+  long read = 0;
+  std::vector<std::string> t;
+  for (long b = 0; b < c[0]; ++b) {
+    if (!NextData(fail, r, "$Nodes", "entity blocks", c[0], b, &t)) return false;
+    long h[4];
+    if (t.size() != 4 || !ParseLong(t[0], &h[0]) || !ParseLong(t[1], &h[1]) ||
+        !ParseLong(t[2], &h[2]) || !ParseLong(t[3], &h[3]) || h[3] < 0)
+      return fail(r.Line(), "malformed node block header " + Quote(t));
+    std::vector<long> tags(h[3]);
+    for (long i = 0; i < h[3]; ++i) {
+      if (!NextData(fail, r, "$Nodes", "nodes", c[1], read + i, &t)) return false;
+      if (t.size() != 1 || !ParseLong(t[0], &tags[i]))
+        return fail(r.Line(), "malformed node tag line " + Quote(t));
+    }
+    for (long i = 0; i < h[3]; ++i) {
+      if (!NextData(fail, r, "$Nodes", "node coordinates", c[1], read + i, &t)) return false;
+      if (!AddNode(fail, r.Line(), tags[i], t, 0, s)) return false;
+    }
+    read += h[3];
+  }
+  if (read != c[1])
+    return fail(r.Line(), "$Nodes declares " + std::to_string(c[1]) + " nodes, its blocks hold " +
+                              std::to_string(read));
+  return ExpectEnd(fail, r, "$EndNodes");
+}
+
+bool ReadGmshElements41(const Failer& fail, LineReader& r, GmshState* s) {
+  // numEntityBlocks numElements minElementTag maxElementTag; per block
+  // "entityDim entityTag elementType numElementsInBlock", then "tag node ..." per element.
+  std::vector<long> c;
+  if (!ParseCounts(fail, r, "$Elements", 4, &c)) return false;
+  long read = 0;
+  std::vector<std::string> t;
+  for (long b = 0; b < c[0]; ++b) {
+    if (!NextData(fail, r, "$Elements", "entity blocks", c[0], b, &t)) return false;
+    long h[4];
+    if (t.size() != 4 || !ParseLong(t[0], &h[0]) || !ParseLong(t[1], &h[1]) ||
+        !ParseLong(t[2], &h[2]) || !ParseLong(t[3], &h[3]) || h[3] < 0)
+      return fail(r.Line(), "malformed element block header " + Quote(t));
+    for (long i = 0; i < h[3]; ++i) {
+      if (!NextData(fail, r, "$Elements", "elements", c[1], read + i, &t)) return false;
+      long tag;
+      if (!ParseLong(t[0], &tag)) return fail(r.Line(), "malformed element line " + Quote(t));
+      if (!AddElement(fail, r.Line(), tag, h[2], t, 1, s)) return false;
+    }
+    read += h[3];
+  }
+  if (read != c[1])
+    return fail(r.Line(), "$Elements declares " + std::to_string(c[1]) +
+                              " elements, its blocks hold " + std::to_string(read));
+  return ExpectEnd(fail, r, "$EndElements");
+}
+
+bool ReadGmsh(const std::string& path, TetMesh* mesh, std::string* error) {
+  const Failer fail{path, error};
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return fail("cannot open file");
+  LineReader r(in, false);
+  std::vector<std::string> t;
+  if (!r.Next(&t)) return fail("empty file");
+  if (t[0] != "$MeshFormat")
+    return fail(r.Line(), "expected $MeshFormat, got " + Quote(t) +
+                              " (not a Gmsh file, or Gmsh format 1, which is not supported)");
+  if (!r.Next(&t)) return fail("file ends inside $MeshFormat");
+  const int formatLine = r.Line();
+  long fileType = -1;
+  if (t.size() < 3 || !ParseLong(t[1], &fileType))
+    return fail(formatLine, "malformed $MeshFormat line " + Quote(t) +
+                                " (expected \"version file-type data-size\")");
+  if (fileType != 0)
+    return fail(formatLine, "binary Gmsh file (file-type " + t[1] +
+                                " in $MeshFormat): only ASCII .msh files are supported (save "
+                                "with Mesh.Binary = 0, e.g. gmsh -save -format msh22)");
+  const std::string& version = t[0];
+  const bool v2 = version == "2" || version.rfind("2.", 0) == 0;
+  const bool v41 = version == "4.1";
+  if (!v2 && !v41)
+    return fail(formatLine, "unsupported Gmsh format version " + version +
+                                " (supported: 2.2, 4.1)");
+  if (!ExpectEnd(fail, r, "$EndMeshFormat")) return false;
+
+  GmshState s;
+  bool haveNodes = false, haveElements = false;
+  while (r.Next(&t)) {
+    const std::string& section = t[0];
+    if (section == "$Nodes") {
+      if (haveNodes) return fail(r.Line(), "second $Nodes section");
+      haveNodes = true;
+      if (!(v2 ? ReadGmshNodes2(fail, r, &s) : ReadGmshNodes41(fail, r, &s))) return false;
+    } else if (section == "$Elements") {
+      if (haveElements) return fail(r.Line(), "second $Elements section");
+      haveElements = true;
+      if (!(v2 ? ReadGmshElements2(fail, r, &s) : ReadGmshElements41(fail, r, &s))) return false;
+    } else if (section.size() > 1 && section[0] == '$' && section.rfind("$End", 0) != 0) {
+      // Any other section ($PhysicalNames, $Entities, $NodeData, ...) is skipped.
+      const int start = r.Line();
+      const std::string end = "$End" + section.substr(1);
+      bool closed = false;
+      while (r.Next(&t))
+        if (t[0] == end) {
+          closed = true;
+          break;
+        }
+      if (!closed) return fail(start, section + " is not closed by " + end);
+    } else {
+      return fail(r.Line(), "unexpected line outside a section: " + Quote(t));
+    }
+  }
+  if (r.Bad()) return fail("read error");
+  if (!haveNodes) return fail("no $Nodes section");
+  if (!haveElements) return fail("no $Elements section");
+  if (s.tets.empty()) {
+    std::string found;
+    for (const auto& [type, n] : s.ignored)
+      found += (found.empty() ? "" : ", ") + std::to_string(n) + " of type " +
+               std::to_string(type) + " (" + GmshTypeName(type) + ")";
+    return fail("no tetrahedra (element type 4) in $Elements" +
+                (found.empty() ? std::string(" (no elements at all)")
+                               : " (found only elements " + found + ")"));
+  }
+  s.mesh.tets.reserve(s.tets.size());
+  for (const PendingTet& p : s.tets) {
+    Eigen::Vector4i q;
+    for (int k = 0; k < 4; ++k) {
+      const auto it = s.nodeIndex.find(p.nodes[k]);
+      if (it == s.nodeIndex.end())
+        return fail(p.line, "tet " + std::to_string(p.tag) + " references node " +
+                                std::to_string(p.nodes[k]) + " which does not exist");
+      q[k] = it->second;
+    }
+    s.mesh.tets.push_back(q);
+  }
+  *mesh = std::move(s.mesh);
+  return true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// TetGen
+
+bool ReadTetGen(const std::string& nodePath, const std::string& elePath, const std::string& asked,
+                TetMesh* mesh, std::string* error) {
+  TetMesh m;
+  int base = 0;
+  {
+    const Failer fail{nodePath, error};
+    std::ifstream in(nodePath);
+    if (!in)
+      return fail(nodePath == asked ? std::string("cannot open file")
+                                    : "cannot open file (the node file of " + asked + ")");
+    LineReader r(in, true);
+    std::vector<std::string> t;
+    if (!r.Next(&t)) return fail("empty file");
+    // <# of points> <dimension (3)> <# of attributes> <boundary markers (0 or 1)>
+    long h[4] = {0, 3, 0, 0};
+    for (size_t k = 0; k < t.size() && k < 4; ++k)
+      if (!ParseLong(t[k], &h[k]) || h[k] < 0)
+        return fail(r.Line(), "malformed header " + Quote(t) +
+                                  " (expected \"points dimension attributes markers\")");
+    if (h[0] == 0)
+      return fail(r.Line(), "no points (a count of 0 means the points are in a .poly file, "
+                            "which is not supported)");
+    if (h[1] != 3) return fail(r.Line(), "dimension " + std::to_string(h[1]) + ", expected 3");
+    if (h[0] >= INT_MAX) return fail(r.Line(), "too many points");
+    const size_t need = 4 + static_cast<size_t>(h[2]) + (h[3] > 0 ? 1 : 0);
+    m.vertices.reserve(h[0]);
+    for (long i = 0; i < h[0]; ++i) {
+      if (!r.Next(&t))
+        return fail("file ends after " + std::to_string(i) + " of " + std::to_string(h[0]) +
+                    " points");
+      long idx;
+      double x[3];
+      if (t.size() < need || !ParseLong(t[0], &idx) || !ParseDouble(t[1], &x[0]) ||
+          !ParseDouble(t[2], &x[1]) || !ParseDouble(t[3], &x[2]))
+        return fail(r.Line(), "malformed point line " + Quote(t) + " (expected index, x, y, z, " +
+                                  std::to_string(h[2]) + " attributes and " +
+                                  (h[3] > 0 ? "1 marker" : "no marker") + ")");
+      if (i == 0) {
+        if (idx != 0 && idx != 1)
+          return fail(r.Line(), "the first point is numbered " + std::to_string(idx) +
+                                    " (expected 0 or 1)");
+        base = static_cast<int>(idx);
+      } else if (idx != base + i) {
+        return fail(r.Line(), "points must be numbered consecutively: expected " +
+                                  std::to_string(base + i) + ", got " + std::to_string(idx));
+      }
+      m.vertices.emplace_back(x[0], x[1], x[2]);
+    }
+    if (r.Bad()) return fail("read error");
+  }
+  {
+    const Failer fail{elePath, error};
+    std::ifstream in(elePath);
+    if (!in)
+      return fail(elePath == asked ? std::string("cannot open file")
+                                   : "cannot open file (the element file of " + asked + ")");
+    LineReader r(in, true);
+    std::vector<std::string> t;
+    if (!r.Next(&t)) return fail("empty file");
+    // <# of tetrahedra> <nodes per tet (4 or 10)> <# of attributes>
+    long h[3] = {0, 4, 0};
+    for (size_t k = 0; k < t.size() && k < 3; ++k)
+      if (!ParseLong(t[k], &h[k]) || h[k] < 0)
+        return fail(r.Line(), "malformed header " + Quote(t) +
+                                  " (expected \"tetrahedra nodes-per-tet attributes\")");
+    if (h[0] == 0) return fail(r.Line(), "no tets");
+    if (h[1] != 4 && h[1] != 10)
+      return fail(r.Line(), std::to_string(h[1]) + " nodes per tet (expected 4 or 10)");
+    if (h[0] >= INT_MAX) return fail(r.Line(), "too many tets");
+    const size_t need = 1 + static_cast<size_t>(h[1]) + static_cast<size_t>(h[2]);
+    m.tets.reserve(h[0]);
+    for (long i = 0; i < h[0]; ++i) {
+      if (!r.Next(&t))
+        return fail("file ends after " + std::to_string(i) + " of " + std::to_string(h[0]) +
+                    " tets");
+      long idx, n[4];
+      if (t.size() < need || !ParseLong(t[0], &idx))
+        return fail(r.Line(), "malformed tet line " + Quote(t) + " (expected index, " +
+                                  std::to_string(h[1]) + " nodes and " + std::to_string(h[2]) +
+                                  " attributes)");
+      Eigen::Vector4i q;
+      for (int k = 0; k < 4; ++k) {
+        if (!ParseLong(t[1 + k], &n[k]))
+          return fail(r.Line(), "malformed node number \"" + t[1 + k] + "\" in tet " + t[0]);
+        if (n[k] < base || n[k] >= base + m.NumVertices())
+          return fail(r.Line(), "tet " + t[0] + " references node " + std::to_string(n[k]) +
+                                    " which does not exist (points are numbered " +
+                                    std::to_string(base) + ".." +
+                                    std::to_string(base + m.NumVertices() - 1) + " in " +
+                                    nodePath + ")");
+        q[k] = static_cast<int>(n[k] - base);
+      }
+      m.tets.push_back(q);
+    }
+    if (r.Bad()) return fail("read error");
+  }
+  *mesh = std::move(m);
+  return true;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Files
+
+bool ReadTetMeshFile(const std::string& path, TetMesh* mesh, std::string* error) {
+  if (mesh == nullptr) {
+    if (error) *error = path + ": no output mesh given";
+    return false;
+  }
+  const std::string ext = Extension(path);
+  if (ext == "msh") return ReadGmsh(path, mesh, error);
+  if (ext == "node" || ext == "ele") {
+    const std::string stem = path.substr(0, path.size() - ext.size());  // keeps the dot
+    // The sibling keeps the case style of the given extension.
+    const bool upper = std::isupper(static_cast<unsigned char>(path.back()));
+    const std::string node = ext == "node" ? path : stem + (upper ? "NODE" : "node");
+    const std::string ele = ext == "ele" ? path : stem + (upper ? "ELE" : "ele");
+    return ReadTetGen(node, ele, path, mesh, error);
+  }
+  if (error)
+    *error = path + ": unknown tet mesh format \"." + ext +
+             "\" (supported: .msh (Gmsh 2.2 / 4.1 ASCII), .node / .ele (TetGen))";
+  return false;
+}
+
+bool WriteGmsh22(const TetMesh& mesh, const std::string& path, std::string* error) {
+  std::ofstream out(path);
+  if (!out) {
+    if (error) *error = path + ": cannot write file";
+    return false;
+  }
+  out << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n" << mesh.NumVertices() << "\n";
+  for (int i = 0; i < mesh.NumVertices(); ++i) {
+    const Eigen::Vector3d& v = mesh.vertices[i];
+    out << i + 1 << ' ' << RoundTrip(v.x()) << ' ' << RoundTrip(v.y()) << ' ' << RoundTrip(v.z())
+        << '\n';
+  }
+  out << "$EndNodes\n$Elements\n" << mesh.NumTets() << "\n";
+  for (int t = 0; t < mesh.NumTets(); ++t) {
+    const Eigen::Vector4i& q = mesh.tets[t];
+    out << t + 1 << " 4 2 1 1 " << q[0] + 1 << ' ' << q[1] + 1 << ' ' << q[2] + 1 << ' '
+        << q[3] + 1 << '\n';
+  }
+  out << "$EndElements\n";
+  out.flush();
+  if (!out) {
+    if (error) *error = path + ": cannot write file";
+    return false;
+  }
+  return true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Validation
+
+bool ValidateTetMesh(const TetMesh& mesh, const std::string& name, std::string* error) {
+  auto fail = [&](const std::string& message) {
+    if (error) *error = name + ": " + message;
+    return false;
+  };
+  if (mesh.tets.empty()) return fail("no tets");
+  const int nv = mesh.NumVertices();
+  for (int i = 0; i < nv; ++i)
+    if (!mesh.vertices[i].allFinite())
+      return fail("vertex " + std::to_string(i) + " has a non-finite coordinate (" +
+                  Num(mesh.vertices[i].x()) + ", " + Num(mesh.vertices[i].y()) + ", " +
+                  Num(mesh.vertices[i].z()) + ")");
+  for (int t = 0; t < mesh.NumTets(); ++t) {
+    const Eigen::Vector4i& q = mesh.tets[t];
+    for (int k = 0; k < 4; ++k) {
+      if (q[k] < 0 || q[k] >= nv)
+        return fail("tet " + std::to_string(t) + " references vertex " + std::to_string(q[k]) +
+                    " which does not exist (" + std::to_string(nv) + " vertices)");
+      for (int l = 0; l < k; ++l)
+        if (q[l] == q[k])
+          return fail("tet " + std::to_string(t) + " repeats vertex " + std::to_string(q[k]));
+    }
+  }
+  const Aabb box = mesh.Bounds();
+  const double diag = (box.max - box.min).norm();
+  const double tol = 1e-12 * diag * diag * diag;
+  int degenerate = 0, inverted = 0, first = -1;
+  for (int t = 0; t < mesh.NumTets(); ++t) {
+    const double v = mesh.TetVolume(t);
+    if (v > tol) continue;
+    if (std::abs(v) <= tol)
+      ++degenerate;
+    else
+      ++inverted;
+    if (first < 0) first = t;
+  }
+  if (first < 0) return true;
+  const double v = mesh.TetVolume(first);
+  const std::string counts = std::to_string(degenerate) + " of " +
+                             std::to_string(mesh.NumTets()) + " tets are degenerate (|volume| <= " +
+                             Num(tol) + " m^3), " + std::to_string(inverted) + " inverted";
+  if (std::abs(v) <= tol)
+    return fail("tet " + std::to_string(first) + " is degenerate (volume " + Num(v) + "); " +
+                counts);
+  return fail("tet " + std::to_string(first) + " is inverted (signed volume " + Num(v) +
+              " < 0); " + counts + " (swapping two vertices of a tet reverses its orientation)");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Boundary
+
+std::vector<Eigen::Vector3i> BoundaryFaces(const TetMesh& mesh) {
+  // Face k is opposite vertex k, ordered so that its normal points away from vertex k when the
+  // tet is positively oriented.
+  static const int kFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+  struct Entry {
+    std::array<int, 3> key;  // sorted vertex indices
+    int id;                  // 4 t + k
+  };
+  std::vector<Entry> entries;
+  entries.reserve(4 * mesh.tets.size());
+  for (int t = 0; t < mesh.NumTets(); ++t)
+    for (int k = 0; k < 4; ++k) {
+      std::array<int, 3> key = {mesh.tets[t][kFace[k][0]], mesh.tets[t][kFace[k][1]],
+                                mesh.tets[t][kFace[k][2]]};
+      std::sort(key.begin(), key.end());
+      entries.push_back({key, 4 * t + k});
+    }
+  std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
+    return a.key != b.key ? a.key < b.key : a.id < b.id;
+  });
+  std::vector<int> single;
+  for (size_t i = 0; i < entries.size();) {
+    size_t j = i + 1;
+    while (j < entries.size() && entries[j].key == entries[i].key) ++j;
+    if (j == i + 1) single.push_back(entries[i].id);
+    i = j;
+  }
+  std::sort(single.begin(), single.end());
+  std::vector<Eigen::Vector3i> faces;
+  faces.reserve(single.size());
+  for (int id : single) {
+    const Eigen::Vector4i& q = mesh.tets[id / 4];
+    const int* f = kFace[id % 4];
+    faces.emplace_back(q[f[0]], q[f[1]], q[f[2]]);
+  }
+  return faces;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Generators
+
+TetMesh MakeTetBox(const Eigen::Vector3d& halfExtents, const Eigen::Vector3i& cells) {
+  const Eigen::Vector3i n = cells.cwiseMax(1);
+  TetMesh m;
+  m.vertices.reserve(static_cast<size_t>(n.x() + 1) * (n.y() + 1) * (n.z() + 1));
+  auto coord = [&](int l, int k) {
+    // Exactly ±h on the faces, as MakeBoxMesh.
+    const double s = l == 0 ? -1.0 : (l == n[k] ? 1.0 : 2.0 * l / n[k] - 1.0);
+    return s * halfExtents[k];
+  };
+  for (int k = 0; k <= n.z(); ++k)
+    for (int j = 0; j <= n.y(); ++j)
+      for (int i = 0; i <= n.x(); ++i) m.vertices.emplace_back(coord(i, 0), coord(j, 1), coord(k, 2));
+  auto index = [&](const Eigen::Vector3i& l) {
+    return l.x() + (n.x() + 1) * (l.y() + (n.y() + 1) * l.z());
+  };
+  // Kuhn split: one tet per permutation (a, b, c) of the axes, the path 0 → e_a → e_a + e_b →
+  // (1, 1, 1) through the cell. Its orientation is the permutation's sign; odd ones get two
+  // vertices swapped.
+  static const int kPerm[6][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1},   // even
+                                  {0, 2, 1}, {2, 1, 0}, {1, 0, 2}};  // odd
+  m.tets.reserve(6 * static_cast<size_t>(n.x()) * n.y() * n.z());
+  for (int k = 0; k < n.z(); ++k)
+    for (int j = 0; j < n.y(); ++j)
+      for (int i = 0; i < n.x(); ++i) {
+        const Eigen::Vector3i o(i, j, k);
+        for (int p = 0; p < 6; ++p) {
+          const Eigen::Vector3i a = Eigen::Vector3i::Unit(kPerm[p][0]);
+          const Eigen::Vector3i ab = a + Eigen::Vector3i::Unit(kPerm[p][1]);
+          int v1 = index(o + a), v2 = index(o + ab);
+          if (p >= 3) std::swap(v1, v2);
+          m.tets.emplace_back(index(o), v1, v2, index(o + Eigen::Vector3i::Ones()));
+        }
+      }
+  return m;
+}
+
+}  // namespace superdex

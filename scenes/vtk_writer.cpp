@@ -1,0 +1,96 @@
+#include "scenes/vtk_writer.h"
+
+#include <filesystem>
+#include <fstream>
+
+namespace superdex {
+namespace {
+
+struct Surface {
+  std::vector<Eigen::Vector3d> points, displacement;
+  std::vector<Eigen::Vector3i> triangles;
+  std::vector<Eigen::Vector3d> traction;
+  std::vector<int> actor;
+
+  void AddRigid(const TriangleMesh& mesh, const Eigen::Vector3d& offset, const RigidBodyState& s,
+                int index) {
+    const int base = static_cast<int>(points.size());
+    for (const Eigen::Vector3d& v : mesh.vertices) {
+      points.push_back(s.p + s.R * (v - offset));
+      displacement.push_back(Eigen::Vector3d::Zero());
+    }
+    for (const Eigen::Vector3i& f : mesh.faces) {
+      triangles.push_back(f + Eigen::Vector3i::Constant(base));
+      traction.push_back(Eigen::Vector3d::Zero());
+      actor.push_back(index);
+    }
+  }
+};
+
+}  // namespace
+
+bool WriteVtkFrame(Scene& scene, const std::string& path, Error* error) {
+  Surface s;
+  for (int i = 0; i < scene.NumActors(); ++i) {
+    const ActorHandle h{i};
+    if (scene.IsSoft(h)) {
+      const SoftBodyModel& m = scene.SoftModel(h);
+      const Eigen::VectorXd& x = scene.SoftState(h).x;
+      std::vector<Eigen::Vector3d> t;
+      if (!scene.SoftFaceTractions(h, &t, error)) return false;
+      const int base = static_cast<int>(s.points.size());
+      for (int a = 0; a < m.NumNodes(); ++a) {
+        s.points.push_back(x.segment<3>(3 * a));
+        s.displacement.push_back(x.segment<3>(3 * a) - m.rest.vertices[a]);
+      }
+      for (size_t f = 0; f < m.faces.size(); ++f) {
+        s.triangles.push_back(m.faces[f] + Eigen::Vector3i::Constant(base));
+        s.traction.push_back(t[f]);
+        s.actor.push_back(i);
+      }
+      continue;
+    }
+    const RigidBodyModel& m = scene.Model(h);
+    const RigidBodyState& st = scene.State(h);
+    switch (m.shape.kind) {
+      case RigidShapeKind::Sphere:
+        s.AddRigid(MakeIcosphere(m.shape.radius, 3), Eigen::Vector3d::Zero(), st, i);
+        break;
+      case RigidShapeKind::Box:
+        s.AddRigid(MakeBoxMesh(m.shape.halfExtents, 1), Eigen::Vector3d::Zero(), st, i);
+        break;
+      case RigidShapeKind::Mesh: s.AddRigid(*m.shape.mesh, m.shapeOffset, st, i); break;
+      case RigidShapeKind::Plane: break;
+    }
+  }
+
+  std::error_code ec;
+  const std::filesystem::path p(path);
+  if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path(), ec);
+  std::ofstream out(path);
+  if (!out) return Fail(error, "vtk: cannot write \"" + path + "\"");
+  out.precision(9);
+  out << "# vtk DataFile Version 3.0\nsuperdex frame t = " << scene.Time()
+      << " s\nASCII\nDATASET POLYDATA\n";
+  out << "POINTS " << s.points.size() << " double\n";
+  for (const auto& v : s.points) out << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
+  out << "POLYGONS " << s.triangles.size() << ' ' << 4 * s.triangles.size() << '\n';
+  for (const auto& f : s.triangles) out << "3 " << f.x() << ' ' << f.y() << ' ' << f.z() << '\n';
+  out << "CELL_DATA " << s.triangles.size() << "\nVECTORS traction double\n";
+  for (const auto& t : s.traction) out << t.x() << ' ' << t.y() << ' ' << t.z() << '\n';
+  out << "SCALARS pressure double 1\nLOOKUP_TABLE default\n";
+  for (size_t f = 0; f < s.triangles.size(); ++f) {
+    const Eigen::Vector3i& F = s.triangles[f];
+    const Eigen::Vector3d n =
+        (s.points[F[1]] - s.points[F[0]]).cross(s.points[F[2]] - s.points[F[0]]).normalized();
+    out << (n.allFinite() ? -s.traction[f].dot(n) : 0.0) << '\n';
+  }
+  out << "SCALARS actor int 1\nLOOKUP_TABLE default\n";
+  for (int a : s.actor) out << a << '\n';
+  out << "POINT_DATA " << s.points.size() << "\nVECTORS displacement double\n";
+  for (const auto& d : s.displacement) out << d.x() << ' ' << d.y() << ' ' << d.z() << '\n';
+  if (!out) return Fail(error, "vtk: writing \"" + path + "\" failed");
+  return true;
+}
+
+}  // namespace superdex

@@ -1,0 +1,22 @@
+// Frames for ParaView: legacy VTK polydata of every actor's surface at the current state, with
+// the contact traction field on soft surfaces.
+#pragma once
+
+#include <string>
+
+#include "core/scene.h"
+
+namespace superdex {
+
+/// Writes `path` (legacy ASCII VTK, POLYDATA): the boundary triangles of every soft actor at its
+/// current node positions and the surfaces of rigid spheres, boxes and meshes at their poses
+/// (planes are skipped). Cell data per triangle:
+///   traction  the contact traction on the face averaged over its reference area,
+///             Σ_q w_q t_q / A_f [Pa] (world frame; soft faces; zero elsewhere)
+///   pressure  −traction·n, n the current outward face normal [Pa] (> 0 in compression)
+///   actor     the actor index
+/// Point data: displacement of soft nodes from their reference positions [m] (zero on rigid
+/// surfaces). Returns false and fills *error when the file cannot be written.
+bool WriteVtkFrame(Scene& scene, const std::string& path, Error* error);
+
+}  // namespace superdex
