@@ -1,13 +1,17 @@
-// Collider construction parameters named by the spec (GridSdfParams, PointCloudColliderParams).
-// The Sdf and PointCloud colliders themselves are not implemented yet: an actor that requests
-// them gets a clear error (core/rigid_body.cpp). The parameter types exist so that the C++ and
-// Python APIs carry the spec's names, defaults and validation from the start.
+// Collider construction parameters named by the spec (GridSdfParams, PointCloudColliderParams) and
+// the grid sizing shared by rigid and soft Sdf colliders. The PointCloud collider itself is not
+// implemented yet: an actor that requests it gets a clear error; its parameter type exists so that
+// the C++ and Python APIs carry the spec's names, defaults and validation from the start.
 #pragma once
 
+#include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 
+#include "geometry/grid_sdf.h"
 #include "geometry/quadrature.h"
+#include "geometry/triangle_mesh.h"
 
 namespace superdex {
 
@@ -40,5 +44,14 @@ const char* ToString(GridSdfResolutionMode mode);
 /// "" when valid, else "<prefix><snake_case field>: <rule>, got <value>".
 std::string Validate(const GridSdfParams& params, const std::string& prefix = "");
 std::string Validate(const PointCloudColliderParams& params, const std::string& prefix = "");
+
+/// A grid SDF of the solid bounded by `mesh` (its frame), sampling `phi` (the exact field): voxel
+/// h = resolutionDelta × reference length (MeanEdgeLength: the mesh's mean edge length;
+/// BoundingExtent: the bounding box's longest side / 64), reduced so that every axis of the box
+/// padded by boundaryPaddingDist holds at least minGridResolution voxels. Null (and *error) for
+/// invalid params or a grid above 64e6 nodes.
+std::shared_ptr<GridSdf> BuildGridSdf(const TriangleMesh& mesh,
+                                      const std::function<double(const Eigen::Vector3d&)>& phi,
+                                      const GridSdfParams& params, std::string* error);
 
 }  // namespace superdex

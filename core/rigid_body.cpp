@@ -273,28 +273,6 @@ bool BuildRigidBody(const RigidActorDesc& d, const std::string& prefix, RigidBod
     } else {
       if (std::string m2 = Validate(d.gridSdf, prefix + "grid_sdf."); !m2.empty())
         return Fail(error, m2);
-      const GridSdfParams& g = d.gridSdf;
-      const Aabb bounds = mesh.Bounds();
-      const Eigen::Vector3d extent = bounds.max - bounds.min;
-      double reference = extent.maxCoeff() / 64.0;
-      if (g.resolutionMode == GridSdfResolutionMode::MeanEdgeLength) {
-        double sum = 0.0;
-        for (const Eigen::Vector3i& f : mesh.faces)
-          for (int k = 0; k < 3; ++k)
-            sum += (mesh.vertices[f[k]] - mesh.vertices[f[(k + 1) % 3]]).norm();
-        reference = sum / (3.0 * mesh.faces.size());
-      }
-      double h = g.resolutionDelta * reference;
-      const Eigen::Vector3d padded = extent + Eigen::Vector3d::Constant(2 * g.boundaryPaddingDist);
-      // At least minGridResolution voxels along every axis.
-      h = std::min(h, padded.minCoeff() / g.minGridResolution);
-      Eigen::Vector3i nodes;
-      for (int a = 0; a < 3; ++a) nodes[a] = static_cast<int>(std::ceil(padded[a] / h)) + 1;
-      const double count = double(nodes.x()) * nodes.y() * nodes.z();
-      if (count > 64e6)
-        return Fail(error, prefix + "grid_sdf: the grid would hold " + std::to_string(count) +
-                               " nodes (limit 64e6); raise resolution_delta");
-      const Eigen::Vector3d origin = bounds.min - Eigen::Vector3d::Constant(g.boundaryPaddingDist);
       std::function<double(const Eigen::Vector3d&)> phi;
       if (shape.kind == RigidShapeKind::Sphere) {
         const SphereSdf sp{shape.radius};
@@ -305,7 +283,11 @@ bool BuildRigidBody(const RigidActorDesc& d, const std::string& prefix, RigidBod
       } else {
         phi = [exact](const Eigen::Vector3d& X) { return exact->Value(X); };
       }
-      c.grid = std::make_shared<GridSdf>(GridSdf::Build(phi, origin, h, nodes));
+      std::string why2;
+      c.grid = BuildGridSdf(mesh, phi, d.gridSdf, &why2);
+      if (!c.grid) return Fail(error, prefix + "grid_sdf: " + why2);
+      const Eigen::Vector3i nodes = c.grid->Nodes();
+      const double h = c.grid->Spacing();
       c.lipschitz = std::sqrt(3.0);
       std::ostringstream note;
       note << "actor '" << d.name << "': grid SDF " << nodes.x() << " x " << nodes.y() << " x "

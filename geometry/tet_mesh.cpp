@@ -153,18 +153,30 @@ std::string Extension(const std::string& path) {
 
 const char* GmshTypeName(long type) {
   switch (type) {
-    case 1: return "2-node line";
-    case 2: return "3-node triangle";
-    case 3: return "4-node quadrangle";
-    case 4: return "4-node tetrahedron";
-    case 5: return "8-node hexahedron";
-    case 6: return "6-node prism";
-    case 7: return "5-node pyramid";
-    case 8: return "3-node line";
-    case 9: return "6-node triangle";
-    case 11: return "10-node tetrahedron";
-    case 15: return "point";
-    default: return "other";
+    case 1:
+      return "2-node line";
+    case 2:
+      return "3-node triangle";
+    case 3:
+      return "4-node quadrangle";
+    case 4:
+      return "4-node tetrahedron";
+    case 5:
+      return "8-node hexahedron";
+    case 6:
+      return "6-node prism";
+    case 7:
+      return "5-node pyramid";
+    case 8:
+      return "3-node line";
+    case 9:
+      return "6-node triangle";
+    case 11:
+      return "10-node tetrahedron";
+    case 15:
+      return "point";
+    default:
+      return "other";
   }
 }
 
@@ -207,8 +219,8 @@ bool AddElement(const Failer& fail, int line, long tag, long type,
   PendingTet p{line, tag, {}};
   for (int k = 0; k < 4; ++k)
     if (!ParseLong(t[first + k], &p.nodes[k]))
-      return fail(line, "malformed node tag \"" + t[first + k] + "\" in element " +
-                            std::to_string(tag));
+      return fail(line,
+                  "malformed node tag \"" + t[first + k] + "\" in element " + std::to_string(tag));
   s->tets.push_back(p);
   return true;
 }
@@ -219,7 +231,8 @@ bool ParseCounts(const Failer& fail, LineReader& r, const char* section, size_t 
   std::vector<std::string> t;
   if (!r.Next(&t)) return fail(std::string("file ends inside ") + section);
   out->assign(n, 0);
-  if (t.size() < n) return fail(r.Line(), std::string("malformed ") + section + " header " + Quote(t));
+  if (t.size() < n)
+    return fail(r.Line(), std::string("malformed ") + section + " header " + Quote(t));
   for (size_t k = 0; k < n; ++k)
     if (!ParseLong(t[k], &(*out)[k]) || (*out)[k] < 0)
       return fail(r.Line(), std::string("malformed ") + section + " header " + Quote(t));
@@ -233,8 +246,8 @@ bool NextData(const Failer& fail, LineReader& r, const std::string& section, con
     return fail("file ends inside " + section + " after " + std::to_string(got) + " of " +
                 std::to_string(expected) + " " + what);
   if ((*t)[0][0] == '$')
-    return fail(r.Line(), section + " declares " + std::to_string(expected) + " " + what +
-                              " but " + (*t)[0] + " comes after " + std::to_string(got));
+    return fail(r.Line(), section + " declares " + std::to_string(expected) + " " + what + " but " +
+                              (*t)[0] + " comes after " + std::to_string(got));
   return true;
 }
 
@@ -356,8 +369,8 @@ bool ReadGmsh(const std::string& path, TetMesh* mesh, std::string* error) {
   const bool v2 = version == "2" || version.rfind("2.", 0) == 0;
   const bool v41 = version == "4.1";
   if (!v2 && !v41)
-    return fail(formatLine, "unsupported Gmsh format version " + version +
-                                " (supported: 2.2, 4.1)");
+    return fail(formatLine,
+                "unsupported Gmsh format version " + version + " (supported: 2.2, 4.1)");
   if (!ExpectEnd(fail, r, "$EndMeshFormat")) return false;
 
   GmshState s;
@@ -438,8 +451,9 @@ bool ReadTetGen(const std::string& nodePath, const std::string& elePath, const s
         return fail(r.Line(), "malformed header " + Quote(t) +
                                   " (expected \"points dimension attributes markers\")");
     if (h[0] == 0)
-      return fail(r.Line(), "no points (a count of 0 means the points are in a .poly file, "
-                            "which is not supported)");
+      return fail(r.Line(),
+                  "no points (a count of 0 means the points are in a .poly file, "
+                  "which is not supported)");
     if (h[1] != 3) return fail(r.Line(), "dimension " + std::to_string(h[1]) + ", expected 3");
     if (h[0] >= INT_MAX) return fail(r.Line(), "too many points");
     const size_t need = 4 + static_cast<size_t>(h[2]) + (h[3] > 0 ? 1 : 0);
@@ -457,8 +471,8 @@ bool ReadTetGen(const std::string& nodePath, const std::string& elePath, const s
                                   (h[3] > 0 ? "1 marker" : "no marker") + ")");
       if (i == 0) {
         if (idx != 0 && idx != 1)
-          return fail(r.Line(), "the first point is numbered " + std::to_string(idx) +
-                                    " (expected 0 or 1)");
+          return fail(r.Line(),
+                      "the first point is numbered " + std::to_string(idx) + " (expected 0 or 1)");
         base = static_cast<int>(idx);
       } else if (idx != base + i) {
         return fail(r.Line(), "points must be numbered consecutively: expected " +
@@ -506,8 +520,8 @@ bool ReadTetGen(const std::string& nodePath, const std::string& elePath, const s
           return fail(r.Line(), "tet " + t[0] + " references node " + std::to_string(n[k]) +
                                     " which does not exist (points are numbered " +
                                     std::to_string(base) + ".." +
-                                    std::to_string(base + m.NumVertices() - 1) + " in " +
-                                    nodePath + ")");
+                                    std::to_string(base + m.NumVertices() - 1) + " in " + nodePath +
+                                    ")");
         q[k] = static_cast<int>(n[k] - base);
       }
       m.tets.push_back(q);
@@ -559,8 +573,8 @@ bool WriteGmsh22(const TetMesh& mesh, const std::string& path, std::string* erro
   out << "$EndNodes\n$Elements\n" << mesh.NumTets() << "\n";
   for (int t = 0; t < mesh.NumTets(); ++t) {
     const Eigen::Vector4i& q = mesh.tets[t];
-    out << t + 1 << " 4 2 1 1 " << q[0] + 1 << ' ' << q[1] + 1 << ' ' << q[2] + 1 << ' '
-        << q[3] + 1 << '\n';
+    out << t + 1 << " 4 2 1 1 " << q[0] + 1 << ' ' << q[1] + 1 << ' ' << q[2] + 1 << ' ' << q[3] + 1
+        << '\n';
   }
   out << "$EndElements\n";
   out.flush();
@@ -612,14 +626,14 @@ bool ValidateTetMesh(const TetMesh& mesh, const std::string& name, std::string* 
   }
   if (first < 0) return true;
   const double v = mesh.TetVolume(first);
-  const std::string counts = std::to_string(degenerate) + " of " +
-                             std::to_string(mesh.NumTets()) + " tets are degenerate (|volume| <= " +
-                             Num(tol) + " m^3), " + std::to_string(inverted) + " inverted";
+  const std::string counts = std::to_string(degenerate) + " of " + std::to_string(mesh.NumTets()) +
+                             " tets are degenerate (|volume| <= " + Num(tol) + " m^3), " +
+                             std::to_string(inverted) + " inverted";
   if (std::abs(v) <= tol)
     return fail("tet " + std::to_string(first) + " is degenerate (volume " + Num(v) + "); " +
                 counts);
-  return fail("tet " + std::to_string(first) + " is inverted (signed volume " + Num(v) +
-              " < 0); " + counts + " (swapping two vertices of a tet reverses its orientation)");
+  return fail("tet " + std::to_string(first) + " is inverted (signed volume " + Num(v) + " < 0); " +
+              counts + " (swapping two vertices of a tet reverses its orientation)");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -677,7 +691,8 @@ TetMesh MakeTetBox(const Eigen::Vector3d& halfExtents, const Eigen::Vector3i& ce
   };
   for (int k = 0; k <= n.z(); ++k)
     for (int j = 0; j <= n.y(); ++j)
-      for (int i = 0; i <= n.x(); ++i) m.vertices.emplace_back(coord(i, 0), coord(j, 1), coord(k, 2));
+      for (int i = 0; i <= n.x(); ++i)
+        m.vertices.emplace_back(coord(i, 0), coord(j, 1), coord(k, 2));
   auto index = [&](const Eigen::Vector3i& l) {
     return l.x() + (n.x() + 1) * (l.y() + (n.y() + 1) * l.z());
   };

@@ -128,8 +128,8 @@ bool CheckClosed(const TriangleMesh& s, std::string* message) {
     }
   for (const auto& [e, uses] : edges) {
     const int n = uses[0] + uses[1];
-    const std::string edge = "edge (" + std::to_string(e.first) + ", " +
-                             std::to_string(e.second) + ")";
+    const std::string edge =
+        "edge (" + std::to_string(e.first) + ", " + std::to_string(e.second) + ")";
     if (n == 1) {
       *message = "the surface is not closed: " + edge + " belongs to only one face";
       return false;
@@ -200,7 +200,7 @@ bool MeshTetsFromSurface(const TriangleMesh& surface, double edgeLength, TetMesh
     CGAL::Random rng(0);
     const Domain domain(sm, &rng);
     C3t3 c3t3;
-    MeshC3t3(domain, FacetCriteria(25.0, edgeLength, edgeLength / 10.0),
+    MeshC3t3(domain, FacetCriteria(25.0, edgeLength, edgeLength / 20.0),
              CellCriteria(3.0, edgeLength), &c3t3);
 
     // Only the vertices of cells in the complex, numbered in order of first use.
@@ -239,7 +239,8 @@ TetMesh MakeTetSphere(double radius, double edgeLength) {
     double longest = 0.0;
     for (const auto& f : sphere.faces)
       for (int k = 0; k < 3; ++k)
-        longest = std::max(longest, (sphere.vertices[f[k]] - sphere.vertices[f[(k + 1) % 3]]).norm());
+        longest =
+            std::max(longest, (sphere.vertices[f[k]] - sphere.vertices[f[(k + 1) % 3]]).norm());
     if (longest <= 0.5 * edgeLength) break;
   }
   TetMesh out;

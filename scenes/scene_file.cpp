@@ -247,8 +247,9 @@ std::shared_ptr<TetMesh> ReadTetMeshSpec(const json& j, const std::string& path,
     CheckObject(j, path, {"type", "radius", "edge_length"});
     const double r = Positive(j, path, "radius");
     const double h = Positive(j, path, "edge_length");
-    if (r / h > 200) Throw(Join(path, "edge_length"), "too small for the radius (radius/edge_length > 200)");
+    if (r / h > 60) Throw(Join(path, "edge_length"), "too small for the radius (radius/edge_length > 60)");
     *mesh = MakeTetSphere(r, h);
+    if (mesh->NumTets() == 0) Throw(path, "meshing the sphere failed");
     *source = "tet sphere";
   } else if (type == "surface") {
     CheckObject(j, path, {"type", "file", "edge_length", "scale"});
