@@ -43,6 +43,14 @@ void ContactPipeline::Configure(const std::vector<RigidBodyModel>* models,
   softModels_ = softModels && !softModels->empty() ? softModels : nullptr;
   rigidActor_ = std::move(rigidActor);
   softActor_ = std::move(softActor);
+  softInflation_.clear();
+  if (softModels_)
+    for (const SoftBodyModel& m : *softModels_)
+      softInflation_.push_back(m.collider == ColliderType::Sdf
+                                   ? std::max(0.0, m.contact.penaltyThresholdDefault +
+                                                       m.contact.penaltyThresholdExtraPadding) +
+                                         m.contact.distanceErrorBound
+                                   : 0.0);
   const size_t n = models->size();
   inflation_.assign(n, 0.0);
   for (size_t i = 0; i < n; ++i) {
@@ -77,10 +85,32 @@ void ContactPipeline::FindPairs(const std::vector<RigidPose>& poses,
   for (size_t s = 0; s < ns; ++s) {
     boxes_[n + s] = SoftBounds((*soft->x)[s]);
     if (soft->xLast) boxes_[n + s].Extend(SoftBounds((*soft->xLast)[s]));
+    boxes_[n + s].Inflate(softInflation_[s]);
   }
   FindOverlappingPairs(boxes_, &overlaps_);
   pairs_.clear();
   softPairs_.clear();
+  softColliderPairs_.clear();
+  // A on the soft collider B (B's collider is an Sdf grid mapped by its deformation).
+  auto considerOnSoft = [&](bool aSoft, int a, int b) {
+    const SoftBodyModel& B = (*softModels_)[b];
+    if (B.collider != ColliderType::Sdf) return;
+    if (aSoft ? a == b : !IsColliding(models[a])) return;
+    const int actorA = aSoft ? softActor_[a] : RigidActor(a);
+    if (filter_ && !filter_->Allowed(actorA, softActor_[b])) return;
+    SoftColliderPair p;
+    p.collidingSoft = aSoft;
+    p.colliding = a;
+    p.collider = b;
+    // Both actors are dynamic; A's own collider type decides the threshold padding.
+    const bool aNoCollider =
+        aSoft ? (*softModels_)[a].collider == ColliderType::None
+              : (models[a].collider.type == ColliderType::None ||
+                 models[a].collider.type == ColliderType::PointCloud);
+    p.params = CombineContactParams(aSoft ? (*softModels_)[a].contact : models[a].contact, B.contact,
+                                    false, aNoCollider);
+    softColliderPairs_.push_back(p);
+  };
   auto considerSoft = [&](int s, int b) {
     const RigidBodyModel& B = models[b];
     if (!IsCollider(B)) return;
@@ -113,8 +143,13 @@ void ContactPipeline::FindPairs(const std::vector<RigidPose>& poses,
       consider(j, i);
     } else if (si && !sj) {
       considerSoft(i - static_cast<int>(n), j);
+      considerOnSoft(false, j, i - static_cast<int>(n));
     } else if (!si && sj) {
       considerSoft(j - static_cast<int>(n), i);
+      considerOnSoft(false, i, j - static_cast<int>(n));
+    } else {
+      considerOnSoft(true, i - static_cast<int>(n), j - static_cast<int>(n));
+      considerOnSoft(true, j - static_cast<int>(n), i - static_cast<int>(n));
     }
   }
 }
@@ -312,6 +347,118 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
       }
     }
   }
+  // Samples of rigid and soft actors on soft colliders, one stencil per sample.
+  if (!softColliderPairs_.empty()) {
+    const size_t ns = softModels_->size();
+    locators_.resize(ns);
+    locatorsLast_.resize(ns);
+    std::vector<char> built(ns, 0);
+    for (const SoftColliderPair& p : softColliderPairs_) built[p.collider] = 1;
+    for (size_t b = 0; b < ns; ++b) {
+      if (!built[b]) continue;
+      locators_[b].Build((*soft->x)[b], (*softModels_)[b].rest.tets);
+      if (soft->xLast) locatorsLast_[b].Build((*soft->xLast)[b], (*softModels_)[b].rest.tets);
+    }
+  }
+  softColliderResults_.resize(softColliderPairs_.size());
+  auto evaluateOnSoft = [&](size_t k) {
+    const SoftColliderPair& sp = softColliderPairs_[k];
+    PenaltyParams pp;
+    pp.k = sp.params.penaltyCoefficient;
+    pp.eps = sp.params.smoothingHalfDistance;
+    pp.delta = sp.params.threshold;
+    CollidingInput a;
+    if (sp.collidingSoft) {
+      a.soft = &(*softModels_)[sp.colliding];
+      a.x = &(*soft->x)[sp.colliding];
+      a.xLast = soft->xLast ? &(*soft->xLast)[sp.colliding] : nullptr;
+      a.x0 = soft->x0 ? &(*soft->x0)[sp.colliding] : nullptr;
+    } else {
+      a.rigid = &models[sp.colliding];
+      a.pose = &poses[sp.colliding];
+      a.start = stageStart ? &(*stageStart)[sp.colliding] : nullptr;
+    }
+    SoftColliderInput b;
+    b.model = &(*softModels_)[sp.collider];
+    b.x = &(*soft->x)[sp.collider];
+    b.xLast = soft->xLast ? &(*soft->xLast)[sp.collider] : nullptr;
+    b.x0 = soft->x0 ? &(*soft->x0)[sp.collider] : nullptr;
+    b.locator = &locators_[sp.collider];
+    b.locatorLast = soft->xLast ? &locatorsLast_[sp.collider] : &locators_[sp.collider];
+    DissipationSetup setup;
+    if (dissipation) setup = MakeSetup(sp.params, *dissipation);
+    SoftColliderPairContact& r = softColliderResults_[k];
+    EvaluatePairOnSoftCollider(a, b, pp, sp.params.maxAlignmentNormals,
+                               dissipation ? &setup : nullptr, order, &r);
+    if (order < 2 || projection == PsdProjection::None) return;
+    for (int e = 0; e < r.numEntries; ++e) {
+      SoftColliderEntry& en = r.entries[e];
+      if (!en.dissipation || potential) ProjectToPsd(&en.hessian, projection == PsdProjection::Abs);
+    }
+  };
+  if (softColliderPairs_.size() > 1) {
+    tbb::parallel_for(size_t(0), softColliderPairs_.size(), evaluateOnSoft);
+  } else {
+    for (size_t k = 0; k < softColliderPairs_.size(); ++k) evaluateOnSoft(k);
+  }
+  st.candidatePairs += static_cast<int>(softColliderPairs_.size());
+  for (size_t k = 0; k < softColliderPairs_.size(); ++k) {
+    const SoftColliderPair& sp = softColliderPairs_[k];
+    const SoftColliderPairContact& r = softColliderResults_[k];
+    st.minSignedDistance = std::min(st.minSignedDistance, r.minPhi);
+    if (r.activeSamples > 0) {
+      ++st.activePairs;
+      st.activeSamples += r.activeSamples;
+      st.energy += r.penaltyValue;
+      energy += r.penaltyValue;
+    }
+    if (r.dissipativeSamples > 0) {
+      st.dissipativeSamples += r.dissipativeSamples;
+      st.dissipation += r.dissipationValue;
+      st.maxCoulombRatio = std::max(st.maxCoulombRatio, r.maxCoulombRatio);
+      energy += r.dissipationValue;
+    }
+    if (order == 0) continue;
+    const SoftBodyModel& B = (*softModels_)[sp.collider];
+    const int bOffset = (*soft->dofOffset)[sp.collider];
+    for (int e = 0; e < r.numEntries; ++e) {
+      const SoftColliderEntry& en = r.entries[e];
+      int offs[7];
+      int blocks = 0;
+      if (sp.collidingSoft) {
+        const SoftBodyModel& A = (*softModels_)[sp.colliding];
+        const int aOffset = (*soft->dofOffset)[sp.colliding];
+        for (int c = 0; c < 3; ++c) {
+          const int free = A.freeIndex[A.faces[en.aFace][c]];
+          offs[blocks++] = free < 0 ? -1 : aOffset + 3 * free;
+        }
+      } else {
+        const int o = dofOffset[sp.colliding];
+        offs[blocks++] = o;
+        offs[blocks++] = o < 0 ? -1 : o + 3;
+      }
+      for (int c = 0; c < 4; ++c) {
+        const int free = B.freeIndex[B.rest.tets[en.bTet][c]];
+        offs[blocks++] = free < 0 ? -1 : bOffset + 3 * free;
+      }
+      Eigen::VectorXd* target =
+          en.dissipation && dissipationResidual ? dissipationResidual : gradient;
+      for (int bi = 0; bi < blocks; ++bi)
+        if (offs[bi] >= 0) target->segment<3>(offs[bi]) += en.gradient.segment<3>(3 * bi);
+      if (order < 2) continue;
+      for (int bi = 0; bi < blocks; ++bi) {
+        if (offs[bi] < 0) continue;
+        for (int bj = 0; bj < blocks; ++bj) {
+          if (offs[bj] < 0) continue;
+          for (int c = 0; c < 3; ++c)
+            for (int rr = 0; rr < 3; ++rr) {
+              const double v = en.hessian(3 * bi + rr, 3 * bj + c);
+              if (v != 0.0) triplets->emplace_back(offs[bi] + rr, offs[bj] + c, v);
+            }
+        }
+      }
+    }
+  }
   if (stats) *stats = st;
   return energy;
 }
@@ -353,6 +500,37 @@ void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,
     for (size_t k = first; k < records->size(); ++k) {
       (*records)[k].colliding = softActor_[sp.soft];
       (*records)[k].collider = RigidActor(sp.collider);
+    }
+  }
+  if (!softColliderPairs_.empty()) {
+    locators_.resize(softModels_->size());
+    for (const SoftColliderPair& p : softColliderPairs_)
+      locators_[p.collider].Build((*soft->x)[p.collider], (*softModels_)[p.collider].rest.tets);
+  }
+  SoftColliderPairContact scratchOnSoft;
+  for (const SoftColliderPair& sp : softColliderPairs_) {
+    PenaltyParams pp;
+    pp.k = sp.params.penaltyCoefficient;
+    pp.eps = sp.params.smoothingHalfDistance;
+    pp.delta = sp.params.threshold;
+    CollidingInput a;
+    if (sp.collidingSoft) {
+      a.soft = &(*softModels_)[sp.colliding];
+      a.x = &(*soft->x)[sp.colliding];
+    } else {
+      a.rigid = &models[sp.colliding];
+      a.pose = &poses[sp.colliding];
+    }
+    SoftColliderInput b;
+    b.model = &(*softModels_)[sp.collider];
+    b.x = &(*soft->x)[sp.collider];
+    b.locator = b.locatorLast = &locators_[sp.collider];
+    const size_t first = records->size();
+    EvaluatePairOnSoftCollider(a, b, pp, sp.params.maxAlignmentNormals, nullptr, 0, &scratchOnSoft,
+                               records);
+    for (size_t k = first; k < records->size(); ++k) {
+      (*records)[k].colliding = sp.collidingSoft ? softActor_[sp.colliding] : RigidActor(sp.colliding);
+      (*records)[k].collider = softActor_[sp.collider];
     }
   }
 }

@@ -11,6 +11,7 @@
 #include "core/rigid_body.h"
 #include "core/rigid_contact.h"
 #include "core/rigid_dissipation.h"
+#include "core/soft_collider.h"
 #include "core/soft_contact.h"
 #include "optim/stage_problem.h"
 
@@ -47,6 +48,14 @@ struct ContactPair {
 struct SoftContactPair {
   int soft = -1;      ///< index into the soft models
   int collider = -1;  ///< index into the rigid models
+  PairContactParams params;
+};
+
+/// Ordered pair (A colliding: rigid or soft, B: a soft actor with an Sdf collider).
+struct SoftColliderPair {
+  bool collidingSoft = false;
+  int colliding = -1;  ///< rigid model index, or soft model index when collidingSoft
+  int collider = -1;   ///< soft model index
   PairContactParams params;
 };
 
@@ -115,6 +124,10 @@ class ContactPipeline {
   std::vector<int> rigidActor_, softActor_;
   std::vector<SoftContactPair> softPairs_;
   std::vector<SoftPairContact> softResults_;
+  std::vector<SoftColliderPair> softColliderPairs_;
+  std::vector<SoftColliderPairContact> softColliderResults_;
+  std::vector<TetLocator> locators_, locatorsLast_;  // per soft actor
+  std::vector<double> softInflation_;
   std::vector<int> dofs_;  // scratch: a face stencil's global dofs
 };
 

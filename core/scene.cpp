@@ -645,6 +645,8 @@ std::vector<std::string> Scene::Notices() const {
   std::vector<std::string> out;
   for (const auto& m : models_)
     if (!m.notice.empty()) out.push_back(m.notice);
+  for (const auto& m : softModels_)
+    if (!m.notice.empty()) out.push_back(m.notice);
   return out;
 }
 

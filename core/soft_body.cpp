@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "geometry/mesh_sdf.h"
+
 namespace superdex {
 
 Eigen::Vector3d NodeConstraint::Displacement(double t) const {
@@ -47,10 +49,10 @@ bool BuildSoftBody(const SoftActorDesc& d, const std::string& prefix, SoftBodyMo
       !d.orientation.coeffs().allFinite() || d.orientation.norm() < 1e-12)
     return Fail(error, prefix + "position, orientation, linear_velocity: must be finite (and the "
                                 "orientation nonzero)");
-  if (d.colliderType != ColliderType::None)
+  if (d.colliderType != ColliderType::None && d.colliderType != ColliderType::Sdf &&
+      d.colliderType != ColliderType::Auto)
     return Fail(error, prefix + "collider_type: " + ToString(d.colliderType) +
-                           " is not supported for soft actors yet (the deformation-mapped grid "
-                           "SDF is experimental in the spec and not implemented); use None");
+                           " is not available for soft actors (expected None, Sdf or Auto)");
   const int n = d.mesh->NumVertices();
   for (size_t c = 0; c < d.constraints.size(); ++c) {
     const NodeConstraint& k = d.constraints[c];
@@ -115,6 +117,38 @@ bool BuildSoftBody(const SoftActorDesc& d, const std::string& prefix, SoftBodyMo
       m->samples.push_back({static_cast<int>(f), rule.barycentric[q], area * rule.weights[q]});
   }
   m->faceSampleBegin[m->faces.size()] = static_cast<int>(m->samples.size());
+
+  // Collider role (experimental): the grid SDF of the reference boundary surface.
+  if (d.colliderType == ColliderType::Sdf || d.colliderType == ColliderType::Auto) {
+    TriangleMesh surface;  // the boundary faces on their own vertices
+    std::vector<int> map(n, -1);
+    for (const Eigen::Vector3i& F : m->faces) {
+      Eigen::Vector3i g;
+      for (int k = 0; k < 3; ++k) {
+        if (map[F[k]] < 0) {
+          map[F[k]] = surface.NumVertices();
+          surface.vertices.push_back(m->rest.vertices[F[k]]);
+        }
+        g[k] = map[F[k]];
+      }
+      surface.faces.push_back(g);
+    }
+    std::string why;
+    auto exact = MeshSdf::Build(surface, &why);
+    if (!exact)
+      return Fail(error, prefix + "mesh: " + source + ": the boundary surface " + why +
+                             "; collider_type Sdf needs a closed surface");
+    m->colliderGrid = BuildGridSdf(
+        surface, [exact](const Eigen::Vector3d& X) { return exact->Value(X); }, d.gridSdf, &why);
+    if (!m->colliderGrid) return Fail(error, prefix + "grid_sdf: " + why);
+    m->collider = ColliderType::Sdf;
+    const Eigen::Vector3i nodes = m->colliderGrid->Nodes();
+    std::ostringstream note;
+    note << "actor '" << d.name << "': soft collider grid SDF " << nodes.x() << " x " << nodes.y()
+         << " x " << nodes.z() << " nodes, voxel " << m->colliderGrid->Spacing() << " m, "
+         << m->colliderGrid->MemoryBytes() / 1048576.0 << " MiB (experimental)";
+    m->notice = note.str();
+  }
 
   // Free and prescribed nodes.
   std::vector<char> prescribed(n, 0);

@@ -4,10 +4,12 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "core/collider_params.h"
 #include "core/contact_params.h"
 #include "core/enums.h"
 #include "core/error.h"
@@ -49,9 +51,11 @@ struct SoftActorDesc {
   Eigen::Vector3d linearVelocity = Eigen::Vector3d::Zero();         ///< [m/s]
   SoftMaterial material;
   ContactParams contact;
-  /// Soft actors are colliding only by default (spec: "Default Roles by Actor Type"). Sdf / Auto
-  /// (the deformation-mapped grid SDF) are refused as not supported yet.
+  /// Soft actors are colliding only by default (spec: "Default Roles by Actor Type"). Sdf or Auto
+  /// (experimental) make the actor a collider too: a grid SDF of its reference surface, mapped by
+  /// the deformation (core/soft_collider.h). Other types are refused.
   ColliderType colliderType = ColliderType::None;
+  GridSdfParams gridSdf;  ///< sizes the collider grid
   ActorBoundaryElementType boundaryElementType = ActorBoundaryElementType::P1Q3;
   std::string contactLayer = "default";
   std::vector<NodeConstraint> constraints;
@@ -83,6 +87,11 @@ struct SoftBodyModel {
   ContactParams contact;
   ActorBoundaryElementType boundaryElementType = ActorBoundaryElementType::P1Q3;
   std::string contactLayer;
+  /// Collider role: None, or Sdf with the grid of Φ_B over the reference configuration.
+  ColliderType collider = ColliderType::None;
+  std::shared_ptr<const GridSdf> colliderGrid;
+  double colliderLipschitz = std::sqrt(3.0);  ///< bound on |∇Φ_B| of the trilinear grid
+  std::string notice;                          ///< grid size and memory, for the run log
   int NumNodes() const { return rest.NumVertices(); }
 };
 

@@ -205,6 +205,21 @@ Eigen::Quaterniond ReadOrientation(const json& j, const std::string& path) {
   return Eigen::Quaterniond(q[3], q[0], q[1], q[2]).normalized();
 }
 
+GridSdfParams ReadGridSdf(const json& g, const std::string& gp) {
+  GridSdfParams d;
+  CheckObject(g, gp, {"resolution_mode", "resolution_delta", "min_grid_resolution",
+                      "boundary_padding_dist"});
+  const std::string mode = String(g, gp, "resolution_mode", std::string("MeanEdgeLength"));
+  if (mode == "MeanEdgeLength") d.resolutionMode = GridSdfResolutionMode::MeanEdgeLength;
+  else if (mode == "BoundingExtent") d.resolutionMode = GridSdfResolutionMode::BoundingExtent;
+  else Throw(Join(gp, "resolution_mode"), "unknown value \"" + mode + "\" (expected one of: MeanEdgeLength, BoundingExtent)");
+  d.resolutionDelta = Number(g, gp, "resolution_delta", d.resolutionDelta);
+  d.minGridResolution = Integer(g, gp, "min_grid_resolution", d.minGridResolution, 2, 4096);
+  d.boundaryPaddingDist = Number(g, gp, "boundary_padding_dist", d.boundaryPaddingDist);
+  if (std::string m = Validate(d, gp + "."); !m.empty()) throw LoadError{m};
+  return d;
+}
+
 // A soft actor's tet mesh: {"type": "file", "file": F (.msh, .node/.ele), "scale"},
 // {"type": "box", "half_extents" | "size", "cells": [nx, ny, nz]},
 // {"type": "sphere", "radius", "edge_length"} or {"type": "surface", "file": F (closed surface
@@ -323,7 +338,7 @@ void ReadSoftActor(const json& a, const std::string& path, const std::string& ba
   CheckObject(a, path,
               {"name", "type", "mesh", "material", "position", "orientation", "euler_deg",
                "velocity", "contact", "collider_type", "boundary_element_type", "contact_layer",
-               "parent", "constraints"});
+               "parent", "constraints", "grid_sdf"});
   SoftActorDesc d;
   d.name = String(a, path, "name");
   if (!a.contains("mesh")) Throw(Join(path, "mesh"), "missing required field");
@@ -342,6 +357,7 @@ void ReadSoftActor(const json& a, const std::string& path, const std::string& ba
   d.linearVelocity = Vector<3>(a, path, "velocity", Eigen::Vector3d::Zero());
   if (a.contains("contact")) d.contact = ReadContact(a.at("contact"), Join(path, "contact"));
   d.colliderType = Enum(a, path, "collider_type", ColliderType::None);
+  if (a.contains("grid_sdf")) d.gridSdf = ReadGridSdf(a.at("grid_sdf"), Join(path, "grid_sdf"));
   d.boundaryElementType = Enum(a, path, "boundary_element_type", ActorBoundaryElementType::P1Q3);
   d.contactLayer = String(a, path, "contact_layer", std::string("default"));
   if (a.contains("constraints"))
@@ -398,20 +414,7 @@ void ReadActors(const json& actors, const std::string& baseDir, SceneFile* out) 
     d.colliderType = Enum(a, path, "collider_type", ColliderType::Auto);
     d.boundaryElementType = Enum(a, path, "boundary_element_type", ActorBoundaryElementType::P1Q3);
     d.contactLayer = String(a, path, "contact_layer", std::string("default"));
-    if (a.contains("grid_sdf")) {
-      const json& g = a.at("grid_sdf");
-      const std::string gp = Join(path, "grid_sdf");
-      CheckObject(g, gp, {"resolution_mode", "resolution_delta", "min_grid_resolution",
-                          "boundary_padding_dist"});
-      const std::string mode = String(g, gp, "resolution_mode", std::string("MeanEdgeLength"));
-      if (mode == "MeanEdgeLength") d.gridSdf.resolutionMode = GridSdfResolutionMode::MeanEdgeLength;
-      else if (mode == "BoundingExtent") d.gridSdf.resolutionMode = GridSdfResolutionMode::BoundingExtent;
-      else Throw(Join(gp, "resolution_mode"), "unknown value \"" + mode + "\" (expected one of: MeanEdgeLength, BoundingExtent)");
-      d.gridSdf.resolutionDelta = Number(g, gp, "resolution_delta", d.gridSdf.resolutionDelta);
-      d.gridSdf.minGridResolution = Integer(g, gp, "min_grid_resolution", d.gridSdf.minGridResolution, 2, 4096);
-      d.gridSdf.boundaryPaddingDist = Number(g, gp, "boundary_padding_dist", d.gridSdf.boundaryPaddingDist);
-      if (std::string m = Validate(d.gridSdf, gp + "."); !m.empty()) throw LoadError{m};
-    }
+    if (a.contains("grid_sdf")) d.gridSdf = ReadGridSdf(a.at("grid_sdf"), Join(path, "grid_sdf"));
     ActorHandle parent;
     if (a.contains("parent")) {
       const std::string p = String(a, path, "parent");
