@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -75,7 +76,7 @@ TetMesh MakeTetBox(const Eigen::Vector3d& halfExtents, const Eigen::Vector3i& ce
 /// Tetrahedralizes the solid bounded by a closed surface (either orientation) with CGAL Mesh_3 (a
 /// polyhedral domain, Delaunay refinement, then sliver perturbation and exudation run to
 /// completion). Criteria, with h = edgeLength [m]: facet_size = cell_size = h (upper bounds on
-/// surface Delaunay ball and tet circumradii), facet_distance = h/10, facet_angle = 25°,
+/// surface Delaunay ball and tet circumradii), facet_distance = h/20, facet_angle = 25°,
 /// cell_radius_edge_ratio = 3; surface vertices lie on the input surface. The result keeps only the
 /// vertices of the tets, all tets positively oriented; mean edge length about 1.3 h. The boundary
 /// is made of chords of the surface, so curved solids lose volume: a sphere of radius 3.3 h about
@@ -87,6 +88,28 @@ TetMesh MakeTetBox(const Eigen::Vector3d& halfExtents, const Eigen::Vector3i& ce
 /// about 10 million tets, or Mesh_3 fails or produces no tets. Self-intersections are not detected.
 bool MeshTetsFromSurface(const TriangleMesh& surface, double edgeLength, TetMesh* out,
                          std::string* error);
+
+/// A mesh size h(x) [m] as a function of the position x [m].
+using MeshSizeField = std::function<double(const Eigen::Vector3d&)>;
+
+/// MeshTetsFromSurface with a position-dependent mesh size: facet_size = cell_size = h(x) and
+/// facet_distance = h(x)/20 at the Delaunay ball or circumcentre x (the other criteria and
+/// properties as there). Keep |∇h| below about 0.5 for well-shaped tets across the grading.
+/// Fails as MeshTetsFromSurface does, also when `edgeLength` is empty, when h is not positive and
+/// finite at the surface vertices or at the centres of a 24³ grid over the surface's bounding box
+/// (the size guard integrates 1/h³ over that grid).
+bool MeshTetsFromSurfaceSized(const TriangleMesh& surface, const MeshSizeField& edgeLength,
+                              TetMesh* out, std::string* error);
+
+/// Tet mesh of a ball of the given radius [m] centred at the origin, graded toward the surface
+/// point p = radius · pole/|pole|: MeshTetsFromSurfaceSized of an icosphere subdivided until its
+/// edges are at most fineEdgeLength/2 (at most 7 subdivisions) with the size
+///   h(x) = min(coarseEdgeLength, fineEdgeLength + grading · max(0, |x − p| − fineRadius)) [m].
+/// (For a contact patch at the pole: fine within fineRadius of it, coarse far away.) Returns an
+/// empty mesh on invalid arguments (radius, fineEdgeLength, grading not positive, fineRadius
+/// negative, coarseEdgeLength < fineEdgeLength, pole zero or not finite) or if meshing fails.
+TetMesh MakeGradedTetSphere(double radius, const Eigen::Vector3d& pole, double fineEdgeLength,
+                            double fineRadius, double grading, double coarseEdgeLength);
 
 /// Tet mesh of a ball of the given radius [m] centred at the origin: MeshTetsFromSurface of an
 /// icosphere subdivided until its edges are at most edgeLength/2 (at most 7 subdivisions), with

@@ -150,15 +150,29 @@ bool CheckClosed(const TriangleMesh& s, std::string* message) {
 
 }  // namespace
 
-bool MeshTetsFromSurface(const TriangleMesh& surface, double edgeLength, TetMesh* out,
-                         std::string* error) {
+namespace {
+
+// The mesh size of MeshTetsFromSurfaceSized as a Mesh_3 sizing field (facet size, cell size and,
+// scaled by `scale`, facet distance).
+struct SizeField {
+  const MeshSizeField* size = nullptr;
+  double scale = 1.0;
+  Kernel::FT operator()(const Point& p, int, const Domain::Index&) const {
+    return scale * (*size)(Eigen::Vector3d(p.x(), p.y(), p.z()));
+  }
+};
+
+// Shared by both entry points: `field` null means the uniform size edgeLength.
+bool Tetrahedralize(const TriangleMesh& surface, double edgeLength, const MeshSizeField* field,
+                    TetMesh* out, std::string* error) {
   auto fail = [&](const std::string& message) {
     if (error) *error = "MeshTetsFromSurface: " + message;
     return false;
   };
   if (out == nullptr) return fail("no output mesh given");
-  if (!(edgeLength > 0.0) || !std::isfinite(edgeLength))
+  if (!field && (!(edgeLength > 0.0) || !std::isfinite(edgeLength)))
     return fail("edge length must be positive and finite (got " + Num(edgeLength) + " m)");
+  if (field && !*field) return fail("no mesh size function given");
   if (surface.faces.empty()) return fail("the surface has no faces");
   const int nv = surface.NumVertices();
   for (int i = 0; i < nv; ++i)
@@ -177,9 +191,37 @@ bool MeshTetsFromSurface(const TriangleMesh& surface, double edgeLength, TetMesh
   double volume = 0.0;
   for (const auto& f : surface.faces)
     volume += surface.vertices[f[0]].dot(surface.vertices[f[1]].cross(surface.vertices[f[2]])) / 6;
-  const double estimate = std::abs(volume) / (edgeLength * edgeLength * edgeLength / 8.485);
+  double estimate = 0.0;
+  if (!field) {
+    estimate = std::abs(volume) / (edgeLength * edgeLength * edgeLength / 8.485);
+  } else {
+    // The size function at the centres of 24^3 cells of the bounding box, each cell's count
+    // scaled by the solid's share of the box volume; the smallest size must be positive.
+    Aabb box;
+    for (const auto& v : surface.vertices) box.Extend(v);
+    const Eigen::Vector3d ext = box.max - box.min;
+    const int n = 24;
+    const double cell = ext.x() * ext.y() * ext.z() / (n * n * n);
+    const double share = ext.prod() > 0 ? std::abs(volume) / ext.prod() : 1.0;
+    double smallest = INFINITY;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j)
+        for (int k = 0; k < n; ++k) {
+          const Eigen::Vector3d c =
+              box.min + ext.cwiseProduct(Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5) / n);
+          const double h = (*field)(c);
+          smallest = std::min(smallest, h);
+          if (h > 0.0) estimate += share * cell / (h * h * h / 8.485);
+        }
+    for (const auto& v : surface.vertices) smallest = std::min(smallest, (*field)(v));
+    if (!(smallest > 0.0) || !std::isfinite(smallest))
+      return fail("the mesh size function must be positive and finite (got " + Num(smallest) +
+                  " m)");
+  }
   if (estimate > 1e7)
-    return fail("edge length " + Num(edgeLength) + " m would give about " + Num(estimate) +
+    return fail((field ? std::string("the mesh size function") : "edge length " + Num(edgeLength) +
+                                                                      " m") +
+                " would give about " + Num(estimate) +
                 " tets (limit 1e7); use a larger edge length");
 
   SurfaceMesh sm;
@@ -200,8 +242,13 @@ bool MeshTetsFromSurface(const TriangleMesh& surface, double edgeLength, TetMesh
     CGAL::Random rng(0);
     const Domain domain(sm, &rng);
     C3t3 c3t3;
-    MeshC3t3(domain, FacetCriteria(25.0, edgeLength, edgeLength / 20.0),
-             CellCriteria(3.0, edgeLength), &c3t3);
+    if (field) {
+      const SizeField size{field, 1.0}, distance{field, 1.0 / 20.0};
+      MeshC3t3(domain, FacetCriteria(25.0, size, distance), CellCriteria(3.0, size), &c3t3);
+    } else {
+      MeshC3t3(domain, FacetCriteria(25.0, edgeLength, edgeLength / 20.0),
+               CellCriteria(3.0, edgeLength), &c3t3);
+    }
 
     // Only the vertices of cells in the complex, numbered in order of first use.
     const Tr& tr = c3t3.triangulation();
@@ -225,14 +272,17 @@ bool MeshTetsFromSurface(const TriangleMesh& surface, double edgeLength, TetMesh
     return fail(std::string("CGAL Mesh_3 failed: ") + e.what());
   }
   if (m.tets.empty())
-    return fail("CGAL Mesh_3 produced no tets (is the edge length " + Num(edgeLength) +
-                " m much larger than the surface?)");
+    return fail(field ? std::string("CGAL Mesh_3 produced no tets (is the mesh size much larger "
+                                    "than the surface?)")
+                      : "CGAL Mesh_3 produced no tets (is the edge length " + Num(edgeLength) +
+                            " m much larger than the surface?)");
   *out = std::move(m);
   return true;
 }
 
-TetMesh MakeTetSphere(double radius, double edgeLength) {
-  if (!(radius > 0.0) || !(edgeLength > 0.0)) return TetMesh();
+// Icosphere of the given radius subdivided until its edges are at most `longestEdge` (at most 7
+// subdivisions).
+TriangleMesh SphereSurface(double radius, double longestEdge) {
   TriangleMesh sphere;
   for (int s = 0; s <= 7; ++s) {
     sphere = MakeIcosphere(radius, s);
@@ -241,11 +291,46 @@ TetMesh MakeTetSphere(double radius, double edgeLength) {
       for (int k = 0; k < 3; ++k)
         longest =
             std::max(longest, (sphere.vertices[f[k]] - sphere.vertices[f[(k + 1) % 3]]).norm());
-    if (longest <= 0.5 * edgeLength) break;
+    if (longest <= longestEdge) break;
   }
+  return sphere;
+}
+
+}  // namespace
+
+bool MeshTetsFromSurface(const TriangleMesh& surface, double edgeLength, TetMesh* out,
+                         std::string* error) {
+  return Tetrahedralize(surface, edgeLength, nullptr, out, error);
+}
+
+bool MeshTetsFromSurfaceSized(const TriangleMesh& surface, const MeshSizeField& edgeLength,
+                              TetMesh* out, std::string* error) {
+  return Tetrahedralize(surface, 0.0, &edgeLength, out, error);
+}
+
+TetMesh MakeGradedTetSphere(double radius, const Eigen::Vector3d& pole, double fineEdgeLength,
+                            double fineRadius, double grading, double coarseEdgeLength) {
+  if (!(radius > 0.0) || !(fineEdgeLength > 0.0) || !(coarseEdgeLength >= fineEdgeLength) ||
+      !(fineRadius >= 0.0) || !(grading > 0.0) || !(pole.norm() > 0.0) || !pole.allFinite())
+    return TetMesh();
+  const Eigen::Vector3d p = radius * pole.normalized();
+  const MeshSizeField size = [=](const Eigen::Vector3d& x) {
+    return std::min(coarseEdgeLength,
+                    fineEdgeLength + grading * std::max(0.0, (x - p).norm() - fineRadius));
+  };
   TetMesh out;
   std::string error;
-  if (!MeshTetsFromSurface(sphere, edgeLength, &out, &error)) return TetMesh();
+  if (!MeshTetsFromSurfaceSized(SphereSurface(radius, 0.5 * fineEdgeLength), size, &out, &error))
+    return TetMesh();
+  return out;
+}
+
+TetMesh MakeTetSphere(double radius, double edgeLength) {
+  if (!(radius > 0.0) || !(edgeLength > 0.0)) return TetMesh();
+  TetMesh out;
+  std::string error;
+  if (!MeshTetsFromSurface(SphereSurface(radius, 0.5 * edgeLength), edgeLength, &out, &error))
+    return TetMesh();
   return out;
 }
 

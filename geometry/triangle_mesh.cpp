@@ -152,6 +152,34 @@ TriangleMesh MakePlanePatch(double size, int divisions) {
   return m;
 }
 
+TriangleMesh MakeCylinderMesh(double radius, double halfLength, int segments, int rings) {
+  TriangleMesh m;
+  const int n = std::max(3, segments);
+  const int r = std::max(1, rings);
+  // Side: (r + 1) rings of n vertices along x from −halfLength to +halfLength.
+  for (int j = 0; j <= r; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double a = 2.0 * M_PI * i / n;
+      m.vertices.emplace_back(-halfLength + 2.0 * halfLength * j / r, radius * std::cos(a),
+                              radius * std::sin(a));
+    }
+  for (int j = 0; j < r; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int a = j * n + i, b = j * n + (i + 1) % n, c = a + n, d = b + n;
+      m.faces.emplace_back(a, b, d);  // outward: the angle increases counter-clockwise about +x
+      m.faces.emplace_back(a, d, c);
+    }
+  // Caps: a centre vertex each, fans to the end rings.
+  const int c0 = m.NumVertices();
+  m.vertices.emplace_back(-halfLength, 0.0, 0.0);
+  m.vertices.emplace_back(halfLength, 0.0, 0.0);
+  for (int i = 0; i < n; ++i) {
+    m.faces.emplace_back(c0, (i + 1) % n, i);                  // −x cap, normal −x
+    m.faces.emplace_back(c0 + 1, r * n + i, r * n + (i + 1) % n);  // +x cap, normal +x
+  }
+  return m;
+}
+
 // ---------------------------------------------------------------------------------------------
 // OBJ reading
 

@@ -38,6 +38,10 @@ TriangleMesh MakeBoxMesh(const Eigen::Vector3d& halfExtents, int divisions = 1);
 /// `divisions` quads, normals +z (an open surface).
 TriangleMesh MakePlanePatch(double size, int divisions);
 
+/// Closed cylinder along x centred at the origin: radius [m], half length [m], `segments` around
+/// (>= 3), `rings` side rows (>= 1), fan-triangulated caps; outward oriented.
+TriangleMesh MakeCylinderMesh(double radius, double halfLength, int segments, int rings);
+
 /// Reads vertices ("v") and faces ("f", polygons fan-triangulated, "v/vt/vn" forms and negative
 /// indices accepted) from a Wavefront OBJ file. Returns false and fills *error (naming the file,
 /// the line and the problem) on failure.

@@ -266,6 +266,19 @@ std::shared_ptr<TetMesh> ReadTetMeshSpec(const json& j, const std::string& path,
     *mesh = MakeTetSphere(r, h);
     if (mesh->NumTets() == 0) Throw(path, "meshing the sphere failed");
     *source = "tet sphere";
+  } else if (type == "cylinder") {
+    CheckObject(j, path, {"type", "radius", "length", "edge_length"});
+    const double r = Positive(j, path, "radius");
+    const double len = Positive(j, path, "length");
+    const double h = Positive(j, path, "edge_length");
+    if (std::max(r, len) / h > 60) Throw(Join(path, "edge_length"), "too small for the cylinder (size/edge_length > 60)");
+    // The surface resolved at half the edge length, so the volume mesh follows it closely.
+    const int segments = std::max(12, static_cast<int>(std::ceil(2 * M_PI * r / (0.5 * h))));
+    const int rings = std::max(2, static_cast<int>(std::ceil(len / (0.5 * h))));
+    std::string err;
+    if (!MeshTetsFromSurface(MakeCylinderMesh(r, 0.5 * len, segments, rings), h, mesh.get(), &err))
+      Throw(path, "meshing the cylinder failed: " + err);
+    *source = "tet cylinder";
   } else if (type == "surface") {
     CheckObject(j, path, {"type", "file", "edge_length", "scale"});
     const std::string file = resolve(String(j, path, "file"));
@@ -278,7 +291,7 @@ std::shared_ptr<TetMesh> ReadTetMeshSpec(const json& j, const std::string& path,
     if (!MeshTetsFromSurface(surface, h, mesh.get(), &err)) Throw(path, file + ": " + err);
     *source = file;
   } else {
-    Throw(Join(path, "type"), "unknown value \"" + type + "\" (expected one of: file, box, sphere, surface)");
+    Throw(Join(path, "type"), "unknown value \"" + type + "\" (expected one of: file, box, sphere, cylinder, surface)");
   }
   return mesh;
 }

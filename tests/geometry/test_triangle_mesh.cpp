@@ -10,6 +10,8 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+
+#include "geometry/mesh_sdf.h"
 #include <set>
 #include <string>
 
@@ -328,4 +330,16 @@ TEST_CASE("mesh: OBJ errors name the file and the line", "[geometry][mesh][obj]"
   CHECK(unchanged());                          // the output is untouched on failure
   CHECK_FALSE(ReadObj(missing, &m, nullptr));  // a null error pointer is allowed
   CHECK_FALSE(ReadObj(range, nullptr, &err));  // a null mesh is an error, not a crash
+}
+
+TEST_CASE("cylinder mesh: closed, outward, volume of the inscribed prism", "[geometry]") {
+  const double r = 0.05, half = 0.1;
+  const int n = 24;
+  const TriangleMesh m = MakeCylinderMesh(r, half, n, 3);
+  // The inscribed regular n-gon prism: V = ½ n r² sin(2π/n) · 2 half.
+  const double prism = 0.5 * n * r * r * std::sin(2 * M_PI / n) * 2 * half;
+  CHECK(ComputeMassProperties(m, 1.0).volume == Approx(prism).epsilon(1e-12));
+  std::string why;
+  CHECK(MeshSdf::Build(m, &why) != nullptr);  // closed and outward
+  for (int f = 0; f < m.NumFaces(); ++f) CHECK(m.FaceArea(f) > 0);
 }
