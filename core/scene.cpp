@@ -322,7 +322,7 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
     dissipation.fadeFriction = settings_.eval.fadeFriction;
   }
   SceneStageProblem problem(models_, dofOffset_, numDofs_, targets, settings_.gravity, &pipeline_,
-                            poses, dissipation, soft, softX);
+                            poses, dissipation, soft, softX, &workspace_);
   SolverStats st;
   switch (settings_.stageSolver) {
     case StageSolverKind::Newton:
@@ -343,7 +343,7 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
           StageDissipation potential = dissipation;
           potential.mode = DissipationMode::ExplicitNormals;
           SceneStageProblem retry(models_, dofOffset_, numDofs_, targets, settings_.gravity,
-                                  &pipeline_, poses, potential, soft, softX);
+                                  &pipeline_, poses, potential, soft, softX, &workspace_);
           const SolverStats second = MinimizeNewton(retry, settings_.solver, dt);
           const std::string why = st.message;
           st = second;

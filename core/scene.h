@@ -210,6 +210,7 @@ class Scene {
   int numDofs_ = 0;
   ContactPipeline pipeline_;
   ContactFilter filter_;
+  StageWorkspace workspace_;  // buffers reused from stage to stage
 };
 
 }  // namespace superdex

@@ -11,7 +11,8 @@ SceneStageProblem::SceneStageProblem(const std::vector<RigidBodyModel>& models,
                                      const StageTargets& targets, const Eigen::Vector3d& gravity,
                                      ContactPipeline* contact, std::vector<RigidPose>* poses,
                                      const StageDissipation& dissipation, const SoftStage* soft,
-                                     std::vector<Eigen::VectorXd>* softX)
+                                     std::vector<Eigen::VectorXd>* softX,
+                                     StageWorkspace* workspace)
     : models_(models),
       dofOffset_(dofOffset),
       numDofs_(numDofs),
@@ -19,13 +20,15 @@ SceneStageProblem::SceneStageProblem(const std::vector<RigidBodyModel>& models,
       gravity_(gravity),
       contact_(contact),
       poses_(poses),
+      ws_(workspace ? workspace : &ownWorkspace_),
+      triplets_(ws_->triplets),
       dissipation_(dissipation),
       soft_(soft && softX && !soft->targets.empty() ? soft : nullptr),
       softX_(soft_ ? softX : nullptr) {
   trial_ = *poses;
   if (soft_) {
     softTrial_ = *softX_;
-    softScratch_.resize(soft_->targets.size());
+    if (ws_->soft.size() < soft_->targets.size()) ws_->soft.resize(soft_->targets.size());
   }
   context_.dt = targets_.dt;
   context_.mode = dissipation_.mode;
@@ -101,7 +104,7 @@ double SceneStageProblem::EvaluateAt(const std::vector<RigidPose>& poses,
       double md = INFINITY;
       value += EvaluateSoftStageTerms((*soft_->models)[s], soft_->targets[s], targets_.dt, gravity_,
                                       softX[s], order, projection, soft_->dofOffset[s], gPot,
-                                      &triplets_, &softScratch_[s], &md);
+                                      &triplets_, &ws_->soft[s], &md);
       minDet = std::min(minDet, md);
     }
     if (minDetF) *minDetF = minDet;

@@ -41,6 +41,12 @@ struct SoftStage {
   std::vector<Eigen::VectorXd> x0, xLast;  ///< copies of the targets' x⁰ and x_n (contact view)
 };
 
+/// Buffers that one stage hands to the next (no allocation after the first stage of a scene).
+struct StageWorkspace {
+  std::vector<Eigen::Triplet<double>> triplets;
+  std::vector<SoftTermScratch> soft;
+};
+
 class SceneStageProblem : public StageProblem {
  public:
   /// `poses` is the iterate, updated in place by Commit; dynamic bodies own 6 dofs each
@@ -50,7 +56,8 @@ class SceneStageProblem : public StageProblem {
                     int numDofs, const StageTargets& targets, const Eigen::Vector3d& gravity,
                     ContactPipeline* contact, std::vector<RigidPose>* poses,
                     const StageDissipation& dissipation = StageDissipation(),
-                    const SoftStage* soft = nullptr, std::vector<Eigen::VectorXd>* softX = nullptr);
+                    const SoftStage* soft = nullptr, std::vector<Eigen::VectorXd>* softX = nullptr,
+                    StageWorkspace* workspace = nullptr);
 
   int NumDofs() const override { return numDofs_; }
   double Value(const Eigen::VectorXd& d) override;
@@ -97,7 +104,9 @@ class SceneStageProblem : public StageProblem {
   ContactPipeline* contact_;
   std::vector<RigidPose>* poses_;
   std::vector<RigidPose> trial_;
-  std::vector<Eigen::Triplet<double>> triplets_;
+  StageWorkspace ownWorkspace_;
+  StageWorkspace* ws_;  // the caller's, or ownWorkspace_
+  std::vector<Eigen::Triplet<double>>& triplets_;
   StageDissipation dissipation_;
   DissipationContext context_;
   Eigen::VectorXd scratch_;
@@ -107,7 +116,6 @@ class SceneStageProblem : public StageProblem {
   const SoftStage* soft_ = nullptr;
   std::vector<Eigen::VectorXd>* softX_ = nullptr;
   std::vector<Eigen::VectorXd> softTrial_, softOrigin_, noSoft_;
-  std::vector<SoftTermScratch> softScratch_;
   double lastMinDetF_ = INFINITY;
 };
 

@@ -172,7 +172,7 @@ void EvaluateSoftRigidPair(const SoftPairInput& in, const RigidBodyModel& B, con
     }
     const Eigen::Vector3d nA = UnitFaceNormal(xs[0], xs[1], xs[2]);
     const Eigen::Vector3d nAn = UnitFaceNormal(xns[0], xns[1], xns[2]);
-    Eigen::Vector3d x0s[3];
+    Eigen::Vector3d x0s[3] = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
     if (withDissipation)
       for (int a = 0; a < 3; ++a) x0s[a] = Node(*in.x0, F[a]);
 

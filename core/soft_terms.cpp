@@ -26,7 +26,7 @@ void PrepareSoftDamping(const SoftBodyModel& m, SoftStageTarget* target) {
   target->dampingStiffness.resize(nt);
   auto one = [&](int t) {
     Eigen::Vector3d xs[4];
-    Gather(target->xLast, m.rest.tets[t], xs);
+    Gather(target->xHat, m.rest.tets[t], xs);
     TetElasticTerm term;
     EvaluateStableNeoHookean(m.elements[t], m.lame, xs, 2, true, &term);
     target->dampingStiffness[t] = term.hessian;

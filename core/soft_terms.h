@@ -4,10 +4,12 @@
 //             + Σ_t V_t Ψ(F_t)                           stable neo-Hookean [J]
 //             + β/(2Δt_i) Σ_t (x_t − x⁰_t)ᵀ K_t (x_t − x⁰_t)   stiffness damping Δt_i R [J]
 // with x̂ = x⁰ + Δt_i v⁰, m_a the lumped node masses [kg], K_t the tet's PSD-projected elastic
-// Hessian at the last actual configuration x_n [N/m], β [s]. The damping term is Δt_i times the
-// Rayleigh dissipation R = β/2 vᵀ K v, v = (x − x⁰)/Δt_i: with K frozen at x_n it is an exact
-// quadratic potential (force −β K v). Prescribed nodes have no dofs; their positions enter the
-// element terms as data.
+// Hessian at the stage's predictor x̂ [N/m], β [s]. The damping term is Δt_i times the Rayleigh
+// dissipation R = β/2 vᵀ K v, v = (x − x⁰)/Δt_i: with K frozen for the stage it is an exact
+// quadratic potential (force −β K v). Freezing K at the predictor, an O(Δt²) approximation of the
+// stage configuration, keeps the damping force second-order accurate; frozen at x_n (O(Δt)) it
+// made every method first order (measured). Third-order methods are at most second order with
+// β > 0. Prescribed nodes have no dofs; their positions enter the element terms as data.
 #pragma once
 
 #include <Eigen/Core>
@@ -24,11 +26,11 @@ struct SoftStageTarget {
   Eigen::VectorXd xHat;   ///< inertial target x⁰ + Δt_i v⁰ [m]
   Eigen::VectorXd x0;     ///< stage start x⁰ (affine combination of states) [m]
   Eigen::VectorXd xLast;  ///< last actual configuration x_n [m]
-  /// Per tet, K_t at x_n (only when β > 0).
+  /// Per tet, K_t at the predictor x̂ (only when β > 0).
   std::vector<Eigen::Matrix<double, 12, 12>> dampingStiffness;
 };
 
-/// Fills target->dampingStiffness from target->xLast (no-op when β = 0).
+/// Fills target->dampingStiffness from target->xHat (no-op when β = 0).
 void PrepareSoftDamping(const SoftBodyModel& model, SoftStageTarget* target);
 
 /// Per-tet scratch reused across evaluations (no allocation after the first).

@@ -9,7 +9,8 @@ namespace {
 struct Surface {
   std::vector<Eigen::Vector3d> points, displacement;
   std::vector<Eigen::Vector3i> triangles;
-  std::vector<Eigen::Vector3d> traction;
+  std::vector<Eigen::Vector3d> traction;  // per reference area (nominal)
+  std::vector<double> referenceArea;
   std::vector<int> actor;
 
   void AddRigid(const TriangleMesh& mesh, const Eigen::Vector3d& offset, const RigidBodyState& s,
@@ -22,6 +23,7 @@ struct Surface {
     for (const Eigen::Vector3i& f : mesh.faces) {
       triangles.push_back(f + Eigen::Vector3i::Constant(base));
       traction.push_back(Eigen::Vector3d::Zero());
+      referenceArea.push_back(0.0);
       actor.push_back(index);
     }
   }
@@ -46,6 +48,7 @@ bool WriteVtkFrame(Scene& scene, const std::string& path, Error* error) {
       for (size_t f = 0; f < m.faces.size(); ++f) {
         s.triangles.push_back(m.faces[f] + Eigen::Vector3i::Constant(base));
         s.traction.push_back(t[f]);
+        s.referenceArea.push_back(m.faceArea[f]);
         s.actor.push_back(i);
       }
       continue;
@@ -80,10 +83,12 @@ bool WriteVtkFrame(Scene& scene, const std::string& path, Error* error) {
   for (const auto& t : s.traction) out << t.x() << ' ' << t.y() << ' ' << t.z() << '\n';
   out << "SCALARS pressure double 1\nLOOKUP_TABLE default\n";
   for (size_t f = 0; f < s.triangles.size(); ++f) {
+    // True pressure: the face's normal force over its current area.
     const Eigen::Vector3i& F = s.triangles[f];
-    const Eigen::Vector3d n =
-        (s.points[F[1]] - s.points[F[0]]).cross(s.points[F[2]] - s.points[F[0]]).normalized();
-    out << (n.allFinite() ? -s.traction[f].dot(n) : 0.0) << '\n';
+    const Eigen::Vector3d a =
+        0.5 * (s.points[F[1]] - s.points[F[0]]).cross(s.points[F[2]] - s.points[F[0]]);
+    const double area = a.norm();
+    out << (area > 0 ? -s.traction[f].dot(a / area) * s.referenceArea[f] / area : 0.0) << '\n';
   }
   out << "SCALARS actor int 1\nLOOKUP_TABLE default\n";
   for (int a : s.actor) out << a << '\n';

@@ -11,9 +11,10 @@ namespace superdex {
 /// Writes `path` (legacy ASCII VTK, POLYDATA): the boundary triangles of every soft actor at its
 /// current node positions and the surfaces of rigid spheres, boxes and meshes at their poses
 /// (planes are skipped). Cell data per triangle:
-///   traction  the contact traction on the face averaged over its reference area,
+///   traction  the nominal contact traction on the face: force per reference area,
 ///             Σ_q w_q t_q / A_f [Pa] (world frame; soft faces; zero elsewhere)
-///   pressure  −traction·n, n the current outward face normal [Pa] (> 0 in compression)
+///   pressure  the true contact pressure: −(normal force)/(current area) [Pa] (> 0 in
+///             compression; it differs from −traction·n by the area change A_f / a_f)
 ///   actor     the actor index
 /// Point data: displacement of soft nodes from their reference positions [m] (zero on rigid
 /// surfaces). Returns false and fills *error when the file cannot be written.

@@ -1,15 +1,32 @@
 // Enums and parameter types of the spec, with snake_case properties that validate on assignment.
 #include <pybind11/stl.h>
 
+#include <cmath>
+#include <sstream>
+
 #include "bindings.h"
 #include "core/collider_params.h"
 #include "core/contact_params.h"
 #include "core/enums.h"
 #include "core/eval_params.h"
+#include "core/soft_body.h"
 #include "energies/contact_dissipation.h"
+#include "energies/stable_neo_hookean.h"
 
 namespace superdex::python {
 namespace {
+
+// The rules BuildSoftBody applies to a soft actor's material (core/soft_body.cpp), so that a bad
+// value is refused where it is assigned, with the same message.
+std::string Validate(const SoftMaterial& m) {
+  std::string e = ValidateElasticMaterial(m.youngsModulus, m.poissonRatio, m.density);
+  if (e.empty() && !(std::isfinite(m.stiffnessDamping) && m.stiffnessDamping >= 0)) {
+    std::ostringstream s;
+    s << "stiffness_damping: must be >= 0 and finite, got " << m.stiffnessDamping;
+    e = s.str();
+  }
+  return e;
+}
 
 // A property that validates the whole object after the assignment and rolls back on failure.
 template <typename Class, typename T>
@@ -30,7 +47,9 @@ void Field(py::class_<Class>& c, const char* name, T Class::*member, const char*
 void BindParams(py::module_& m) {
   py::enum_<ColliderType>(m, "ColliderType",
                           "How an actor supplies its distance field (spec: Collider "
-                          "Representations). Mesh, Sdf and PointCloud are not implemented yet.")
+                          "Representations). PointCloud is not implemented yet; soft actors "
+                          "accept None, Sdf and Auto. `None` is a Python keyword: write "
+                          "getattr(ColliderType, 'None').")
       .value("Auto", ColliderType::Auto, "by actor and shape: analytic for sphere, box, plane")
       .value("None", ColliderType::None, "no collider role (the actor may still collide)")
       .value("Sphere", ColliderType::Sphere)
@@ -121,7 +140,8 @@ void BindParams(py::module_& m) {
         "Alignment-based attenuation a = (m - s)/(m + 1) of dissipation. Default True.");
 
   py::class_<GridSdfParams> gp(m, "GridSdfParams",
-                               "Grid SDF construction for Sdf colliders (RigidActorDesc.grid_sdf).");
+                               "Grid SDF construction for Sdf colliders (RigidActorDesc.grid_sdf, "
+                               "SoftActorDesc.grid_sdf).");
   gp.def(py::init<>());
   Field(gp, "resolution_mode", &GridSdfParams::resolutionMode,
         "Reference length for the voxel size. Default MeanEdgeLength.");
@@ -131,6 +151,39 @@ void BindParams(py::module_& m) {
         "Minimum voxel count per axis, >= 2. Default 16.");
   Field(gp, "boundary_padding_dist", &GridSdfParams::boundaryPaddingDist,
         "Grid extension beyond the shape bounds [m], >= 0. Default 0.01.");
+
+  py::class_<SoftMaterial> sm(m, "SoftMaterial",
+                              "Bulk material of a soft actor (stable neo-Hookean). Every assignment "
+                              "is validated; a bad value raises ValueError naming the field and "
+                              "the rule.");
+  sm.def(py::init([](double youngsModulus, double poissonRatio, double density,
+                     double stiffnessDamping) {
+           SoftMaterial s;
+           s.youngsModulus = youngsModulus;
+           s.poissonRatio = poissonRatio;
+           s.density = density;
+           s.stiffnessDamping = stiffnessDamping;
+           CheckValue(Validate(s));
+           return s;
+         }),
+         py::arg("youngs_modulus") = SoftMaterial().youngsModulus,
+         py::arg("poisson_ratio") = SoftMaterial().poissonRatio,
+         py::arg("density") = SoftMaterial().density,
+         py::arg("stiffness_damping") = SoftMaterial().stiffnessDamping);
+  Field(sm, "youngs_modulus", &SoftMaterial::youngsModulus,
+        "Young's modulus E [Pa], finite and > 0. Default 1e5.");
+  Field(sm, "poisson_ratio", &SoftMaterial::poissonRatio,
+        "Poisson's ratio nu [-], in (-1, 0.5). Default 0.3.");
+  Field(sm, "density", &SoftMaterial::density,
+        "Density rho [kg/m^3], finite and > 0. Default 1000.");
+  Field(sm, "stiffness_damping", &SoftMaterial::stiffnessDamping,
+        "Rayleigh stiffness damping beta [s], >= 0 (dissipation R = beta/2 v^T K v). Default 0.");
+  sm.def("__repr__", [](const SoftMaterial& s) {
+    std::ostringstream o;
+    o << "SoftMaterial(youngs_modulus=" << s.youngsModulus << ", poisson_ratio=" << s.poissonRatio
+      << ", density=" << s.density << ", stiffness_damping=" << s.stiffnessDamping << ")";
+    return o.str();
+  });
 
   py::class_<PointCloudColliderParams> pc(
       m, "PointCloudColliderParams",

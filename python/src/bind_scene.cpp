@@ -19,6 +19,29 @@ struct Actor {
   Scene* scene = nullptr;
   int index = -1;
   ActorHandle Handle() const { return {index}; }
+  bool IsSoft() const { return scene->IsSoft(Handle()); }
+  const std::string& Name() const {
+    return IsSoft() ? scene->SoftModel(Handle()).name : scene->Model(Handle()).name;
+  }
+  /// The rigid state; TypeError naming `field` for a soft actor.
+  const RigidBodyState& RigidState(const char* field) const {
+    if (IsSoft())
+      throw py::type_error(std::string(field) + ": '" + Name() +
+                           "' is a soft actor; rotation, orientation and angular_velocity are "
+                           "defined for rigid actors only (see node_positions)");
+    return scene->State(Handle());
+  }
+  /// The soft model; TypeError naming `field` for a rigid actor.
+  const SoftBodyModel& Soft(const char* field) const {
+    if (!IsSoft())
+      throw py::type_error(std::string(field) + ": '" + Name() +
+                           "' is a rigid actor; " + field + " is defined for soft actors only");
+    return scene->SoftModel(Handle());
+  }
+  const SoftBodyState& SoftState(const char* field) const {
+    Soft(field);
+    return scene->SoftState(Handle());
+  }
 };
 
 Eigen::Vector4d Quaternion(const Eigen::Matrix3d& R) {
@@ -38,6 +61,7 @@ py::dict Energies(Scene& s) {
   d["kinetic"] = e.kinetic;
   d["gravity"] = e.gravity;
   d["contact"] = e.contact;
+  d["elastic"] = e.elastic;
   d["total"] = e.Total();
   return d;
 }
@@ -63,12 +87,17 @@ py::dict Run(Scene& s, double duration, double dt, int every,
   auto record = [&]() {
     T(frame) = s.Time();
     for (int a = 0; a < A; ++a) {
-      const RigidBodyState& st = s.States()[a];
-      const Eigen::Vector4d qa = Quaternion(st.R);
-      const Eigen::Vector3d wa = st.AngularVelocity();
+      // Soft actors: centre of mass and its velocity; no orientation or angular velocity (NaN).
+      const ActorHandle h{a};
+      const bool soft = s.IsSoft(h);
+      const Eigen::Vector3d pa = s.CenterOfMass(h), va = s.CenterOfMassVelocity(h);
+      const Eigen::Vector4d qa =
+          soft ? Eigen::Vector4d::Constant(NAN) : Quaternion(s.State(h).R);
+      const Eigen::Vector3d wa =
+          soft ? Eigen::Vector3d::Constant(NAN) : s.State(h).AngularVelocity();
       for (int k = 0; k < 3; ++k) {
-        P(frame, a, k) = st.p[k];
-        V(frame, a, k) = st.v[k];
+        P(frame, a, k) = pa[k];
+        V(frame, a, k) = va[k];
         W(frame, a, k) = wa[k];
       }
       for (int k = 0; k < 4; ++k) Q(frame, a, k) = qa[k];
@@ -261,13 +290,29 @@ void BindScene(py::module_& m) {
       .def_property_readonly("min_signed_distance",
                              [](const StepReport& r) { return r.contact.minSignedDistance; })
       .def_readonly("max_coulomb_ratio", &StepReport::maxCoulombRatio)
+      .def_readonly("min_det_f", &StepReport::minDetF,
+                    "smallest det F over the soft tets at the end of the step (<= 0: an inverted "
+                    "tet); inf without soft actors")
       .def_readonly("wall_seconds", &StepReport::wallSeconds);
 
-  py::class_<Actor>(m, "Actor", "A handle to an actor of a Scene.")
+  py::class_<Actor>(m, "Actor",
+                    "A handle to an actor of a Scene, rigid or soft (is_soft). Rigid-only\n"
+                    "properties (rotation, orientation, angular_velocity) raise TypeError on a soft\n"
+                    "actor, soft-only ones (node_positions, ...) on a rigid actor.")
       .def_property_readonly("index", [](const Actor& a) { return a.index; })
-      .def_property_readonly("name", [](const Actor& a) { return a.scene->Models()[a.index].name; })
-      .def_property_readonly("mass", [](const Actor& a) { return a.scene->Models()[a.index].mass; })
-      .def_property_readonly("dynamic", [](const Actor& a) { return a.scene->Models()[a.index].dynamic; })
+      .def_property_readonly("name", [](const Actor& a) { return a.Name(); })
+      .def_property_readonly("is_soft", &Actor::IsSoft)
+      .def_property_readonly(
+          "mass",
+          [](const Actor& a) {
+            return a.IsSoft() ? a.scene->SoftModel(a.Handle()).mass
+                              : a.scene->Model(a.Handle()).mass;
+          },
+          "[kg]")
+      .def_property_readonly(
+          "dynamic",
+          [](const Actor& a) { return a.IsSoft() || a.scene->Model(a.Handle()).dynamic; },
+          "False for a static rigid actor; soft actors are always dynamic")
       .def_property_readonly("contact_layer",
                              [](const Actor& a) { return a.scene->ContactLayer(a.Handle()); })
       .def(
@@ -277,20 +322,79 @@ void BindScene(py::module_& m) {
             if (!a.scene->SetContactLayer(a.Handle(), layer, &e)) throw py::value_error(e.message);
           },
           py::arg("layer"), "Actor::SetContactLayer: any string.")
-      .def_property_readonly("position", [](const Actor& a) { return a.scene->State(a.Handle()).p; },
-                             "centre of mass [m]")
-      .def_property_readonly("rotation", [](const Actor& a) { return a.scene->State(a.Handle()).R; })
-      .def_property_readonly("orientation",
-                             [](const Actor& a) { return Quaternion(a.scene->State(a.Handle()).R); },
-                             "quaternion [x, y, z, w]")
-      .def_property_readonly("velocity", [](const Actor& a) { return a.scene->State(a.Handle()).v; },
-                             "centre-of-mass velocity [m/s]")
-      .def_property_readonly("angular_velocity",
-                             [](const Actor& a) { return a.scene->State(a.Handle()).AngularVelocity(); },
-                             "world angular velocity [rad/s]")
+      .def_property_readonly(
+          "position", [](const Actor& a) { return a.scene->CenterOfMass(a.Handle()); },
+          "centre of mass [m] (soft: of the lumped node masses)")
+      .def_property_readonly("rotation",
+                             [](const Actor& a) { return a.RigidState("rotation").R; },
+                             "rotation matrix (rigid actors)")
+      .def_property_readonly(
+          "orientation", [](const Actor& a) { return Quaternion(a.RigidState("orientation").R); },
+          "quaternion [x, y, z, w] (rigid actors)")
+      .def_property_readonly(
+          "velocity", [](const Actor& a) { return a.scene->CenterOfMassVelocity(a.Handle()); },
+          "centre-of-mass velocity [m/s]")
+      .def_property_readonly(
+          "angular_velocity",
+          [](const Actor& a) { return a.RigidState("angular_velocity").AngularVelocity(); },
+          "world angular velocity [rad/s] (rigid actors)")
+      // --- Soft actors.
+      .def_property_readonly(
+          "num_nodes", [](const Actor& a) { return a.Soft("num_nodes").NumNodes(); },
+          "number of tet mesh nodes (soft actors)")
+      .def_property_readonly(
+          "node_positions", [](const Actor& a) { return StackedToArray(a.SoftState("node_positions").x); },
+          "(n, 3) current node positions [m] (soft actors; a copy)")
+      .def_property_readonly(
+          "node_velocities",
+          [](const Actor& a) { return StackedToArray(a.SoftState("node_velocities").v); },
+          "(n, 3) current node velocities [m/s] (soft actors; a copy)")
+      .def_property_readonly(
+          "rest_positions",
+          [](const Actor& a) { return RowsToArray(a.Soft("rest_positions").rest.vertices); },
+          "(n, 3) reference node positions [m]: the mesh placed in the world at creation (soft "
+          "actors)")
+      .def_property_readonly(
+          "node_masses",
+          [](const Actor& a) {
+            const Eigen::VectorXd& m = a.Soft("node_masses").nodeMass;
+            return py::array_t<double>(static_cast<py::ssize_t>(m.size()), m.data());
+          },
+          "(n,) lumped node masses [kg] (soft actors)")
+      .def_property_readonly(
+          "faces", [](const Actor& a) { return RowsToArray(a.Soft("faces").faces); },
+          "(f, 3) int boundary faces (node indices), counter-clockwise seen from outside (soft "
+          "actors)")
+      .def_property_readonly(
+          "face_areas",
+          [](const Actor& a) {
+            const std::vector<double>& f = a.Soft("face_areas").faceArea;
+            return py::array_t<double>(static_cast<py::ssize_t>(f.size()), f.data());
+          },
+          "(f,) reference areas of the boundary faces [m^2] (soft actors)")
+      .def(
+          "face_tractions",
+          [](Actor& a) {
+            a.Soft("face_tractions");
+            std::vector<Eigen::Vector3d> t;
+            Error e;
+            if (!a.scene->SoftFaceTractions(a.Handle(), &t, &e)) throw py::value_error(e.message);
+            return RowsToArray(t);
+          },
+          "(f, 3) contact traction on each boundary face averaged over its reference area [Pa]\n"
+          "(world frame; zero out of contact), from the active penalty samples at the current\n"
+          "state: sum(face_tractions() * face_areas[:, None]) is the contact force (soft actors).")
+      .def_property_readonly(
+          "min_det_f",
+          [](const Actor& a) {
+            double minDetF = INFINITY;
+            ElasticEnergy(a.Soft("min_det_f"), a.SoftState("min_det_f").x, &minDetF);
+            return minDetF;
+          },
+          "smallest det F over the tets at the current state (<= 0: an inverted tet; soft actors)")
       .def("__repr__", [](const Actor& a) {
-        return "<superdex.Actor " + std::to_string(a.index) + " '" +
-               a.scene->Models()[a.index].name + "'>";
+        return "<superdex.Actor " + std::to_string(a.index) + " '" + a.Name() + "'" +
+               (a.IsSoft() ? " soft" : "") + ">";
       });
 
   py::class_<Scene>(m, "Scene", "Actors, settings and time stepping.")
@@ -310,6 +414,18 @@ void BindScene(py::module_& m) {
           },
           py::arg("desc"), py::arg("parent") = py::none(), py::keep_alive<0, 1>(),
           "Adds a rigid actor (nested under `parent` if given); raises ValueError on bad input.")
+      .def(
+          "add_soft_actor",
+          [](Scene& s, const SoftActorDesc& d, std::optional<Actor> parent) {
+            Error e;
+            const ActorHandle h =
+                s.AddSoftActor(d, &e, parent ? parent->Handle() : ActorHandle());
+            if (!h.IsValid()) throw py::value_error(e.message);
+            return Actor{&s, h.index};
+          },
+          py::arg("desc"), py::arg("parent") = py::none(), py::keep_alive<0, 1>(),
+          "Adds a soft (tet FEM) actor (nested under `parent` if given); raises ValueError\n"
+          "naming the field and the rule on bad input. The mesh is copied.")
       .def_property_readonly("actors",
                              [](Scene& s) {
                                std::vector<Actor> out;
@@ -321,7 +437,7 @@ void BindScene(py::module_& m) {
           "actor",
           [](Scene& s, const std::string& name) {
             for (int i = 0; i < s.NumActors(); ++i)
-              if (s.Models()[i].name == name) return Actor{&s, i};
+              if (Actor{&s, i}.Name() == name) return Actor{&s, i};
             throw py::value_error("no actor named \"" + name + "\"");
           },
           py::arg("name"), py::keep_alive<0, 1>())
@@ -348,9 +464,10 @@ void BindScene(py::module_& m) {
            "Runs for `duration` [s] with step `dt` [s]; returns a dict of numpy arrays over the\n"
            "recorded frames (the initial state, every `every`-th step and the last):\n"
            "t (F,), p (F, A, 3), q (F, A, 4) quaternions [x, y, z, w], v (F, A, 3),\n"
-           "w (F, A, 3) world angular velocities, energy (F,). progress(fraction, report) is\n"
-           "called after every step. A non-converged stage raises RuntimeError.")
-      .def("energies", &Energies, "kinetic, gravity, contact and total energy [J]")
+           "w (F, A, 3) world angular velocities, energy (F,). Soft actors: p and v of the\n"
+           "centre of mass, q and w NaN. progress(fraction, report) is called after every\n"
+           "step. A non-converged stage raises RuntimeError.")
+      .def("energies", &Energies, "kinetic, gravity, contact, elastic and total energy [J]")
       .def("total_linear_momentum", &Scene::TotalLinearMomentum)
       .def("total_angular_momentum", &Scene::TotalAngularMomentum)
       .def("contact_samples", &ContactSamples,

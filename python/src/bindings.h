@@ -1,20 +1,94 @@
 // Shared declarations of the Python bindings (one file per group of types).
 #pragma once
 
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <Eigen/Core>
 #include <string>
+#include <vector>
 
 namespace superdex::python {
 
 namespace py = pybind11;
 
 void BindParams(py::module_& m);
+void BindSoft(py::module_& m);
 void BindScene(py::module_& m);
 
 /// Raises ValueError(message) when message is not empty.
 inline void CheckValue(const std::string& message) {
   if (!message.empty()) throw py::value_error(message);
+}
+
+/// Rows of fixed-size Eigen vectors as an (n, N) numpy array (a copy).
+template <typename T, int N>
+py::array_t<T> RowsToArray(const std::vector<Eigen::Matrix<T, N, 1>>& rows) {
+  py::array_t<T> a({static_cast<py::ssize_t>(rows.size()), static_cast<py::ssize_t>(N)});
+  auto A = a.template mutable_unchecked<2>();
+  for (size_t i = 0; i < rows.size(); ++i)
+    for (int k = 0; k < N; ++k) A(static_cast<py::ssize_t>(i), k) = rows[i][k];
+  return a;
+}
+
+/// A stacked vector [x_0; x_1; …] (3n entries) as an (n, 3) numpy array (a copy).
+inline py::array_t<double> StackedToArray(const Eigen::VectorXd& x) {
+  const py::ssize_t n = x.size() / 3;
+  py::array_t<double> a({n, py::ssize_t(3)});
+  auto A = a.mutable_unchecked<2>();
+  for (py::ssize_t i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k) A(i, k) = x[3 * i + k];
+  return a;
+}
+
+/// An (n, N) array-like of numbers as rows; ValueError naming `field` for another shape.
+template <int N>
+std::vector<Eigen::Matrix<double, N, 1>> RowsFromArray(const py::handle& obj, const char* field) {
+  const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(obj);
+  if (!a) throw py::value_error(std::string(field) + ": must be an array of numbers");
+  std::vector<Eigen::Matrix<double, N, 1>> rows;
+  if (a.size() == 0 && a.ndim() <= 2) return rows;
+  if (a.ndim() != 2 || a.shape(1) != N)
+    throw py::value_error(std::string(field) + ": must be an (n, " + std::to_string(N) +
+                          ") array, got shape " + py::str(py::tuple(py::cast(
+                              std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim()))))
+                              .cast<std::string>());
+  const auto A = a.template unchecked<2>();
+  rows.resize(a.shape(0));
+  for (py::ssize_t i = 0; i < a.shape(0); ++i)
+    for (int k = 0; k < N; ++k) rows[i][k] = A(i, k);
+  return rows;
+}
+
+/// An (n, N) array-like of integers as rows; ValueError naming `field` for another shape, for
+/// non-integer entries or for values outside the range of int.
+template <int N>
+std::vector<Eigen::Matrix<int, N, 1>> IndexRowsFromArray(const py::handle& obj, const char* field) {
+  const py::array raw = py::array::ensure(obj);
+  if (!raw) throw py::value_error(std::string(field) + ": must be an array of integers");
+  std::vector<Eigen::Matrix<int, N, 1>> rows;
+  if (raw.size() == 0 && raw.ndim() <= 2) return rows;
+  const char kind = raw.dtype().kind();
+  if (kind != 'i' && kind != 'u')
+    throw py::value_error(std::string(field) + ": must hold integers, got dtype " +
+                          py::str(raw.dtype()).cast<std::string>());
+  const auto a = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(raw);
+  if (a.ndim() != 2 || a.shape(1) != N)
+    throw py::value_error(std::string(field) + ": must be an (n, " + std::to_string(N) +
+                          ") array, got shape " + py::str(py::tuple(py::cast(
+                              std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim()))))
+                              .cast<std::string>());
+  const auto A = a.template unchecked<2>();
+  rows.resize(a.shape(0));
+  for (py::ssize_t i = 0; i < a.shape(0); ++i)
+    for (int k = 0; k < N; ++k) {
+      const long long v = A(i, k);
+      if (v < -2147483647LL || v > 2147483647LL)
+        throw py::value_error(std::string(field) + ": index " + std::to_string(v) +
+                              " out of range");
+      rows[i][k] = static_cast<int>(v);
+    }
+  return rows;
 }
 
 }  // namespace superdex::python

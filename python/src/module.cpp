@@ -8,5 +8,6 @@ PYBIND11_MODULE(superdex, m) {
       "states and trajectories come back as numpy arrays. Bad values raise ValueError with the\n"
       "field and the rule; a stage that does not converge raises RuntimeError.";
   superdex::python::BindParams(m);
+  superdex::python::BindSoft(m);
   superdex::python::BindScene(m);
 }

@@ -116,6 +116,23 @@ TEST_CASE("shipped scenes meet their expectations", "[scenes][shipped]") {
   }
 }
 
+TEST_CASE("shipped soft scenes meet their expectations, no tet inverts", "[scenes][shipped][soft]") {
+  for (const char* name : {"soft_ball_drop", "soft_cube_press", "soft_cylinder_on_blocks"}) {
+    SceneFile f;
+    Error e;
+    REQUIRE(LoadSceneFile(std::string(SUPERDEX_SOURCE_DIR) + "/scenes/data/" + name + ".json", &f, &e));
+    RunOptions o;
+    o.out = "";
+    o.vtk = "";
+    RunSummary s;
+    REQUIRE(RunScene(&f, o, &s, &e));
+    INFO(name << ": max penetration " << s.maxPenetration << ", min det F " << s.minDetF);
+    for (const auto& msg : s.expectationFailures) FAIL_CHECK(name << ": " << msg);
+    CHECK(s.stopped + s.diverged == 0);
+    CHECK(s.minDetF > 0.5);
+  }
+}
+
 TEST_CASE("the 1000-sphere pile loads and its first steps converge", "[scenes][shipped]") {
   SceneFile f;
   Error e;
