@@ -27,6 +27,39 @@ void AppendBlocks(const StencilMatrix& M, const int offs[2], int blocks,
   }
 }
 
+/// The penalty part of a pair's combined parameters.
+PenaltyParams PenaltyOf(const PairContactParams& p) {
+  PenaltyParams pp;
+  pp.k = p.penaltyCoefficient;
+  pp.eps = p.smoothingHalfDistance;
+  pp.delta = p.threshold;
+  return pp;
+}
+
+/// Soft stencils are made of 3-dof blocks at offs[b] (−1: no dofs).
+void AddBlocks3(const StencilVector& g, const int* offs, int blocks, Eigen::VectorXd* out) {
+  for (int b = 0; b < blocks; ++b)
+    if (offs[b] >= 0) out->segment<3>(offs[b]) += g.segment<3>(3 * b);
+}
+
+/// Appends the nonzero entries of H (+ J when given; either may be null) block by block.
+void AppendBlocks3(const StencilMatrix* H, const StencilMatrix* J, const int* offs, int blocks,
+                   std::vector<Eigen::Triplet<double>>* triplets) {
+  for (int bi = 0; bi < blocks; ++bi) {
+    if (offs[bi] < 0) continue;
+    for (int bj = 0; bj < blocks; ++bj) {
+      if (offs[bj] < 0) continue;
+      for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) {
+          double v = 0.0;
+          if (H) v += (*H)(3 * bi + r, 3 * bj + c);
+          if (J) v += (*J)(3 * bi + r, 3 * bj + c);
+          if (v != 0.0) triplets->emplace_back(offs[bi] + r, offs[bj] + c, v);
+        }
+    }
+  }
+}
+
 void AddBlocks(const StencilVector& g, const int offs[2], int blocks, Eigen::VectorXd* out) {
   for (int bi = 0; bi < blocks; ++bi)
     if (offs[bi] >= 0) out->segment<6>(offs[bi]) += g.segment<6>(6 * bi);
@@ -160,9 +193,7 @@ DissipationSetup ContactPipeline::MakeSetup(const PairContactParams& params,
   setup.mode = dissipation.mode;
   setup.fadeFriction = dissipation.fadeFriction;
   setup.dt = dissipation.dt;
-  setup.penalty.k = params.penaltyCoefficient;
-  setup.penalty.eps = params.smoothingHalfDistance;
-  setup.penalty.delta = params.threshold;
+  setup.penalty = PenaltyOf(params);
   setup.coefficients.mu = params.coulombFrictionCoefficient;
   setup.coefficients.ct = params.viscousFrictionCoefficient;
   setup.coefficients.cn = params.normalViscousDampingCoefficient;
@@ -191,10 +222,7 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
 
   auto evaluate = [&](size_t k) {
     const ContactPair& cp = pairs_[k];
-    PenaltyParams pp;
-    pp.k = cp.params.penaltyCoefficient;
-    pp.eps = cp.params.smoothingHalfDistance;
-    pp.delta = cp.params.threshold;
+    const PenaltyParams pp = PenaltyOf(cp.params);
     const RigidBodyModel& A = models[cp.colliding];
     const RigidBodyModel& B = models[cp.collider];
     RigidPairPenalty& r = results_[k];
@@ -258,10 +286,7 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
   softResults_.resize(softPairs_.size());
   auto evaluateSoft = [&](size_t k) {
     const SoftContactPair& sp = softPairs_[k];
-    PenaltyParams pp;
-    pp.k = sp.params.penaltyCoefficient;
-    pp.eps = sp.params.smoothingHalfDistance;
-    pp.delta = sp.params.threshold;
+    const PenaltyParams pp = PenaltyOf(sp.params);
     SoftPairInput in;
     in.model = &(*softModels_)[sp.soft];
     in.x = &(*soft->x)[sp.soft];
@@ -324,29 +349,16 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
         offs[4] = bOffset + 3;
       }
       Eigen::VectorXd* dr = dissipationResidual ? dissipationResidual : gradient;
-      for (int bi = 0; bi < blocks; ++bi) {
-        if (offs[bi] < 0) continue;
-        if (fc.penaltyActive) gradient->segment<3>(offs[bi]) += fc.penaltyGradient.segment<3>(3 * bi);
-        if (fc.dissipationActive) dr->segment<3>(offs[bi]) += fc.dissipationResidual.segment<3>(3 * bi);
-      }
+      if (fc.penaltyActive) AddBlocks3(fc.penaltyGradient, offs, blocks, gradient);
+      if (fc.dissipationActive) AddBlocks3(fc.dissipationResidual, offs, blocks, dr);
       if (order < 2) continue;
       const bool hess = fc.penaltyActive || (potential && fc.dissipationActive);
       const bool jac = !potential && fc.dissipationActive;
-      for (int bi = 0; bi < blocks; ++bi) {
-        if (offs[bi] < 0) continue;
-        for (int bj = 0; bj < blocks; ++bj) {
-          if (offs[bj] < 0) continue;
-          for (int c = 0; c < 3; ++c)
-            for (int rr = 0; rr < 3; ++rr) {
-              double v = 0.0;
-              if (hess) v += fc.penaltyHessian(3 * bi + rr, 3 * bj + c);
-              if (jac) v += fc.dissipationJacobian(3 * bi + rr, 3 * bj + c);
-              if (v != 0.0) triplets->emplace_back(offs[bi] + rr, offs[bj] + c, v);
-            }
-        }
-      }
+      AppendBlocks3(hess ? &fc.penaltyHessian : nullptr, jac ? &fc.dissipationJacobian : nullptr,
+                    offs, blocks, triplets);
     }
   }
+
   // Samples of rigid and soft actors on soft colliders, one stencil per sample.
   if (!softColliderPairs_.empty()) {
     const size_t ns = softModels_->size();
@@ -363,10 +375,7 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
   softColliderResults_.resize(softColliderPairs_.size());
   auto evaluateOnSoft = [&](size_t k) {
     const SoftColliderPair& sp = softColliderPairs_[k];
-    PenaltyParams pp;
-    pp.k = sp.params.penaltyCoefficient;
-    pp.eps = sp.params.smoothingHalfDistance;
-    pp.delta = sp.params.threshold;
+    const PenaltyParams pp = PenaltyOf(sp.params);
     CollidingInput a;
     if (sp.collidingSoft) {
       a.soft = &(*softModels_)[sp.colliding];
@@ -443,20 +452,8 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
       }
       Eigen::VectorXd* target =
           en.dissipation && dissipationResidual ? dissipationResidual : gradient;
-      for (int bi = 0; bi < blocks; ++bi)
-        if (offs[bi] >= 0) target->segment<3>(offs[bi]) += en.gradient.segment<3>(3 * bi);
-      if (order < 2) continue;
-      for (int bi = 0; bi < blocks; ++bi) {
-        if (offs[bi] < 0) continue;
-        for (int bj = 0; bj < blocks; ++bj) {
-          if (offs[bj] < 0) continue;
-          for (int c = 0; c < 3; ++c)
-            for (int rr = 0; rr < 3; ++rr) {
-              const double v = en.hessian(3 * bi + rr, 3 * bj + c);
-              if (v != 0.0) triplets->emplace_back(offs[bi] + rr, offs[bj] + c, v);
-            }
-        }
-      }
+      AddBlocks3(en.gradient, offs, blocks, target);
+      if (order >= 2) AppendBlocks3(&en.hessian, nullptr, offs, blocks, triplets);
     }
   }
   if (stats) *stats = st;
@@ -471,10 +468,7 @@ void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,
   records->clear();
   RigidPairPenalty scratch;
   for (const ContactPair& cp : pairs_) {
-    PenaltyParams pp;
-    pp.k = cp.params.penaltyCoefficient;
-    pp.eps = cp.params.smoothingHalfDistance;
-    pp.delta = cp.params.threshold;
+    const PenaltyParams pp = PenaltyOf(cp.params);
     const size_t first = records->size();
     EvaluateRigidPairPenalty(models[cp.colliding], poses[cp.colliding], models[cp.collider],
                              poses[cp.collider], models[cp.collider].dynamic, pp, 0, &scratch,
@@ -486,10 +480,7 @@ void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,
   }
   SoftPairContact scratchSoft;
   for (const SoftContactPair& sp : softPairs_) {
-    PenaltyParams pp;
-    pp.k = sp.params.penaltyCoefficient;
-    pp.eps = sp.params.smoothingHalfDistance;
-    pp.delta = sp.params.threshold;
+    const PenaltyParams pp = PenaltyOf(sp.params);
     SoftPairInput in;
     in.model = &(*softModels_)[sp.soft];
     in.x = &(*soft->x)[sp.soft];
@@ -509,10 +500,7 @@ void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,
   }
   SoftColliderPairContact scratchOnSoft;
   for (const SoftColliderPair& sp : softColliderPairs_) {
-    PenaltyParams pp;
-    pp.k = sp.params.penaltyCoefficient;
-    pp.eps = sp.params.smoothingHalfDistance;
-    pp.delta = sp.params.threshold;
+    const PenaltyParams pp = PenaltyOf(sp.params);
     CollidingInput a;
     if (sp.collidingSoft) {
       a.soft = &(*softModels_)[sp.colliding];

@@ -9,6 +9,10 @@
 #include <Eigen/Core>
 
 #include "core/rigid_dissipation.h"
+#include "energies/contact_dissipation.h"
+#include "energies/normal_penalty.h"
+#include "energies/stencil.h"
+#include "geometry/analytic_sdf.h"
 
 namespace superdex {
 namespace dissipation_kernels {
@@ -46,6 +50,45 @@ Vec3<T> SplitDirection(const Vec3<T>& G, const Vec3<T>& NA, const DissipationSet
   using std::sqrt;
   return setup.frictionWithColliderNormal ? Vec3<T>(G / sqrt(G.squaredNorm()))
                                           : Vec3<T>(-NA / sqrt(NA.squaredNorm()));
+}
+
+/// ∂R/∂V of one sample in a current-geometry mode (ReconstructedLoad or ImplicitLoad), as a
+/// function of the current pullback Y (and the colliding normal N_A in collider coordinates), for
+/// doubles and jets. The field is expanded to first order about the sample's evaluation point Ȳ
+/// (exact value and first derivatives there): φ = Φ(Ȳ) + ∇Φ·(Y − Ȳ), G = ∇Φ + ∇²Φ (Y − Ȳ).
+/// Load φ_load = φ (ImplicitLoad) or φ + G·(Y_n − Y) (ReconstructedLoad), λ_n = −W'(φ_load) (to
+/// first order about its value), the alignment factor and split direction from G and N_A, and
+/// V = (Y − Y⁰)/Δt_i.
+template <typename T>
+Vec3<T> CurrentModeDissipationGradient(const Vec3<T>& Y, const Vec3<T>& NA,
+                                       const Eigen::Vector3d& Ybar, const SdfSample& field,
+                                       const Eigen::Vector3d& Yn, const Eigen::Vector3d& Y0,
+                                       const DissipationSetup& s) {
+  const Vec3<T> dY = Y - Ybar.cast<T>();
+  const T phi = T(field.value) + field.gradient.cast<T>().dot(dY);
+  const Vec3<T> G = field.gradient.cast<T>() + field.hessian.cast<T>() * dY;
+  const T phiLoad =
+      s.mode == DissipationMode::ImplicitLoad ? phi : T(phi + G.dot(Yn.cast<T>() - Y));
+  const double pl = ValueOf(phiLoad);
+  const PenaltyDensity pd = NormalPenaltyDensity(pl, s.penalty);
+  const T lambda = T(-pd.dW) - pd.d2W * (phiLoad - pl);
+  const T factor = AlignmentFactor<T>(G.dot(NA), s);
+  const Vec3<T> N = SplitDirection<T>(G, NA, s);
+  const Vec3<T> V = (Y - Y0.cast<T>()) / s.dt;
+  return DissipationGradient(T(factor * lambda), N, V, s.coefficients,
+                             [](const T& v) { return ValueOf(v); });
+}
+
+/// Adds w ∂r/∂δ of `sample.Residual(δ, r)` (N stencil dofs) at δ = 0 into *jacobian, by
+/// forward-mode automatic differentiation.
+template <int N, typename Sample>
+void AddResidualJacobian(const Sample& sample, double w, StencilMatrix* jacobian) {
+  using Jet = ceres::Jet<double, N>;
+  Jet delta[N], out[N];
+  for (int i = 0; i < N; ++i) delta[i] = Jet(0.0, i);
+  sample.Residual(delta, out);
+  for (int i = 0; i < N; ++i)
+    for (int j = 0; j < N; ++j) (*jacobian)(i, j) += w * out[i].v[j];
 }
 
 }  // namespace dissipation_kernels

@@ -41,24 +41,9 @@ struct CurrentModeSample {
     const Vec3<T> r = RA * X.cast<T>();
     const Vec3<T> d = pA + r - pB;
     const Vec3<T> Yt = RB.transpose() * d;
-    const Vec3<T> dY = Yt - Y.cast<T>();
-    // Φ and G to first order about Y: exact values at δ = 0, exact first derivatives.
-    const T phi = T(field.value) + field.gradient.cast<T>().dot(dY);
-    const Vec3<T> G = field.gradient.cast<T>() + field.hessian.cast<T>() * dY;
-    const Vec3<T> Y0t = Y0.cast<T>();
-    // Normal load λ_n(φ_load) = −W'(φ_load), expanded to first order (λ' = −W'').
-    const T phiLoad =
-        s.mode == DissipationMode::ImplicitLoad ? phi : T(phi + G.dot(Yn.cast<T>() - Yt));
-    const double pl = ValueOf(phiLoad);
-    const PenaltyDensity pd = NormalPenaltyDensity(pl, s.penalty);
-    const T lambda = T(-pd.dW) - pd.d2W * (phiLoad - pl);
     // Alignment s = G·N_A with N_A = R_Bᵀ R_A n_A (raw vectors).
     const Vec3<T> NA = RB.transpose() * (RA * normal.cast<T>());
-    const T factor = AlignmentFactor<T>(G.dot(NA), s);
-    const Vec3<T> N = SplitDirection<T>(G, NA, s);
-    const Vec3<T> V = (Yt - Y0t) / s.dt;
-    const Vec3<T> g = DissipationGradient(T(factor * lambda), N, V, s.coefficients,
-                                          [](const T& x) { return ValueOf(x); });
+    const Vec3<T> g = CurrentModeDissipationGradient<T>(Yt, NA, Y, field, Yn, Y0, s);
     const Vec3<T> f = RB * g;
     const Vec3<T> tau = r.cross(f);
     for (int k = 0; k < 3; ++k) {
@@ -74,16 +59,6 @@ struct CurrentModeSample {
     }
   }
 };
-
-template <int N>
-void ResidualJacobian(const CurrentModeSample& sample, double w, StencilMatrix* jacobian) {
-  using Jet = ceres::Jet<double, N>;
-  Jet delta[N], out[N];
-  for (int i = 0; i < N; ++i) delta[i] = Jet(0.0, i);
-  sample.Residual(delta, out);
-  for (int i = 0; i < N; ++i)
-    for (int j = 0; j < N; ++j) (*jacobian)(i, j) += w * out[i].v[j];
-}
 
 }  // namespace
 
@@ -206,9 +181,9 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
                               nullptr);
         if (order >= 2) {
           if (bDynamic) {
-            ResidualJacobian<12>(sample, q.weight, &out->jacobian);
+            AddResidualJacobian<12>(sample, q.weight, &out->jacobian);
           } else {
-            ResidualJacobian<6>(sample, q.weight, &out->jacobian);
+            AddResidualJacobian<6>(sample, q.weight, &out->jacobian);
           }
         }
       }

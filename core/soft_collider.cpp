@@ -154,22 +154,10 @@ struct CurrentModeSample {
     const Vec3<T> X = Xr0.cast<T>() + Dm.cast<T>() * beta;
     const Mat3<T> Finv = Dm.cast<T>() * B;
     const Mat3<T> F = Ds * DmInv.cast<T>();
-    const Vec3<T> dX = X - Xbar.cast<T>();
-    const T phi = T(field.value) + field.gradient.cast<T>().dot(dX);
-    const Vec3<T> G = field.gradient.cast<T>() + field.hessian.cast<T>() * dX;
-    const T phiLoad =
-        s.mode == DissipationMode::ImplicitLoad ? phi : T(phi + G.dot(Yn.cast<T>() - X));
-    const double pl = ValueOf(phiLoad);
-    const PenaltyDensity pd = NormalPenaltyDensity(pl, s.penalty);
-    const T lambda = T(-pd.dW) - pd.d2W * (phiLoad - pl);
     using std::sqrt;
-    Vec3<T> NA = F.transpose() * n;
+    Vec3<T> NA = F.transpose() * n;  // normals map by Fᵀ
     NA = NA / sqrt(NA.squaredNorm());
-    const T factor = AlignmentFactor<T>(G.dot(NA), s);
-    const Vec3<T> N = SplitDirection<T>(G, NA, s);
-    const Vec3<T> V = (X - X0.cast<T>()) / s.dt;
-    const Vec3<T> g = DissipationGradient(T(factor * lambda), N, V, s.coefficients,
-                                          [](const T& v) { return ValueOf(v); });
+    const Vec3<T> g = CurrentModeDissipationGradient<T>(X, NA, Xbar, field, Yn, X0, s);
     const Vec3<T> ry = Finv.transpose() * g;
     if (kin.rigid) {
       const Vec3<T> tau = r.cross(ry);
@@ -186,16 +174,6 @@ struct CurrentModeSample {
       for (int k = 0; k < 3; ++k) out[nA + 3 * a + k] = -lam[a] * ry[k];
   }
 };
-
-template <int N>
-void ResidualJacobian(const CurrentModeSample& sample, double w, StencilMatrix* jacobian) {
-  using Jet = ceres::Jet<double, N>;
-  Jet delta[N], out[N];
-  for (int i = 0; i < N; ++i) delta[i] = Jet(0.0, i);
-  sample.Residual(delta, out);
-  for (int i = 0; i < N; ++i)
-    for (int j = 0; j < N; ++j) (*jacobian)(i, j) += w * out[i].v[j];
-}
 
 /// Everything about one colliding sample at the three configurations.
 struct SamplePoint {
@@ -382,11 +360,11 @@ void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput
       cs.RA = A.pose->R;
       cs.XA = A.pose->R.transpose() * sp.kin.r;
       cs.nBody = A.pose->R.transpose() * sp.n;
-      ResidualJacobian<18>(cs, w, &e.hessian);
+      AddResidualJacobian<18>(cs, w, &e.hessian);
     } else {
       const Eigen::Vector3i& F = A.soft->faces[sp.face];
       for (int a = 0; a < 3; ++a) cs.xs[a] = A.x->segment<3>(3 * F[a]);
-      ResidualJacobian<21>(cs, w, &e.hessian);
+      AddResidualJacobian<21>(cs, w, &e.hessian);
     }
   };
 

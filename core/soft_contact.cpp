@@ -66,23 +66,11 @@ struct SoftCurrentModeSample {
     const Vec3<T> y = T(bary[0]) * x[0] + T(bary[1]) * x[1] + T(bary[2]) * x[2];
     const Vec3<T> d = y - pB;
     const Vec3<T> Yt = RB.transpose() * d;
-    const Vec3<T> dY = Yt - Y.cast<T>();
-    const T phi = T(field.value) + field.gradient.cast<T>().dot(dY);
-    const Vec3<T> G = field.gradient.cast<T>() + field.hessian.cast<T>() * dY;
-    const T phiLoad =
-        s.mode == DissipationMode::ImplicitLoad ? phi : T(phi + G.dot(Yn.cast<T>() - Yt));
-    const double pl = ValueOf(phiLoad);
-    const PenaltyDensity pd = NormalPenaltyDensity(pl, s.penalty);
-    const T lambda = T(-pd.dW) - pd.d2W * (phiLoad - pl);
     Vec3<T> n = (x[1] - x[0]).cross(x[2] - x[0]);
     using std::sqrt;
     n = n / sqrt(n.squaredNorm());
-    const Vec3<T> NA = RB.transpose() * n;
-    const T factor = AlignmentFactor<T>(G.dot(NA), s);
-    const Vec3<T> N = SplitDirection<T>(G, NA, s);
-    const Vec3<T> V = (Yt - Y0.cast<T>()) / s.dt;
-    const Vec3<T> g = DissipationGradient(T(factor * lambda), N, V, s.coefficients,
-                                          [](const T& v) { return ValueOf(v); });
+    const Vec3<T> g =
+        CurrentModeDissipationGradient<T>(Yt, Vec3<T>(RB.transpose() * n), Y, field, Yn, Y0, s);
     const Vec3<T> f = RB * g;
     for (int a = 0; a < 3; ++a)
       for (int k = 0; k < 3; ++k) out[3 * a + k] = T(bary[a]) * f[k];
@@ -95,16 +83,6 @@ struct SoftCurrentModeSample {
     }
   }
 };
-
-template <int N>
-void ResidualJacobian(const SoftCurrentModeSample& sample, double w, StencilMatrix* jacobian) {
-  using Jet = ceres::Jet<double, N>;
-  Jet delta[N], out[N];
-  for (int i = 0; i < N; ++i) delta[i] = Jet(0.0, i);
-  sample.Residual(delta, out);
-  for (int i = 0; i < N; ++i)
-    for (int j = 0; j < N; ++j) (*jacobian)(i, j) += w * out[i].v[j];
-}
 
 }  // namespace
 
@@ -286,9 +264,9 @@ void EvaluateSoftRigidPair(const SoftPairInput& in, const RigidBodyModel& B, con
         sample.setup = &ds;
         sample.bDynamic = bDynamic;
         if (bDynamic) {
-          ResidualJacobian<15>(sample, s.weight, &fc.dissipationJacobian);
+          AddResidualJacobian<15>(sample, s.weight, &fc.dissipationJacobian);
         } else {
-          ResidualJacobian<9>(sample, s.weight, &fc.dissipationJacobian);
+          AddResidualJacobian<9>(sample, s.weight, &fc.dissipationJacobian);
         }
       }
     }
