@@ -357,9 +357,11 @@ TEST_CASE("soft: bad input names the field and the rule", "[core][soft]") {
   CHECK(!scene.AddSoftActor(d, &e).IsValid());
   CHECK_THAT(e.message, Catch::Contains("constraints[0].nodes"));
   d = SoftCube(0.1, 1, Eigen::Vector3d::Zero());
-  d.colliderType = ColliderType::Sphere;
-  CHECK(!scene.AddSoftActor(d, &e).IsValid());
-  CHECK_THAT(e.message, Catch::Contains("collider_type"));
+  for (ColliderType t : {ColliderType::Sphere, ColliderType::Mesh, ColliderType::PointCloud}) {
+    d.colliderType = t;  // the Mesh collider is for rigid actors and links only (spec)
+    CHECK(!scene.AddSoftActor(d, &e).IsValid());
+    CHECK_THAT(e.message, Catch::Contains("collider_type") && Catch::Contains(ToString(t)));
+  }
   d = SoftCube(0.1, 1, Eigen::Vector3d::Zero());
   auto inverted = std::make_shared<TetMesh>(*d.mesh);
   std::swap(inverted->tets[0][0], inverted->tets[0][1]);
