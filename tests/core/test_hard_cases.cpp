@@ -180,3 +180,30 @@ TEST_CASE("hard case: a 20 m/s sphere does not tunnel through a 1 cm static plat
   CHECK(scene.State({1}).v.z() > 0.0);    // bounced
   // (−φ inside a box is at most its half thickness, 5 mm here: the bounce is the criterion.)
 }
+
+TEST_CASE("hard case: a 105-box pyramid stands for 5 s at dt = 1/100 s", "[core][hard]") {
+  // 14 rows (14 boxes at the base, 1 at the top) of 0.2 m, 1 kg boxes, 1 mm gaps within a row:
+  // the issue's "100-box pyramid". Same layout as scenes/data/pyramid.json.
+  Scene scene;
+  Error e;
+  REQUIRE(scene.AddRigidActor(test::StaticGround(), &e).IsValid());
+  const int rows = 14;
+  for (int r = 0; r < rows; ++r) {
+    const int n = rows - r;
+    for (int k = 0; k < n; ++k) {
+      const Eigen::Vector3d p(0.201 * (k - 0.5 * (n - 1)), 0.0, 0.1 + 0.2 * r);
+      REQUIRE(scene.AddRigidActor(Box("b" + std::to_string(r) + "_" + std::to_string(k), 0.2,
+                                      1.0, p), &e).IsValid());
+    }
+  }
+  REQUIRE(scene.NumActors() == 106);
+  const ActorHandle top{105};
+  const Outcome o = Run(scene, 1e-2, 5.0);
+  INFO("max penetration " << o.maxPenetration * 1e3 << " mm, top at "
+                          << scene.State(top).p.transpose());
+  CHECK(o.finite);
+  CHECK(o.notConverged == 0);
+  CHECK(o.maxPenetration < 2e-3);
+  CHECK(std::abs(scene.State(top).p.z() - 2.7) < 0.01);  // settles by 3.4 mm (14 contact layers)
+  CHECK(std::abs(scene.State(top).p.x()) < 1e-3);
+}
