@@ -327,13 +327,13 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
   switch (settings_.stageSolver) {
     case StageSolverKind::Newton:
       if (problem.IsPotential()) {
-        st = MinimizeNewton(problem, settings_.solver, dt);
+        st = MinimizeNewton(problem, settings_.solver, dt, solvers_.symmetric.get());
         break;
       }
       {
         const std::vector<RigidPose> guess = *poses;
         const std::vector<Eigen::VectorXd> softGuess = softX ? *softX : std::vector<Eigen::VectorXd>();
-        st = SolveResidualNewton(problem, settings_.solver, dt);
+        st = SolveResidualNewton(problem, settings_.solver, dt, solvers_.unsymmetric.get());
         if (st.status != StageStatus::Converged) {
           // Fallback: the residual modes have no potential to globalize Newton with. Re-solve
           // this stage with stage-start normals and load (the explicit-normals potential,
@@ -344,7 +344,7 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
           potential.mode = DissipationMode::ExplicitNormals;
           SceneStageProblem retry(models_, dofOffset_, numDofs_, targets, settings_.gravity,
                                   &pipeline_, poses, potential, soft, softX, &workspace_);
-          const SolverStats second = MinimizeNewton(retry, settings_.solver, dt);
+          const SolverStats second = MinimizeNewton(retry, settings_.solver, dt, solvers_.symmetric.get());
           const std::string why = st.message;
           st = second;
           st.message = "residual solve failed (" + why + "); stage re-solved with explicit "

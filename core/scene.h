@@ -2,6 +2,7 @@
 // stage problem and the integrator formulas live in their own files.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -211,6 +212,16 @@ class Scene {
   ContactPipeline pipeline_;
   ContactFilter filter_;
   StageWorkspace workspace_;  // buffers reused from stage to stage
+  // Linear solvers kept from stage to stage (their symbolic analyses); a copied scene gets its
+  // own.
+  struct Solvers {
+    std::unique_ptr<SymmetricSolver> symmetric = std::make_unique<SymmetricSolver>();
+    std::unique_ptr<UnsymmetricSolver> unsymmetric = std::make_unique<UnsymmetricSolver>();
+    Solvers() = default;
+    Solvers(const Solvers&) : Solvers() {}
+    Solvers& operator=(const Solvers&) { return *this; }
+  };
+  Solvers solvers_;
 };
 
 }  // namespace superdex

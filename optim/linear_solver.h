@@ -31,4 +31,25 @@ class SymmetricSolver {
   std::unique_ptr<Impl> impl_;
 };
 
+/// Solves J x = b for a general square J (compressed column): UMFPACK LU with the symmetric
+/// strategy and a METIS ordering (stage Jacobians are structurally symmetric and nearly symmetric
+/// in value), a dense partial-pivoting LU up to 48 unknowns. Keeps the symbolic analysis while
+/// the sparsity pattern stays the same between calls.
+class UnsymmetricSolver {
+ public:
+  UnsymmetricSolver();
+  ~UnsymmetricSolver();
+  UnsymmetricSolver(const UnsymmetricSolver&) = delete;
+  UnsymmetricSolver& operator=(const UnsymmetricSolver&) = delete;
+
+  /// Factorizes J. Returns false if J is (numerically) singular.
+  bool Factorize(const Eigen::SparseMatrix<double>& J);
+  /// Solves with the last factorization.
+  Eigen::VectorXd Solve(const Eigen::VectorXd& b);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
 }  // namespace superdex

@@ -127,7 +127,7 @@ std::string ValidateSolverInput(const NonlinearSolverParams& params, double time
 }
 
 SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& params,
-                           double timeScale) {
+                           double timeScale, SymmetricSolver* solverCache) {
   SolverStats st;
   auto diverge = [&st](const std::string& message) {
     st.status = StageStatus::Diverged;
@@ -140,7 +140,8 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
   Eigen::VectorXd g(n), d(n), step(n);
   SparseMatrix H, shifted;
   std::vector<Eigen::Index> diagonal;
-  SymmetricSolver solver;
+  SymmetricSolver ownSolver;
+  SymmetricSolver& solver = solverCache ? *solverCache : ownSolver;
 
   if (n == 0) {
     Clock::time_point t0 = Clock::now();

@@ -30,6 +30,7 @@
 
 #include <string>
 
+#include "optim/linear_solver.h"
 #include "optim/stage_problem.h"
 
 namespace superdex {
@@ -83,8 +84,10 @@ struct SolverStats {
 /// Validate) or `timeScale` give Diverged with the reason, without touching the problem.
 /// `iterations` counts the Newton directions computed: a quadratic takes 2 (the step, then the
 /// iteration whose decrement test passes).
+/// `solver` (may be null) is a linear solver kept across calls (its symbolic analysis survives
+/// from stage to stage while the Hessian's pattern holds).
 SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& params,
-                           double timeScale);
+                           double timeScale, SymmetricSolver* solver = nullptr);
 
 /// Validates the parameters; returns an empty string if valid, else a message for the first
 /// invalid field in declaration order, named as in the scene file:

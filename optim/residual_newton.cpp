@@ -1,7 +1,7 @@
 #include "optim/residual_newton.h"
 
-#include <Eigen/LU>
-#include <Eigen/UmfPackSupport>
+#include "optim/linear_solver.h"
+
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -20,54 +20,6 @@ constexpr int kMaxShiftRetries = 12;
 constexpr double kInitialShift = 1e-8;
 constexpr double kRoundoffBand = 1e-14;
 
-/// UMFPACK LU with the symbolic analysis reused while the sparsity pattern is unchanged.
-class LuSolver {
- public:
-  /// Below this size a dense partial-pivoting LU is cheaper than UMFPACK's setup.
-  static constexpr Eigen::Index kDenseLimit = 48;
-  LuSolver() {
-    // The stage Jacobians are structurally symmetric (the contact graph) and nearly symmetric in
-    // value: UMFPACK's symmetric strategy (ordering of A + Aᵀ, diagonal pivots preferred) with a
-    // nested-dissection ordering keeps the fill of 3D contact heaps down.
-    lu_.umfpackControl()(UMFPACK_STRATEGY) = UMFPACK_STRATEGY_SYMMETRIC;
-    lu_.umfpackControl()(UMFPACK_ORDERING) = UMFPACK_ORDERING_METIS;
-    // Allocate the numeric factor at its full estimated size: the default (0.7 of it) made every
-    // factorization of a 10k-tet soft body grow its workspace and garbage-collect.
-    lu_.umfpackControl()(UMFPACK_ALLOC_INIT) = 1.0;
-  }
-  bool Factorize(const SparseMatrix& J) {
-    dense_ = J.rows() <= kDenseLimit;
-    if (dense_) {
-      denseLu_.compute(Eigen::MatrixXd(J));
-      // PartialPivLU does not report singularity: check the pivots.
-      const Eigen::VectorXd pivots = denseLu_.matrixLU().diagonal().cwiseAbs();
-      return pivots.minCoeff() > 1e-14 * std::max(pivots.maxCoeff(), 1e-300);
-    }
-    if (!SamePattern(J)) {
-      lu_.analyzePattern(J);
-      outer_.assign(J.outerIndexPtr(), J.outerIndexPtr() + J.outerSize() + 1);
-      inner_.assign(J.innerIndexPtr(), J.innerIndexPtr() + J.nonZeros());
-    }
-    lu_.factorize(J);
-    return lu_.info() == Eigen::Success;
-  }
-  Eigen::VectorXd Solve(const Eigen::VectorXd& b) {
-    return dense_ ? Eigen::VectorXd(denseLu_.solve(b)) : Eigen::VectorXd(lu_.solve(b));
-  }
-
- private:
-  bool SamePattern(const SparseMatrix& J) const {
-    return static_cast<Eigen::Index>(outer_.size()) == J.outerSize() + 1 &&
-           static_cast<Eigen::Index>(inner_.size()) == J.nonZeros() &&
-           std::equal(outer_.begin(), outer_.end(), J.outerIndexPtr()) &&
-           std::equal(inner_.begin(), inner_.end(), J.innerIndexPtr());
-  }
-  Eigen::UmfPackLU<SparseMatrix> lu_;
-  Eigen::PartialPivLU<Eigen::MatrixXd> denseLu_;
-  bool dense_ = false;
-  std::vector<SparseMatrix::StorageIndex> outer_, inner_;
-};
-
 /// Adds explicit zeros on the diagonal so that J and J + τI share one pattern (Eigen keeps the
 /// explicit zeros of a sum's union pattern).
 void CompleteDiagonal(SparseMatrix* J) {
@@ -80,7 +32,7 @@ void CompleteDiagonal(SparseMatrix* J) {
 }  // namespace
 
 SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverParams& params,
-                                double timeScale) {
+                                double timeScale, UnsymmetricSolver* solver) {
   SolverStats st;
   auto diverge = [&st](const std::string& message) {
     st.status = StageStatus::Diverged;
@@ -91,7 +43,8 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
   const int n = problem.NumDofs();
   Eigen::VectorXd r, rTrial, d(n), step(n);
   SparseMatrix J, shifted;
-  LuSolver lu;
+  UnsymmetricSolver ownSolver;
+  UnsymmetricSolver& lu = solver ? *solver : ownSolver;
   if (n == 0) {
     st.status = StageStatus::Converged;
     st.message = "no degrees of freedom";

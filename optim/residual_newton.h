@@ -18,14 +18,16 @@
 //   Iteration cap → Stopped.
 #pragma once
 
+#include "optim/linear_solver.h"
 #include "optim/newton_solver.h"
 
 namespace superdex {
 
 /// Solves r(s) = 0 from the problem's current state; leaves it at the last accepted iterate.
 /// SolverStats fields keep their names: "gradient" norms are residual norms, finalDecrement is
-/// ½|r·d| [J], finalValue is θ = ½‖r‖².
+/// ½|r·d| [J], finalValue is θ = ½‖r‖². `solver` (may be null) is a linear solver kept across
+/// calls, so that its symbolic analysis survives from stage to stage while the pattern holds.
 SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverParams& params,
-                                double timeScale);
+                                double timeScale, UnsymmetricSolver* solver = nullptr);
 
 }  // namespace superdex
