@@ -187,6 +187,31 @@ void ContactPipeline::FindPairs(const std::vector<RigidPose>& poses,
   }
 }
 
+void ContactPipeline::SoftColliderInputs(const SoftColliderPair& sp,
+                                         const std::vector<RigidPose>& poses,
+                                         const std::vector<RigidStageStart>* stageStart,
+                                         const SoftView& soft, CollidingInput* a,
+                                         SoftColliderInput* b) const {
+  *a = CollidingInput();
+  if (sp.collidingSoft) {
+    a->soft = &(*softModels_)[sp.colliding];
+    a->x = &(*soft.x)[sp.colliding];
+    a->xLast = soft.xLast ? &(*soft.xLast)[sp.colliding] : nullptr;
+    a->x0 = soft.x0 ? &(*soft.x0)[sp.colliding] : nullptr;
+  } else {
+    a->rigid = &(*models_)[sp.colliding];
+    a->pose = &poses[sp.colliding];
+    a->start = stageStart ? &(*stageStart)[sp.colliding] : nullptr;
+  }
+  *b = SoftColliderInput();
+  b->model = &(*softModels_)[sp.collider];
+  b->x = &(*soft.x)[sp.collider];
+  b->xLast = soft.xLast ? &(*soft.xLast)[sp.collider] : nullptr;
+  b->x0 = soft.x0 ? &(*soft.x0)[sp.collider] : nullptr;
+  b->locator = &locators_[sp.collider];
+  b->locatorLast = soft.xLast ? &locatorsLast_[sp.collider] : &locators_[sp.collider];
+}
+
 DissipationSetup ContactPipeline::MakeSetup(const PairContactParams& params,
                                             const DissipationContext& dissipation) const {
   DissipationSetup setup;
@@ -377,23 +402,8 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
     const SoftColliderPair& sp = softColliderPairs_[k];
     const PenaltyParams pp = PenaltyOf(sp.params);
     CollidingInput a;
-    if (sp.collidingSoft) {
-      a.soft = &(*softModels_)[sp.colliding];
-      a.x = &(*soft->x)[sp.colliding];
-      a.xLast = soft->xLast ? &(*soft->xLast)[sp.colliding] : nullptr;
-      a.x0 = soft->x0 ? &(*soft->x0)[sp.colliding] : nullptr;
-    } else {
-      a.rigid = &models[sp.colliding];
-      a.pose = &poses[sp.colliding];
-      a.start = stageStart ? &(*stageStart)[sp.colliding] : nullptr;
-    }
     SoftColliderInput b;
-    b.model = &(*softModels_)[sp.collider];
-    b.x = &(*soft->x)[sp.collider];
-    b.xLast = soft->xLast ? &(*soft->xLast)[sp.collider] : nullptr;
-    b.x0 = soft->x0 ? &(*soft->x0)[sp.collider] : nullptr;
-    b.locator = &locators_[sp.collider];
-    b.locatorLast = soft->xLast ? &locatorsLast_[sp.collider] : &locators_[sp.collider];
+    SoftColliderInputs(sp, poses, stageStart, *soft, &a, &b);
     DissipationSetup setup;
     if (dissipation) setup = MakeSetup(sp.params, *dissipation);
     SoftColliderPairContact& r = softColliderResults_[k];
@@ -502,17 +512,8 @@ void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,
   for (const SoftColliderPair& sp : softColliderPairs_) {
     const PenaltyParams pp = PenaltyOf(sp.params);
     CollidingInput a;
-    if (sp.collidingSoft) {
-      a.soft = &(*softModels_)[sp.colliding];
-      a.x = &(*soft->x)[sp.colliding];
-    } else {
-      a.rigid = &models[sp.colliding];
-      a.pose = &poses[sp.colliding];
-    }
     SoftColliderInput b;
-    b.model = &(*softModels_)[sp.collider];
-    b.x = &(*soft->x)[sp.collider];
-    b.locator = b.locatorLast = &locators_[sp.collider];
+    SoftColliderInputs(sp, poses, nullptr, *soft, &a, &b);
     const size_t first = records->size();
     EvaluatePairOnSoftCollider(a, b, pp, sp.params.maxAlignmentNormals, nullptr, 0, &scratchOnSoft,
                                records);

@@ -111,6 +111,10 @@ class ContactPipeline {
   int RigidActor(int i) const { return rigidActor_.empty() ? i : rigidActor_[i]; }
   DissipationSetup MakeSetup(const PairContactParams& params,
                              const DissipationContext& dissipation) const;
+  // The two sides of a pair on a soft collider (the locators must be built).
+  void SoftColliderInputs(const SoftColliderPair& pair, const std::vector<RigidPose>& poses,
+                          const std::vector<RigidStageStart>* stageStart, const SoftView& soft,
+                          CollidingInput* a, SoftColliderInput* b) const;
 
   const std::vector<RigidBodyModel>* models_ = nullptr;
   const ContactFilter* filter_ = nullptr;

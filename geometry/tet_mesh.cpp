@@ -1,6 +1,7 @@
 // Tetrahedral meshes (see tet_mesh.h): queries, validation, boundary, box generator, Gmsh and
 // TetGen files. Meshing of surfaces (CGAL Mesh_3) lives in tet_mesher.cpp.
 #include "geometry/tet_mesh.h"
+#include "geometry/token_parsing.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -54,27 +55,6 @@ std::string RoundTrip(double v) {
   return buf;
 }
 
-// Parses a whole token as a base-10 integer.
-bool ParseLong(const std::string& s, long* out) {
-  if (s.empty()) return false;
-  errno = 0;
-  char* end = nullptr;
-  const long v = std::strtol(s.c_str(), &end, 10);
-  if (errno != 0 || end != s.c_str() + s.size()) return false;
-  *out = v;
-  return true;
-}
-
-// Parses a whole token as a finite double.
-bool ParseDouble(const std::string& s, double* out) {
-  if (s.empty()) return false;
-  errno = 0;
-  char* end = nullptr;
-  const double v = std::strtod(s.c_str(), &end);
-  if (errno != 0 || end != s.c_str() + s.size() || !std::isfinite(v)) return false;
-  *out = v;
-  return true;
-}
 
 std::vector<std::string> Split(const std::string& line) {
   std::vector<std::string> out;

@@ -1,5 +1,6 @@
 // Triangle surface meshes (see triangle_mesh.h).
 #include "geometry/triangle_mesh.h"
+#include "geometry/token_parsing.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -185,27 +186,6 @@ TriangleMesh MakeCylinderMesh(double radius, double halfLength, int segments, in
 
 namespace {
 
-// Parses a whole token as a base-10 integer.
-bool ParseLong(const std::string& s, long* out) {
-  if (s.empty()) return false;
-  errno = 0;
-  char* end = nullptr;
-  const long v = std::strtol(s.c_str(), &end, 10);
-  if (errno != 0 || end != s.c_str() + s.size()) return false;
-  *out = v;
-  return true;
-}
-
-// Parses a whole token as a finite double.
-bool ParseDouble(const std::string& s, double* out) {
-  if (s.empty()) return false;
-  errno = 0;
-  char* end = nullptr;
-  const double v = std::strtod(s.c_str(), &end);
-  if (errno != 0 || end != s.c_str() + s.size() || !std::isfinite(v)) return false;
-  *out = v;
-  return true;
-}
 
 struct PendingIndex {
   long index;         // 1-based, resolved (negative indices made absolute)
