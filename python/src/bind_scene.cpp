@@ -133,12 +133,13 @@ py::dict Run(Scene& s, double duration, double dt, int every,
 py::dict ContactSamples(Scene& s) {
   const std::vector<ContactSampleRecord> r = s.ContactSamples();
   const py::ssize_t n = static_cast<py::ssize_t>(r.size());
-  py::array_t<int> colliding(n), collider(n);
+  py::array_t<int> colliding(n), collider(n), face(n);
   py::array_t<double> position({n, py::ssize_t(3)}), normal({n, py::ssize_t(3)}),
       traction({n, py::ssize_t(3)}), phi(n), lambdaN(n), weight(n);
   for (py::ssize_t i = 0; i < n; ++i) {
     colliding.mutable_at(i) = r[i].colliding;
     collider.mutable_at(i) = r[i].collider;
+    face.mutable_at(i) = r[i].face;
     phi.mutable_at(i) = r[i].phi;
     lambdaN.mutable_at(i) = r[i].lambdaN;
     weight.mutable_at(i) = r[i].weight;
@@ -157,6 +158,7 @@ py::dict ContactSamples(Scene& s) {
   d["lambda_n"] = lambdaN;
   d["traction"] = traction;
   d["weight"] = weight;
+  d["face"] = face;  // soft colliding actors: the boundary face; −1 for rigid ones
   return d;
 }
 
@@ -476,6 +478,8 @@ void BindScene(py::module_& m) {
            "traction (n, 3) normal traction on the colliding actor [Pa], weight [m^2]\n"
            "(force = weight * traction).")
       .def("has_dissipation", &Scene::HasDissipation)
+      .def("notices", &Scene::Notices,
+           "one-time notes about the scene (grid SDF sizes and memory, unsupported colliders)")
       .def(
           "set_integrator",
           [](Scene& s, IntegrationMethod m) {

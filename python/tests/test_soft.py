@@ -208,6 +208,11 @@ def test_soft_cube_resting_on_a_plane_carries_its_weight():
     samples = scene.contact_samples()
     assert (samples["weight"][:, None] * samples["traction"]).sum(axis=0) == pytest.approx(
         force, rel=1e-9, abs=1e-9)
+    # Each sample names its boundary face: the per-face sums are the face tractions.
+    assert np.all(samples["face"] >= 0)
+    per_face = np.zeros_like(tractions)
+    np.add.at(per_face, samples["face"], samples["weight"][:, None] * samples["traction"])
+    assert per_face / cube.face_areas[:, None] == pytest.approx(tractions, rel=1e-12, abs=1e-9)
     e = scene.energies()
     assert e["elastic"] > 0
     assert e["total"] == pytest.approx(e["kinetic"] + e["gravity"] + e["contact"] + e["elastic"])
@@ -245,6 +250,7 @@ def test_rigid_sphere_bounces_on_a_soft_sdf_collider_and_stops_above_the_plane()
     d.collider_type = sd.ColliderType.Sdf
     d.grid_sdf.min_grid_resolution = 16
     pad = scene.add_soft_actor(d)
+    assert any("soft collider grid SDF" in n for n in scene.notices())
     b = sd.RigidActorDesc("ball", sd.RigidShape.sphere(0.04))
     b.mass = 0.5
     b.position = [0, 0, 0.2]
