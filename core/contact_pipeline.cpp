@@ -27,6 +27,27 @@ void AppendBlocks(const StencilMatrix& M, const int offs[2], int blocks,
   }
 }
 
+/// Adds a soft pair's counts and energies (SoftPairContact or SoftColliderPairContact) to *st;
+/// returns the energy it adds to the stage value (penalty plus dissipation) [J].
+template <typename PairResult>
+double AddPairStats(const PairResult& r, ContactStats* st) {
+  double energy = 0.0;
+  st->minSignedDistance = std::min(st->minSignedDistance, r.minPhi);
+  if (r.activeSamples > 0) {
+    ++st->activePairs;
+    st->activeSamples += r.activeSamples;
+    st->energy += r.penaltyValue;
+    energy += r.penaltyValue;
+  }
+  if (r.dissipativeSamples > 0) {
+    st->dissipativeSamples += r.dissipativeSamples;
+    st->dissipation += r.dissipationValue;
+    st->maxCoulombRatio = std::max(st->maxCoulombRatio, r.maxCoulombRatio);
+    energy += r.dissipationValue;
+  }
+  return energy;
+}
+
 /// The penalty part of a pair's combined parameters.
 PenaltyParams PenaltyOf(const PairContactParams& p) {
   PenaltyParams pp;
@@ -343,19 +364,7 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
     const SoftContactPair& sp = softPairs_[k];
     const SoftPairContact& r = softResults_[k];
     const SoftBodyModel& A = (*softModels_)[sp.soft];
-    st.minSignedDistance = std::min(st.minSignedDistance, r.minPhi);
-    if (r.activeSamples > 0) {
-      ++st.activePairs;
-      st.activeSamples += r.activeSamples;
-      st.energy += r.penaltyValue;
-      energy += r.penaltyValue;
-    }
-    if (r.dissipativeSamples > 0) {
-      st.dissipativeSamples += r.dissipativeSamples;
-      st.dissipation += r.dissipationValue;
-      st.maxCoulombRatio = std::max(st.maxCoulombRatio, r.maxCoulombRatio);
-      energy += r.dissipationValue;
-    }
+    energy += AddPairStats(r, &st);
     if (order == 0) continue;
     // The face stencil's dofs: three nodes, then B's [δp, δθ] (dynamic B only).
     const int softOffset = (*soft->dofOffset)[sp.soft];
@@ -424,19 +433,7 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
   for (size_t k = 0; k < softColliderPairs_.size(); ++k) {
     const SoftColliderPair& sp = softColliderPairs_[k];
     const SoftColliderPairContact& r = softColliderResults_[k];
-    st.minSignedDistance = std::min(st.minSignedDistance, r.minPhi);
-    if (r.activeSamples > 0) {
-      ++st.activePairs;
-      st.activeSamples += r.activeSamples;
-      st.energy += r.penaltyValue;
-      energy += r.penaltyValue;
-    }
-    if (r.dissipativeSamples > 0) {
-      st.dissipativeSamples += r.dissipativeSamples;
-      st.dissipation += r.dissipationValue;
-      st.maxCoulombRatio = std::max(st.maxCoulombRatio, r.maxCoulombRatio);
-      energy += r.dissipationValue;
-    }
+    energy += AddPairStats(r, &st);
     if (order == 0) continue;
     const SoftBodyModel& B = (*softModels_)[sp.collider];
     const int bOffset = (*soft->dofOffset)[sp.collider];
