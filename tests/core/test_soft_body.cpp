@@ -110,6 +110,39 @@ struct SoftStageFixture {
   }
 };
 
+// The stage's residual Jacobian against central differences of its residual (every mode) and,
+// for a potential stage, its gradient against differences of its value; both fixtures press
+// more than 20 samples into contact. Returns the residual at the current state.
+Eigen::VectorXd CheckStageDerivatives(SceneStageProblem& problem, int numDofs) {
+  Eigen::VectorXd r;
+  Eigen::SparseMatrix<double> J;
+  problem.EvaluateResidual(&r, &J);
+  const ContactStats& st = problem.LastContactStats();
+  INFO("active samples " << st.activeSamples << ", dissipative " << st.dissipativeSamples);
+  REQUIRE(st.activeSamples > 20);
+  REQUIRE(st.dissipativeSamples > 20);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(numDofs);
+  const Eigen::MatrixXd Jfd = FiniteDifferenceJacobian(
+      [&](const Eigen::VectorXd& d) {
+        Eigen::VectorXd rr;
+        problem.Residual(d, &rr);
+        return rr;
+      },
+      zero, 1e-7);
+  const double err = (Eigen::MatrixXd(J) - Jfd).norm() / Jfd.norm();
+  INFO("residual Jacobian error " << err);
+  CHECK(err < 1e-6);
+  if (problem.IsPotential()) {
+    Eigen::VectorXd g;
+    problem.Evaluate(&g, nullptr, PsdProjection::None);
+    const Eigen::VectorXd gfd = FiniteDifferenceGradient(
+        [&](const Eigen::VectorXd& d) { return problem.Value(d); }, zero, 1e-7);
+    INFO("gradient error " << (g - gfd).norm() / gfd.norm());
+    CHECK((g - gfd).norm() < 1e-6 * gfd.norm());
+  }
+  return r;
+}
+
 }  // namespace
 
 TEST_CASE("soft stage: gradient, Hessian and residual Jacobian with soft contact",
@@ -126,33 +159,12 @@ TEST_CASE("soft stage: gradient, Hessian and residual Jacobian with soft contact
       SceneStageProblem problem(f.models, f.dofOffset, f.numDofs, f.targets,
                                 Eigen::Vector3d(0, 0, -9.81), &f.pipeline, &poses, diss,
                                 &f.softStage, &x);
-      Eigen::VectorXd r;
-      Eigen::SparseMatrix<double> J;
-      problem.EvaluateResidual(&r, &J);
-      const ContactStats& st = problem.LastContactStats();
-      INFO("active samples " << st.activeSamples << ", dissipative " << st.dissipativeSamples);
-      REQUIRE(st.activeSamples > 20);      // soft bottom on the plane and soft top under the box
-      REQUIRE(st.dissipativeSamples > 20);
-      const Eigen::VectorXd zero = Eigen::VectorXd::Zero(f.numDofs);
-      const Eigen::MatrixXd Jfd = FiniteDifferenceJacobian(
-          [&](const Eigen::VectorXd& d) {
-            Eigen::VectorXd rr;
-            problem.Residual(d, &rr);
-            return rr;
-          },
-          zero, 1e-7);
-      const double err = (Eigen::MatrixXd(J) - Jfd).norm() / Jfd.norm();
-      INFO("residual Jacobian error " << err);
-      CHECK(err < 1e-6);
+      const Eigen::VectorXd r = CheckStageDerivatives(problem, f.numDofs);
       if (mode == DissipationMode::ExplicitNormals) {
         Eigen::VectorXd g;
         Eigen::SparseMatrix<double> H;
         problem.Evaluate(&g, &H, PsdProjection::None);
         CHECK((g - r).norm() < 1e-12 * r.norm());
-        const Eigen::VectorXd gfd = FiniteDifferenceGradient(
-            [&](const Eigen::VectorXd& d) { return problem.Value(d); }, zero, 1e-7);
-        INFO("gradient error " << (g - gfd).norm() / gfd.norm());
-        CHECK((g - gfd).norm() < 1e-6 * gfd.norm());
         // The soft block of the Hessian is symmetric (the rigid rotation blocks carry the
         // non-symmetric trivialization only in the residual Jacobian).
         const Eigen::MatrixXd Hd(H);
@@ -455,32 +467,7 @@ TEST_CASE("soft collider: gradient, Hessian and residual Jacobian of rigid and s
       std::vector<Eigen::VectorXd> x = f.x;
       SceneStageProblem problem(f.models, f.dofOffset, f.numDofs, f.targets, Eigen::Vector3d::Zero(),
                                 &f.pipeline, &poses, diss, &f.softStage, &x);
-      Eigen::VectorXd r;
-      Eigen::SparseMatrix<double> J;
-      problem.EvaluateResidual(&r, &J);
-      const ContactStats& st = problem.LastContactStats();
-      INFO("active samples " << st.activeSamples << ", dissipative " << st.dissipativeSamples);
-      REQUIRE(st.activeSamples > 20);
-      REQUIRE(st.dissipativeSamples > 20);
-      const Eigen::VectorXd zero = Eigen::VectorXd::Zero(f.numDofs);
-      const Eigen::MatrixXd Jfd = FiniteDifferenceJacobian(
-          [&](const Eigen::VectorXd& d) {
-            Eigen::VectorXd rr;
-            problem.Residual(d, &rr);
-            return rr;
-          },
-          zero, 1e-7);
-      const double err = (Eigen::MatrixXd(J) - Jfd).norm() / Jfd.norm();
-      INFO("residual Jacobian error " << err);
-      CHECK(err < 1e-6);
-      if (mode == DissipationMode::ExplicitNormals) {
-        Eigen::VectorXd g;
-        problem.Evaluate(&g, nullptr, PsdProjection::None);
-        const Eigen::VectorXd gfd = FiniteDifferenceGradient(
-            [&](const Eigen::VectorXd& d) { return problem.Value(d); }, zero, 1e-7);
-        INFO("gradient error " << (g - gfd).norm() / gfd.norm());
-        CHECK((g - gfd).norm() < 1e-6 * gfd.norm());
-      }
+      const Eigen::VectorXd r = CheckStageDerivatives(problem, f.numDofs);
       // Balanced: the contact forces sum to zero over all actors (no gravity, no inertia offset:
       // x̂ = x for the soft actors; the rigid box's inertia is removed by p̂ = p, R̂ = R).
       Eigen::Vector3d net = r.head<3>();
