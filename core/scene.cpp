@@ -321,6 +321,12 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
     dissipation.mode = ModeOf(settings_.eval);
     dissipation.fadeFriction = settings_.eval.fadeFriction;
   }
+  if (tapeMode_ == TapeMode::Replay) {
+    ReplayStage(targets, dissipation, poses, soft, softX);
+    SolverStats st;
+    st.status = StageStatus::Converged;
+    return st;
+  }
   SceneStageProblem problem(models_, dofOffset_, numDofs_, targets, settings_.gravity, &pipeline_,
                             poses, dissipation, soft, softX, &workspace_);
   SolverStats st;
@@ -351,6 +357,7 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
                        "normals" + (second.status == StageStatus::Converged ? "" : ": " + second.message);
           st.fallback = true;
           *contact = retry.LastContactStats();
+          if (tapeMode_ == TapeMode::Record) RecordStage(targets, potential, *poses, soft, softX);
           return st;
         }
       }
@@ -363,7 +370,45 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
       break;
   }
   *contact = problem.LastContactStats();
+  if (tapeMode_ == TapeMode::Record) RecordStage(targets, dissipation, *poses, soft, softX);
   return st;
+}
+
+void Scene::RecordStage(const StageTargets& targets, const StageDissipation& dissipation,
+                        const std::vector<RigidPose>& poses, const SoftStage* soft,
+                        std::vector<Eigen::VectorXd>* softX) {
+  if (static_cast<int>(tape_->stages.size()) <= tapeStage_) tape_->stages.emplace_back();
+  StageTapeEntry& e = tape_->stages[tapeStage_++];
+  tape_->used = tapeStage_;
+  e.poses = poses;
+  e.softX = softX ? *softX : std::vector<Eigen::VectorXd>();
+  e.mode = dissipation.mode;
+  // The stage Jacobian at the accepted solution, in the same mode (a copy of the iterate: the
+  // problem commits into the vectors it is given).
+  std::vector<RigidPose> at = poses;
+  std::vector<Eigen::VectorXd> softAt = e.softX;
+  SceneStageProblem problem(models_, dofOffset_, numDofs_, targets, settings_.gravity, &pipeline_,
+                            &at, dissipation, soft, softX ? &softAt : nullptr, &workspace_);
+  Eigen::VectorXd r;
+  Eigen::SparseMatrix<double> J;
+  problem.EvaluateResidual(&r, &J);
+  e.factored = numDofs_ > 0 && e.lu->Factorize(J);
+}
+
+void Scene::ReplayStage(const StageTargets& targets, const StageDissipation& dissipation,
+                        std::vector<RigidPose>* poses, const SoftStage* soft,
+                        std::vector<Eigen::VectorXd>* softX) {
+  StageTapeEntry& e = tape_->stages[tapeStage_++];
+  *poses = e.poses;
+  if (softX) *softX = e.softX;
+  if (numDofs_ == 0) return;
+  StageDissipation d = dissipation;
+  d.mode = e.mode;
+  SceneStageProblem problem(models_, dofOffset_, numDofs_, targets, settings_.gravity, &pipeline_,
+                            poses, d, soft, softX, &workspace_);
+  Eigen::VectorXd r;
+  problem.Residual(Eigen::VectorXd::Zero(numDofs_), &r);
+  problem.Commit(-e.lu->Solve(r));
 }
 
 bool Scene::Step(double h, StepReport* report, Error* error) {
@@ -377,6 +422,7 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
     return false;
   const auto t0 = std::chrono::steady_clock::now();
   Prepare();
+  tapeStage_ = 0;
   StepReport rep;
   rep.dt = h;
   ContactStats stageContact;
@@ -557,9 +603,13 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
   }
   states_ = std::move(next);
   softStates_ = std::move(softNext);
-  if (!softModels_.empty()) rep.minDetF = MinDetF();
   time_ += h;
   rep.time = time_;
+  if (tapeMode_ == TapeMode::Replay) {  // the caller wants the state only
+    if (report) *report = rep;
+    return true;
+  }
+  if (!softModels_.empty()) rep.minDetF = MinDetF();
   rep.contact = ContactState();
   rep.wallSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -13,6 +13,7 @@
 #include "core/rigid_body.h"
 #include "core/scene_stage.h"
 #include "core/soft_body.h"
+#include "optim/linear_solver.h"
 #include "optim/newton_solver.h"
 
 namespace superdex {
@@ -75,6 +76,20 @@ struct EnergyReport {
   double contact = 0.0;  ///< penalty energy Σ Π_{A,B}
   double elastic = 0.0;  ///< soft actors: Σ V Ψ(F)
   double Total() const { return kinetic + gravity + contact + elastic; }
+};
+
+/// One step's stages as core/sensitivity.h needs them: each stage's accepted solution, the
+/// dissipation mode it was solved in, and the LU factors of the stage Jacobian ∂r/∂δ there.
+struct StageTapeEntry {
+  std::vector<RigidPose> poses;
+  std::vector<Eigen::VectorXd> softX;
+  DissipationMode mode = DissipationMode::ExplicitNormals;
+  std::unique_ptr<UnsymmetricSolver> lu = std::make_unique<UnsymmetricSolver>();
+  bool factored = false;
+};
+struct StepTape {
+  std::vector<StageTapeEntry> stages;  ///< kept from step to step (symbolic analyses reused)
+  int used = 0;                        ///< stages of the last recorded step
 };
 
 class Scene {
@@ -150,6 +165,32 @@ class Scene {
   bool SetIntegrator(IntegrationMethod method, Error* error);
   /// Replaces the state of an actor (e.g. to restart from a recorded state); clears BDF history.
   bool SetState(ActorHandle a, const RigidBodyState& state, Error* error);
+  /// Replaces a soft actor's state (x, v: 3 entries per node); clears BDF history.
+  bool SetSoftState(ActorHandle a, const SoftBodyState& state, Error* error);
+  /// Replaces an actor's contact parameters (validated, field names with "contact.").
+  bool SetContactParams(ActorHandle a, const ContactParams& params, Error* error);
+  const ContactParams& GetContactParams(ActorHandle a) const;
+  /// Replaces a soft actor's Young's modulus and density (validated); Lamé parameters and the
+  /// lumped masses follow. Poisson's ratio and stiffness damping are kept.
+  bool SetSoftMaterial(ActorHandle a, double youngsModulus, double density, Error* error);
+  /// The smallest V_f over the actors [m/s].
+  double MinFrictionFalloffVel() const;
+  /// The actor of that name (invalid handle if none).
+  ActorHandle FindActor(const std::string& name) const;
+  const std::string& ActorName(ActorHandle a) const;
+
+  // --- The dynamic state as one vector (core/sensitivity.h differentiates the step map on it).
+  // Per dynamic rigid actor p, R (column-major), v, Ṙ (24 entries), per soft actor x then v
+  // (6 per node), in creation order; then, for the multistep methods, the same blocks for each
+  // state of the history a step reads (zeros where the history is not filled yet).
+  int StateSize();
+  /// First entry of actor a's block in the current state (−1 for a static actor).
+  int StateOffset(ActorHandle a);
+  Eigen::VectorXd PackState();
+  /// 1 at the velocity entries (v, Ṙ, soft v) of PackState's layout, 0 at the positions.
+  Eigen::VectorXd PackedVelocityMask();
+  /// Writes a vector of PackState's layout back (history blocks only where history exists).
+  void UnpackState(const Eigen::VectorXd& s);
 
   EnergyReport Energies();
   Eigen::Vector3d TotalLinearMomentum() const;
@@ -173,6 +214,41 @@ class Scene {
                          const std::vector<RigidPose>& last, std::vector<RigidPose>* poses,
                          ContactStats* contact, const SoftStage* soft = nullptr,
                          std::vector<Eigen::VectorXd>* softX = nullptr);
+  friend class ForwardSensitivity;
+  // Differentiation support: Record keeps each stage's solution and factored Jacobian in *tape_;
+  // Replay replaces each stage solve by one Newton step from the recorded solution with the
+  // recorded factors, r evaluated with the current (perturbed) inputs.
+  enum class TapeMode { Off, Record, Replay };
+  TapeMode tapeMode_ = TapeMode::Off;
+  StepTape* tape_ = nullptr;
+  int tapeStage_ = 0;
+  void RecordStage(const StageTargets& targets, const StageDissipation& dissipation,
+                   const std::vector<RigidPose>& poses, const SoftStage* soft,
+                   std::vector<Eigen::VectorXd>* softX);
+  void ReplayStage(const StageTargets& targets, const StageDissipation& dissipation,
+                   std::vector<RigidPose>* poses, const SoftStage* soft,
+                   std::vector<Eigen::VectorXd>* softX);
+  struct Snapshot {
+    std::vector<RigidBodyState> states;
+    std::vector<SoftBodyState> softStates;
+    std::vector<std::vector<RigidBodyState>> history;
+    std::vector<std::vector<SoftBodyState>> softHistory;
+    std::vector<double> historyTimes;
+    double time = 0.0;
+  };
+  Snapshot Save() const {
+    return {states_, softStates_, history_, softHistory_, historyTimes_, time_};
+  }
+  void Restore(const Snapshot& s) {
+    states_ = s.states;
+    softStates_ = s.softStates;
+    history_ = s.history;
+    softHistory_ = s.softHistory;
+    historyTimes_ = s.historyTimes;
+    time_ = s.time;
+  }
+  int HistoryBlocks() const;
+
   void ClearHistory() {
     history_.clear();
     softHistory_.clear();

@@ -147,6 +147,9 @@ struct UnsymmetricSolver::Impl {
   Eigen::PartialPivLU<Eigen::MatrixXd> denseLu;
   bool dense = false;
   std::vector<SparseMatrix::StorageIndex> outer, inner;
+  // UMFPACK's solve reads the matrix again (iterative refinement) and Eigen's wrapper keeps a
+  // reference to it: the solver owns a copy, so that factors outlive the caller's matrix.
+  SparseMatrix matrix;
 
   bool SamePattern(const SparseMatrix& J) const {
     return static_cast<Eigen::Index>(outer.size()) == J.outerSize() + 1 &&
@@ -178,12 +181,15 @@ bool UnsymmetricSolver::Factorize(const Eigen::SparseMatrix<double>& J) {
     const Eigen::VectorXd pivots = s.denseLu.matrixLU().diagonal().cwiseAbs();
     return pivots.minCoeff() > 1e-14 * std::max(pivots.maxCoeff(), 1e-300);
   }
-  if (!s.SamePattern(J)) {
-    s.lu.analyzePattern(J);
+  const bool same = s.SamePattern(J);
+  s.matrix = J;
+  s.matrix.makeCompressed();
+  if (!same) {
+    s.lu.analyzePattern(s.matrix);
     s.outer.assign(J.outerIndexPtr(), J.outerIndexPtr() + J.outerSize() + 1);
     s.inner.assign(J.innerIndexPtr(), J.innerIndexPtr() + J.nonZeros());
   }
-  s.lu.factorize(J);
+  s.lu.factorize(s.matrix);
   return s.lu.info() == Eigen::Success;
 }
 

@@ -1,0 +1,190 @@
+// Scene: state and parameter access beyond stepping — actor lookup, replacing states and
+// parameters, and the dynamic state as one vector (the layout core/sensitivity.h differentiates).
+#include <sstream>
+
+#include "core/integrators.h"
+#include "core/scene.h"
+#include "energies/stable_neo_hookean.h"
+
+namespace superdex {
+namespace {
+
+constexpr int kRigidBlock = 24;  // p, R (column-major), v, Ṙ
+
+bool ValidHandle(const Scene& scene, ActorHandle a, Error* error) {
+  if (a.index >= 0 && a.index < scene.NumActors()) return true;
+  return Fail(error, "actor: invalid handle " + std::to_string(a.index));
+}
+
+void PackRigid(const RigidBodyState& s, double* out) {
+  Eigen::Map<Eigen::Vector3d>{out} = s.p;
+  Eigen::Map<Eigen::Matrix3d>{out + 3} = s.R;
+  Eigen::Map<Eigen::Vector3d>{out + 12} = s.v;
+  Eigen::Map<Eigen::Matrix3d>{out + 15} = s.Rdot;
+}
+
+void UnpackRigid(const double* in, RigidBodyState* s) {
+  s->p = Eigen::Map<const Eigen::Vector3d>(in);
+  s->R = Eigen::Map<const Eigen::Matrix3d>(in + 3);
+  s->v = Eigen::Map<const Eigen::Vector3d>(in + 12);
+  s->Rdot = Eigen::Map<const Eigen::Matrix3d>(in + 15);
+}
+
+}  // namespace
+
+bool Scene::SetSoftState(ActorHandle a, const SoftBodyState& state, Error* error) {
+  if (!ValidHandle(*this, a, error)) return false;
+  if (!actors_[a.index].soft) return Fail(error, "actor: " + ActorName(a) + " is not soft");
+  const int n = 3 * SoftModel(a).NumNodes();
+  if (state.x.size() != n || state.v.size() != n)
+    return Fail(error, "state: x and v need " + std::to_string(n) + " entries (3 per node)");
+  if (!state.x.allFinite() || !state.v.allFinite())
+    return Fail(error, "state: x and v must be finite");
+  softStates_[actors_[a.index].local] = state;
+  ClearHistory();
+  return true;
+}
+
+bool Scene::SetContactParams(ActorHandle a, const ContactParams& params, Error* error) {
+  if (!ValidHandle(*this, a, error)) return false;
+  if (std::string m = Validate(params, "contact."); !m.empty()) return Fail(error, m);
+  const ActorRef& r = actors_[a.index];
+  (r.soft ? softModels_[r.local].contact : models_[r.local].contact) = params;
+  prepared_ = false;  // pair padding and the dissipation flag follow the parameters
+  return true;
+}
+
+const ContactParams& Scene::GetContactParams(ActorHandle a) const {
+  const ActorRef& r = actors_[a.index];
+  return r.soft ? softModels_[r.local].contact : models_[r.local].contact;
+}
+
+bool Scene::SetSoftMaterial(ActorHandle a, double youngsModulus, double density, Error* error) {
+  if (!ValidHandle(*this, a, error)) return false;
+  if (!actors_[a.index].soft) return Fail(error, "actor: " + ActorName(a) + " is not soft");
+  SoftBodyModel& m = softModels_[actors_[a.index].local];
+  if (std::string msg = ValidateElasticMaterial(youngsModulus, m.material.poissonRatio, density);
+      !msg.empty())
+    return Fail(error, "material." + msg);
+  const double scale = density / m.material.density;
+  m.material.youngsModulus = youngsModulus;
+  m.material.density = density;
+  m.lame = LameFromYoungPoisson(youngsModulus, m.material.poissonRatio);
+  m.nodeMass *= scale;
+  m.mass *= scale;
+  return true;
+}
+
+double Scene::MinFrictionFalloffVel() const {
+  double v = INFINITY;
+  for (const RigidBodyModel& m : models_) v = std::min(v, m.contact.frictionFalloffVel);
+  for (const SoftBodyModel& m : softModels_) v = std::min(v, m.contact.frictionFalloffVel);
+  return v;
+}
+
+ActorHandle Scene::FindActor(const std::string& name) const {
+  for (int i = 0; i < NumActors(); ++i)
+    if (ActorName({i}) == name) return {i};
+  return {};
+}
+
+const std::string& Scene::ActorName(ActorHandle a) const {
+  const ActorRef& r = actors_[a.index];
+  return r.soft ? softModels_[r.local].name : models_[r.local].name;
+}
+
+int Scene::HistoryBlocks() const {
+  return IsMultistep(settings_.integrator) ? BdfSteps(settings_.integrator) - 1 : 0;
+}
+
+int Scene::StateOffset(ActorHandle a) {
+  int offset = 0;
+  for (int i = 0; i < NumActors(); ++i) {
+    const ActorRef& r = actors_[i];
+    if (!r.soft && !models_[r.local].dynamic) {
+      if (i == a.index) return -1;
+      continue;
+    }
+    if (i == a.index) return offset;
+    offset += r.soft ? 6 * softModels_[r.local].NumNodes() : kRigidBlock;
+  }
+  return -1;
+}
+
+int Scene::StateSize() {
+  int block = 0;
+  for (const RigidBodyModel& m : models_) block += m.dynamic ? kRigidBlock : 0;
+  for (const SoftBodyModel& m : softModels_) block += 6 * m.NumNodes();
+  return block * (1 + HistoryBlocks());
+}
+
+Eigen::VectorXd Scene::PackState() {
+  const int blocks = 1 + HistoryBlocks();
+  Eigen::VectorXd s = Eigen::VectorXd::Zero(StateSize());
+  const int block = static_cast<int>(s.size()) / blocks;
+  for (int b = 0; b < blocks; ++b) {
+    if (b > 0 && b - 1 >= static_cast<int>(history_.size())) break;
+    const std::vector<RigidBodyState>& rigid = b == 0 ? states_ : history_[b - 1];
+    const std::vector<SoftBodyState>& soft = b == 0 ? softStates_ : softHistory_[b - 1];
+    int o = b * block;
+    for (int i = 0; i < NumActors(); ++i) {
+      const ActorRef& r = actors_[i];
+      if (r.soft) {
+        const int n = static_cast<int>(soft[r.local].x.size());
+        s.segment(o, n) = soft[r.local].x;
+        s.segment(o + n, n) = soft[r.local].v;
+        o += 2 * n;
+      } else if (models_[r.local].dynamic) {
+        PackRigid(rigid[r.local], s.data() + o);
+        o += kRigidBlock;
+      }
+    }
+  }
+  return s;
+}
+
+Eigen::VectorXd Scene::PackedVelocityMask() {
+  const int blocks = 1 + HistoryBlocks();
+  Eigen::VectorXd mask = Eigen::VectorXd::Zero(StateSize());
+  const int block = static_cast<int>(mask.size()) / blocks;
+  for (int b = 0; b < blocks; ++b) {
+    int o = b * block;
+    for (int i = 0; i < NumActors(); ++i) {
+      const ActorRef& r = actors_[i];
+      if (r.soft) {
+        const int n = 3 * softModels_[r.local].NumNodes();
+        mask.segment(o + n, n).setOnes();
+        o += 2 * n;
+      } else if (models_[r.local].dynamic) {
+        mask.segment(o + 12, 12).setOnes();
+        o += kRigidBlock;
+      }
+    }
+  }
+  return mask;
+}
+
+void Scene::UnpackState(const Eigen::VectorXd& s) {
+  const int blocks = 1 + HistoryBlocks();
+  const int block = static_cast<int>(s.size()) / blocks;
+  for (int b = 0; b < blocks; ++b) {
+    if (b > 0 && b - 1 >= static_cast<int>(history_.size())) break;
+    std::vector<RigidBodyState>& rigid = b == 0 ? states_ : history_[b - 1];
+    std::vector<SoftBodyState>& soft = b == 0 ? softStates_ : softHistory_[b - 1];
+    int o = b * block;
+    for (int i = 0; i < NumActors(); ++i) {
+      const ActorRef& r = actors_[i];
+      if (r.soft) {
+        const int n = static_cast<int>(soft[r.local].x.size());
+        soft[r.local].x = s.segment(o, n);
+        soft[r.local].v = s.segment(o + n, n);
+        o += 2 * n;
+      } else if (models_[r.local].dynamic) {
+        UnpackRigid(s.data() + o, &rigid[r.local]);
+        o += kRigidBlock;
+      }
+    }
+  }
+}
+
+}  // namespace superdex
