@@ -281,7 +281,23 @@ class Scene {
   std::vector<std::vector<RigidBodyState>> history_;
   std::vector<double> historyTimes_;
   double time_ = 0.0;
-  bool prepared_ = false;
+  // Whether the pipeline is configured for the current actors; a copied scene configures its own
+  // (the pipeline holds pointers to the scene's models).
+  struct ResetOnCopy {
+    bool value = false;
+    ResetOnCopy() = default;
+    ResetOnCopy(const ResetOnCopy&) {}
+    ResetOnCopy& operator=(const ResetOnCopy&) {
+      value = false;
+      return *this;
+    }
+    ResetOnCopy& operator=(bool v) {
+      value = v;
+      return *this;
+    }
+    operator bool() const { return value; }
+  };
+  ResetOnCopy prepared_;
   bool hasDissipation_ = false;  // HasDissipation(), cached by Prepare
   std::vector<int> dofOffset_;
   int numDofs_ = 0;

@@ -1,0 +1,256 @@
+#include "scenes/fit.h"
+
+#include <ceres/ceres.h>
+
+#include <Eigen/Cholesky>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+namespace superdex {
+namespace {
+
+using json = nlohmann::json;
+
+// One observed centre of mass: at step `step`, actor `actor`.
+struct Observation {
+  int step = 0;
+  ActorHandle actor;
+  Eigen::Vector3d position;
+};
+
+// Simulates the scene with parameters θ and fills the residuals (simulated − observed, 3 per
+// observation) and, when J is given, their Jacobian from the forward sensitivities.
+class TrajectoryProblem {
+ public:
+  TrajectoryProblem(const Scene& base, std::vector<SceneParameter> params,
+                    std::vector<Observation> obs, double dt, int steps)
+      : base_(base), params_(std::move(params)), obs_(std::move(obs)), dt_(dt), steps_(steps) {}
+
+  int NumResiduals() const { return 3 * static_cast<int>(obs_.size()); }
+
+  bool Simulate(const std::vector<double>& theta, double* residuals, Eigen::MatrixXd* J,
+                Error* error) {
+    ++simulations_;
+    Scene scene = base_;
+    for (size_t j = 0; j < params_.size(); ++j)
+      if (!SetParameterValue(&scene, params_[j], theta[j], error)) return false;
+    ForwardSensitivity sens;
+    if (J && !sens.Begin(&scene, params_, error)) return false;
+    size_t next = 0;
+    for (int n = 0; n <= steps_; ++n) {
+      if (n > 0) {
+        StepReport rep;
+        if (J) {
+          if (!sens.Step(dt_, &rep, error)) return false;
+        } else {
+          if (!scene.Step(dt_, &rep, error)) return false;
+          if (rep.status != StageStatus::Converged)
+            return Fail(error, "step " + std::to_string(n) + ": a stage did not converge (" +
+                                   rep.message + ")");
+        }
+      }
+      for (; next < obs_.size() && obs_[next].step == n; ++next) {
+        const Observation& o = obs_[next];
+        Eigen::Map<Eigen::Vector3d>(residuals + 3 * next) = scene.CenterOfMass(o.actor) - o.position;
+        if (J) J->middleRows(3 * next, 3) = sens.CenterOfMassJacobian(o.actor);
+      }
+    }
+    return true;
+  }
+  int Simulations() const { return simulations_; }
+  const std::string& LastError() const { return lastError_; }
+  void SetLastError(const std::string& e) { lastError_ = e; }
+
+ private:
+  const Scene& base_;
+  std::vector<SceneParameter> params_;
+  std::vector<Observation> obs_;
+  double dt_;
+  int steps_;
+  int simulations_ = 0;
+  std::string lastError_;
+};
+
+class TrajectoryCost : public ceres::CostFunction {
+ public:
+  explicit TrajectoryCost(TrajectoryProblem* problem, int numParams) : problem_(problem) {
+    set_num_residuals(problem->NumResiduals());
+    for (int j = 0; j < numParams; ++j) mutable_parameter_block_sizes()->push_back(1);
+  }
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override {
+    const int P = static_cast<int>(parameter_block_sizes().size());
+    std::vector<double> theta(P);
+    for (int j = 0; j < P; ++j) theta[j] = parameters[j][0];
+    Eigen::MatrixXd J;
+    if (jacobians) J.resize(num_residuals(), P);
+    Error error;
+    if (!problem_->Simulate(theta, residuals, jacobians ? &J : nullptr, &error)) {
+      problem_->SetLastError(error.message);
+      return false;  // Ceres rejects the step and shrinks its trust region
+    }
+    if (jacobians)
+      for (int j = 0; j < P; ++j)
+        if (jacobians[j])
+          for (int r = 0; r < num_residuals(); ++r) jacobians[j][r] = J(r, j);
+    return true;
+  }
+
+ private:
+  TrajectoryProblem* problem_;
+};
+
+}  // namespace
+
+bool ReadObservedTrajectory(const std::string& path, ObservedTrajectory* out, Error* error) {
+  std::ifstream in(path);
+  if (!in) return Fail(error, "observed: cannot read \"" + path + "\"");
+  *out = ObservedTrajectory();
+  std::string line;
+  int lineNo = 0;
+  while (std::getline(in, line)) {
+    ++lineNo;
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    const std::string where = path + ":" + std::to_string(lineNo) + ": ";
+    json j;
+    try {
+      j = json::parse(line);
+    } catch (const json::exception& e) {
+      return Fail(error, where + "not JSON (" + e.what() + ")");
+    }
+    if (out->actors.empty()) {
+      if (!j.contains("actors") || !j["actors"].is_array())
+        return Fail(error, where + "the header line needs \"actors\": [{\"name\": …}, …]");
+      for (const json& a : j["actors"]) {
+        if (!a.is_object() || !a.contains("name") || !a["name"].is_string())
+          return Fail(error, where + "header actors[]: every entry needs a string \"name\"");
+        out->actors.push_back(a["name"].get<std::string>());
+      }
+      if (out->actors.empty()) return Fail(error, where + "the header names no actors");
+      continue;
+    }
+    if (!j.contains("t") || !j["t"].is_number())
+      return Fail(error, where + "a frame needs a number \"t\" [s]");
+    if (!j.contains("actors") || !j["actors"].is_array() ||
+        j["actors"].size() != out->actors.size())
+      return Fail(error, where + "a frame needs \"actors\" with one entry per header actor (" +
+                             std::to_string(out->actors.size()) + ")");
+    ObservedFrame f;
+    f.time = j["t"].get<double>();
+    for (const json& a : j["actors"]) {
+      if (a.is_object() && a.contains("p")) {
+        const json& p = a["p"];
+        if (!p.is_array() || p.size() != 3 || !p[0].is_number() || !p[1].is_number() ||
+            !p[2].is_number())
+          return Fail(error, where + "actors[].p: expected [x, y, z] in m");
+        f.position.emplace_back(Eigen::Vector3d(p[0].get<double>(), p[1].get<double>(),
+                                                p[2].get<double>()));
+      } else {
+        f.position.emplace_back(std::nullopt);
+      }
+    }
+    out->frames.push_back(std::move(f));
+  }
+  if (out->actors.empty()) return Fail(error, "observed: \"" + path + "\" is empty");
+  if (out->frames.empty()) return Fail(error, "observed: \"" + path + "\" has no frames");
+  return true;
+}
+
+bool FitSceneParameters(const SceneFile& file, const ObservedTrajectory& observed,
+                        const FitOptions& options, FitResult* result, Error* error) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const Scene& base = *file.scene;
+  const double dt = options.dt.value_or(file.dt);
+  if (!(dt > 0 && std::isfinite(dt))) return Fail(error, "dt: must be > 0 and finite");
+  if (options.parameters.empty()) return Fail(error, "params: name at least one parameter");
+  if (options.maxIterations < 1) return Fail(error, "max_iterations: must be >= 1");
+  std::vector<SceneParameter> params(options.parameters.size());
+  for (size_t j = 0; j < params.size(); ++j)
+    if (!ParseSceneParameter(base, options.parameters[j], &params[j], error)) return false;
+  // Observations on the step grid.
+  std::vector<Observation> obs;
+  int steps = 0;
+  for (size_t k = 0; k < observed.frames.size(); ++k) {
+    const ObservedFrame& f = observed.frames[k];
+    const double n = std::round(f.time / dt);
+    if (f.time < 0 || std::abs(n * dt - f.time) > 1e-9 * std::max(1.0, f.time))
+      return Fail(error, "observed frame " + std::to_string(k) + ": t = " + std::to_string(f.time) +
+                             " s is not a multiple of dt = " + std::to_string(dt) + " s");
+    for (size_t a = 0; a < f.position.size(); ++a) {
+      if (!f.position[a]) continue;
+      const ActorHandle h = base.FindActor(observed.actors[a]);
+      if (!h.IsValid())
+        return Fail(error, "observed: actor '" + observed.actors[a] + "' is not in the scene");
+      obs.push_back({static_cast<int>(n), h, *f.position[a]});
+      steps = std::max(steps, static_cast<int>(n));
+    }
+  }
+  if (obs.empty()) return Fail(error, "observed: no actor position in any frame");
+  std::stable_sort(obs.begin(), obs.end(),
+                   [](const Observation& a, const Observation& b) { return a.step < b.step; });
+
+  const int P = static_cast<int>(params.size());
+  TrajectoryProblem problem(base, params, obs, dt, steps);
+  std::vector<double> theta(P);
+  *result = FitResult();
+  for (int j = 0; j < P; ++j) {
+    theta[j] = ParameterValue(base, params[j]);
+    result->names.push_back(ToString(base, params[j]));
+    result->initial.push_back(theta[j]);
+  }
+  // Check the start before handing it to Ceres, so that its error is the user's message.
+  {
+    std::vector<double> r(problem.NumResiduals());
+    Eigen::MatrixXd J(problem.NumResiduals(), P);
+    if (!problem.Simulate(theta, r.data(), &J, error)) return false;
+  }
+  ceres::Problem cp;
+  std::vector<double*> blocks;
+  for (int j = 0; j < P; ++j) blocks.push_back(&theta[j]);
+  cp.AddResidualBlock(new TrajectoryCost(&problem, P), nullptr, blocks);
+  for (int j = 0; j < P; ++j)
+    if (!params[j].IsInitialState())  // physical coefficients stay positive
+      cp.SetParameterLowerBound(&theta[j], 0, 1e-6 * theta[j]);
+  ceres::Solver::Options so;
+  so.max_num_iterations = options.maxIterations;
+  so.linear_solver_type = ceres::DENSE_QR;
+  so.function_tolerance = 1e-12;
+  so.parameter_tolerance = 1e-10;
+  so.gradient_tolerance = 1e-14;
+  so.num_threads = 1;
+  ceres::Solver::Summary summary;
+  ceres::Solve(so, &cp, &summary);
+  result->fitted = theta;
+  result->initialCost = summary.initial_cost;
+  result->finalCost = summary.final_cost;
+  result->iterations = static_cast<int>(summary.iterations.size()) - 1;
+  result->converged = summary.termination_type == ceres::CONVERGENCE;
+  result->message = summary.message;
+  if (!problem.LastError().empty() && !result->converged)
+    result->message += " (last failed simulation: " + problem.LastError() + ")";
+  result->residuals = problem.NumResiduals();
+  // Standard errors from the Jacobian at the solution.
+  std::vector<double> r(problem.NumResiduals());
+  Eigen::MatrixXd J(problem.NumResiduals(), P);
+  if (!problem.Simulate(theta, r.data(), &J, error)) return false;
+  const double cost = 0.5 * Eigen::Map<Eigen::VectorXd>(r.data(), r.size()).squaredNorm();
+  result->rmsResidual = std::sqrt(2.0 * cost / r.size());
+  const int dof = static_cast<int>(r.size()) - P;
+  result->standardError.assign(P, NAN);
+  if (dof > 0) {
+    const Eigen::MatrixXd JtJ = J.transpose() * J;
+    const Eigen::LDLT<Eigen::MatrixXd> ldlt(JtJ);
+    if (ldlt.info() == Eigen::Success && ldlt.isPositive()) {
+      const Eigen::MatrixXd cov = (2.0 * cost / dof) * ldlt.solve(Eigen::MatrixXd::Identity(P, P));
+      for (int j = 0; j < P; ++j) result->standardError[j] = std::sqrt(std::max(0.0, cov(j, j)));
+    }
+  }
+  result->simulations = problem.Simulations();
+  result->wallSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return true;
+}
+
+}  // namespace superdex

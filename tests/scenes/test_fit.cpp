@@ -1,0 +1,115 @@
+// Fitting (scenes/fit.h): recovering μ and c_n of a thrown box from a synthetic trajectory made
+// with known values, without and with 1 mm observation noise, and the input errors.
+#include <catch2/catch.hpp>
+#include <fstream>
+#include <random>
+
+#include "scenes/fit.h"
+
+using namespace superdex;
+
+namespace {
+
+const char* kScene = SUPERDEX_SOURCE_DIR "/scenes/data/fit_throw.json";
+
+// The observed run: the scene with the box at μ = 0.4, c_n = 4 s/m, centres of mass every 10
+// steps (0.02 s), plus Gaussian noise of standard deviation `noise` [m] per coordinate.
+ObservedTrajectory Synthetic(double mu, double cn, double noise) {
+  SceneFile file;
+  Error error;
+  REQUIRE(LoadSceneFile(kScene, &file, &error));
+  Scene& scene = *file.scene;
+  SceneParameter p;
+  REQUIRE(ParseSceneParameter(scene, "box.coulomb_friction_coefficient", &p, &error));
+  REQUIRE(SetParameterValue(&scene, p, mu, &error));
+  REQUIRE(ParseSceneParameter(scene, "box.normal_viscous_damping_coefficient", &p, &error));
+  REQUIRE(SetParameterValue(&scene, p, cn, &error));
+  ObservedTrajectory obs;
+  obs.actors = file.actorNames;
+  std::mt19937 rng(7);
+  std::normal_distribution<double> gauss(0.0, noise);
+  const int steps = static_cast<int>(std::round(file.duration / file.dt));
+  for (int n = 1; n <= steps; ++n) {
+    StepReport rep;
+    REQUIRE(scene.Step(file.dt, &rep, &error));
+    REQUIRE(rep.status == StageStatus::Converged);
+    if (n % 10) continue;
+    ObservedFrame f;
+    f.time = scene.Time();
+    f.position.assign(obs.actors.size(), std::nullopt);
+    const Eigen::Vector3d c = scene.CenterOfMass(scene.FindActor("box"));
+    f.position[1] = c + (noise > 0 ? Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng))
+                                   : Eigen::Vector3d::Zero());
+    obs.frames.push_back(f);
+  }
+  return obs;
+}
+
+}  // namespace
+
+TEST_CASE("Fitting recovers friction and normal damping from a thrown box", "[fit]") {
+  SceneFile file;
+  Error error;
+  REQUIRE(LoadSceneFile(kScene, &file, &error));
+  FitOptions options;
+  options.parameters = {"box.coulomb_friction_coefficient",
+                        "box.normal_viscous_damping_coefficient"};
+  const double mu = 0.4, cn = 4.0;
+  SECTION("exact observations: within 1%") {
+    FitResult r;
+    REQUIRE(FitSceneParameters(file, Synthetic(mu, cn, 0.0), options, &r, &error));
+    INFO(r.message << "; fitted " << r.fitted[0] << ", " << r.fitted[1] << " from "
+                   << r.initial[0] << ", " << r.initial[1]);
+    CHECK(r.converged);
+    CHECK(std::abs(r.fitted[0] / mu - 1) < 0.01);
+    CHECK(std::abs(r.fitted[1] / cn - 1) < 0.01);
+    CHECK(r.rmsResidual < 1e-5);
+  }
+  SECTION("1 mm noise: within three standard errors") {
+    FitResult r;
+    REQUIRE(FitSceneParameters(file, Synthetic(mu, cn, 1e-3), options, &r, &error));
+    INFO(r.message << "; fitted " << r.fitted[0] << " ± " << r.standardError[0] << ", "
+                   << r.fitted[1] << " ± " << r.standardError[1] << "; rms "
+                   << r.rmsResidual);
+    CHECK(r.converged);
+    // The residual is the noise: rms ≈ 1 mm.
+    CHECK(r.rmsResidual > 0.8e-3);
+    CHECK(r.rmsResidual < 1.2e-3);
+    CHECK(std::abs(r.fitted[0] - mu) < 3 * r.standardError[0]);
+    CHECK(std::abs(r.fitted[1] - cn) < 3 * r.standardError[1]);
+    // Measured with this seed: μ 0.4016 ± 0.0018, c_n 4.017 ± 0.056 (0.4% off each).
+    CHECK(std::abs(r.fitted[0] / mu - 1) < 0.01);
+    CHECK(std::abs(r.fitted[1] / cn - 1) < 0.03);
+  }
+}
+
+TEST_CASE("Fitting: bad input is refused with the reason", "[fit]") {
+  SceneFile file;
+  Error error;
+  REQUIRE(LoadSceneFile(kScene, &file, &error));
+  ObservedTrajectory obs = Synthetic(0.4, 4.0, 0.0);
+  FitOptions options;
+  FitResult r;
+  options.parameters = {"box.stiffness"};
+  CHECK_FALSE(FitSceneParameters(file, obs, options, &r, &error));
+  CHECK(error.message.find("unknown name 'stiffness'") != std::string::npos);
+  options.parameters = {"box.coulomb_friction_coefficient"};
+  ObservedTrajectory off = obs;
+  off.frames[0].time += 1e-4;
+  CHECK_FALSE(FitSceneParameters(file, off, options, &r, &error));
+  CHECK(error.message.find("not a multiple of dt") != std::string::npos);
+  ObservedTrajectory stranger = obs;
+  stranger.actors[1] = "crate";
+  CHECK_FALSE(FitSceneParameters(file, stranger, options, &r, &error));
+  CHECK(error.message.find("'crate' is not in the scene") != std::string::npos);
+
+  const std::string path = "fit_bad_observed.jsonl";
+  std::ofstream(path) << "{\"actors\": [{\"name\": \"ground\"}, {\"name\": \"box\"}]}\n"
+                      << "{\"t\": 0.02, \"actors\": [null]}\n";
+  ObservedTrajectory bad;
+  CHECK_FALSE(ReadObservedTrajectory(path, &bad, &error));
+  CHECK(error.message.find(":2: a frame needs \"actors\" with one entry per header actor") !=
+        std::string::npos);
+  CHECK_FALSE(ReadObservedTrajectory("missing.jsonl", &bad, &error));
+  CHECK(error.message.find("cannot read") != std::string::npos);
+}
