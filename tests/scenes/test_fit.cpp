@@ -2,6 +2,7 @@
 // with known values, without and with 1 mm observation noise, and the input errors.
 #include <catch2/catch.hpp>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <random>
 
 #include "scenes/fit.h"
@@ -112,4 +113,24 @@ TEST_CASE("Fitting: bad input is refused with the reason", "[fit]") {
         std::string::npos);
   CHECK_FALSE(ReadObservedTrajectory("missing.jsonl", &bad, &error));
   CHECK(error.message.find("cannot read") != std::string::npos);
+}
+
+TEST_CASE("superdex fit recovers the shipped measurement's parameters", "[fit][cli]") {
+  const std::string out = "fit_throw_fitted.json";
+  std::remove(out.c_str());
+  const std::string cmd = std::string(SUPERDEX_CLI) + " fit " + SUPERDEX_SOURCE_DIR +
+                          "/scenes/data/fit_throw.json --observed " + SUPERDEX_SOURCE_DIR +
+                          "/scenes/data/fit_throw_observed.jsonl --params "
+                          "box.coulomb_friction_coefficient,box.normal_viscous_damping_coefficient"
+                          " --out " + out + " > /dev/null 2>&1";
+  REQUIRE(std::system(cmd.c_str()) == 0);
+  std::ifstream in(out);
+  REQUIRE(in);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  CHECK(j["converged"].get<bool>());
+  // The measurement was made at μ = 0.4, c_n = 4 with 1 mm noise: within 3 standard errors.
+  const auto& mu = j["parameters"]["box.coulomb_friction_coefficient"];
+  const auto& cn = j["parameters"]["box.normal_viscous_damping_coefficient"];
+  CHECK(std::abs(mu["fitted"].get<double>() - 0.4) < 3 * mu["standard_error"].get<double>());
+  CHECK(std::abs(cn["fitted"].get<double>() - 4.0) < 3 * cn["standard_error"].get<double>());
 }
