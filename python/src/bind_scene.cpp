@@ -324,6 +324,14 @@ void BindScene(py::module_& m) {
             if (!a.scene->SetContactLayer(a.Handle(), layer, &e)) throw py::value_error(e.message);
           },
           py::arg("layer"), "Actor::SetContactLayer: any string.")
+      .def_property(
+          "contact_params",
+          [](const Actor& a) { return a.scene->GetContactParams(a.Handle()); },
+          [](Actor& a, const ContactParams& c) {
+            Error e;
+            if (!a.scene->SetContactParams(a.Handle(), c, &e)) throw py::value_error(e.message);
+          },
+          "the actor's ContactParams (a copy; assign a modified copy back, validated)")
       .def_property_readonly(
           "position", [](const Actor& a) { return a.scene->CenterOfMass(a.Handle()); },
           "centre of mass [m] (soft: of the lumped node masses)")

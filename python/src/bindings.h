@@ -15,6 +15,7 @@ namespace py = pybind11;
 void BindParams(py::module_& m);
 void BindSoft(py::module_& m);
 void BindScene(py::module_& m);
+void BindFit(py::module_& m);
 
 /// Raises ValueError(message) when message is not empty.
 inline void CheckValue(const std::string& message) {

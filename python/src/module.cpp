@@ -10,4 +10,5 @@ PYBIND11_MODULE(superdex, m) {
   superdex::python::BindParams(m);
   superdex::python::BindSoft(m);
   superdex::python::BindScene(m);
+  superdex::python::BindFit(m);
 }

@@ -1,0 +1,173 @@
+// Trajectory sensitivities and parameter fitting (core/sensitivity.h, scenes/fit.h).
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+
+#include "bindings.h"
+#include "core/sensitivity.h"
+#include "scenes/fit.h"
+
+namespace superdex::python {
+namespace {
+
+ActorHandle NamedActor(const Scene& scene, const std::string& name) {
+  const ActorHandle h = scene.FindActor(name);
+  if (!h.IsValid()) throw py::value_error("no actor named \"" + name + "\"");
+  return h;
+}
+
+// Holds the scene it steps (kept alive by the Python object).
+struct PySensitivity {
+  Scene* scene = nullptr;
+  ForwardSensitivity sens;
+  std::vector<std::string> names;
+};
+
+ObservedTrajectory ObservedFromArrays(const std::vector<std::string>& actors,
+                                      const py::handle& times, const py::dict& positions) {
+  const auto t = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(times);
+  if (!t || t.ndim() != 1) throw py::value_error("times: must be a 1-D array of numbers [s]");
+  ObservedTrajectory obs;
+  obs.actors = actors;
+  obs.frames.resize(t.shape(0));
+  for (py::ssize_t k = 0; k < t.shape(0); ++k) {
+    obs.frames[k].time = t.at(k);
+    obs.frames[k].position.assign(actors.size(), std::nullopt);
+  }
+  for (auto item : positions) {
+    const std::string name = py::str(item.first);
+    size_t a = 0;
+    while (a < actors.size() && actors[a] != name) ++a;
+    if (a == actors.size()) {
+      obs.actors.push_back(name);
+      for (auto& f : obs.frames) f.position.emplace_back(std::nullopt);
+    }
+    const std::string field = "positions['" + name + "']";
+    const auto rows = RowsFromArray<3>(item.second, field.c_str());
+    if (static_cast<py::ssize_t>(rows.size()) != t.shape(0))
+      throw py::value_error(field + ": needs one row per time (" + std::to_string(t.shape(0)) +
+                            "), got " + std::to_string(rows.size()));
+    for (size_t k = 0; k < rows.size(); ++k)
+      if (rows[k].allFinite()) obs.frames[k].position[a] = rows[k];  // NaN: not observed
+  }
+  return obs;
+}
+
+}  // namespace
+
+void BindFit(py::module_& m) {
+  py::class_<PySensitivity>(
+      m, "ForwardSensitivity",
+      "Forward sensitivities dS/dθ carried along a simulation (core/sensitivity.h): each stage\n"
+      "is differentiated by the implicit function theorem with its Jacobian factored at the\n"
+      "solution; the partials of the stage residual are Richardson-extrapolated differences.\n"
+      "Parameters are 'ACTOR.NAME' strings (see superdex.fit). Steps the scene it is given.")
+      .def(py::init([](Scene& scene, const std::vector<std::string>& parameters) {
+             auto s = std::make_unique<PySensitivity>();
+             s->scene = &scene;
+             s->names = parameters;
+             std::vector<SceneParameter> params(parameters.size());
+             Error e;
+             for (size_t j = 0; j < params.size(); ++j)
+               if (!ParseSceneParameter(scene, parameters[j], &params[j], &e))
+                 throw py::value_error(e.message);
+             if (!s->sens.Begin(&scene, params, &e)) throw py::value_error(e.message);
+             return s;
+           }),
+           py::arg("scene"), py::arg("parameters"), py::keep_alive<1, 2>())
+      .def(
+          "step",
+          [](PySensitivity& s, double dt) {
+            StepReport r;
+            Error e;
+            bool ok;
+            {
+              py::gil_scoped_release release;
+              ok = s.sens.Step(dt, &r, &e);
+            }
+            if (!ok) {
+              if (r.status != StageStatus::Converged) throw std::runtime_error(e.message);
+              throw py::value_error(e.message);
+            }
+            return r;
+          },
+          py::arg("dt"),
+          "Steps the scene and the sensitivities; RuntimeError when a stage does not converge.")
+      .def(
+          "com_jacobian",
+          [](const PySensitivity& s, const std::string& actor) {
+            return Eigen::MatrixXd(s.sens.CenterOfMassJacobian(NamedActor(*s.scene, actor)));
+          },
+          py::arg("actor"), "d(centre of mass)/dθ of the named actor, a (3, P) array [m per unit θ]")
+      .def_property_readonly(
+          "state_jacobian", [](const PySensitivity& s) { return s.sens.StateJacobian(); },
+          "dS/dθ, (state size, P): rows as the scene's packed state")
+      .def_readonly("parameters", &PySensitivity::names);
+
+  py::class_<FitResult>(m, "FitResult", "The outcome of superdex.fit.")
+      .def_readonly("names", &FitResult::names)
+      .def_readonly("initial", &FitResult::initial)
+      .def_readonly("fitted", &FitResult::fitted)
+      .def_readonly("standard_error", &FitResult::standardError,
+                    "one-sigma errors from the Gauss-Newton covariance")
+      .def_readonly("initial_cost", &FitResult::initialCost, "½ Σ r² [m²]")
+      .def_readonly("final_cost", &FitResult::finalCost, "½ Σ r² [m²]")
+      .def_readonly("rms_residual", &FitResult::rmsResidual, "[m]")
+      .def_readonly("iterations", &FitResult::iterations)
+      .def_readonly("simulations", &FitResult::simulations)
+      .def_readonly("wall_seconds", &FitResult::wallSeconds)
+      .def_readonly("converged", &FitResult::converged)
+      .def_readonly("message", &FitResult::message)
+      .def("__repr__", [](const FitResult& r) {
+        std::string s = "<superdex.FitResult";
+        for (size_t j = 0; j < r.names.size(); ++j)
+          s += " " + r.names[j] + "=" + std::to_string(r.fitted[j]);
+        return s + (r.converged ? "" : " (not converged)") + ">";
+      });
+
+  m.def(
+      "fit",
+      [](const SceneFile& file, const std::vector<std::string>& parameters,
+         std::optional<std::string> observed, py::object times, std::optional<py::dict> positions,
+         std::optional<double> dt, int maxIterations) {
+        ObservedTrajectory obs;
+        Error e;
+        if (observed) {
+          if (!times.is_none() || positions)
+            throw py::value_error("observed: give a file or times and positions, not both");
+          if (!ReadObservedTrajectory(*observed, &obs, &e)) throw py::value_error(e.message);
+        } else {
+          if (times.is_none() || !positions)
+            throw py::value_error("observed: give a trajectory file, or times and positions");
+          obs = ObservedFromArrays(file.actorNames, times, *positions);
+        }
+        FitOptions options;
+        options.parameters = parameters;
+        options.dt = dt;
+        options.maxIterations = maxIterations;
+        FitResult r;
+        bool ok;
+        {
+          py::gil_scoped_release release;
+          ok = FitSceneParameters(file, obs, options, &r, &e);
+        }
+        if (!ok) {
+          if (e.message.find("converge") != std::string::npos) throw std::runtime_error(e.message);
+          throw py::value_error(e.message);
+        }
+        return r;
+      },
+      py::arg("scene_file"), py::arg("parameters"), py::arg("observed") = py::none(),
+      py::arg("times") = py::none(), py::arg("positions") = py::none(),
+      py::arg("dt") = py::none(), py::arg("max_iterations") = 50,
+      "Fits parameters ('ACTOR.NAME': penalty_coefficient, coulomb_friction_coefficient,\n"
+      "viscous_friction_coefficient, normal_viscous_damping_coefficient, friction_falloff_vel,\n"
+      "youngs_modulus, density, position.x|y|z, velocity.x|y|z, angular_velocity.x|y|z) of a\n"
+      "loaded scene file (left unchanged) to observed centres of mass: a trajectory file\n"
+      "(`observed`), or `times` (K,) [s] with `positions` {actor name: (K, 3) array [m], NaN\n"
+      "rows unobserved}. Times must fall on the step grid. Returns a FitResult.");
+}
+
+}  // namespace superdex::python
