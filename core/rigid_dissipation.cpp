@@ -3,13 +3,15 @@
 #include <cmath>
 
 #include "core/dissipation_kernels.h"
+#include "core/rigid_math.h"
 
 namespace superdex {
 namespace {
 using namespace dissipation_kernels;
 
-/// One sample of a current-geometry mode, as a function of the stencil's tangent step δ (first
-/// order retractions p + δp, (1 + [δθ]×) R, exact for first derivatives at δ = 0).
+/// One sample of a current-geometry mode. Its world residual is
+///   [f_A, r × f_A, −f_A, −d × f_A],   f_A = R_B g(Y, N_A),   g = ∂R/∂V (dissipation_kernels.h),
+/// with r = R_A X, d = p_A + r − p_B, Y = R_Bᵀ d and N_A = R_Bᵀ R_A n_A (6 or 12 entries).
 struct CurrentModeSample {
   const RigidPose* a = nullptr;
   const RigidPose* b = nullptr;
@@ -21,41 +23,59 @@ struct CurrentModeSample {
   const DissipationSetup* setup = nullptr;
   bool bDynamic = false;
 
-  /// World residual [f_A, r × f_A, −f_A, −d × f_A] with f_A = R_B ∂R/∂V (n = 6 or 12 entries).
-  template <typename T>
-  void Residual(const T* delta, T* out) const {
-    const DissipationSetup& s = *setup;
-    const Vec3<T> dpA(delta[0], delta[1], delta[2]);
-    const Vec3<T> dthA(delta[3], delta[4], delta[5]);
-    const Mat3<T> RA0 = a->R.cast<T>();
-    const Mat3<T> RA = RA0 + SkewT<T>(dthA) * RA0;
-    const Vec3<T> pA = a->p.cast<T>() + dpA;
-    Mat3<T> RB = b->R.cast<T>();
-    Vec3<T> pB = b->p.cast<T>();
-    if (bDynamic) {
-      const Vec3<T> dpB(delta[6], delta[7], delta[8]);
-      const Vec3<T> dthB(delta[9], delta[10], delta[11]);
-      RB = RB + SkewT<T>(dthB) * RB;
-      pB = pB + dpB;
-    }
-    const Vec3<T> r = RA * X.cast<T>();
-    const Vec3<T> d = pA + r - pB;
-    const Vec3<T> Yt = RB.transpose() * d;
-    // Alignment s = G·N_A with N_A = R_Bᵀ R_A n_A (raw vectors).
-    const Vec3<T> NA = RB.transpose() * (RA * normal.cast<T>());
-    const Vec3<T> g = CurrentModeDissipationGradient<T>(Yt, NA, Y, field, Yn, Y0, s);
-    const Vec3<T> f = RB * g;
-    const Vec3<T> tau = r.cross(f);
+  /// Adds w ∂residual/∂δ (δ = [δp_A, δθ_A, δp_B, δθ_B], retractions p + δp, (1 + [δθ]×) R).
+  /// The kernel g is differentiated in its six arguments (Y, N_A) by forward-mode AD; the chain
+  /// to the stencil is analytic:
+  ///   dY = R_Bᵀ (δp_A − [r]× δθ_A − δp_B + [d]× δθ_B),   dN_A = R_Bᵀ [n_w]× (δθ_B − δθ_A),
+  ///   df = R_B (G_Y dY + G_N dN_A) − [f]× δθ_B,   dr = −[r]× δθ_A,   dd = δp_A − [r]× δθ_A − δp_B,
+  ///   d(r × f) = [r]× df − [f]× dr,   d(−d × f) = [f]× dd − [d]× df        (n_w = R_A n_A).
+  void AddJacobian(double w, StencilMatrix* J) const {
+    using Jet = ceres::Jet<double, 6>;
+    const Eigen::Matrix3d& RB = b->R;
+    const Eigen::Vector3d r = a->R * X;
+    const Eigen::Vector3d d = a->p + r - b->p;
+    const Eigen::Vector3d nw = a->R * normal;
+    const Eigen::Vector3d NA = RB.transpose() * nw;
+    Vec3<Jet> Yj, Nj;
     for (int k = 0; k < 3; ++k) {
-      out[k] = f[k];
-      out[3 + k] = tau[k];
+      Yj[k] = Jet(Y[k], k);
+      Nj[k] = Jet(NA[k], 3 + k);
     }
-    if (bDynamic) {
-      const Vec3<T> tauB = d.cross(f);
+    const Vec3<Jet> g = CurrentModeDissipationGradient<Jet>(Yj, Nj, Y, field, Yn, Y0, *setup);
+    Eigen::Matrix3d GY, GN;
+    Eigen::Vector3d g0;
+    for (int i = 0; i < 3; ++i) {
+      g0[i] = g[i].a;
       for (int k = 0; k < 3; ++k) {
-        out[6 + k] = -f[k];
-        out[9 + k] = -tauB[k];
+        GY(i, k) = g[i].v[k];
+        GN(i, k) = g[i].v[3 + k];
       }
+    }
+    const Eigen::Vector3d f = RB * g0;
+    const Eigen::Matrix3d Sr = Skew(r), Sd = Skew(d), Sf = Skew(f), Sn = Skew(nw);
+    const Eigen::Matrix3d RBGY = RB * GY * RB.transpose();  // df per world dY-direction
+    const Eigen::Matrix3d RBGN = RB * GN * RB.transpose() * Sn;
+    const int n = bDynamic ? 12 : 6;
+    // df/dδ and the derivatives of r and d, blockwise (3 × n).
+    Eigen::Matrix<double, 3, 12> df, dr, dd;
+    df.block<3, 3>(0, 0) = RBGY;
+    df.block<3, 3>(0, 3) = -RBGY * Sr - RBGN;
+    dr.setZero();
+    dr.block<3, 3>(0, 3) = -Sr;
+    dd.block<3, 3>(0, 0).setIdentity();
+    dd.block<3, 3>(0, 3) = -Sr;
+    if (bDynamic) {
+      df.block<3, 3>(0, 6) = -RBGY;
+      df.block<3, 3>(0, 9) = RBGY * Sd + RBGN - Sf;
+      dd.block<3, 3>(0, 6) = -Eigen::Matrix3d::Identity();
+      dd.block<3, 3>(0, 9).setZero();
+    }
+    const auto dfn = df.leftCols(n);
+    J->block(0, 0, 3, n) += w * dfn;
+    J->block(3, 0, 3, n) += w * (Sr * dfn - Sf * dr.leftCols(n));
+    if (bDynamic) {
+      J->block(6, 0, 3, n) -= w * dfn;
+      J->block(9, 0, 3, n) += w * (Sf * dd.leftCols(n) - Sd * dfn);
     }
   }
 };
@@ -180,11 +200,7 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
         AddFunctionOfPullback(r, d, b.R, D.gradient, nullptr, bDynamic, q.weight, &out->residual,
                               nullptr);
         if (order >= 2) {
-          if (bDynamic) {
-            AddResidualJacobian<12>(sample, q.weight, &out->jacobian);
-          } else {
-            AddResidualJacobian<6>(sample, q.weight, &out->jacobian);
-          }
+          sample.AddJacobian(q.weight, &out->jacobian);
         }
       }
     }
