@@ -18,16 +18,19 @@ void AddFunctionOfPullback(const Eigen::Vector3d& r, const Eigen::Vector3d& d,
     grad->segment<3>(9) -= w * d.cross(n);
   }
   if (!hess) return;
-  const int m = bDynamic ? 12 : 6;
-  Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 12> Jx(3, m);
-  Jx.leftCols<3>().setIdentity();
-  Jx.middleCols<3>(3) = -Skew(r);
-  if (bDynamic) {
-    Jx.middleCols<3>(6) = -Eigen::Matrix3d::Identity();
-    Jx.middleCols<3>(9) = Skew(d);
-  }
+  // Jx = ∂x_w/∂δ = [I, −[r]×, −I, [d]×] (fixed sizes: these products run per sample).
   const Eigen::Matrix3d Hw = w * (RB * (*HY) * RB.transpose());
-  hess->topLeftCorner(m, m).noalias() += Jx.transpose() * Hw * Jx;
+  if (bDynamic) {
+    Eigen::Matrix<double, 3, 12> Jx;
+    Jx << Eigen::Matrix3d::Identity(), -Skew(r), -Eigen::Matrix3d::Identity(), Skew(d);
+    const Eigen::Matrix<double, 3, 12> HJ = Hw * Jx;
+    hess->topLeftCorner<12, 12>().noalias() += Jx.transpose() * HJ;
+  } else {
+    Eigen::Matrix<double, 3, 6> Jx;
+    Jx << Eigen::Matrix3d::Identity(), -Skew(r);
+    const Eigen::Matrix<double, 3, 6> HJ = Hw * Jx;
+    hess->topLeftCorner<6, 6>().noalias() += Jx.transpose() * HJ;
+  }
   const Eigen::Vector3d nw = w * n;
   const double nr = nw.dot(r);
   hess->block<3, 3>(3, 3) +=

@@ -55,27 +55,21 @@ struct CurrentModeSample {
     const Eigen::Matrix3d Sr = Skew(r), Sd = Skew(d), Sf = Skew(f), Sn = Skew(nw);
     const Eigen::Matrix3d RBGY = RB * GY * RB.transpose();  // df per world dY-direction
     const Eigen::Matrix3d RBGN = RB * GN * RB.transpose() * Sn;
-    const int n = bDynamic ? 12 : 6;
-    // df/dδ and the derivatives of r and d, blockwise (3 × n).
-    Eigen::Matrix<double, 3, 12> df, dr, dd;
-    df.block<3, 3>(0, 0) = RBGY;
-    df.block<3, 3>(0, 3) = -RBGY * Sr - RBGN;
-    dr.setZero();
-    dr.block<3, 3>(0, 3) = -Sr;
-    dd.block<3, 3>(0, 0).setIdentity();
-    dd.block<3, 3>(0, 3) = -Sr;
     if (bDynamic) {
-      df.block<3, 3>(0, 6) = -RBGY;
-      df.block<3, 3>(0, 9) = RBGY * Sd + RBGN - Sf;
-      dd.block<3, 3>(0, 6) = -Eigen::Matrix3d::Identity();
-      dd.block<3, 3>(0, 9).setZero();
-    }
-    const auto dfn = df.leftCols(n);
-    J->block(0, 0, 3, n) += w * dfn;
-    J->block(3, 0, 3, n) += w * (Sr * dfn - Sf * dr.leftCols(n));
-    if (bDynamic) {
-      J->block(6, 0, 3, n) -= w * dfn;
-      J->block(9, 0, 3, n) += w * (Sf * dd.leftCols(n) - Sd * dfn);
+      Eigen::Matrix<double, 3, 12> df, dr, dd;
+      df << RBGY, -RBGY * Sr - RBGN, -RBGY, RBGY * Sd + RBGN - Sf;
+      dr << Eigen::Matrix3d::Zero(), -Sr, Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero();
+      dd << Eigen::Matrix3d::Identity(), -Sr, -Eigen::Matrix3d::Identity(), Eigen::Matrix3d::Zero();
+      J->block<3, 12>(0, 0) += w * df;
+      J->block<3, 12>(3, 0) += w * (Sr * df - Sf * dr);
+      J->block<3, 12>(6, 0) -= w * df;
+      J->block<3, 12>(9, 0) += w * (Sf * dd - Sd * df);
+    } else {
+      Eigen::Matrix<double, 3, 6> df;
+      df << RBGY, -RBGY * Sr - RBGN;
+      J->block<3, 6>(0, 0) += w * df;
+      J->block<3, 6>(3, 0) += w * Sr * df;
+      J->block<3, 3>(3, 3) += w * Sf * Sr;  // −[f]× dr with dr = −[r]× δθ_A
     }
   }
 };
