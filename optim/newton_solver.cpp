@@ -1,6 +1,8 @@
 // Projected Newton with a backtracking (Armijo) line search. See newton_solver.h for the
 // convergence tests and the statuses.
 #include "optim/newton_solver.h"
+#include <cstdio>
+#include <cstdlib>
 
 #include <algorithm>
 #include <chrono>
@@ -153,11 +155,33 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
     return st;
   }
 
+  // Adaptive projection: after a full step (α = 1: the local regime) the next iteration tries the
+  // exact Hessian; if it is not positive definite the iteration is re-assembled projected.
+  bool tryExact = false;
   for (int it = 0; it < params.maxIterations; ++it) {
     // --- Assembly: f, g, H at the current state s.
     Clock::time_point t0 = Clock::now();
-    const double f = problem.Evaluate(&g, &H, params.psdProjection);
+    const bool exact = tryExact && params.psdProjection != PsdProjection::None;
+    double f = problem.Evaluate(&g, &H, exact ? PsdProjection::None : params.psdProjection);
     st.assemblySeconds += SecondsSince(t0);
+    if (exact) {
+      // Accept the exact Hessian only if it factorizes as is and gives a descent direction.
+      t0 = Clock::now();
+      H.makeCompressed();
+      bool good = Eigen::Map<const Eigen::VectorXd>(H.valuePtr(), H.nonZeros()).allFinite() &&
+                  g.allFinite() && solver.Factorize(H);
+      if (good) {
+        d = -solver.Solve(g);
+        good = d.allFinite() && g.dot(d) < 0.0;
+      }
+      st.factorizationSeconds += SecondsSince(t0);
+      if (!good) {
+        t0 = Clock::now();
+        f = problem.Evaluate(&g, &H, params.psdProjection);
+        st.assemblySeconds += SecondsSince(t0);
+      }
+      tryExact = good;
+    }
     st.finalValue = f;
     if (g.size() != n || H.rows() != n || H.cols() != n) {
       std::ostringstream s;
@@ -189,6 +213,8 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
     if (st.finalGradientNorm == 0.0) {
       d.setZero();  // an exact stationary point: nothing to solve (g·d = 0 is no descent failure)
       ok = true;
+    } else if (exact && tryExact) {
+      ok = true;  // the exact Hessian's direction, solved above
     } else if (solver.Factorize(H)) {
       d = -solver.Solve(g);
       ok = d.allFinite() && g.dot(d) < 0.0;
@@ -303,6 +329,10 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
       problem.Commit(step);
       st.finalValue = trialValue;
     }
+    tryExact = accepted && alpha == 1.0;
+    if (getenv("SDX_TRACE"))
+      std::fprintf(stderr, "it %d f %.6e slope %.3e alpha %.3g |d| %.3e exact %d\n", it, f, slope, alpha,
+                   problem.StepNorm(d), int(exact && ok));
     st.lineSearchSeconds += SecondsSince(t0);
     if (!accepted) {
       std::ostringstream s;
