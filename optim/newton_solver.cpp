@@ -1,8 +1,6 @@
 // Projected Newton with a backtracking (Armijo) line search. See newton_solver.h for the
 // convergence tests and the statuses.
 #include "optim/newton_solver.h"
-#include <cstdio>
-#include <cstdlib>
 
 #include <algorithm>
 #include <chrono>
@@ -330,9 +328,6 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
       st.finalValue = trialValue;
     }
     tryExact = accepted && alpha == 1.0;
-    if (getenv("SDX_TRACE"))
-      std::fprintf(stderr, "it %d f %.6e slope %.3e alpha %.3g |d| %.3e exact %d\n", it, f, slope, alpha,
-                   problem.StepNorm(d), int(exact && ok));
     st.lineSearchSeconds += SecondsSince(t0);
     if (!accepted) {
       std::ostringstream s;

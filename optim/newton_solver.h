@@ -3,6 +3,12 @@
 // Each iteration k at state s_k:
 //   1. f, g, H ← problem.Evaluate (local Hessians projected as params.psdProjection says).
 //      Non-finite f or g (or H) → Diverged.
+//      Adaptive projection: after an iteration whose full step was accepted (α = 1, the local
+//      regime) the next one assembles the exact Hessian (no projection); if that is not positive
+//      definite or gives no descent direction, the iteration is re-assembled projected. Near a
+//      minimum the clamped negative curvature (e.g. the geometric stiffness −λ ∇²Φ of contact)
+//      made the projected iteration converge only linearly (rate ≈ 1/2 measured on the
+//      1000-sphere pile); with the exact Hessian it is quadratic again.
 //   2. d = −H̃⁻¹ g with H̃ = H if it factorizes (CHOLMOD, LDLᵀ fallback) and g·d < 0; otherwise
 //      H̃ = H + τI with τ = 1e-8 max_i |H_ii|, 1e-7 max_i |H_ii|, ... (×10, 12 retries), then one
 //      last shift large enough for diagonal dominance (Gershgorin). The first τ that gives a
