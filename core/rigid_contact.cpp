@@ -24,12 +24,12 @@ void AddFunctionOfPullback(const Eigen::Vector3d& r, const Eigen::Vector3d& d,
     Eigen::Matrix<double, 3, 12> Jx;
     Jx << Eigen::Matrix3d::Identity(), -Skew(r), -Eigen::Matrix3d::Identity(), Skew(d);
     const Eigen::Matrix<double, 3, 12> HJ = Hw * Jx;
-    hess->topLeftCorner<12, 12>().noalias() += Jx.transpose() * HJ;
+    hess->topLeftCorner<12, 12>().noalias() += Jx.transpose().lazyProduct(HJ);
   } else {
     Eigen::Matrix<double, 3, 6> Jx;
     Jx << Eigen::Matrix3d::Identity(), -Skew(r);
     const Eigen::Matrix<double, 3, 6> HJ = Hw * Jx;
-    hess->topLeftCorner<6, 6>().noalias() += Jx.transpose() * HJ;
+    hess->topLeftCorner<6, 6>().noalias() += Jx.transpose().lazyProduct(HJ);
   }
   const Eigen::Vector3d nw = w * n;
   const double nr = nw.dot(r);
