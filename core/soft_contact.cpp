@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/dissipation_kernels.h"
+#include "core/rigid_math.h"
 
 namespace superdex {
 namespace {
@@ -49,37 +50,57 @@ struct SoftCurrentModeSample {
   const DissipationSetup* setup = nullptr;
   bool bDynamic = false;
 
-  template <typename T>
-  void Residual(const T* delta, T* out) const {
-    const DissipationSetup& s = *setup;
-    Vec3<T> x[3];
-    for (int a = 0; a < 3; ++a)
-      x[a] = xs[a].cast<T>() + Vec3<T>(delta[3 * a], delta[3 * a + 1], delta[3 * a + 2]);
-    Mat3<T> RB = b->R.cast<T>();
-    Vec3<T> pB = b->p.cast<T>();
-    if (bDynamic) {
-      const Vec3<T> dpB(delta[9], delta[10], delta[11]);
-      const Vec3<T> dthB(delta[12], delta[13], delta[14]);
-      RB = RB + SkewT<T>(dthB) * RB;
-      pB = pB + dpB;
+  /// Adds w ∂residual/∂δ. The kernel g is differentiated in its six arguments (Y, N_A) by
+  /// forward-mode AD; the chain to the stencil is analytic (y = Σ b_a x_a, d = y − p_B,
+  /// m = (x₁ − x₀) × (x₂ − x₀), n = m/|m|, N_A = R_Bᵀ n):
+  ///   dY = R_Bᵀ (dy − δp_B + [d]× δθ_B),   dN_A = R_Bᵀ ((I − n nᵀ)/|m| dm + [n]× δθ_B),
+  ///   dm = ([e₂]× − [e₁]×) δx₀ − [e₂]× δx₁ + [e₁]× δx₂   (e_i = x_i − x₀),
+  ///   df = R_B (G_Y dY + G_N dN_A) − [f]× δθ_B,   d(−d × f) = [f]× (dy − δp_B) − [d]× df.
+  void AddJacobian(double w, StencilMatrix* J) const {
+    using Jet = ceres::Jet<double, 6>;
+    const Eigen::Matrix3d& RB = b->R;
+    const Eigen::Vector3d y = bary[0] * xs[0] + bary[1] * xs[1] + bary[2] * xs[2];
+    const Eigen::Vector3d d = y - b->p;
+    const Eigen::Vector3d e1 = xs[1] - xs[0], e2 = xs[2] - xs[0];
+    const Eigen::Vector3d m = e1.cross(e2);
+    const double len = m.norm();
+    const Eigen::Vector3d n = m / len;
+    const Eigen::Vector3d NA = RB.transpose() * n;
+    Vec3<Jet> Yj, Nj;
+    for (int k = 0; k < 3; ++k) {
+      Yj[k] = Jet(Y[k], k);
+      Nj[k] = Jet(NA[k], 3 + k);
     }
-    const Vec3<T> y = T(bary[0]) * x[0] + T(bary[1]) * x[1] + T(bary[2]) * x[2];
-    const Vec3<T> d = y - pB;
-    const Vec3<T> Yt = RB.transpose() * d;
-    Vec3<T> n = (x[1] - x[0]).cross(x[2] - x[0]);
-    using std::sqrt;
-    n = n / sqrt(n.squaredNorm());
-    const Vec3<T> g =
-        CurrentModeDissipationGradient<T>(Yt, Vec3<T>(RB.transpose() * n), Y, field, Yn, Y0, s);
-    const Vec3<T> f = RB * g;
-    for (int a = 0; a < 3; ++a)
-      for (int k = 0; k < 3; ++k) out[3 * a + k] = T(bary[a]) * f[k];
-    if (bDynamic) {
-      const Vec3<T> tauB = d.cross(f);
+    const Vec3<Jet> g = CurrentModeDissipationGradient<Jet>(Yj, Nj, Y, field, Yn, Y0, *setup);
+    Eigen::Matrix3d GY, GN;
+    Eigen::Vector3d g0;
+    for (int i = 0; i < 3; ++i) {
+      g0[i] = g[i].a;
       for (int k = 0; k < 3; ++k) {
-        out[9 + k] = -f[k];
-        out[12 + k] = -tauB[k];
+        GY(i, k) = g[i].v[k];
+        GN(i, k) = g[i].v[3 + k];
       }
+    }
+    const Eigen::Vector3d f = RB * g0;
+    const Eigen::Matrix3d A = RB * GY * RB.transpose();  // df per world dY-direction
+    const Eigen::Matrix3d C = RB * GN * RB.transpose();  // df per world dn-direction
+    const Eigen::Matrix3d P = (Eigen::Matrix3d::Identity() - n * n.transpose()) / len;
+    const Eigen::Matrix3d S1 = Skew(e1), S2 = Skew(e2), Sf = Skew(f), Sd = Skew(d);
+    const Eigen::Matrix3d dm[3] = {S2 - S1, -S2, S1};
+    Eigen::Matrix<double, 3, 15> df = Eigen::Matrix<double, 3, 15>::Zero();
+    for (int a = 0; a < 3; ++a) df.block<3, 3>(0, 3 * a) = bary[a] * A + C * P * dm[a];
+    if (bDynamic) {
+      df.block<3, 3>(0, 9) = -A;
+      df.block<3, 3>(0, 12) = A * Sd + C * Skew(n) - Sf;
+    }
+    const int cols = bDynamic ? 15 : 9;
+    for (int a = 0; a < 3; ++a) J->block(3 * a, 0, 3, cols) += (w * bary[a]) * df.leftCols(cols);
+    if (bDynamic) {
+      Eigen::Matrix<double, 3, 15> dd = Eigen::Matrix<double, 3, 15>::Zero();
+      for (int a = 0; a < 3; ++a) dd.block<3, 3>(0, 3 * a) = bary[a] * Eigen::Matrix3d::Identity();
+      dd.block<3, 3>(0, 9) = -Eigen::Matrix3d::Identity();
+      J->block<3, 15>(9, 0) -= w * df;
+      J->block<3, 15>(12, 0) += w * (Sf * dd - Sd * df);
     }
   }
 };
@@ -263,11 +284,7 @@ void EvaluateSoftRigidPair(const SoftPairInput& in, const RigidBodyModel& B, con
         sample.field = field;
         sample.setup = &ds;
         sample.bDynamic = bDynamic;
-        if (bDynamic) {
-          AddResidualJacobian<15>(sample, s.weight, &fc.dissipationJacobian);
-        } else {
-          AddResidualJacobian<9>(sample, s.weight, &fc.dissipationJacobian);
-        }
+        sample.AddJacobian(s.weight, &fc.dissipationJacobian);
       }
     }
     if (fc.penaltyActive || fc.dissipationActive) ++out->numFaces;
