@@ -79,6 +79,34 @@ Vec3<T> CurrentModeDissipationGradient(const Vec3<T>& Y, const Vec3<T>& NA,
                              [](const T& v) { return ValueOf(v); });
 }
 
+/// The current-mode kernel g = ∂R/∂V at the sample's evaluation point Y (with N_A) and its
+/// derivatives G_Y = ∂g/∂Y, G_N = ∂g/∂N_A, by forward-mode AD in those six arguments; callers
+/// chain them to their stencils.
+struct CurrentModeLinearization {
+  Eigen::Vector3d g;
+  Eigen::Matrix3d GY, GN;
+};
+inline CurrentModeLinearization LinearizeCurrentModeGradient(
+    const Eigen::Vector3d& Y, const Eigen::Vector3d& NA, const SdfSample& field,
+    const Eigen::Vector3d& Yn, const Eigen::Vector3d& Y0, const DissipationSetup& s) {
+  using Jet = ceres::Jet<double, 6>;
+  Vec3<Jet> Yj, Nj;
+  for (int k = 0; k < 3; ++k) {
+    Yj[k] = Jet(Y[k], k);
+    Nj[k] = Jet(NA[k], 3 + k);
+  }
+  const Vec3<Jet> g = CurrentModeDissipationGradient<Jet>(Yj, Nj, Y, field, Yn, Y0, s);
+  CurrentModeLinearization out;
+  for (int i = 0; i < 3; ++i) {
+    out.g[i] = g[i].a;
+    for (int k = 0; k < 3; ++k) {
+      out.GY(i, k) = g[i].v[k];
+      out.GN(i, k) = g[i].v[3 + k];
+    }
+  }
+  return out;
+}
+
 /// Adds w ∂r/∂δ of `sample.Residual(δ, r)` (N stencil dofs) at δ = 0 into *jacobian, by
 /// forward-mode automatic differentiation.
 template <int N, typename Sample>

@@ -30,31 +30,16 @@ struct CurrentModeSample {
   ///   df = R_B (G_Y dY + G_N dN_A) − [f]× δθ_B,   dr = −[r]× δθ_A,   dd = δp_A − [r]× δθ_A − δp_B,
   ///   d(r × f) = [r]× df − [f]× dr,   d(−d × f) = [f]× dd − [d]× df        (n_w = R_A n_A).
   void AddJacobian(double w, StencilMatrix* J) const {
-    using Jet = ceres::Jet<double, 6>;
     const Eigen::Matrix3d& RB = b->R;
     const Eigen::Vector3d r = a->R * X;
     const Eigen::Vector3d d = a->p + r - b->p;
     const Eigen::Vector3d nw = a->R * normal;
-    const Eigen::Vector3d NA = RB.transpose() * nw;
-    Vec3<Jet> Yj, Nj;
-    for (int k = 0; k < 3; ++k) {
-      Yj[k] = Jet(Y[k], k);
-      Nj[k] = Jet(NA[k], 3 + k);
-    }
-    const Vec3<Jet> g = CurrentModeDissipationGradient<Jet>(Yj, Nj, Y, field, Yn, Y0, *setup);
-    Eigen::Matrix3d GY, GN;
-    Eigen::Vector3d g0;
-    for (int i = 0; i < 3; ++i) {
-      g0[i] = g[i].a;
-      for (int k = 0; k < 3; ++k) {
-        GY(i, k) = g[i].v[k];
-        GN(i, k) = g[i].v[3 + k];
-      }
-    }
-    const Eigen::Vector3d f = RB * g0;
+    const CurrentModeLinearization lin =
+        LinearizeCurrentModeGradient(Y, RB.transpose() * nw, field, Yn, Y0, *setup);
+    const Eigen::Vector3d f = RB * lin.g;
     const Eigen::Matrix3d Sr = Skew(r), Sd = Skew(d), Sf = Skew(f), Sn = Skew(nw);
-    const Eigen::Matrix3d RBGY = RB * GY * RB.transpose();  // df per world dY-direction
-    const Eigen::Matrix3d RBGN = RB * GN * RB.transpose() * Sn;
+    const Eigen::Matrix3d RBGY = RB * lin.GY * RB.transpose();  // df per world dY-direction
+    const Eigen::Matrix3d RBGN = RB * lin.GN * RB.transpose() * Sn;
     if (bDynamic) {
       Eigen::Matrix<double, 3, 12> df, dr, dd;
       df << RBGY, -RBGY * Sr - RBGN, -RBGY, RBGY * Sd + RBGN - Sf;

@@ -57,7 +57,6 @@ struct SoftCurrentModeSample {
   ///   dm = ([e₂]× − [e₁]×) δx₀ − [e₂]× δx₁ + [e₁]× δx₂   (e_i = x_i − x₀),
   ///   df = R_B (G_Y dY + G_N dN_A) − [f]× δθ_B,   d(−d × f) = [f]× (dy − δp_B) − [d]× df.
   void AddJacobian(double w, StencilMatrix* J) const {
-    using Jet = ceres::Jet<double, 6>;
     const Eigen::Matrix3d& RB = b->R;
     const Eigen::Vector3d y = bary[0] * xs[0] + bary[1] * xs[1] + bary[2] * xs[2];
     const Eigen::Vector3d d = y - b->p;
@@ -65,25 +64,11 @@ struct SoftCurrentModeSample {
     const Eigen::Vector3d m = e1.cross(e2);
     const double len = m.norm();
     const Eigen::Vector3d n = m / len;
-    const Eigen::Vector3d NA = RB.transpose() * n;
-    Vec3<Jet> Yj, Nj;
-    for (int k = 0; k < 3; ++k) {
-      Yj[k] = Jet(Y[k], k);
-      Nj[k] = Jet(NA[k], 3 + k);
-    }
-    const Vec3<Jet> g = CurrentModeDissipationGradient<Jet>(Yj, Nj, Y, field, Yn, Y0, *setup);
-    Eigen::Matrix3d GY, GN;
-    Eigen::Vector3d g0;
-    for (int i = 0; i < 3; ++i) {
-      g0[i] = g[i].a;
-      for (int k = 0; k < 3; ++k) {
-        GY(i, k) = g[i].v[k];
-        GN(i, k) = g[i].v[3 + k];
-      }
-    }
-    const Eigen::Vector3d f = RB * g0;
-    const Eigen::Matrix3d A = RB * GY * RB.transpose();  // df per world dY-direction
-    const Eigen::Matrix3d C = RB * GN * RB.transpose();  // df per world dn-direction
+    const CurrentModeLinearization lin =
+        LinearizeCurrentModeGradient(Y, RB.transpose() * n, field, Yn, Y0, *setup);
+    const Eigen::Vector3d f = RB * lin.g;
+    const Eigen::Matrix3d A = RB * lin.GY * RB.transpose();  // df per world dY-direction
+    const Eigen::Matrix3d C = RB * lin.GN * RB.transpose();  // df per world dn-direction
     const Eigen::Matrix3d P = (Eigen::Matrix3d::Identity() - n * n.transpose()) / len;
     const Eigen::Matrix3d S1 = Skew(e1), S2 = Skew(e2), Sf = Skew(f), Sd = Skew(d);
     const Eigen::Matrix3d dm[3] = {S2 - S1, -S2, S1};
