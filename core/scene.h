@@ -248,6 +248,12 @@ class Scene {
     time_ = s.time;
   }
   int HistoryBlocks() const;
+  // The packed-state layout: calls visit(block, offset, actor ref, actor index) for every dynamic
+  // actor in each of the first `blocks` blocks (block 0: the current state, b >= 1: history_[b−1]).
+  template <typename Visit>
+  void VisitStateLayout(int blocks, Visit&& visit) const;
+  // 1 + the history blocks that hold a state.
+  int FilledStateBlocks() const;
 
   void ClearHistory() {
     history_.clear();

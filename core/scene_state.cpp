@@ -1,5 +1,6 @@
 // Scene: state and parameter access beyond stepping — actor lookup, replacing states and
 // parameters, and the dynamic state as one vector (the layout core/sensitivity.h differentiates).
+#include <algorithm>
 #include <sstream>
 
 #include "core/integrators.h"
@@ -97,94 +98,77 @@ int Scene::HistoryBlocks() const {
   return IsMultistep(settings_.integrator) ? BdfSteps(settings_.integrator) - 1 : 0;
 }
 
-int Scene::StateOffset(ActorHandle a) {
+template <typename Visit>
+void Scene::VisitStateLayout(int blocks, Visit&& visit) const {
   int offset = 0;
-  for (int i = 0; i < NumActors(); ++i) {
-    const ActorRef& r = actors_[i];
-    if (!r.soft && !models_[r.local].dynamic) {
-      if (i == a.index) return -1;
-      continue;
+  for (int b = 0; b < blocks; ++b)
+    for (int i = 0; i < NumActors(); ++i) {
+      const ActorRef& r = actors_[i];
+      if (!r.soft && !models_[r.local].dynamic) continue;
+      visit(b, offset, r, i);
+      offset += r.soft ? 6 * softModels_[r.local].NumNodes() : kRigidBlock;
     }
-    if (i == a.index) return offset;
-    offset += r.soft ? 6 * softModels_[r.local].NumNodes() : kRigidBlock;
-  }
-  return -1;
+}
+
+int Scene::StateOffset(ActorHandle a) {
+  int found = -1;
+  VisitStateLayout(1, [&](int, int offset, const ActorRef&, int i) {
+    if (i == a.index) found = offset;
+  });
+  return found;
 }
 
 int Scene::StateSize() {
-  int block = 0;
-  for (const RigidBodyModel& m : models_) block += m.dynamic ? kRigidBlock : 0;
-  for (const SoftBodyModel& m : softModels_) block += 6 * m.NumNodes();
-  return block * (1 + HistoryBlocks());
+  int size = 0;
+  VisitStateLayout(1 + HistoryBlocks(), [&](int, int offset, const ActorRef& r, int) {
+    size = offset + (r.soft ? 6 * softModels_[r.local].NumNodes() : kRigidBlock);
+  });
+  return size;
+}
+
+int Scene::FilledStateBlocks() const {
+  return 1 + std::min(HistoryBlocks(), static_cast<int>(history_.size()));
 }
 
 Eigen::VectorXd Scene::PackState() {
-  const int blocks = 1 + HistoryBlocks();
   Eigen::VectorXd s = Eigen::VectorXd::Zero(StateSize());
-  const int block = static_cast<int>(s.size()) / blocks;
-  for (int b = 0; b < blocks; ++b) {
-    if (b > 0 && b - 1 >= static_cast<int>(history_.size())) break;
-    const std::vector<RigidBodyState>& rigid = b == 0 ? states_ : history_[b - 1];
-    const std::vector<SoftBodyState>& soft = b == 0 ? softStates_ : softHistory_[b - 1];
-    int o = b * block;
-    for (int i = 0; i < NumActors(); ++i) {
-      const ActorRef& r = actors_[i];
-      if (r.soft) {
-        const int n = static_cast<int>(soft[r.local].x.size());
-        s.segment(o, n) = soft[r.local].x;
-        s.segment(o + n, n) = soft[r.local].v;
-        o += 2 * n;
-      } else if (models_[r.local].dynamic) {
-        PackRigid(rigid[r.local], s.data() + o);
-        o += kRigidBlock;
-      }
+  VisitStateLayout(FilledStateBlocks(), [&](int b, int o, const ActorRef& r, int) {
+    if (r.soft) {
+      const SoftBodyState& st = b == 0 ? softStates_[r.local] : softHistory_[b - 1][r.local];
+      const int n = static_cast<int>(st.x.size());
+      s.segment(o, n) = st.x;
+      s.segment(o + n, n) = st.v;
+    } else {
+      PackRigid(b == 0 ? states_[r.local] : history_[b - 1][r.local], s.data() + o);
     }
-  }
+  });
   return s;
 }
 
 Eigen::VectorXd Scene::PackedVelocityMask() {
-  const int blocks = 1 + HistoryBlocks();
   Eigen::VectorXd mask = Eigen::VectorXd::Zero(StateSize());
-  const int block = static_cast<int>(mask.size()) / blocks;
-  for (int b = 0; b < blocks; ++b) {
-    int o = b * block;
-    for (int i = 0; i < NumActors(); ++i) {
-      const ActorRef& r = actors_[i];
-      if (r.soft) {
-        const int n = 3 * softModels_[r.local].NumNodes();
-        mask.segment(o + n, n).setOnes();
-        o += 2 * n;
-      } else if (models_[r.local].dynamic) {
-        mask.segment(o + 12, 12).setOnes();
-        o += kRigidBlock;
-      }
+  VisitStateLayout(1 + HistoryBlocks(), [&](int, int o, const ActorRef& r, int) {
+    if (r.soft) {
+      const int n = 3 * softModels_[r.local].NumNodes();
+      mask.segment(o + n, n).setOnes();
+    } else {
+      mask.segment(o + 12, 12).setOnes();
     }
-  }
+  });
   return mask;
 }
 
 void Scene::UnpackState(const Eigen::VectorXd& s) {
-  const int blocks = 1 + HistoryBlocks();
-  const int block = static_cast<int>(s.size()) / blocks;
-  for (int b = 0; b < blocks; ++b) {
-    if (b > 0 && b - 1 >= static_cast<int>(history_.size())) break;
-    std::vector<RigidBodyState>& rigid = b == 0 ? states_ : history_[b - 1];
-    std::vector<SoftBodyState>& soft = b == 0 ? softStates_ : softHistory_[b - 1];
-    int o = b * block;
-    for (int i = 0; i < NumActors(); ++i) {
-      const ActorRef& r = actors_[i];
-      if (r.soft) {
-        const int n = static_cast<int>(soft[r.local].x.size());
-        soft[r.local].x = s.segment(o, n);
-        soft[r.local].v = s.segment(o + n, n);
-        o += 2 * n;
-      } else if (models_[r.local].dynamic) {
-        UnpackRigid(s.data() + o, &rigid[r.local]);
-        o += kRigidBlock;
-      }
+  VisitStateLayout(FilledStateBlocks(), [&](int b, int o, const ActorRef& r, int) {
+    if (r.soft) {
+      SoftBodyState& st = b == 0 ? softStates_[r.local] : softHistory_[b - 1][r.local];
+      const int n = static_cast<int>(st.x.size());
+      st.x = s.segment(o, n);
+      st.v = s.segment(o + n, n);
+    } else {
+      UnpackRigid(s.data() + o, b == 0 ? &states_[r.local] : &history_[b - 1][r.local]);
     }
-  }
+  });
 }
 
 }  // namespace superdex
