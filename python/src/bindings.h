@@ -42,6 +42,13 @@ inline py::array_t<double> StackedToArray(const Eigen::VectorXd& x) {
   return a;
 }
 
+/// "<field>: must be an (n, N) array, got shape (…)".
+inline std::string ShapeError(const char* field, int N, const py::array& a) {
+  return std::string(field) + ": must be an (n, " + std::to_string(N) + ") array, got shape " +
+         py::str(py::tuple(py::cast(std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim()))))
+             .cast<std::string>();
+}
+
 /// An (n, N) array-like of numbers as rows; ValueError naming `field` for another shape.
 template <int N>
 std::vector<Eigen::Matrix<double, N, 1>> RowsFromArray(const py::handle& obj, const char* field) {
@@ -50,10 +57,7 @@ std::vector<Eigen::Matrix<double, N, 1>> RowsFromArray(const py::handle& obj, co
   std::vector<Eigen::Matrix<double, N, 1>> rows;
   if (a.size() == 0 && a.ndim() <= 2) return rows;
   if (a.ndim() != 2 || a.shape(1) != N)
-    throw py::value_error(std::string(field) + ": must be an (n, " + std::to_string(N) +
-                          ") array, got shape " + py::str(py::tuple(py::cast(
-                              std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim()))))
-                              .cast<std::string>());
+    throw py::value_error(ShapeError(field, N, a));
   const auto A = a.template unchecked<2>();
   rows.resize(a.shape(0));
   for (py::ssize_t i = 0; i < a.shape(0); ++i)
@@ -75,10 +79,7 @@ std::vector<Eigen::Matrix<int, N, 1>> IndexRowsFromArray(const py::handle& obj, 
                           py::str(raw.dtype()).cast<std::string>());
   const auto a = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(raw);
   if (a.ndim() != 2 || a.shape(1) != N)
-    throw py::value_error(std::string(field) + ": must be an (n, " + std::to_string(N) +
-                          ") array, got shape " + py::str(py::tuple(py::cast(
-                              std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim()))))
-                              .cast<std::string>());
+    throw py::value_error(ShapeError(field, N, a));
   const auto A = a.template unchecked<2>();
   rows.resize(a.shape(0));
   for (py::ssize_t i = 0; i < a.shape(0); ++i)
