@@ -133,16 +133,8 @@ std::string ModelXml(const sp::PeerScene& s, const sp::PeerOptions& o, const Con
 
 int main(int argc, char** argv) {
   sp::PeerOptions o;
-  std::string message;
-  if (!sp::ParseOptions(argc, argv, &o, &message)) {
-    std::cerr << message << "\n";
-    return 2;
-  }
   sp::PeerScene scene;
-  if (!sp::LoadPeerScene(o.scene, &scene, &message)) {
-    std::cerr << "error: " << message << "\n";
-    return 2;
-  }
+  if (!sp::StartRun(argc, argv, &o, &scene)) return 2;
   const double duration = o.duration > 0 ? o.duration : scene.duration;
   const ContactRef ref = MatchContact(scene, o.dt, o.timeconst);
   const std::string xml = ModelXml(scene, o, ref);

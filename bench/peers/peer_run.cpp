@@ -207,4 +207,17 @@ void Recorder::Print(double wall, double simulated, const json& settings) const 
   }
 }
 
+bool StartRun(int argc, char** argv, PeerOptions* options, PeerScene* scene) {
+  std::string message;
+  if (!ParseOptions(argc, argv, options, &message)) {
+    std::cerr << message << "\n";
+    return false;
+  }
+  if (!LoadPeerScene(options->scene, scene, &message)) {
+    std::cerr << "error: " << message << "\n";
+    return false;
+  }
+  return true;
+}
+
 }  // namespace superdex::peers

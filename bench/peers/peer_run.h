@@ -25,6 +25,10 @@ struct PeerOptions {
 /// Parses argv; returns false (with a message) on bad input.
 bool ParseOptions(int argc, char** argv, PeerOptions* options, std::string* message);
 
+/// Parses argv and loads the scene it names; on bad input prints the reason to stderr and
+/// returns false (the adapter then exits with status 2).
+bool StartRun(int argc, char** argv, PeerOptions* options, PeerScene* scene);
+
 /// State of the tracked body at the end of a step.
 struct TrackSample {
   double t = 0.0;
