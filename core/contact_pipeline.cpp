@@ -234,8 +234,10 @@ void ContactPipeline::SoftColliderInputs(const SoftColliderPair& sp,
 }
 
 DissipationSetup ContactPipeline::MakeSetup(const PairContactParams& params,
-                                            const DissipationContext& dissipation) const {
+                                            const DissipationContext& dissipation,
+                                            bool isotropicFriction) const {
   DissipationSetup setup;
+  setup.isotropicFrictionHessian = isotropicFriction;
   setup.mode = dissipation.mode;
   setup.fadeFriction = dissipation.fadeFriction;
   setup.dt = dissipation.dt;
@@ -262,6 +264,8 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
   results_.resize(pairs_.size());
   dissipationResults_.resize(dissipation ? pairs_.size() : 0);
   const bool potential = !dissipation || dissipation->mode == DissipationMode::ExplicitNormals;
+  // Projected Hessians are the globalization model: the Coulomb term's isotropic majorizer.
+  const bool isotropic = potential && projection != PsdProjection::None;
   const std::vector<RigidStageStart>* reference = stageStart;
   size_t work = 0;
   for (const ContactPair& p : pairs_) work += models[p.colliding].samples.size();
@@ -277,7 +281,7 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
     EvaluateRigidPairPenalty(A, poses[cp.colliding], B, poses[cp.collider], B.dynamic, pp, order,
                              &r, cp.params.maxAlignmentNormals, aRef, bRef);
     if (dissipation) {
-      const DissipationSetup setup = MakeSetup(cp.params, *dissipation);
+      const DissipationSetup setup = MakeSetup(cp.params, *dissipation, isotropic);
       RigidPairDissipation& d = dissipationResults_[k];
       const std::vector<RigidStageStart>& start = *stageStart;
       EvaluateRigidPairDissipation(A, poses[cp.colliding], start[cp.colliding], B,
@@ -340,7 +344,7 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
     in.x0 = soft->x0 ? &(*soft->x0)[sp.soft] : nullptr;
     const RigidBodyModel& B = models[sp.collider];
     DissipationSetup setup;
-    if (dissipation) setup = MakeSetup(sp.params, *dissipation);
+    if (dissipation) setup = MakeSetup(sp.params, *dissipation, isotropic);
     const RigidStageStart* b0 = stageStart ? &(*stageStart)[sp.collider] : nullptr;
     SoftPairContact& r = softResults_[k];
     EvaluateSoftRigidPair(in, B, poses[sp.collider], b0, B.dynamic, pp,
@@ -414,7 +418,7 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
     SoftColliderInput b;
     SoftColliderInputs(sp, poses, stageStart, *soft, &a, &b);
     DissipationSetup setup;
-    if (dissipation) setup = MakeSetup(sp.params, *dissipation);
+    if (dissipation) setup = MakeSetup(sp.params, *dissipation, isotropic);
     SoftColliderPairContact& r = softColliderResults_[k];
     EvaluatePairOnSoftCollider(a, b, pp, sp.params.maxAlignmentNormals,
                                dissipation ? &setup : nullptr, order, &r);

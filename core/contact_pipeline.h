@@ -109,8 +109,10 @@ class ContactPipeline {
   void FindPairs(const std::vector<RigidPose>& poses, const DissipationContext* dissipation,
                  const std::vector<RigidStageStart>* stageStart, const SoftView* soft);
   int RigidActor(int i) const { return rigidActor_.empty() ? i : rigidActor_[i]; }
+  /// `isotropicFriction`: DissipationSetup::isotropicFrictionHessian.
   DissipationSetup MakeSetup(const PairContactParams& params,
-                             const DissipationContext& dissipation) const;
+                             const DissipationContext& dissipation,
+                             bool isotropicFriction) const;
   // The two sides of a pair on a soft collider (the locators must be built).
   void SoftColliderInputs(const SoftColliderPair& pair, const std::vector<RigidPose>& poses,
                           const std::vector<RigidStageStart>* stageStart, const SoftView& soft,

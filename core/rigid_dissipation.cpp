@@ -162,7 +162,8 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
       ++out->activeSamples;
       const Eigen::Vector3d V = (Y - Y0) / dt;
       const DissipationDensity D =
-          EvaluateDissipation(lambdaHat, N, V, setup.coefficients, explicitNormals && order >= 2);
+          EvaluateDissipation(lambdaHat, N, V, setup.coefficients,
+                              setup.HessianKind(explicitNormals && order >= 2));
       out->value += q.weight * dt * D.R;
       if (setup.coefficients.mu > 0.0 && lambdaHat > 0.0)
         out->maxCoulombRatio = std::max(

@@ -54,6 +54,15 @@ struct DissipationSetup {
   DissipationCoefficients coefficients;
   double maxAlignment = 0.0;               ///< m, the collider's
   bool frictionWithColliderNormal = true;  ///< split on N_B (true) or −N_A (false)
+  /// ExplicitNormals Hessians with the Coulomb term's isotropic majorizer
+  /// (DissipationHessian::Isotropic) instead of the exact curvature: the contact pipeline sets
+  /// it when the caller asks for projected Hessians (the globalization phase of projected Newton).
+  bool isotropicFrictionHessian = false;
+  /// The kind of EvaluateDissipation Hessian a sample needs (`wanted`: a Hessian at all).
+  DissipationHessian HessianKind(bool wanted) const {
+    if (!wanted) return DissipationHessian::None;
+    return isotropicFrictionHessian ? DissipationHessian::Isotropic : DissipationHessian::Exact;
+  }
 };
 
 struct RigidPairDissipation {

@@ -302,7 +302,8 @@ void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput
         return;
       const Eigen::Vector3d N = SplitDirection(f0.gradient, NA0, ds);
       const Eigen::Vector3d V = (pbc.X - pb0.X) / ds.dt;
-      const DissipationDensity D = EvaluateDissipation(lambdaHat, N, V, ds.coefficients, order >= 2);
+      const DissipationDensity D = EvaluateDissipation(lambdaHat, N, V, ds.coefficients,
+                                                       ds.HessianKind(order >= 2));
       ++out->dissipativeSamples;
       out->dissipationValue += w * ds.dt * D.R;
       if (ds.coefficients.mu > 0.0)
@@ -332,7 +333,7 @@ void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput
     if (lambdaHat == 0.0) return;
     const Eigen::Vector3d N = SplitDirection(field.gradient, NA, ds);
     const Eigen::Vector3d V = (pb.X - pb0.X) / ds.dt;
-    const DissipationDensity D = EvaluateDissipation(lambdaHat, N, V, ds.coefficients, false);
+    const DissipationDensity D = EvaluateDissipation(lambdaHat, N, V, ds.coefficients, DissipationHessian::None);
     ++out->dissipativeSamples;
     out->dissipationValue += w * ds.dt * D.R;
     if (ds.coefficients.mu > 0.0)

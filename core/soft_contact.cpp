@@ -240,7 +240,8 @@ void EvaluateSoftRigidPair(const SoftPairInput& in, const RigidBodyModel& B, con
       const Eigen::Vector3d Y0 = b0->Rinv * (y0 - b0->p);
       const Eigen::Vector3d V = (Y - Y0) / ds.dt;
       const DissipationDensity D =
-          EvaluateDissipation(lambdaHat, N, V, ds.coefficients, explicitNormals && order >= 2);
+          EvaluateDissipation(lambdaHat, N, V, ds.coefficients,
+                              ds.HessianKind(explicitNormals && order >= 2));
       ++out->dissipativeSamples;
       fc.dissipationActive = true;
       out->dissipationValue += s.weight * ds.dt * D.R;

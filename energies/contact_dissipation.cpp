@@ -25,7 +25,7 @@ FrictionRamp EvaluateFrictionRamp(double V, double vf) {
 
 DissipationDensity EvaluateDissipation(double lambdaHat, const Eigen::Vector3d& N,
                                        const Eigen::Vector3d& V, const DissipationCoefficients& c,
-                                       bool withHessian) {
+                                       DissipationHessian hessian) {
   DissipationDensity d;
   const double Vn = V.dot(N);
   const Eigen::Vector3d Vt = V - Vn * N;
@@ -36,11 +36,11 @@ DissipationDensity EvaluateDissipation(double lambdaHat, const Eigen::Vector3d& 
   d.viscousTangential = -lambdaHat * c.ct * Vt;
   d.viscousNormal = -lambdaHat * c.cn * Vn * N;
   d.gradient = -(d.coulomb + d.viscousTangential + d.viscousNormal);
-  if (withHessian) {
+  if (hessian != DissipationHessian::None) {
     // ∂²/∂V² of μρ(‖PV‖) = μ (ρ'/V_t P + (ρ'' − ρ'/V_t) t tᵀ), t = V_t/V_t; P = 1 − N Nᵀ.
     const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - N * N.transpose();
     d.hessian = lambdaHat * ((c.mu * f.slope + c.ct) * P + c.cn * N * N.transpose());
-    if (speed > 0.0) {
+    if (speed > 0.0 && hessian == DissipationHessian::Exact) {
       const Eigen::Vector3d t = Vt / speed;
       d.hessian += lambdaHat * c.mu * f.curvature * t * t.transpose();
     }

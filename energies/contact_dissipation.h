@@ -38,6 +38,20 @@ struct FrictionRamp {
 };
 FrictionRamp EvaluateFrictionRamp(double V, double vf);
 
+/// Which second derivative of R EvaluateDissipation returns.
+enum class DissipationHessian {
+  None,       ///< value and gradient only
+  Exact,      ///< ∂²R/∂V_rel²
+  /// ∂²R/∂V_rel² with the Coulomb term's curvature along the slip direction, μ λ̂_n ρ''(V_t),
+  /// raised to the in-plane value μ λ̂_n ρ'(V_t)/V_t: H_C = μ λ̂_n (ρ'(V_t)/V_t) P. Since
+  /// ρ'(V)/V >= ρ''(V) for every V (ρ' is concave on [0, V_f) and constant beyond), H_C − exact
+  /// is positive semi-definite: the quadratic model majorizes μ ρ(‖V_t‖) (the iteratively
+  /// reweighted least-squares model of a regularized |V_t|). Projected Newton uses it far from
+  /// the solution, where the exact model, flat along the slip (ρ'' = 0 for V_t >= V_f), sends a
+  /// sliding sample across the stick region V_t < V_f in one step.
+  Isotropic,
+};
+
 /// R, ∂R/∂V_rel = −T_diss and ∂²R/∂V_rel² (symmetric positive semi-definite) at fixed λ̂_n, N.
 struct DissipationDensity {
   double R = 0.0;                                  ///< [Pa·m/s]
@@ -49,7 +63,7 @@ struct DissipationDensity {
 };
 DissipationDensity EvaluateDissipation(double lambdaHat, const Eigen::Vector3d& N,
                                        const Eigen::Vector3d& V, const DissipationCoefficients& c,
-                                       bool withHessian);
+                                       DissipationHessian hessian);
 
 /// ∂R/∂V_rel for any scalar type (double or an automatic-differentiation jet), for callers that
 /// differentiate through λ̂_n and N as well. `value` extracts the double value of a T.

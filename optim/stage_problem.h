@@ -7,7 +7,10 @@
 
 namespace superdex {
 
-/// How local (per-element) Hessians are made positive semi-definite before assembly.
+/// How local (per-element) Hessians are made positive semi-definite before assembly. A projected
+/// Hessian is a model for globalization, not the exact one: a problem may also replace a convex
+/// term's exact Hessian by a majorizing one there (the contact pipeline does for Coulomb friction,
+/// energies/contact_dissipation.h: DissipationHessian::Isotropic). None asks for the exact Hessian.
 enum class PsdProjection {
   None,   ///< exact Hessian (may be indefinite)
   Clamp,  ///< negative eigenvalues set to zero

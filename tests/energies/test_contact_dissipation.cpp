@@ -52,7 +52,7 @@ TEST_CASE("dissipation potential: gradient, Hessian and tractions against the sp
     Eigen::Vector3d V = Eigen::Vector3d(n01(rng), n01(rng), n01(rng));
     V -= V.dot(N) * N;
     V = V.normalized() * scales[trial % 5] + 0.02 * n01(rng) * N;
-    const DissipationDensity d = EvaluateDissipation(lambda, N, V, c, true);
+    const DissipationDensity d = EvaluateDissipation(lambda, N, V, c, DissipationHessian::Exact);
     // T_diss = −∂R/∂V, split as the spec writes it.
     const double Vn = V.dot(N);
     const Eigen::Vector3d Vt = V - Vn * N;
@@ -63,7 +63,7 @@ TEST_CASE("dissipation potential: gradient, Hessian and tractions against the sp
     CHECK(d.coulomb.norm() <= c.mu * lambda * (1 + 1e-12));
     const auto check = test::CheckDerivatives(
         [&](const Eigen::VectorXd& dv) {
-          return EvaluateDissipation(lambda, N, V + dv, c, false).R;
+          return EvaluateDissipation(lambda, N, V + dv, c, DissipationHessian::None).R;
         },
         d.gradient, d.hessian, 1e-4 * std::max(1e-3, Vt.norm()));
     INFO("trial " << trial << " |Vt| " << Vt.norm());
@@ -76,10 +76,23 @@ TEST_CASE("dissipation potential: gradient, Hessian and tractions against the sp
     // R is convex in V: the Hessian is positive semi-definite.
     CHECK(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(d.hessian).eigenvalues().minCoeff() >
           -1e-9 * d.hessian.norm());
+    // The isotropic model: same value and gradient; its Hessian majorizes the exact one (the
+    // difference is μλ(ρ'/V_t − ρ'') t tᵀ, positive semi-definite, zero without slip), and on
+    // the slip direction it is μλ ρ'(V_t)/V_t + c_t λ.
+    const DissipationDensity iso = EvaluateDissipation(lambda, N, V, c, DissipationHessian::Isotropic);
+    CHECK(iso.R == d.R);
+    CHECK(iso.gradient == d.gradient);
+    const Eigen::Matrix3d excess = iso.hessian - d.hessian;
+    CHECK(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(excess).eigenvalues().minCoeff() >
+          -1e-9 * d.hessian.norm());
+    const Eigen::Vector3d t = Vt.normalized();
+    CHECK(t.dot(iso.hessian * t) == Approx(lambda * (c.mu * r.slope + c.ct)).epsilon(1e-12));
+    CHECK(t.dot(excess * t) == Approx(-lambda * c.mu * r.curvature).epsilon(1e-9));
   }
   // V_t = 0: no Coulomb traction, finite Hessian 2μλ/V_f on the tangent plane.
   const Eigen::Vector3d N(0, 0, 1);
-  const DissipationDensity d0 = EvaluateDissipation(lambda, N, Eigen::Vector3d(0, 0, -0.3), c, true);
+  const DissipationDensity d0 = EvaluateDissipation(lambda, N, Eigen::Vector3d(0, 0, -0.3), c,
+                                                    DissipationHessian::Exact);
   CHECK(d0.coulomb.norm() == 0.0);
   CHECK(d0.hessian(0, 0) == Approx(lambda * (2 * c.mu / c.vf + c.ct)));
   CHECK(d0.hessian(2, 2) == Approx(lambda * c.cn));
