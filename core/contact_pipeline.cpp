@@ -251,6 +251,35 @@ DissipationSetup ContactPipeline::MakeSetup(const PairContactParams& params,
   return setup;
 }
 
+void ContactPipeline::StepLimits(const std::vector<RigidPose>& poses,
+                                 const std::vector<RigidPose>& trial,
+                                 std::vector<double>* alpha) {
+  const std::vector<RigidBodyModel>& models = *models_;
+  alpha->assign(models.size(), 1.0);
+  FindPairs(trial, nullptr, nullptr, nullptr);
+  pairLimits_.resize(pairs_.size());
+  auto evaluate = [&](size_t k) {
+    const ContactPair& cp = pairs_[k];
+    pairLimits_[k] =
+        RigidPairStepLimit(models[cp.colliding], poses[cp.colliding], trial[cp.colliding],
+                           models[cp.collider], poses[cp.collider], trial[cp.collider],
+                           PenaltyOf(cp.params));
+  };
+  size_t work = 0;
+  for (const ContactPair& p : pairs_) work += models[p.colliding].samples.size();
+  if (work >= kParallelSampleWork && pairs_.size() > 1) {
+    tbb::parallel_for(size_t(0), pairs_.size(), evaluate);
+  } else {
+    for (size_t k = 0; k < pairs_.size(); ++k) evaluate(k);
+  }
+  for (size_t k = 0; k < pairs_.size(); ++k) {
+    double& a = (*alpha)[pairs_[k].colliding];
+    double& b = (*alpha)[pairs_[k].collider];
+    a = std::min(a, pairLimits_[k]);
+    b = std::min(b, pairLimits_[k]);
+  }
+}
+
 double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
                                  const std::vector<int>& dofOffset, int order,
                                  PsdProjection projection, Eigen::VectorXd* gradient,

@@ -97,6 +97,13 @@ class ContactPipeline {
                   const std::vector<RigidStageStart>* stageStart = nullptr,
                   const SoftView* soft = nullptr);
 
+  /// Step limits of Newton's global phase: (*alpha)[i] <= 1 the largest fraction of rigid body
+  /// i's move from `poses` to `trial` that RigidPairStepLimit allows for every pair it is part
+  /// of, both moving by the same fraction (1 for bodies without such a pair). Pairs with soft
+  /// actors impose no limit. Pairs are found at `trial`; evaluated in parallel, reduced by min.
+  void StepLimits(const std::vector<RigidPose>& poses, const std::vector<RigidPose>& trial,
+                  std::vector<double>* alpha);
+
   /// Every active contact sample at the given poses (serial; for reporting). Records carry actor
   /// indices (see Configure) and, for soft colliding actors, the boundary face.
   void CollectSamples(const std::vector<RigidPose>& poses,
@@ -126,6 +133,7 @@ class ContactPipeline {
   std::vector<ContactPair> pairs_;
   std::vector<RigidPairPenalty> results_;
   std::vector<RigidPairDissipation> dissipationResults_;
+  std::vector<double> pairLimits_;
   const std::vector<SoftBodyModel>* softModels_ = nullptr;
   std::vector<int> rigidActor_, softActor_;
   std::vector<SoftContactPair> softPairs_;

@@ -1,5 +1,6 @@
 #include "core/rigid_contact.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/rigid_math.h"
@@ -118,6 +119,47 @@ void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& a, const
                             &out->gradient, order >= 2 ? &out->hessian : nullptr);
     }
   }
+}
+
+double RigidPairStepLimit(const RigidBodyModel& A, const RigidPose& a0, const RigidPose& a1,
+                          const RigidBodyModel& B, const RigidPose& b0, const RigidPose& b1,
+                          const PenaltyParams& params) {
+  // Samples with φ₁ >= δ − ε/2 have s₁ <= ε/2 and cannot break the limit.
+  const double phiLimit = params.delta - 0.5 * params.eps;
+  const double reach = B.collider.boundingRadius + phiLimit;
+  const Eigen::Matrix3d RBt1 = b1.R.transpose();
+  const Eigen::Matrix3d RBtRA1 = RBt1 * a1.R;
+  const Eigen::Vector3d YA1 = RBt1 * (a1.p - b1.p);
+  const Eigen::Matrix3d RBtRA0 = b0.R.transpose() * a0.R;
+  const Eigen::Vector3d YA0 = b0.R.transpose() * (a0.p - b0.p);
+  const double L = B.collider.lipschitz;
+  double alpha = 1.0;
+  // A sample cannot break the limit unless its depth grows by more than ε/4 (cap − s₀ =
+  // max(s₀, ε/2 − s₀) for s₀ >= 0, > ε/2 for s₀ < 0), and the depth moves by at most L times the
+  // sample's displacement relative to B: |Δp_A| + θ_A r_A + |Δp_B| + θ_B (|p_A − p_B| + r_A),
+  // θ the rotation angle of each body's move, r_A = A.samplesRadius.
+  auto angle = [](const Eigen::Matrix3d& R1, const Eigen::Matrix3d& R0) {
+    return std::acos(std::clamp(0.5 * ((R1 * R0.transpose()).trace() - 1.0), -1.0, 1.0));
+  };
+  const double rA = A.samplesRadius;
+  const double moved = (a1.p - a0.p).norm() + angle(a1.R, a0.R) * rA + (b1.p - b0.p).norm() +
+                       angle(b1.R, b0.R) * ((a0.p - b0.p).norm() + rA);
+  if (L * moved <= 0.25 * params.eps) return alpha;
+  if (B.collider.Evaluate(YA1).value - L * A.samplesRadius >= phiLimit) return alpha;
+  for (const SampleCluster& c : A.sampleClusters) {
+    if (B.collider.Evaluate(YA1 + RBtRA1 * c.center).value - L * c.radius >= phiLimit) continue;
+    for (int k = c.begin; k < c.end; ++k) {
+      const Eigen::Vector3d Y1 = YA1 + RBtRA1 * A.samples[k].X;
+      if (std::isfinite(reach) && Y1.squaredNorm() >= reach * reach) continue;
+      const double s1 = params.delta - B.collider.Evaluate(Y1).value;
+      if (s1 <= 0.5 * params.eps) continue;
+      const double s0 =
+          params.delta - B.collider.Evaluate(YA0 + RBtRA0 * A.samples[k].X).value;
+      const double cap = std::max(2.0 * s0, 0.5 * params.eps);
+      if (s1 > cap) alpha = std::min(alpha, (cap - s0) / (s1 - s0));
+    }
+  }
+  return alpha;
 }
 
 }  // namespace superdex

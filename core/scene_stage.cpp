@@ -202,6 +202,26 @@ void SceneStageProblem::Commit(const Eigen::VectorXd& d) {
   if (soft_) *softX_ = softTrial_;
 }
 
+bool SceneStageProblem::LimitStep(Eigen::VectorXd* d) {
+  if (!contact_) return false;
+  for (size_t i = 0; i < models_.size(); ++i) {
+    trial_[i] = (*poses_)[i];
+    const int o = dofOffset_[i];
+    if (o < 0) continue;
+    trial_[i].p += d->segment<3>(o);
+    trial_[i].R = ExpSo3(d->segment<3>(o + 3)) * (*poses_)[i].R;
+  }
+  contact_->StepLimits(*poses_, trial_, &limits_);
+  bool changed = false;
+  for (size_t i = 0; i < models_.size(); ++i) {
+    const int o = dofOffset_[i];
+    if (o < 0 || limits_[i] >= 1.0) continue;
+    d->segment<6>(o) *= limits_[i];
+    changed = true;
+  }
+  return changed;
+}
+
 double SceneStageProblem::StepNorm(const Eigen::VectorXd& d) const {
   double norm = 0.0;
   for (size_t i = 0; i < models_.size(); ++i) {

@@ -81,6 +81,10 @@ class SceneStageProblem : public StageProblem {
   const ContactStats& LastContactStats() const { return lastStats_; }
   /// Smallest det F over the soft tets at the last Evaluate / EvaluateResidual (+∞ without).
   double LastMinDetF() const { return lastMinDetF_; }
+  /// Scales each dynamic rigid body's [δp, δθ] by its ContactPipeline::StepLimits fraction
+  /// (the move's sample depths may at most double, or reach ε/2; core/rigid_contact.h). Soft
+  /// dofs are left as they are.
+  bool LimitStep(Eigen::VectorXd* d) override;
   /// max over bodies of ‖δp‖∞ and ‖δθ‖ times the body's RMS radius √(tr J / m), and over soft
   /// nodes of ‖δx‖∞ [m].
   double StepNorm(const Eigen::VectorXd& d) const override;
@@ -104,6 +108,7 @@ class SceneStageProblem : public StageProblem {
   ContactPipeline* contact_;
   std::vector<RigidPose>* poses_;
   std::vector<RigidPose> trial_;
+  std::vector<double> limits_;
   StageWorkspace ownWorkspace_;
   StageWorkspace* ws_;  // the caller's, or ownWorkspace_
   std::vector<Eigen::Triplet<double>>& triplets_;

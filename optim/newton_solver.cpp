@@ -137,7 +137,7 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
   if (std::string m = ValidateSolverInput(params, timeScale); !m.empty()) return diverge(m);
 
   const int n = problem.NumDofs();
-  Eigen::VectorXd g(n), d(n), step(n);
+  Eigen::VectorXd g(n), d(n), step(n), limited(n);
   SparseMatrix H, shifted;
   std::vector<Eigen::Index> diagonal;
   SymmetricSolver ownSolver;
@@ -299,23 +299,32 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
       return st;
     }
 
-    // --- Line search along d. No allocation here: `step` is preallocated.
+    // --- The problem may shorten d blockwise (StageProblem::LimitStep); the shortened step is
+    // used if it is still a descent direction.
     t0 = Clock::now();
+    limited = d;
+    const bool isLimited = params.lineSearch != LineSearchKind::None && !(exact && tryExact) &&
+                           problem.LimitStep(&limited) && g.dot(limited) < 0.0;
+    const Eigen::VectorXd& dir = isLimited ? limited : d;
+    const double dirSlope = isLimited ? g.dot(limited) : slope;
+    if (isLimited) ++st.limitedSteps;
+
+    // --- Line search along dir. No allocation here: `step` is preallocated.
     double alpha = 1.0;
     double trialValue = std::numeric_limits<double>::quiet_NaN();
     bool accepted = false;
     if (params.lineSearch == LineSearchKind::None) {
-      trialValue = problem.Value(d);
+      trialValue = problem.Value(dir);
       accepted = std::isfinite(trialValue);
-      step = d;
+      step = dir;
     } else {
       for (int trial = 0; trial < params.maxLineSearchSteps; ++trial) {
-        step.noalias() = alpha * d;
+        step.noalias() = alpha * dir;
         trialValue = problem.Value(step);
         // Non-finite values (e.g. inverted elements) are rejections; comparisons with NaN fail.
         if (std::isfinite(trialValue) &&
-            (trialValue <= f + params.armijoConstant * alpha * slope ||
-             withinRoundoff(trialValue, alpha))) {
+            (trialValue <= f + params.armijoConstant * alpha * dirSlope ||
+             withinRoundoff(trialValue, alpha * dirSlope / slope))) {
           accepted = true;
           break;
         }
@@ -327,7 +336,7 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
       problem.Commit(step);
       st.finalValue = trialValue;
     }
-    tryExact = accepted && alpha == 1.0;
+    tryExact = accepted && alpha == 1.0 && !isLimited;
     st.lineSearchSeconds += SecondsSince(t0);
     if (!accepted) {
       std::ostringstream s;

@@ -23,7 +23,11 @@
 //      When one passes, the full step d is still committed if f(s ⊕ d) <= f(s) (or lies in the
 //      round-off band below), so the returned state includes the last Newton correction; status
 //      Converged.
-//   4. Line search (Armijo): α = 1, 1·β, 1·β², ... (β = backtrackFactor); accept the first α with
+//   4. Step limit: d' = d shortened blockwise by problem.LimitStep (contact: no sample's depth more
+//      than doubles in one step, core/rigid_contact.h), used in place of d if g·d' < 0; an
+//      iteration on a limited step is not a full step for the adaptive projection. Skipped with
+//      LineSearchKind::None.
+//      Line search (Armijo): α = 1, 1·β, 1·β², ... (β = backtrackFactor); accept the first α with
 //        f(s ⊕ αd) <= f(s) + c α g·d                                  (c = armijoConstant)
 //      or, as a round-off band, |f(s ⊕ αd) − f(s)| <= 1e-14 |f(s)| while the predicted change
 //      α|g·d| (≈ α‖d‖²_H̃: the step is tiny in the Hessian norm) is also <= 1e-14 |f(s)|, i.e. when
@@ -74,6 +78,8 @@ struct SolverStats {
   int iterations = 0;
   int lineSearchSteps = 0;             ///< rejected line-search trials, summed over iterations
   int regularizations = 0;             ///< times the Hessian needed a diagonal shift
+  int limitedSteps = 0;                ///< iterations that took the problem's shortened step
+                                       ///< (StageProblem::LimitStep)
   double initialGradientNorm = 0.0;    ///< ‖g‖∞ at the first iterate
   double finalGradientNorm = 0.0;      ///< ‖g‖∞ at the last evaluated iterate
   double finalDecrement = 0.0;         ///< ½ g^T H^-1 g at the last iteration [J]

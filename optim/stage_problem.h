@@ -66,6 +66,12 @@ class StageProblem {
     return Eigen::MatrixXd::Identity(d.size(), d.size());
   }
 
+  /// Newton's global phase: may shorten the step d blockwise where the problem knows that its
+  /// local model is unreliable (e.g. a contact about to be crossed far deeper than the model
+  /// sees). Returns true if d was changed. The solvers use the shortened step only when it is
+  /// still a descent direction, and test convergence on the unshortened one. Default: no change.
+  virtual bool LimitStep(Eigen::VectorXd* /*d*/) { return false; }
+
   /// A norm of a step in length units [m], used for the step convergence test. Default: max-norm.
   virtual double StepNorm(const Eigen::VectorXd& d) const { return d.lpNorm<Eigen::Infinity>(); }
 };

@@ -125,3 +125,45 @@ TEST_CASE("rigid pair penalty: derivatives through both retractions", "[core][gr
     CheckPair(c, p, 3);
   }
 }
+
+TEST_CASE("Step limit: a sample's penetration depth may at most double (or reach eps/2) per step",
+          "[core][contact]") {
+  PairCase c{Build(Sphere(0.05, 2), true), Build(Box({1, 1, 0.1}, 2), false), {}, {}, false};
+  c.b.p = Eigen::Vector3d(0, 0, -0.1);  // top face at z = 0
+  PenaltyParams p;                      // ε = 5 mm, δ = 1 mm
+  // The lowest sample's penetration depth s = δ − φ at a centre height z (translation only).
+  double lowest = INFINITY;
+  for (const SurfaceSample& q : c.A.samples) lowest = std::min(lowest, q.X.z());
+  auto depth = [&](double z) { return p.delta - (z + lowest); };
+  RigidPose to = c.a;
+  // A small move: no limit.
+  c.a.p = Eigen::Vector3d(0, 0, -lowest + 0.002);
+  to.p = c.a.p - Eigen::Vector3d(0, 0, 0.001);
+  CHECK(RigidPairStepLimit(c.A, c.a, to, c.B, c.b, c.b, p) == 1.0);
+  // From 2 mm above the surface to 20 mm deep: the depth may reach ε/2 = 2.5 mm. φ is linear in
+  // a translation normal to the face, so the fraction is exact: s(α) = ε/2.
+  to.p = c.a.p - Eigen::Vector3d(0, 0, 0.022);
+  double alpha = RigidPairStepLimit(c.A, c.a, to, c.B, c.b, c.b, p);
+  const double z0 = c.a.p.z(), z1 = to.p.z();
+  CHECK(depth(z0 + alpha * (z1 - z0)) == Approx(0.5 * p.eps).epsilon(1e-12));
+  // From 3 mm deep (lowest sample s₀ = 4 mm) to 20 mm deep: every sample's depth within
+  // max(2 s₀, ε/2), and one of them exactly at its cap (the binding sample need not be the
+  // lowest: a shallower sample has a tighter cap).
+  c.a.p.z() = -lowest - 0.003;
+  alpha = RigidPairStepLimit(c.A, c.a, to, c.B, c.b, c.b, p);
+  CHECK(alpha < 1.0);
+  const double zA = c.a.p.z() + alpha * (to.p.z() - c.a.p.z());
+  double worst = -INFINITY;
+  for (const SurfaceSample& q : c.A.samples) {
+    const double s0 = p.delta - (c.a.p.z() + q.X.z()), s = p.delta - (zA + q.X.z());
+    worst = std::max(worst, s - std::max(2 * s0, 0.5 * p.eps));
+  }
+  CHECK(std::abs(worst) < 1e-12);
+  CHECK(depth(zA) > 0.005);  // the lowest sample still went deeper than ε
+  // A sideways slide at constant depth is not limited however long.
+  to.p = c.a.p + Eigen::Vector3d(0.3, 0, 0);
+  CHECK(RigidPairStepLimit(c.A, c.a, to, c.B, c.b, c.b, p) == 1.0);
+  // Moving away is not limited.
+  to.p = c.a.p + Eigen::Vector3d(0, 0, 0.05);
+  CHECK(RigidPairStepLimit(c.A, c.a, to, c.B, c.b, c.b, p) == 1.0);
+}
