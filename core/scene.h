@@ -235,9 +235,11 @@ class Scene {
     std::vector<std::vector<SoftBodyState>> softHistory;
     std::vector<double> historyTimes;
     double time = 0.0;
+    int explicitFirstStages = 0;
   };
   Snapshot Save() const {
-    return {states_, softStates_, history_, softHistory_, historyTimes_, time_};
+    return {states_, softStates_, history_, softHistory_, historyTimes_, time_,
+            explicitFirstStages_};
   }
   void Restore(const Snapshot& s) {
     states_ = s.states;
@@ -246,6 +248,7 @@ class Scene {
     softHistory_ = s.softHistory;
     historyTimes_ = s.historyTimes;
     time_ = s.time;
+    explicitFirstStages_ = s.explicitFirstStages;
   }
   int HistoryBlocks() const;
   // The packed-state layout: calls visit(block, offset, actor ref, actor index) for every dynamic
@@ -305,6 +308,8 @@ class Scene {
   };
   ResetOnCopy prepared_;
   bool hasDissipation_ = false;  // HasDissipation(), cached by Prepare
+  // Residual modes: stages left that start from the explicit-normals minimizer (SolveStage).
+  int explicitFirstStages_ = 0;
   std::vector<int> dofOffset_;
   int numDofs_ = 0;
   ContactPipeline pipeline_;
