@@ -41,6 +41,8 @@ void AddSolverWork(const SolverStats& from, SolverStats* to) {
   to->assemblySeconds += from.assemblySeconds;
   to->factorizationSeconds += from.factorizationSeconds;
   to->lineSearchSeconds += from.lineSearchSeconds;
+  to->krylovIterations += from.krylovIterations;
+  to->krylovFallbacks += from.krylovFallbacks;
 }
 
 int Severity(StageStatus s) {
@@ -405,6 +407,7 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
           st.iterations = 0;
           st.lineSearchSteps = st.regularizations = st.limitedSteps = 0;
           st.assemblySeconds = st.factorizationSeconds = st.lineSearchSeconds = 0.0;
+          st.krylovIterations = st.krylovFallbacks = 0;
           AddSolverWork(spent, &st);
           if (!haveExplicit) AddSolverWork(second, &st);
           st.message = "residual solve failed (" + why + "); stage re-solved with explicit "
@@ -494,6 +497,8 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
     rep.assemblySeconds += st.assemblySeconds;
     rep.factorizationSeconds += st.factorizationSeconds;
     rep.lineSearchSeconds += st.lineSearchSeconds;
+    rep.krylovIterations += st.krylovIterations;
+    rep.krylovFallbacks += st.krylovFallbacks;
     rep.finalGradientNorm = std::max(rep.finalGradientNorm, st.finalGradientNorm);
     if (Severity(st.status) > Severity(rep.status)) {
       rep.status = st.status;

@@ -65,6 +65,8 @@ struct StepReport {
   double assemblySeconds = 0.0;       ///< stage solvers: energy/residual and derivative assembly
   double factorizationSeconds = 0.0;  ///< stage solvers: linear solves (Cholesky / LU)
   double lineSearchSeconds = 0.0;     ///< stage solvers: line-search evaluations
+  int krylovIterations = 0;           ///< iterative linear solves (LinearSolverKind): iterations
+  int krylovFallbacks = 0;            ///< iterative linear solves that fell back to the direct one
   double minDetF = INFINITY;          ///< smallest det F over the soft tets at the end of the step
                                       ///< (<= 0: an inverted tet); +∞ without soft actors
 };

@@ -1,5 +1,7 @@
 // Symmetric solves: a dense Cholesky for small systems (<= 48 unknowns); otherwise CHOLMOD
-// supernodal LLᵀ first, Eigen's SimplicialLDLT as the fallback.
+// supernodal LLᵀ first, Eigen's SimplicialLDLT as the fallback; or (LinearSolverKind) Jacobi-
+// preconditioned conjugate gradients with those as the fallback. Unsymmetric: UMFPACK, or Eigen's
+// BiCGSTAB with a Jacobi preconditioner and UMFPACK as the fallback.
 //
 // Both backends read only the lower triangle of H (the full symmetric matrix is stored). The
 // symbolic analysis (fill-reducing ordering, elimination tree, supernode structure) depends only
@@ -10,11 +12,13 @@
 #include <malloc.h>
 
 #include <mutex>
+#include <sstream>
 
 #include <Eigen/Cholesky>
 #include <Eigen/CholmodSupport>
 #include <Eigen/LU>
 #include <Eigen/UmfPackSupport>
+#include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <limits>
@@ -25,7 +29,12 @@ namespace {
 
 using SparseMatrix = Eigen::SparseMatrix<double>;
 
-enum class BackendKind { None, Dense, Cholmod, Ldlt };
+enum class BackendKind { None, Dense, Cholmod, Ldlt, Pcg };
+
+bool UseIterative(const LinearSolverSettings& s, Eigen::Index n) {
+  return s.kind == LinearSolverKind::Iterative ||
+         (s.kind == LinearSolverKind::Auto && n >= kAutoIterativeUnknowns);
+}
 
 // Below this size a dense Cholesky is cheaper than CHOLMOD's setup (a single rigid body: 6 dofs).
 constexpr Eigen::Index kDenseLimit = 48;
@@ -43,6 +52,11 @@ struct SymmetricSolver::Impl {
   bool ldltAnalyzed = false;     // ldlt holds a valid analysis of the stored pattern
   BackendKind backend = BackendKind::None;
   SparseMatrix compressed;       // scratch copy when the caller passes an uncompressed matrix
+  LinearSolverSettings settings;
+  LinearSolveInfo info;
+  // Conjugate gradients: the matrix, its inverse diagonal, and the iteration's vectors.
+  SparseMatrix matrix;
+  Eigen::VectorXd invDiagonal, r, z, p, q;
 
   bool SamePattern(const SparseMatrix& H) const {
     if (H.rows() != rows || static_cast<Eigen::Index>(outer.size()) != H.outerSize() + 1 ||
@@ -103,6 +117,14 @@ bool SymmetricSolver::Factorize(const Eigen::SparseMatrix<double>& H) {
   }
   // A non-finite entry cannot be factorized meaningfully by either backend.
   if (!Eigen::Map<const Eigen::VectorXd>(A->valuePtr(), A->nonZeros()).allFinite()) return false;
+  if (UseIterative(s.settings, A->rows()) && A->rows() > kDenseLimit) {
+    s.matrix = *A;
+    s.invDiagonal = s.matrix.diagonal();
+    if (!(s.invDiagonal.array() > 0.0).all()) return false;  // not positive definite
+    s.invDiagonal = s.invDiagonal.cwiseInverse();
+    s.backend = BackendKind::Pcg;
+    return true;
+  }
   if (A->rows() <= kDenseLimit) {
     s.dense.compute(Eigen::MatrixXd(*A));
     if (s.dense.info() == Eigen::Success) {
@@ -123,11 +145,55 @@ bool SymmetricSolver::Factorize(const Eigen::SparseMatrix<double>& H) {
   return false;
 }
 
+void SymmetricSolver::SetSettings(const LinearSolverSettings& settings) {
+  impl_->settings = settings;
+}
+
+const LinearSolveInfo& SymmetricSolver::LastSolve() const { return impl_->info; }
+
 Eigen::VectorXd SymmetricSolver::Solve(const Eigen::VectorXd& b) const {
+  Impl& s = *impl_;
+  s.info = LinearSolveInfo();
+  if (s.backend == BackendKind::Pcg) {
+    // Preconditioned conjugate gradients (M = diag(H)), x₀ = 0.
+    const Eigen::Index n = b.size();
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    s.info.iterative = true;
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+    const double bNorm = b.norm();
+    if (bNorm == 0.0) return x;
+    s.r = b;
+    s.z = s.invDiagonal.cwiseProduct(s.r);
+    s.p = s.z;
+    double rz = s.r.dot(s.z);
+    const double stop = s.settings.tolerance * bNorm;
+    for (int k = 0; k < s.settings.maxIterations; ++k) {
+      s.q.noalias() = s.matrix * s.p;
+      const double curvature = s.p.dot(s.q);
+      s.info.iterations = k + 1;
+      // pᵀHp <= 0: H is not positive definite (what a failed Cholesky reports).
+      if (!(curvature > 0.0)) return Eigen::VectorXd::Constant(n, nan);
+      const double a = rz / curvature;
+      x += a * s.p;
+      s.r -= a * s.q;
+      if (s.r.norm() <= stop) return x;
+      s.z = s.invDiagonal.cwiseProduct(s.r);
+      const double rzNext = s.r.dot(s.z);
+      s.p = s.z + (rzNext / rz) * s.p;
+      rz = rzNext;
+    }
+    // Not converged: the direct solve of the same matrix.
+    s.info.fellBack = true;
+    if (!s.SamePattern(s.matrix)) s.StorePattern(s.matrix);
+    if (s.FactorizeCholmod(s.matrix)) return s.cholmod.solve(b);
+    if (s.FactorizeLdlt(s.matrix)) return s.ldlt.solve(b);
+    return Eigen::VectorXd::Constant(n, nan);
+  }
   switch (impl_->backend) {
     case BackendKind::Dense: return impl_->dense.solve(b);
     case BackendKind::Cholmod: return impl_->cholmod.solve(b);
     case BackendKind::Ldlt: return impl_->ldlt.solve(b);
+    case BackendKind::Pcg:
     case BackendKind::None: break;
   }
   // No valid factorization (never factorized, or the last Factorize failed and overwrote it).
@@ -139,6 +205,7 @@ const char* SymmetricSolver::Backend() const {
     case BackendKind::Dense: return "dense";
     case BackendKind::Cholmod: return "cholmod";
     case BackendKind::Ldlt: return "ldlt";
+    case BackendKind::Pcg: return "pcg";
     case BackendKind::None: break;
   }
   return "none";
@@ -154,6 +221,23 @@ struct UnsymmetricSolver::Impl {
   // UMFPACK's solve reads the matrix again (iterative refinement) and Eigen's wrapper keeps a
   // reference to it: the solver owns a copy, so that factors outlive the caller's matrix.
   SparseMatrix matrix;
+  LinearSolverSettings settings;
+  LinearSolveInfo info;
+  bool iterative = false;  // the last Factorize prepared BiCGSTAB, not the LU
+  bool luValid = false;    // lu holds the factors of `matrix`
+  Eigen::BiCGSTAB<SparseMatrix, Eigen::DiagonalPreconditioner<double>> krylov;
+
+  bool FactorizeLu() {
+    const bool same = SamePattern(matrix);
+    if (!same) {
+      lu.analyzePattern(matrix);
+      outer.assign(matrix.outerIndexPtr(), matrix.outerIndexPtr() + matrix.outerSize() + 1);
+      inner.assign(matrix.innerIndexPtr(), matrix.innerIndexPtr() + matrix.nonZeros());
+    }
+    lu.factorize(matrix);
+    luValid = lu.info() == Eigen::Success;
+    return luValid;
+  }
 
   bool SamePattern(const SparseMatrix& J) const {
     return static_cast<Eigen::Index>(outer.size()) == J.outerSize() + 1 &&
@@ -204,20 +288,73 @@ bool UnsymmetricSolver::Factorize(const Eigen::SparseMatrix<double>& J) {
     const Eigen::VectorXd pivots = s.denseLu.matrixLU().diagonal().cwiseAbs();
     return pivots.minCoeff() > 1e-14 * std::max(pivots.maxCoeff(), 1e-300);
   }
-  const bool same = s.SamePattern(J);
   s.matrix = J;
   s.matrix.makeCompressed();
-  if (!same) {
-    s.lu.analyzePattern(s.matrix);
-    s.outer.assign(J.outerIndexPtr(), J.outerIndexPtr() + J.outerSize() + 1);
-    s.inner.assign(J.innerIndexPtr(), J.innerIndexPtr() + J.nonZeros());
+  s.luValid = false;
+  s.iterative = UseIterative(s.settings, J.rows());
+  if (s.iterative) {
+    if (!Eigen::Map<const Eigen::VectorXd>(s.matrix.valuePtr(), s.matrix.nonZeros()).allFinite())
+      return false;
+    s.krylov.setTolerance(s.settings.tolerance);
+    s.krylov.setMaxIterations(s.settings.maxIterations);
+    s.krylov.compute(s.matrix);
+    return true;
   }
-  s.lu.factorize(s.matrix);
-  return s.lu.info() == Eigen::Success;
+  return s.FactorizeLu();
 }
 
+void UnsymmetricSolver::SetSettings(const LinearSolverSettings& settings) {
+  impl_->settings = settings;
+}
+
+const LinearSolveInfo& UnsymmetricSolver::LastSolve() const { return impl_->info; }
+
 Eigen::VectorXd UnsymmetricSolver::Solve(const Eigen::VectorXd& b) {
-  return impl_->dense ? Eigen::VectorXd(impl_->denseLu.solve(b)) : Eigen::VectorXd(impl_->lu.solve(b));
+  Impl& s = *impl_;
+  s.info = LinearSolveInfo();
+  if (s.dense) return s.denseLu.solve(b);
+  if (s.iterative && !s.luValid) {
+    s.info.iterative = true;
+    Eigen::VectorXd x = s.krylov.solve(b);
+    s.info.iterations = static_cast<int>(s.krylov.iterations());
+    if (s.krylov.info() == Eigen::Success && x.allFinite()) return x;
+    // Not converged, or broken down: the LU of the same matrix (kept for further solves).
+    s.info.fellBack = true;
+    if (!s.FactorizeLu())
+      return Eigen::VectorXd::Constant(b.size(), std::numeric_limits<double>::quiet_NaN());
+  }
+  return s.lu.solve(b);
+}
+
+const char* ToString(LinearSolverKind kind) {
+  switch (kind) {
+    case LinearSolverKind::Auto: return "auto";
+    case LinearSolverKind::Direct: return "direct";
+    case LinearSolverKind::Iterative: return "iterative";
+  }
+  return "?";
+}
+
+bool ParseLinearSolverKind(const std::string& name, LinearSolverKind* kind) {
+  for (LinearSolverKind k :
+       {LinearSolverKind::Auto, LinearSolverKind::Direct, LinearSolverKind::Iterative})
+    if (name == ToString(k)) {
+      *kind = k;
+      return true;
+    }
+  return false;
+}
+
+std::string Validate(const LinearSolverSettings& s) {
+  std::ostringstream m;
+  if (s.kind != LinearSolverKind::Auto && s.kind != LinearSolverKind::Direct &&
+      s.kind != LinearSolverKind::Iterative)
+    m << "linear_solver: must be auto, direct or iterative, got " << static_cast<int>(s.kind);
+  else if (!(s.tolerance > 0.0 && s.tolerance < 1.0))
+    m << "linear_tolerance: must be in (0, 1), got " << s.tolerance;
+  else if (s.maxIterations < 1)
+    m << "linear_max_iterations: must be >= 1, got " << s.maxIterations;
+  return m.str();
 }
 
 }  // namespace superdex

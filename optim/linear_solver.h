@@ -1,11 +1,52 @@
-// Sparse symmetric linear solves: CHOLMOD supernodal Cholesky, Eigen SimplicialLDLT as fallback.
+// Sparse linear solves of the stage solvers: direct (CHOLMOD supernodal Cholesky with Eigen's
+// SimplicialLDLT as fallback; UMFPACK LU) or Krylov (Jacobi-preconditioned conjugate gradients;
+// BiCGSTAB) with the direct solve as fallback.
 #pragma once
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <memory>
+#include <string>
 
 namespace superdex {
+
+/// How a stage's linear systems are solved.
+enum class LinearSolverKind {
+  /// Iterative from kAutoIterativeUnknowns unknowns up, Direct below. Measured on resting heaps of
+  /// spheres (bench/bench_scaling.cpp): the direct factors of a 3D contact graph fill in
+  /// superlinearly (1000 → 4000 spheres: 2× the time per active sample), while the Krylov solves
+  /// take 10–60 iterations there (the mass term M/Δt² keeps the stage well conditioned).
+  Auto,
+  Direct,     ///< sparse Cholesky (symmetric) / LU (unsymmetric) on every system
+  /// Jacobi-preconditioned conjugate gradients (symmetric) / BiCGSTAB (unsymmetric) to the relative
+  /// residual `tolerance`; a system not solved within `maxIterations` falls back to Direct.
+  Iterative,
+};
+const char* ToString(LinearSolverKind kind);
+/// "auto", "direct" or "iterative"; false for anything else.
+bool ParseLinearSolverKind(const std::string& name, LinearSolverKind* kind);
+
+/// Auto uses the iterative solvers from this many unknowns up (1000 rigid bodies = 6000).
+constexpr Eigen::Index kAutoIterativeUnknowns = 3000;
+
+struct LinearSolverSettings {
+  LinearSolverKind kind = LinearSolverKind::Direct;
+  double tolerance = 1e-8;  ///< Krylov: stop at ‖b − A x‖₂ <= tolerance ‖b‖₂ [-], in (0, 1)
+  int maxIterations = 500;  ///< Krylov iterations before the direct fallback, >= 1
+  bool operator==(const LinearSolverSettings& o) const {
+    return kind == o.kind && tolerance == o.tolerance && maxIterations == o.maxIterations;
+  }
+};
+/// "" if valid, else "<field>: <rule>, got <value>" with the scene file's names (linear_solver,
+/// linear_tolerance, linear_max_iterations).
+std::string Validate(const LinearSolverSettings& settings);
+
+/// What the last solve did.
+struct LinearSolveInfo {
+  bool iterative = false;     ///< a Krylov solve was run
+  int iterations = 0;         ///< its iterations
+  bool fellBack = false;      ///< it did not converge and the direct solve was used
+};
 
 /// Solves H x = b for symmetric H (full storage, compressed column). Keeps the symbolic analysis
 /// while the sparsity pattern stays the same between calls.
@@ -16,15 +57,22 @@ class SymmetricSolver {
   SymmetricSolver(const SymmetricSolver&) = delete;
   SymmetricSolver& operator=(const SymmetricSolver&) = delete;
 
+  /// Direct by default.
+  void SetSettings(const LinearSolverSettings& settings);
+
   /// Factorizes H (only its lower triangle is read). Returns false if H is not positive definite
-  /// for both backends, is empty or non-square, or has non-finite entries.
+  /// for both backends, is empty or non-square, or has non-finite entries. Iterative: keeps a copy
+  /// of H and its diagonal (the preconditioner); false if a diagonal entry is <= 0.
   bool Factorize(const Eigen::SparseMatrix<double>& H);
   /// Solves H x = b with the last factorization; all NaN if the last Factorize returned false
-  /// (a failed attempt overwrites the previous factors).
+  /// (a failed attempt overwrites the previous factors). Iterative: conjugate gradients from
+  /// x = 0; a direction of non-positive curvature (H is not positive definite) gives all NaN, as
+  /// a failed Cholesky would; no convergence within maxIterations: the direct solve.
   Eigen::VectorXd Solve(const Eigen::VectorXd& b) const;
-  /// "dense" (<= 48 unknowns), "cholmod" or "ldlt": the backend of the last factorization;
-  /// "none" if it failed.
+  /// "dense" (<= 48 unknowns), "cholmod", "ldlt" or "pcg": the backend of the last
+  /// factorization; "none" if it failed.
   const char* Backend() const;
+  const LinearSolveInfo& LastSolve() const;
 
  private:
   struct Impl;
@@ -42,10 +90,16 @@ class UnsymmetricSolver {
   UnsymmetricSolver(const UnsymmetricSolver&) = delete;
   UnsymmetricSolver& operator=(const UnsymmetricSolver&) = delete;
 
-  /// Factorizes J. Returns false if J is (numerically) singular.
+  /// Direct by default.
+  void SetSettings(const LinearSolverSettings& settings);
+
+  /// Factorizes J. Returns false if J is (numerically) singular. Iterative: keeps a copy of J and
+  /// the Jacobi preconditioner; false only for non-finite entries.
   bool Factorize(const Eigen::SparseMatrix<double>& J);
-  /// Solves with the last factorization.
+  /// Solves with the last factorization. Iterative: BiCGSTAB from x = 0; no convergence within
+  /// maxIterations (or a breakdown): the LU solve.
   Eigen::VectorXd Solve(const Eigen::VectorXd& b);
+  const LinearSolveInfo& LastSolve() const;
 
  private:
   struct Impl;

@@ -113,7 +113,7 @@ std::string Validate(const NonlinearSolverParams& p) {
     return Rule("backtrack_factor", "must be in (0, 1)", p.backtrackFactor);
   if (p.maxLineSearchSteps < 1)
     return Rule("max_line_search_steps", "must be >= 1", p.maxLineSearchSteps);
-  return "";
+  return Validate(p.linear);
 }
 
 std::string ValidateSolverInput(const NonlinearSolverParams& params, double timeScale) {
@@ -142,6 +142,13 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
   std::vector<Eigen::Index> diagonal;
   SymmetricSolver ownSolver;
   SymmetricSolver& solver = solverCache ? *solverCache : ownSolver;
+  solver.SetSettings(params.linear);
+  auto solve = [&](const Eigen::VectorXd& b) -> Eigen::VectorXd {
+    Eigen::VectorXd x = solver.Solve(b);
+    st.krylovIterations += solver.LastSolve().iterations;
+    st.krylovFallbacks += solver.LastSolve().fellBack ? 1 : 0;
+    return x;
+  };
 
   if (n == 0) {
     Clock::time_point t0 = Clock::now();
@@ -169,7 +176,7 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
       bool good = Eigen::Map<const Eigen::VectorXd>(H.valuePtr(), H.nonZeros()).allFinite() &&
                   g.allFinite() && solver.Factorize(H);
       if (good) {
-        d = -solver.Solve(g);
+        d = -solve(g);
         good = d.allFinite() && g.dot(d) < 0.0;
       }
       st.factorizationSeconds += SecondsSince(t0);
@@ -214,7 +221,7 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
     } else if (exact && tryExact) {
       ok = true;  // the exact Hessian's direction, solved above
     } else if (solver.Factorize(H)) {
-      d = -solver.Solve(g);
+      d = -solve(g);
       ok = d.allFinite() && g.dot(d) < 0.0;
     }
     if (!ok) {
@@ -243,7 +250,7 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
         for (Eigen::Index k = 0; k < n; ++k)
           shifted.valuePtr()[diagonal[k]] = H.valuePtr()[diagonal[k]] + tau;
         if (solver.Factorize(shifted)) {
-          d = -solver.Solve(g);
+          d = -solve(g);
           ok = d.allFinite() && g.dot(d) < 0.0;
         }
       }

@@ -70,6 +70,8 @@ struct NonlinearSolverParams {
   double armijoConstant = 1e-4;       ///< c in the Armijo condition
   double backtrackFactor = 0.5;       ///< α ← factor α on each rejected trial
   int maxLineSearchSteps = 40;        ///< trials before the stage is declared Diverged
+  /// The linear solves (optim/linear_solver.h); Auto: Krylov from 3000 unknowns up.
+  LinearSolverSettings linear{LinearSolverKind::Auto};
 };
 
 /// Statistics of one stage solve. Times are wall seconds.
@@ -87,6 +89,8 @@ struct SolverStats {
   double assemblySeconds = 0.0;
   double factorizationSeconds = 0.0;
   double lineSearchSeconds = 0.0;
+  int krylovIterations = 0;            ///< summed over the iterative linear solves
+  int krylovFallbacks = 0;             ///< iterative solves that fell back to the direct solve
   std::string message;                 ///< why it stopped, in words
   bool fallback = false;               ///< set by a caller that re-solved the stage another way
 };
@@ -105,7 +109,7 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
 /// invalid field in declaration order, named as in the scene file:
 /// "<field>: <rule>, got <value>", e.g. "max_iterations: must be >= 1, got 0". Rules: maxIterations
 /// >= 1; the three tolerances finite and >= 0; 0 < armijoConstant < 1; 0 < backtrackFactor < 1;
-/// maxLineSearchSteps >= 1; the enums hold a named value.
+/// maxLineSearchSteps >= 1; the enums hold a named value; then Validate(linear).
 std::string Validate(const NonlinearSolverParams& params);
 
 /// The input checks every stage solver makes first: "" if valid, else "invalid parameters: ..."

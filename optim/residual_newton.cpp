@@ -45,6 +45,13 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
   SparseMatrix J, shifted;
   UnsymmetricSolver ownSolver;
   UnsymmetricSolver& lu = solver ? *solver : ownSolver;
+  lu.SetSettings(params.linear);
+  auto solve = [&](const Eigen::VectorXd& b) -> Eigen::VectorXd {
+    Eigen::VectorXd x = lu.Solve(b);
+    st.krylovIterations += lu.LastSolve().iterations;
+    st.krylovFallbacks += lu.LastSolve().fellBack ? 1 : 0;
+    return x;
+  };
   if (n == 0) {
     st.status = StageStatus::Converged;
     st.message = "no degrees of freedom";
@@ -75,7 +82,7 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
     CompleteDiagonal(&J);
     bool ok = false;
     if (lu.Factorize(J)) {
-      d = -lu.Solve(r);
+      d = -solve(r);
       ok = d.allFinite();
     }
     if (!ok) {
@@ -88,7 +95,7 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
         shifted = J;
         for (Eigen::Index i = 0; i < n; ++i) shifted.coeffRef(i, i) += tau;
         if (lu.Factorize(shifted)) {
-          d = -lu.Solve(r);
+          d = -solve(r);
           ok = d.allFinite();
         }
       }

@@ -556,7 +556,8 @@ bool LoadSceneText(const std::string& text, const std::string& baseDir, SceneFil
         const json& v = s.at("solver");
         const std::string p = "settings.solver";
         CheckObject(v, p, {"max_iterations", "absolute_tolerance", "relative_tolerance",
-                           "step_tolerance", "line_search", "psd_projection"});
+                           "step_tolerance", "line_search", "psd_projection", "linear_solver",
+                           "linear_tolerance", "linear_max_iterations"});
         NonlinearSolverParams& n = settings.solver;
         n.maxIterations = Integer(v, p, "max_iterations", n.maxIterations, 1, 1000000);
         n.absoluteTolerance = Number(v, p, "absolute_tolerance", n.absoluteTolerance);
@@ -571,6 +572,15 @@ bool LoadSceneText(const std::string& text, const std::string& baseDir, SceneFil
         else if (pp == "Abs") n.psdProjection = PsdProjection::Abs;
         else if (pp == "None") n.psdProjection = PsdProjection::None;
         else Throw(p + ".psd_projection", "unknown value \"" + pp + "\" (expected one of: None, Clamp, Abs)");
+        const std::string lk = String(v, p, "linear_solver", std::string("auto"));
+        if (!ParseLinearSolverKind(lk, &n.linear.kind))
+          Throw(p + ".linear_solver",
+                "unknown value \"" + lk + "\" (expected one of: auto, direct, iterative)");
+        n.linear.tolerance = Number(v, p, "linear_tolerance", n.linear.tolerance);
+        if (!(n.linear.tolerance > 0.0 && n.linear.tolerance < 1.0))
+          Throw(p + ".linear_tolerance", "must be in (0, 1)");
+        n.linear.maxIterations =
+            Integer(v, p, "linear_max_iterations", n.linear.maxIterations, 1, 100000000);
       }
       if (s.contains("stage_solver")) {
         const std::string name = String(s, "settings", "stage_solver", std::string("newton"));

@@ -264,7 +264,25 @@ void BindScene(py::module_& m) {
       .def_readwrite("relative_tolerance", &NonlinearSolverParams::relativeTolerance,
                      "gradient reduction tolerance [-]. Default 1e-10.")
       .def_readwrite("step_tolerance", &NonlinearSolverParams::stepTolerance,
-                     "step velocity tolerance [m/s]. Default 1e-9.");
+                     "step velocity tolerance [m/s]. Default 1e-9.")
+      .def_property(
+          "linear_solver",
+          [](const NonlinearSolverParams& p) { return std::string(ToString(p.linear.kind)); },
+          [](NonlinearSolverParams& p, const std::string& name) {
+            if (!ParseLinearSolverKind(name, &p.linear.kind))
+              throw py::value_error("linear_solver: unknown value \"" + name +
+                                    "\" (expected one of: auto, direct, iterative)");
+          },
+          "'auto' (default: Krylov from 3000 unknowns up), 'direct' or 'iterative'.")
+      .def_property(
+          "linear_tolerance", [](const NonlinearSolverParams& p) { return p.linear.tolerance; },
+          [](NonlinearSolverParams& p, double t) { p.linear.tolerance = t; },
+          "Krylov relative residual tolerance, in (0, 1). Default 1e-8.")
+      .def_property(
+          "linear_max_iterations",
+          [](const NonlinearSolverParams& p) { return p.linear.maxIterations; },
+          [](NonlinearSolverParams& p, int n) { p.linear.maxIterations = n; },
+          "Krylov iterations before the direct fallback. Default 500.");
 
   py::class_<SceneSettings>(m, "SceneSettings", "Scene-wide settings.")
       .def(py::init<>())

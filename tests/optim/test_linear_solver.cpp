@@ -154,3 +154,95 @@ TEST_CASE("non-finite entries and uncompressed input", "[optim]") {
   REQUIRE(solver.Factorize(uncompressed));
   CHECK(RelativeResidual(H, solver.Solve(b), b) <= 1e-10);
 }
+
+TEST_CASE("Krylov solves: conjugate gradients and BiCGSTAB agree with the direct solves",
+          "[optim]") {
+  std::mt19937 rng(11);
+  LinearSolverSettings iterative;
+  iterative.kind = LinearSolverKind::Iterative;
+  iterative.tolerance = 1e-10;
+  for (int trial = 0; trial < 3; ++trial) {
+    const SparseMatrix H = RandomSpd(400, 800, rng, 5.0);
+    const Eigen::VectorXd b = Eigen::VectorXd::Random(400);
+    SymmetricSolver direct, krylov;
+    krylov.SetSettings(iterative);
+    REQUIRE(direct.Factorize(H));
+    REQUIRE(krylov.Factorize(H));
+    CHECK(std::string(krylov.Backend()) == "pcg");
+    const Eigen::VectorXd x = krylov.Solve(b);
+    CHECK(krylov.LastSolve().iterative);
+    CHECK(!krylov.LastSolve().fellBack);
+    CHECK(krylov.LastSolve().iterations > 1);
+    CHECK(RelativeResidual(H, x, b) <= 1e-10);
+    const Eigen::VectorXd xd = direct.Solve(b);
+    CHECK((x - xd).norm() <= 1e-8 * xd.norm());
+    // An unsymmetric perturbation of the same pattern: BiCGSTAB against UMFPACK.
+    SparseMatrix J = H;
+    for (Eigen::Index k = 0; k < J.outerSize(); ++k)
+      for (SparseMatrix::InnerIterator e(J, k); e; ++e)
+        if (e.row() > e.col()) e.valueRef() *= 1.3;
+    UnsymmetricSolver lu, bicg;
+    bicg.SetSettings(iterative);
+    REQUIRE(lu.Factorize(J));
+    REQUIRE(bicg.Factorize(J));
+    const Eigen::VectorXd y = bicg.Solve(b);
+    CHECK(bicg.LastSolve().iterative);
+    CHECK(!bicg.LastSolve().fellBack);
+    CHECK(RelativeResidual(J, y, b) <= 1e-9);
+    CHECK((y - lu.Solve(b)).norm() <= 1e-8 * y.norm());
+  }
+}
+
+TEST_CASE("Krylov solves: too few iterations fall back to the direct solve; indefinite matrices "
+          "are reported as a failed Cholesky would be", "[optim]") {
+  std::mt19937 rng(12);
+  const SparseMatrix H = RandomSpd(300, 300, rng, 1e-3);  // ill-conditioned
+  const Eigen::VectorXd b = Eigen::VectorXd::Random(300);
+  LinearSolverSettings few;
+  few.kind = LinearSolverKind::Iterative;
+  few.maxIterations = 3;
+  SymmetricSolver s;
+  s.SetSettings(few);
+  REQUIRE(s.Factorize(H));
+  const Eigen::VectorXd x = s.Solve(b);
+  CHECK(s.LastSolve().fellBack);
+  CHECK(s.LastSolve().iterations == 3);
+  CHECK(RelativeResidual(H, x, b) <= 1e-10);
+  UnsymmetricSolver u;
+  u.SetSettings(few);
+  REQUIRE(u.Factorize(H));
+  const Eigen::VectorXd y = u.Solve(b);
+  CHECK(u.LastSolve().fellBack);
+  CHECK(RelativeResidual(H, y, b) <= 1e-10);
+  // Indefinite: a positive diagonal, but a direction of negative curvature.
+  SparseMatrix A = H;
+  A.coeffRef(0, 1) = A.coeffRef(1, 0) = 10.0 * std::max(A.coeff(0, 0), A.coeff(1, 1));
+  few.maxIterations = 500;
+  s.SetSettings(few);
+  REQUIRE(s.Factorize(A));
+  CHECK(!s.Solve(b).allFinite());
+  // A non-positive diagonal entry is rejected at once.
+  A = H;
+  A.coeffRef(5, 5) = -1.0;
+  CHECK(!s.Factorize(A));
+  // Auto: direct below kAutoIterativeUnknowns.
+  LinearSolverSettings automatic;
+  automatic.kind = LinearSolverKind::Auto;
+  s.SetSettings(automatic);
+  REQUIRE(s.Factorize(H));
+  CHECK(std::string(s.Backend()) == "cholmod");
+}
+
+TEST_CASE("linear solver settings are validated with the scene file's names", "[optim]") {
+  LinearSolverSettings s;
+  CHECK(Validate(s).empty());
+  s.tolerance = 0.0;
+  CHECK(Validate(s) == "linear_tolerance: must be in (0, 1), got 0");
+  s.tolerance = 1e-8;
+  s.maxIterations = 0;
+  CHECK(Validate(s) == "linear_max_iterations: must be >= 1, got 0");
+  LinearSolverKind k;
+  CHECK(ParseLinearSolverKind("iterative", &k));
+  CHECK(k == LinearSolverKind::Iterative);
+  CHECK(!ParseLinearSolverKind("cg", &k));
+}

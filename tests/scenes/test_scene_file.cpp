@@ -77,6 +77,16 @@ TEST_CASE("scene file: each defect gives one error with its JSON path", "[scenes
                           R"("duration": 0.01, "experimental_eval_params": {"explicit_normals": true, "implicit_normal_force_for_dissipation": true}})")) ==
         "settings.experimental_eval_params.explicit_normals, implicit_normal_force_for_dissipation: "
         "the combination (true, true) is unsupported");
+  CHECK(LoadError(Replace(kGood, R"("duration": 0.01})",
+                          R"("duration": 0.01, "solver": {"linear_solver": "cg"}})")) ==
+        "settings.solver.linear_solver: unknown value \"cg\" (expected one of: auto, direct, "
+        "iterative)");
+  CHECK(LoadError(Replace(kGood, R"("duration": 0.01})",
+                          R"("duration": 0.01, "solver": {"linear_tolerance": 1}})")) ==
+        "settings.solver.linear_tolerance: must be in (0, 1)");
+  CHECK(LoadError(Replace(kGood, R"("duration": 0.01})",
+                          R"("duration": 0.01, "solver": {"linear_solver": "iterative", "linear_tolerance": 1e-6, "linear_max_iterations": 50}})")) ==
+        "<loaded>");
   CHECK(LoadError("{ not json").rfind("(file): not valid JSON", 0) == 0);
 }
 
