@@ -1,13 +1,15 @@
 // Symmetric solves: a dense Cholesky for small systems (<= 48 unknowns); otherwise CHOLMOD
-// supernodal LLᵀ first, Eigen's SimplicialLDLT as the fallback; or (LinearSolverKind) Jacobi-
+// supernodal LLᵀ first, Eigen's SimplicialLDLT as the fallback; or (LinearSolverKind) block-Jacobi-
 // preconditioned conjugate gradients with those as the fallback. Unsymmetric: UMFPACK, or Eigen's
-// BiCGSTAB with a Jacobi preconditioner and UMFPACK as the fallback.
+// BiCGSTAB with the same preconditioner and UMFPACK as the fallback.
 //
 // Both backends read only the lower triangle of H (the full symmetric matrix is stored). The
 // symbolic analysis (fill-reducing ordering, elimination tree, supernode structure) depends only
 // on the sparsity pattern, so it is redone only when the compressed-column index arrays differ from
 // those of the last analysis; the numeric factorization is redone on every call.
 #include "optim/linear_solver.h"
+
+#include "optim/block_jacobi.h"
 
 #include <malloc.h>
 
@@ -56,7 +58,8 @@ struct SymmetricSolver::Impl {
   LinearSolveInfo info;
   // Conjugate gradients: the matrix, its inverse diagonal, and the iteration's vectors.
   SparseMatrix matrix;
-  Eigen::VectorXd invDiagonal, r, z, p, q;
+  BlockJacobi3 preconditioner;
+  Eigen::VectorXd r, z, p, q;
 
   bool SamePattern(const SparseMatrix& H) const {
     if (H.rows() != rows || static_cast<Eigen::Index>(outer.size()) != H.outerSize() + 1 ||
@@ -119,9 +122,8 @@ bool SymmetricSolver::Factorize(const Eigen::SparseMatrix<double>& H) {
   if (!Eigen::Map<const Eigen::VectorXd>(A->valuePtr(), A->nonZeros()).allFinite()) return false;
   if (UseIterative(s.settings, A->rows()) && A->rows() > kDenseLimit) {
     s.matrix = *A;
-    s.invDiagonal = s.matrix.diagonal();
-    if (!(s.invDiagonal.array() > 0.0).all()) return false;  // not positive definite
-    s.invDiagonal = s.invDiagonal.cwiseInverse();
+    s.preconditioner.compute(s.matrix);
+    if (!s.preconditioner.PositiveDefinite()) return false;  // neither is the matrix
     s.backend = BackendKind::Pcg;
     return true;
   }
@@ -155,7 +157,7 @@ Eigen::VectorXd SymmetricSolver::Solve(const Eigen::VectorXd& b) const {
   Impl& s = *impl_;
   s.info = LinearSolveInfo();
   if (s.backend == BackendKind::Pcg) {
-    // Preconditioned conjugate gradients (M = diag(H)), x₀ = 0.
+    // Preconditioned conjugate gradients (M: the 3×3 diagonal blocks of H), x₀ = 0.
     const Eigen::Index n = b.size();
     const double nan = std::numeric_limits<double>::quiet_NaN();
     s.info.iterative = true;
@@ -163,7 +165,7 @@ Eigen::VectorXd SymmetricSolver::Solve(const Eigen::VectorXd& b) const {
     const double bNorm = b.norm();
     if (bNorm == 0.0) return x;
     s.r = b;
-    s.z = s.invDiagonal.cwiseProduct(s.r);
+    s.preconditioner.Apply(s.r, &s.z);
     s.p = s.z;
     double rz = s.r.dot(s.z);
     const double stop = s.settings.tolerance * bNorm;
@@ -177,7 +179,7 @@ Eigen::VectorXd SymmetricSolver::Solve(const Eigen::VectorXd& b) const {
       x += a * s.p;
       s.r -= a * s.q;
       if (s.r.norm() <= stop) return x;
-      s.z = s.invDiagonal.cwiseProduct(s.r);
+      s.preconditioner.Apply(s.r, &s.z);
       const double rzNext = s.r.dot(s.z);
       s.p = s.z + (rzNext / rz) * s.p;
       rz = rzNext;
@@ -225,7 +227,7 @@ struct UnsymmetricSolver::Impl {
   LinearSolveInfo info;
   bool iterative = false;  // the last Factorize prepared BiCGSTAB, not the LU
   bool luValid = false;    // lu holds the factors of `matrix`
-  Eigen::BiCGSTAB<SparseMatrix, Eigen::DiagonalPreconditioner<double>> krylov;
+  Eigen::BiCGSTAB<SparseMatrix, BlockJacobi3> krylov;
 
   bool FactorizeLu() {
     const bool same = SamePattern(matrix);

@@ -1,5 +1,5 @@
 // Sparse linear solves of the stage solvers: direct (CHOLMOD supernodal Cholesky with Eigen's
-// SimplicialLDLT as fallback; UMFPACK LU) or Krylov (Jacobi-preconditioned conjugate gradients;
+// SimplicialLDLT as fallback; UMFPACK LU) or Krylov (block-Jacobi-preconditioned conjugate gradients;
 // BiCGSTAB) with the direct solve as fallback.
 #pragma once
 
@@ -18,8 +18,9 @@ enum class LinearSolverKind {
   /// take 10–60 iterations there (the mass term M/Δt² keeps the stage well conditioned).
   Auto,
   Direct,     ///< sparse Cholesky (symmetric) / LU (unsymmetric) on every system
-  /// Jacobi-preconditioned conjugate gradients (symmetric) / BiCGSTAB (unsymmetric) to the relative
-  /// residual `tolerance`; a system not solved within `maxIterations` falls back to Direct.
+  /// Block-Jacobi-preconditioned (optim/block_jacobi.h) conjugate gradients (symmetric) / BiCGSTAB
+  /// (unsymmetric) to the relative residual `tolerance`; a system not solved within
+  /// `maxIterations` falls back to Direct.
   Iterative,
 };
 const char* ToString(LinearSolverKind kind);
@@ -94,7 +95,7 @@ class UnsymmetricSolver {
   void SetSettings(const LinearSolverSettings& settings);
 
   /// Factorizes J. Returns false if J is (numerically) singular. Iterative: keeps a copy of J and
-  /// the Jacobi preconditioner; false only for non-finite entries.
+  /// the block-Jacobi preconditioner; false only for non-finite entries.
   bool Factorize(const Eigen::SparseMatrix<double>& J);
   /// Solves with the last factorization. Iterative: BiCGSTAB from x = 0; no convergence within
   /// maxIterations (or a breakdown): the LU solve.

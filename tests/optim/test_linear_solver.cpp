@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "optim/block_jacobi.h"
 #include "optim/linear_solver.h"
 
 using namespace superdex;
@@ -214,9 +215,10 @@ TEST_CASE("Krylov solves: too few iterations fall back to the direct solve; inde
   const Eigen::VectorXd y = u.Solve(b);
   CHECK(u.LastSolve().fellBack);
   CHECK(RelativeResidual(H, y, b) <= 1e-10);
-  // Indefinite: a positive diagonal, but a direction of negative curvature.
+  // Indefinite: positive definite 3x3 diagonal blocks, but a direction of negative curvature
+  // through the coupling of two blocks.
   SparseMatrix A = H;
-  A.coeffRef(0, 1) = A.coeffRef(1, 0) = 10.0 * std::max(A.coeff(0, 0), A.coeff(1, 1));
+  A.coeffRef(0, 3) = A.coeffRef(3, 0) = 10.0 * std::max(A.coeff(0, 0), A.coeff(3, 3));
   few.maxIterations = 500;
   s.SetSettings(few);
   REQUIRE(s.Factorize(A));
@@ -245,4 +247,40 @@ TEST_CASE("linear solver settings are validated with the scene file's names", "[
   CHECK(ParseLinearSolverKind("iterative", &k));
   CHECK(k == LinearSolverKind::Iterative);
   CHECK(!ParseLinearSolverKind("cg", &k));
+}
+
+TEST_CASE("block-Jacobi preconditioner: exact on a 3x3-block-diagonal matrix", "[optim]") {
+  std::mt19937 rng(5);
+  std::normal_distribution<double> n01;
+  const int blocks = 50;
+  std::vector<Eigen::Triplet<double>> t;
+  for (int b = 0; b < blocks; ++b) {
+    Eigen::Matrix3d M;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) M(i, j) = n01(rng);
+    const Eigen::Matrix3d S = M * M.transpose() + 0.1 * Eigen::Matrix3d::Identity();
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) t.emplace_back(3 * b + i, 3 * b + j, S(i, j));
+  }
+  SparseMatrix H(3 * blocks, 3 * blocks);
+  H.setFromTriplets(t.begin(), t.end());
+  H.makeCompressed();
+  const Eigen::VectorXd b = Eigen::VectorXd::Random(3 * blocks);
+  BlockJacobi3 P;
+  P.compute(H);
+  CHECK(P.PositiveDefinite());
+  CHECK(RelativeResidual(H, P.solve(b), b) < 1e-12);
+  // Conjugate gradients with it: one iteration.
+  LinearSolverSettings iterative;
+  iterative.kind = LinearSolverKind::Iterative;
+  SymmetricSolver s;
+  s.SetSettings(iterative);
+  REQUIRE(s.Factorize(H));
+  CHECK(RelativeResidual(H, s.Solve(b), b) < 1e-12);
+  CHECK(s.LastSolve().iterations == 1);
+  // An indefinite diagonal block is reported.
+  H.coeffRef(0, 0) = -1.0;
+  P.compute(H);
+  CHECK(!P.PositiveDefinite());
+  CHECK(!s.Factorize(H));
 }
