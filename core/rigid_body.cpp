@@ -1,6 +1,7 @@
 #include "core/rigid_body.h"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -69,32 +70,51 @@ void MeshSamples(const TriangleMesh& mesh, const Eigen::Vector3d& offset,
   }
 }
 
-// Groups the samples by a grid of cell samplesRadius/2 in the body frame (a deterministic order:
-// cells by their integer coordinates, samples in their original order within a cell).
-void ClusterSamples(RigidBodyModel* m) {
-  m->sampleClusters.clear();
-  if (m->samples.empty()) return;
-  const double cell = std::max(0.5 * m->samplesRadius, 1e-12);
-  std::map<std::tuple<long, long, long>, std::vector<int>> cells;
-  for (int i = 0; i < static_cast<int>(m->samples.size()); ++i) {
-    const Eigen::Vector3d c = (m->samples[i].X / cell).array().floor();
-    cells[{long(c.x()), long(c.y()), long(c.z())}].push_back(i);
-  }
-  std::vector<SurfaceSample> sorted;
-  sorted.reserve(m->samples.size());
-  for (const auto& [key, members] : cells) {
-    SampleCluster c;
-    c.begin = static_cast<int>(sorted.size());
+// Builds m->sampleTree: median splits of the sample range along the longest side of its box
+// (ties by original index, so the tree is deterministic), leaves of at most kSamplesPerLeaf;
+// samples reordered into leaf order. Each node's sphere is centred on its box.
+void BuildSampleTree(RigidBodyModel* m) {
+  m->sampleTree.clear();
+  const int n = static_cast<int>(m->samples.size());
+  if (n == 0) return;
+  std::vector<int> order(n);
+  for (int i = 0; i < n; ++i) order[i] = i;
+  auto bound = [&](SampleNode* node) {
     Aabb box;
-    for (int i : members) {
-      sorted.push_back(m->samples[i]);
-      box.Extend(m->samples[i].X);
-    }
-    c.end = static_cast<int>(sorted.size());
-    c.center = 0.5 * (box.min + box.max);
-    for (int i : members) c.radius = std::max(c.radius, (m->samples[i].X - c.center).norm());
-    m->sampleClusters.push_back(c);
+    for (int k = node->begin; k < node->end; ++k) box.Extend(m->samples[order[k]].X);
+    node->center = 0.5 * (box.min + box.max);
+    node->radius = 0.0;
+    for (int k = node->begin; k < node->end; ++k)
+      node->radius = std::max(node->radius, (m->samples[order[k]].X - node->center).norm());
+    return box;
+  };
+  m->sampleTree.reserve(2 * (n / kSamplesPerLeaf + 1));
+  std::vector<int> pending = {0};
+  m->sampleTree.push_back({0, n});
+  while (!pending.empty()) {
+    const int index = pending.back();
+    pending.pop_back();
+    const Aabb box = bound(&m->sampleTree[index]);
+    const SampleNode node = m->sampleTree[index];
+    if (node.end - node.begin <= kSamplesPerLeaf) continue;
+    int axis = 0;
+    (box.max - box.min).maxCoeff(&axis);
+    const int mid = (node.begin + node.end) / 2;
+    std::nth_element(order.begin() + node.begin, order.begin() + mid, order.begin() + node.end,
+                     [&](int a, int b) {
+                       const double xa = m->samples[a].X[axis], xb = m->samples[b].X[axis];
+                       return xa < xb || (xa == xb && a < b);
+                     });
+    const int left = static_cast<int>(m->sampleTree.size());
+    m->sampleTree.push_back({node.begin, mid});
+    m->sampleTree.push_back({mid, node.end});
+    m->sampleTree[index].left = left;
+    m->sampleTree[index].right = left + 1;
+    pending.push_back(left + 1);
+    pending.push_back(left);
   }
+  std::vector<SurfaceSample> sorted(n);
+  for (int k = 0; k < n; ++k) sorted[k] = m->samples[order[k]];
   m->samples = std::move(sorted);
 }
 
@@ -314,7 +334,7 @@ bool BuildRigidBody(const RigidActorDesc& d, const std::string& prefix, RigidBod
   }
 
   for (const SurfaceSample& s : m->samples) m->samplesRadius = std::max(m->samplesRadius, s.X.norm());
-  ClusterSamples(m);
+  BuildSampleTree(m);
 
   // Initial state.
   *st = RigidBodyState();

@@ -57,14 +57,18 @@ struct RigidActorDesc {
   GridSdfParams gridSdf;  ///< used when the collider resolves to Sdf
 };
 
-/// A contiguous range [begin, end) of a body's samples with a bounding sphere in the body frame,
-/// so that a narrow phase can skip whole groups: with a 1-Lipschitz collider field, every sample
-/// of the group has φ >= φ(centre) − radius.
-struct SampleCluster {
+/// A node of a body's sample tree: a contiguous range [begin, end) of its samples with a
+/// bounding sphere in the body frame, so that a narrow phase can skip whole groups: with a
+/// collider field of Lipschitz constant L, every sample of the node has φ >= φ(centre) − L radius.
+/// Internal nodes split their range in two halves (children `left`, `right`); leaves (left = −1)
+/// hold at most kSamplesPerLeaf samples.
+struct SampleNode {
   int begin = 0, end = 0;
+  int left = -1, right = -1;
   Eigen::Vector3d center = Eigen::Vector3d::Zero();  ///< [m]
   double radius = 0.0;                               ///< [m]
 };
+constexpr int kSamplesPerLeaf = 16;
 
 /// One colliding quadrature sample in the body frame (origin at the centre of mass).
 struct SurfaceSample {
@@ -99,9 +103,9 @@ struct RigidBodyModel {
   Eigen::Vector3d shapeOffset = Eigen::Vector3d::Zero();    ///< [m]
   std::vector<SurfaceSample> samples;                       ///< colliding role (empty if none)
   double samplesRadius = 0.0;                               ///< max |X| over the samples [m]
-  /// The samples grouped by a body-frame grid of cell samplesRadius/2 (samples are stored cluster
-  /// by cluster).
-  std::vector<SampleCluster> sampleClusters;
+  /// Bounding-sphere tree over the samples (node 0 the root; samples stored in leaf order), built
+  /// by median splits along the longest side of each node's box.
+  std::vector<SampleNode> sampleTree;
   Aabb localBounds;                                         ///< body-frame bounds of the shape
   RigidCollider collider;                                   ///< collider role
   ColliderType requestedCollider = ColliderType::Auto;
@@ -143,5 +147,26 @@ Eigen::Matrix3d WorldInertia(const Eigen::Matrix3d& R, const Eigen::Matrix3d& J)
 
 /// World AABB of the shape at the given pose (infinite for a plane).
 Aabb WorldBounds(const RigidBodyModel& model, const Eigen::Vector3d& p, const Eigen::Matrix3d& R);
+
+/// Calls visit(begin, end) for the sample range of every leaf of m's sample tree reached by
+/// descending from the root through the nodes that keep(centre, radius) accepts (body frame), in
+/// the samples' storage order, so that sums over the visited samples are deterministic.
+template <typename Keep, typename Visit>
+void ForEachSampleRange(const RigidBodyModel& m, Keep&& keep, Visit&& visit) {
+  if (m.sampleTree.empty()) return;
+  int stack[64];  // depth <= log2(samples / kSamplesPerLeaf) + 1 for median splits
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const SampleNode& node = m.sampleTree[stack[--top]];
+    if (!keep(node.center, node.radius)) continue;
+    if (node.left < 0) {
+      visit(node.begin, node.end);
+      continue;
+    }
+    stack[top++] = node.right;
+    stack[top++] = node.left;
+  }
+}
 
 }  // namespace superdex

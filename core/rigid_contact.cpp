@@ -74,15 +74,14 @@ void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& a, const
   const Eigen::Vector3d YAref = br.R.transpose() * (ar.p - br.p);
   const bool sameReference = !aRef && !bRef;
 
-  // Whole-pair rejection: analytic fields are exact SDFs (1-Lipschitz), so every sample, lying
-  // within samplesRadius of A's centre, has φ >= Φ_B(Y_A) − samplesRadius.
+  // Tree culling (the root first: the whole pair): with a field of Lipschitz constant L every
+  // sample of a node has φ >= φ(centre) − L radius.
   const double L = B.collider.lipschitz;
-  if (B.collider.Evaluate(YA).value - L * A.samplesRadius >= delta) return;
-
-  for (const SampleCluster& c : A.sampleClusters) {
-    // Cluster culling: every sample of the cluster has φ >= φ(centre) − radius.
-    if (B.collider.Evaluate(YA + RBtRA * c.center).value - L * c.radius >= delta) continue;
-    for (int k = c.begin; k < c.end; ++k) {
+  auto near = [&](const Eigen::Vector3d& center, double radius) {
+    return B.collider.Evaluate(YA + RBtRA * center).value - L * radius < delta;
+  };
+  ForEachSampleRange(A, near, [&](int begin, int end) {
+    for (int k = begin; k < end; ++k) {
       const SurfaceSample& s = A.samples[k];
       const Eigen::Vector3d Y = YA + RBtRA * s.X;
       if (std::isfinite(reach) && Y.squaredNorm() >= reach * reach) continue;
@@ -118,7 +117,7 @@ void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& a, const
       AddFunctionOfPullback(r, d, b.R, gY, order >= 2 ? &HY : nullptr, bDynamic, s.weight,
                             &out->gradient, order >= 2 ? &out->hessian : nullptr);
     }
-  }
+  });
 }
 
 double RigidPairStepLimit(const RigidBodyModel& A, const RigidPose& a0, const RigidPose& a1,
@@ -145,10 +144,11 @@ double RigidPairStepLimit(const RigidBodyModel& A, const RigidPose& a0, const Ri
   const double moved = (a1.p - a0.p).norm() + angle(a1.R, a0.R) * rA + (b1.p - b0.p).norm() +
                        angle(b1.R, b0.R) * ((a0.p - b0.p).norm() + rA);
   if (L * moved <= 0.25 * params.eps) return alpha;
-  if (B.collider.Evaluate(YA1).value - L * A.samplesRadius >= phiLimit) return alpha;
-  for (const SampleCluster& c : A.sampleClusters) {
-    if (B.collider.Evaluate(YA1 + RBtRA1 * c.center).value - L * c.radius >= phiLimit) continue;
-    for (int k = c.begin; k < c.end; ++k) {
+  auto deep = [&](const Eigen::Vector3d& center, double radius) {
+    return B.collider.Evaluate(YA1 + RBtRA1 * center).value - L * radius < phiLimit;
+  };
+  ForEachSampleRange(A, deep, [&](int begin, int end) {
+    for (int k = begin; k < end; ++k) {
       const Eigen::Vector3d Y1 = YA1 + RBtRA1 * A.samples[k].X;
       if (std::isfinite(reach) && Y1.squaredNorm() >= reach * reach) continue;
       const double s1 = params.delta - B.collider.Evaluate(Y1).value;
@@ -158,7 +158,7 @@ double RigidPairStepLimit(const RigidBodyModel& A, const RigidPose& a0, const Ri
       const double cap = std::max(2.0 * s0, 0.5 * params.eps);
       if (s1 > cap) alpha = std::min(alpha, (cap - s0) / (s1 - s0));
     }
-  }
+  });
   return alpha;
 }
 

@@ -112,15 +112,14 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
   // Cluster culling bounds (1-Lipschitz fields): the reconstructed distance φ + G·(Y_n − Y) is at
   // least φ − |Y_n − Y|, and |Y_n − Y| <= |Y_n,A − Y_A| + ‖R_n,BᵀR_n,A − R_BᵀR_A‖_F |X|.
   const double shift = (YnA - YA).norm() + (RnBtRA - RBtRA).norm() * A.samplesRadius;
-  for (const SampleCluster& c : A.sampleClusters) {
-    if (explicitNormals) {
-      if (B.collider.Evaluate(YnA + RnBtRA * c.center).value - L * c.radius >= delta) continue;
-    } else {
-      const double slack = setup.mode == DissipationMode::ImplicitLoad ? 0.0 : L * shift;
-      if (B.collider.Evaluate(YA + RBtRA * c.center).value - L * c.radius - slack >= delta)
-        continue;
-    }
-    for (int k = c.begin; k < c.end; ++k) {
+  const double slack = setup.mode == DissipationMode::ImplicitLoad ? 0.0 : L * shift;
+  auto near = [&](const Eigen::Vector3d& center, double radius) {
+    if (explicitNormals)
+      return B.collider.Evaluate(YnA + RnBtRA * center).value - L * radius < delta;
+    return B.collider.Evaluate(YA + RBtRA * center).value - L * radius - slack < delta;
+  };
+  ForEachSampleRange(A, near, [&](int begin, int end) {
+    for (int k = begin; k < end; ++k) {
       const SurfaceSample& q = A.samples[k];
       const Eigen::Vector3d Y = YA + RBtRA * q.X;
       const Eigen::Vector3d Y0 = Y0A + R0BinvRA * q.X;
@@ -184,7 +183,7 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
         }
       }
     }
-  }
+  });
 }
 
 }  // namespace superdex

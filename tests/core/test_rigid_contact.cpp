@@ -167,3 +167,57 @@ TEST_CASE("Step limit: a sample's penetration depth may at most double (or reach
   to.p = c.a.p + Eigen::Vector3d(0, 0, 0.05);
   CHECK(RigidPairStepLimit(c.A, c.a, to, c.B, c.b, c.b, p) == 1.0);
 }
+
+TEST_CASE("sample tree: leaves partition the samples, spheres bound them; culling loses nothing",
+          "[core][contact]") {
+  const RigidBodyModel A = Build(Box({0.5, 0.3, 0.05}, 24), true);
+  REQUIRE(A.samples.size() > 1000);
+  REQUIRE(!A.sampleTree.empty());
+  std::vector<int> covered(A.samples.size(), 0);
+  int leaves = 0;
+  for (const SampleNode& node : A.sampleTree) {
+    for (int k = node.begin; k < node.end; ++k)
+      CHECK((A.samples[k].X - node.center).norm() <= node.radius * (1 + 1e-12));
+    if (node.left >= 0) {
+      CHECK(A.sampleTree[node.left].begin == node.begin);
+      CHECK(A.sampleTree[node.left].end == A.sampleTree[node.right].begin);
+      CHECK(A.sampleTree[node.right].end == node.end);
+      continue;
+    }
+    ++leaves;
+    CHECK(node.end - node.begin <= kSamplesPerLeaf);
+    for (int k = node.begin; k < node.end; ++k) ++covered[k];
+  }
+  for (int c : covered) CHECK(c == 1);
+  // The plate resting on a small sphere: the pair energy over the culled tree equals the sum of
+  // W over every sample, and far fewer samples than the plate's are evaluated.
+  const RigidBodyModel B = Build(Sphere(0.05, 3), false);
+  RigidPose a, b;
+  a.p = Eigen::Vector3d(0.1, -0.05, 0.05 + 0.05 - 0.002);  // plate bottom 2 mm into the sphere
+  a.R = ExpSo3(Eigen::Vector3d(0.01, -0.02, 0.3));
+  PenaltyParams p;
+  RigidPairPenalty out;
+  EvaluateRigidPairPenalty(A, a, B, b, false, p, 0, &out);
+  double brute = 0.0;
+  int active = 0;
+  for (const SurfaceSample& s : A.samples) {
+    const Eigen::Vector3d Y = b.R.transpose() * (a.p + a.R * s.X - b.p);
+    const double phi = B.collider.Evaluate(Y).value;
+    if (phi >= p.delta) continue;
+    ++active;
+    brute += s.weight * NormalPenaltyDensity(phi, p).W;
+  }
+  REQUIRE(active > 0);
+  CHECK(out.activeSamples == active);
+  CHECK(out.value == Approx(brute).epsilon(1e-14));
+  int visited = 0;
+  ForEachSampleRange(
+      A,
+      [&](const Eigen::Vector3d& c, double r) {
+        const Eigen::Vector3d Y = b.R.transpose() * (a.p + a.R * c - b.p);
+        return B.collider.Evaluate(Y).value - B.collider.lipschitz * r < p.delta;
+      },
+      [&](int begin, int end) { visited += end - begin; });
+  INFO(visited << " of " << A.samples.size() << " samples visited, " << active << " active");
+  CHECK(visited < static_cast<int>(A.samples.size()) / 20);
+}
