@@ -32,17 +32,24 @@ DissipationMode ModeOf(const ExperimentalEvalParams& e) {
                                              : DissipationMode::ReconstructedLoad;
 }
 
-// Adds the work counters and times of one solve to another's statistics.
-void AddSolverWork(const SolverStats& from, SolverStats* to) {
-  to->iterations += from.iterations;
-  to->lineSearchSteps += from.lineSearchSteps;
-  to->regularizations += from.regularizations;
-  to->limitedSteps += from.limitedSteps;
-  to->assemblySeconds += from.assemblySeconds;
-  to->factorizationSeconds += from.factorizationSeconds;
-  to->lineSearchSeconds += from.lineSearchSeconds;
-  to->krylovIterations += from.krylovIterations;
-  to->krylovFallbacks += from.krylovFallbacks;
+// Adds sign × the work counters and times of one solve to another's statistics.
+void AddSolverWork(const SolverStats& from, SolverStats* to, int sign = 1) {
+  to->iterations += sign * from.iterations;
+  to->lineSearchSteps += sign * from.lineSearchSteps;
+  to->regularizations += sign * from.regularizations;
+  to->limitedSteps += sign * from.limitedSteps;
+  to->assemblySeconds += sign * from.assemblySeconds;
+  to->factorizationSeconds += sign * from.factorizationSeconds;
+  to->lineSearchSeconds += sign * from.lineSearchSeconds;
+  to->krylovIterations += sign * from.krylovIterations;
+  to->krylovFallbacks += sign * from.krylovFallbacks;
+}
+
+// Replaces the work counters and times of *to by those of `from` (the rest of *to stays).
+void CopySolverWork(const SolverStats& from, SolverStats* to) {
+  const SolverStats own = *to;
+  AddSolverWork(own, to, -1);
+  AddSolverWork(from, to);
 }
 
 int Severity(StageStatus s) {
@@ -350,12 +357,6 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
         break;
       }
       {
-        const std::vector<RigidPose> guess = *poses;
-        const std::vector<Eigen::VectorXd> softGuess = softX ? *softX : std::vector<Eigen::VectorXd>();
-        StageDissipation potential = dissipation;
-        potential.mode = DissipationMode::ExplicitNormals;
-        SceneStageProblem explicitStage(models_, dofOffset_, numDofs_, targets, settings_.gravity,
-                                        &pipeline_, poses, potential, soft, softX, &workspace_);
         // Residual modes: Newton on r has only the merit ½‖r‖² to globalize with, which is badly
         // scaled where stiff contacts and friction meet (landing and settling contacts: ~20
         // iterations with many backtracks on a sphere pile). A stage that starts from the
@@ -367,14 +368,26 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
         // explicit-normals minimizer is the fallback (below) without a second solve.
         constexpr int kResidualFirstIterations = 8;
         constexpr int kExplicitFirstStages = 20;
+        const std::vector<RigidPose> guess = *poses;
+        const std::vector<Eigen::VectorXd> softGuess = softX ? *softX : std::vector<Eigen::VectorXd>();
+        StageDissipation potential = dissipation;
+        potential.mode = DissipationMode::ExplicitNormals;
+        ContactStats explicitContact;
+        auto minimizeExplicit = [&]() {  // from *poses, *softX
+          SceneStageProblem stage(models_, dofOffset_, numDofs_, targets, settings_.gravity,
+                                  &pipeline_, poses, potential, soft, softX, &workspace_);
+          const SolverStats out = MinimizeNewton(stage, settings_.solver, dt, solvers_.symmetric.get());
+          explicitContact = stage.LastContactStats();
+          return out;
+        };
         const bool explicitFirst = explicitFirstStages_ > 0;
         if (explicitFirst) --explicitFirstStages_;
-        SolverStats first;
+        SolverStats first;  // the explicit-normals solve that gave the start (explicitFirst)
         bool haveExplicit = false;
         std::vector<RigidPose> explicitSolution;
         std::vector<Eigen::VectorXd> softExplicit;
         if (explicitFirst) {
-          first = MinimizeNewton(explicitStage, settings_.solver, dt, solvers_.symmetric.get());
+          first = minimizeExplicit();
           haveExplicit = first.status == StageStatus::Converged;
           if (haveExplicit) {
             explicitSolution = *poses;
@@ -390,30 +403,26 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
           explicitFirstStages_ = kExplicitFirstStages;
         AddSolverWork(first, &st);
         if (st.status != StageStatus::Converged) {
-          // Fallback: keep the explicit-normals solution (solving for it now if it was not the
-          // start), and say so in the report.
-          SolverStats second = first;
+          // Fallback: the explicit-normals minimizer (solved now if it was not the start); the
+          // report carries its outcome and the work of every solve of the stage.
+          SolverStats work = st;
+          SolverStats outcome = first;
           if (haveExplicit) {
             *poses = explicitSolution;
             if (softX) *softX = softExplicit;
           } else {
             *poses = guess;
             if (softX) *softX = softGuess;
-            second = MinimizeNewton(explicitStage, settings_.solver, dt, solvers_.symmetric.get());
+            outcome = minimizeExplicit();
+            AddSolverWork(outcome, &work);
           }
           const std::string why = st.message;
-          const SolverStats spent = st;  // includes `first`
-          st = second;
-          st.iterations = 0;
-          st.lineSearchSteps = st.regularizations = st.limitedSteps = 0;
-          st.assemblySeconds = st.factorizationSeconds = st.lineSearchSeconds = 0.0;
-          st.krylovIterations = st.krylovFallbacks = 0;
-          AddSolverWork(spent, &st);
-          if (!haveExplicit) AddSolverWork(second, &st);
+          st = outcome;
+          CopySolverWork(work, &st);
           st.message = "residual solve failed (" + why + "); stage re-solved with explicit "
-                       "normals" + (second.status == StageStatus::Converged ? "" : ": " + second.message);
+                       "normals" + (outcome.status == StageStatus::Converged ? "" : ": " + outcome.message);
           st.fallback = true;
-          *contact = explicitStage.LastContactStats();
+          *contact = explicitContact;
           if (tapeMode_ == TapeMode::Record) RecordStage(targets, potential, *poses, soft, softX);
           return st;
         }
