@@ -143,12 +143,6 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
   SymmetricSolver ownSolver;
   SymmetricSolver& solver = solverCache ? *solverCache : ownSolver;
   solver.SetSettings(params.linear);
-  auto solve = [&](const Eigen::VectorXd& b) -> Eigen::VectorXd {
-    Eigen::VectorXd x = solver.Solve(b);
-    st.krylovIterations += solver.LastSolve().iterations;
-    st.krylovFallbacks += solver.LastSolve().fellBack ? 1 : 0;
-    return x;
-  };
 
   if (n == 0) {
     Clock::time_point t0 = Clock::now();
@@ -176,7 +170,7 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
       bool good = Eigen::Map<const Eigen::VectorXd>(H.valuePtr(), H.nonZeros()).allFinite() &&
                   g.allFinite() && solver.Factorize(H);
       if (good) {
-        d = -solve(g);
+        d = -SolveCounted(solver, g, &st);
         good = d.allFinite() && g.dot(d) < 0.0;
       }
       st.factorizationSeconds += SecondsSince(t0);
@@ -221,7 +215,7 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
     } else if (exact && tryExact) {
       ok = true;  // the exact Hessian's direction, solved above
     } else if (solver.Factorize(H)) {
-      d = -solve(g);
+      d = -SolveCounted(solver, g, &st);
       ok = d.allFinite() && g.dot(d) < 0.0;
     }
     if (!ok) {
@@ -250,7 +244,7 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
         for (Eigen::Index k = 0; k < n; ++k)
           shifted.valuePtr()[diagonal[k]] = H.valuePtr()[diagonal[k]] + tau;
         if (solver.Factorize(shifted)) {
-          d = -solve(g);
+          d = -SolveCounted(solver, g, &st);
           ok = d.allFinite() && g.dot(d) < 0.0;
         }
       }

@@ -95,6 +95,16 @@ struct SolverStats {
   bool fallback = false;               ///< set by a caller that re-solved the stage another way
 };
 
+/// x = solver.Solve(b) (a SymmetricSolver or UnsymmetricSolver), adding its Krylov iterations
+/// and fallbacks to *stats.
+template <typename LinearSolver>
+Eigen::VectorXd SolveCounted(LinearSolver& solver, const Eigen::VectorXd& b, SolverStats* stats) {
+  Eigen::VectorXd x = solver.Solve(b);
+  stats->krylovIterations += solver.LastSolve().iterations;
+  stats->krylovFallbacks += solver.LastSolve().fellBack ? 1 : 0;
+  return x;
+}
+
 /// Minimizes the problem from its current state. The problem is left at the last accepted iterate.
 /// `timeScale` > 0 is the stage time step Δt_i [s] used by the step test. Invalid `params` (see
 /// Validate) or `timeScale` give Diverged with the reason, without touching the problem.

@@ -46,12 +46,6 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
   UnsymmetricSolver ownSolver;
   UnsymmetricSolver& lu = solver ? *solver : ownSolver;
   lu.SetSettings(params.linear);
-  auto solve = [&](const Eigen::VectorXd& b) -> Eigen::VectorXd {
-    Eigen::VectorXd x = lu.Solve(b);
-    st.krylovIterations += lu.LastSolve().iterations;
-    st.krylovFallbacks += lu.LastSolve().fellBack ? 1 : 0;
-    return x;
-  };
   if (n == 0) {
     st.status = StageStatus::Converged;
     st.message = "no degrees of freedom";
@@ -82,7 +76,7 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
     CompleteDiagonal(&J);
     bool ok = false;
     if (lu.Factorize(J)) {
-      d = -solve(r);
+      d = -SolveCounted(lu, r, &st);
       ok = d.allFinite();
     }
     if (!ok) {
@@ -95,7 +89,7 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
         shifted = J;
         for (Eigen::Index i = 0; i < n; ++i) shifted.coeffRef(i, i) += tau;
         if (lu.Factorize(shifted)) {
-          d = -solve(r);
+          d = -SolveCounted(lu, r, &st);
           ok = d.allFinite();
         }
       }

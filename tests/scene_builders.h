@@ -1,6 +1,8 @@
 // Actor descriptions shared by the physics tests.
 #pragma once
 
+#include <string>
+
 #include "core/rigid_body.h"
 
 namespace superdex::test {
@@ -22,6 +24,22 @@ inline RigidActorDesc Ground(const Eigen::Vector3d& n, double k, double mu, doub
   RigidActorDesc d = StaticGround(k, mu);
   d.shape.planeNormal = n;
   d.contact.normalViscousDampingCoefficient = cn;
+  return d;
+}
+
+/// Sphere k of a heap of 1 kg spheres (r = 0.05 m, surface resolution 2) on a 5 × 5 lattice
+/// in layers of 25, each pressed 0.5 mm into its neighbours and the lowest layer into a ground at
+/// z = 0, sliding a little (k % 3 · 1 cm/s along x, −(k % 2) · 2 cm/s along y).
+inline RigidActorDesc HeapSphere(int k) {
+  RigidActorDesc d;
+  d.name = "s" + std::to_string(k);
+  d.shape.radius = 0.05;
+  d.shape.surfaceResolution = 2;
+  d.mass = 1.0;
+  const double pitch = 0.1 - 5e-4;
+  d.position =
+      Eigen::Vector3d((k % 5) * pitch, ((k / 5) % 5) * pitch, 0.05 - 5e-4 + (k / 25) * pitch);
+  d.linearVelocity = Eigen::Vector3d(0.01 * (k % 3), -0.02 * (k % 2), 0.0);
   return d;
 }
 

@@ -18,17 +18,7 @@ std::vector<RigidBodyState> Run(int threads) {
   REQUIRE(scene.AddRigidActor(test::StaticGround(1e9, 0.5), &e).IsValid());
   // 200 spheres on a lattice, pressed 0.5 mm into each other and the ground: enough sample work
   // for the pipeline to evaluate pairs in parallel.
-  for (int k = 0; k < 200; ++k) {
-    RigidActorDesc d;
-    d.name = "s" + std::to_string(k);
-    d.shape.radius = 0.05;
-    d.shape.surfaceResolution = 2;
-    d.mass = 1.0;
-    const double pitch = 0.1 - 5e-4;
-    d.position = Eigen::Vector3d((k % 5) * pitch, ((k / 5) % 5) * pitch, 0.05 - 5e-4 + (k / 25) * pitch);
-    d.linearVelocity = Eigen::Vector3d(0.01 * (k % 3), -0.02 * (k % 2), 0.0);
-    REQUIRE(scene.AddRigidActor(d, &e).IsValid());
-  }
+  for (int k = 0; k < 200; ++k) REQUIRE(scene.AddRigidActor(test::HeapSphere(k), &e).IsValid());
   for (int i = 0; i < 3; ++i) {
     StepReport r;
     REQUIRE(scene.Step(1e-2, &r, &e));
