@@ -49,7 +49,7 @@ double SceneStageProblem::BodyEnergy(size_t i, const RigidPose& pose) const {
 
 void SceneStageProblem::Retract(const Eigen::VectorXd& d, std::vector<RigidPose>* out,
                                 std::vector<Eigen::VectorXd>* softOut) const {
-  if (soft_) {
+  if (soft_ && softOut) {
     for (size_t s = 0; s < soft_->targets.size(); ++s) {
       const SoftBodyModel& m = (*soft_->models)[s];
       Eigen::VectorXd& x = (*softOut)[s];
@@ -204,13 +204,7 @@ void SceneStageProblem::Commit(const Eigen::VectorXd& d) {
 
 bool SceneStageProblem::LimitStep(Eigen::VectorXd* d) {
   if (!contact_) return false;
-  for (size_t i = 0; i < models_.size(); ++i) {
-    trial_[i] = (*poses_)[i];
-    const int o = dofOffset_[i];
-    if (o < 0) continue;
-    trial_[i].p += d->segment<3>(o);
-    trial_[i].R = ExpSo3(d->segment<3>(o + 3)) * (*poses_)[i].R;
-  }
+  Retract(*d, &trial_, nullptr);
   contact_->StepLimits(*poses_, trial_, &limits_);
   bool changed = false;
   for (size_t i = 0; i < models_.size(); ++i) {

@@ -91,6 +91,7 @@ class SceneStageProblem : public StageProblem {
 
  private:
   double BodyEnergy(size_t i, const RigidPose& pose) const;
+  /// The rigid poses (and, if softOut is not null, the soft positions) at s ⊕ d.
   void Retract(const Eigen::VectorXd& d, std::vector<RigidPose>* out,
                std::vector<Eigen::VectorXd>* softOut) const;
   /// All terms at `poses` and soft positions `softX`: value; order >= 1: potential gradient into
