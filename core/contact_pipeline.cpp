@@ -14,6 +14,17 @@ bool IsCollider(const RigidBodyModel& m) { return m.collider.type != ColliderTyp
 // Below this many tested samples a pair list is evaluated serially.
 constexpr size_t kParallelSampleWork = 20000;
 
+// Runs f(0), ..., f(n − 1): in parallel over TBB's workers when `parallel` and n > 1, else in
+// order. Each f(k) writes only its own result slot, so the outcome does not depend on the threads.
+template <typename F>
+void ForEachPair(size_t n, bool parallel, F&& f) {
+  if (parallel && n > 1) {
+    tbb::parallel_for(size_t(0), n, f);
+  } else {
+    for (size_t k = 0; k < n; ++k) f(k);
+  }
+}
+
 void AppendBlocks(const StencilMatrix& M, const int offs[2], int blocks,
                   std::vector<Eigen::Triplet<double>>* triplets) {
   for (int bi = 0; bi < blocks; ++bi) {
@@ -267,11 +278,7 @@ void ContactPipeline::StepLimits(const std::vector<RigidPose>& poses,
   };
   size_t work = 0;
   for (const ContactPair& p : pairs_) work += models[p.colliding].samples.size();
-  if (work >= kParallelSampleWork && pairs_.size() > 1) {
-    tbb::parallel_for(size_t(0), pairs_.size(), evaluate);
-  } else {
-    for (size_t k = 0; k < pairs_.size(); ++k) evaluate(k);
-  }
+  ForEachPair(pairs_.size(), work >= kParallelSampleWork, evaluate);
   for (size_t k = 0; k < pairs_.size(); ++k) {
     double& a = (*alpha)[pairs_[k].colliding];
     double& b = (*alpha)[pairs_[k].collider];
@@ -325,11 +332,7 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
     if (order >= 2 && any && projection != PsdProjection::None)
       ProjectToPsd(&r.hessian, projection == PsdProjection::Abs);
   };
-  if (work >= kParallelSampleWork && pairs_.size() > 1) {
-    tbb::parallel_for(size_t(0), pairs_.size(), evaluate);
-  } else {
-    for (size_t k = 0; k < pairs_.size(); ++k) evaluate(k);
-  }
+  ForEachPair(pairs_.size(), work >= kParallelSampleWork, evaluate);
 
   // Fixed-order reduction.
   double energy = 0.0;
@@ -387,11 +390,7 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
         ProjectToPsd(&fc.penaltyHessian, projection == PsdProjection::Abs);
     }
   };
-  if (softPairs_.size() > 1) {
-    tbb::parallel_for(size_t(0), softPairs_.size(), evaluateSoft);
-  } else {
-    for (size_t k = 0; k < softPairs_.size(); ++k) evaluateSoft(k);
-  }
+  ForEachPair(softPairs_.size(), true, evaluateSoft);
   st.candidatePairs += static_cast<int>(softPairs_.size());
   for (size_t k = 0; k < softPairs_.size(); ++k) {
     const SoftContactPair& sp = softPairs_[k];
@@ -457,11 +456,7 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
       if (!en.dissipation || potential) ProjectToPsd(&en.hessian, projection == PsdProjection::Abs);
     }
   };
-  if (softColliderPairs_.size() > 1) {
-    tbb::parallel_for(size_t(0), softColliderPairs_.size(), evaluateOnSoft);
-  } else {
-    for (size_t k = 0; k < softColliderPairs_.size(); ++k) evaluateOnSoft(k);
-  }
+  ForEachPair(softColliderPairs_.size(), true, evaluateOnSoft);
   st.candidatePairs += static_cast<int>(softColliderPairs_.size());
   for (size_t k = 0; k < softColliderPairs_.size(); ++k) {
     const SoftColliderPair& sp = softColliderPairs_[k];
