@@ -2,6 +2,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -364,19 +365,23 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
         // local residual iterations. That costs about one iteration more on easy stages, so it is
         // switched on for kExplicitFirstStages stages whenever a residual-first stage takes more
         // than kResidualFirstIterations iterations, then the residual-first start is tried again.
-        // Either start converges to the same residual root; if the residual solve fails, the
-        // explicit-normals minimizer is the fallback (below) without a second solve.
+        // Either start converges to the same residual root. The start needs no more accuracy
+        // than the distance between the two roots, so that minimization stops at a gradient
+        // kStartRelativeGradient of its initial one (300-sphere pile, 0.6 s: 14.0 → 11.9 Newton
+        // iterations per step against a full-accuracy start). If the residual solve fails, the
+        // explicit-normals minimizer, continued to full accuracy, is the fallback (below).
         constexpr int kResidualFirstIterations = 8;
         constexpr int kExplicitFirstStages = 20;
+        constexpr double kStartRelativeGradient = 1e-2;
         const std::vector<RigidPose> guess = *poses;
         const std::vector<Eigen::VectorXd> softGuess = softX ? *softX : std::vector<Eigen::VectorXd>();
         StageDissipation potential = dissipation;
         potential.mode = DissipationMode::ExplicitNormals;
         ContactStats explicitContact;
-        auto minimizeExplicit = [&]() {  // from *poses, *softX
+        auto minimizeExplicit = [&](const NonlinearSolverParams& params) {  // from *poses, *softX
           SceneStageProblem stage(models_, dofOffset_, numDofs_, targets, settings_.gravity,
                                   &pipeline_, poses, potential, soft, softX, &workspace_);
-          const SolverStats out = MinimizeNewton(stage, settings_.solver, dt, solvers_.symmetric.get());
+          const SolverStats out = MinimizeNewton(stage, params, dt, solvers_.symmetric.get());
           explicitContact = stage.LastContactStats();
           return out;
         };
@@ -387,7 +392,9 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
         std::vector<RigidPose> explicitSolution;
         std::vector<Eigen::VectorXd> softExplicit;
         if (explicitFirst) {
-          first = minimizeExplicit();
+          NonlinearSolverParams start = settings_.solver;
+          start.relativeTolerance = std::max(start.relativeTolerance, kStartRelativeGradient);
+          first = minimizeExplicit(start);
           haveExplicit = first.status == StageStatus::Converged;
           if (haveExplicit) {
             explicitSolution = *poses;
@@ -403,19 +410,14 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
           explicitFirstStages_ = kExplicitFirstStages;
         AddSolverWork(first, &st);
         if (st.status != StageStatus::Converged) {
-          // Fallback: the explicit-normals minimizer (solved now if it was not the start); the
-          // report carries its outcome and the work of every solve of the stage.
+          // Fallback: the explicit-normals minimizer to full accuracy (from the start it gave,
+          // or from the stage's guess); the report carries its outcome and the work of every
+          // solve of the stage.
           SolverStats work = st;
-          SolverStats outcome = first;
-          if (haveExplicit) {
-            *poses = explicitSolution;
-            if (softX) *softX = softExplicit;
-          } else {
-            *poses = guess;
-            if (softX) *softX = softGuess;
-            outcome = minimizeExplicit();
-            AddSolverWork(outcome, &work);
-          }
+          *poses = haveExplicit ? explicitSolution : guess;
+          if (softX) *softX = haveExplicit ? softExplicit : softGuess;
+          const SolverStats outcome = minimizeExplicit(settings_.solver);
+          AddSolverWork(outcome, &work);
           const std::string why = st.message;
           st = outcome;
           CopySolverWork(work, &st);
