@@ -363,8 +363,10 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
         // iterations with many backtracks on a sphere pile). A stage that starts from the
         // explicit-normals minimizer (a potential, globalized by projected Newton) needs only the
         // local residual iterations. That costs about one iteration more on easy stages, so it is
-        // switched on for kExplicitFirstStages stages whenever a residual-first stage takes more
-        // than kResidualFirstIterations iterations, then the residual-first start is tried again.
+        // switched on whenever a residual-first stage takes more than kResidualFirstIterations
+        // iterations, for kExplicitFirstStages stages, then the residual-first start is tried
+        // again; each further such probe that fails doubles the run (up to kMaxExplicitFirstStages),
+        // one that succeeds resets it.
         // Either start converges to the same residual root. The start needs no more accuracy
         // than the distance between the two roots, so that minimization stops at a gradient
         // kStartRelativeGradient of its initial one (300-sphere pile, 0.6 s: 14.0 → 11.9 Newton
@@ -372,6 +374,7 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
         // explicit-normals minimizer, continued to full accuracy, is the fallback (below).
         constexpr int kResidualFirstIterations = 8;
         constexpr int kExplicitFirstStages = 20;
+        constexpr int kMaxExplicitFirstStages = 320;
         constexpr double kStartRelativeGradient = 1e-2;
         const std::vector<RigidPose> guess = *poses;
         const std::vector<Eigen::VectorXd> softGuess = softX ? *softX : std::vector<Eigen::VectorXd>();
@@ -405,9 +408,14 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
           }
         }
         st = SolveResidualNewton(problem, settings_.solver, dt, solvers_.unsymmetric.get());
-        if (!explicitFirst && (st.status != StageStatus::Converged ||
-                               st.iterations > kResidualFirstIterations))
-          explicitFirstStages_ = kExplicitFirstStages;
+        if (!explicitFirst) {
+          if (st.status != StageStatus::Converged || st.iterations > kResidualFirstIterations) {
+            explicitFirstStages_ = explicitFirstRun_;
+            explicitFirstRun_ = std::min(2 * explicitFirstRun_, kMaxExplicitFirstStages);
+          } else {
+            explicitFirstRun_ = kExplicitFirstStages;
+          }
+        }
         AddSolverWork(first, &st);
         if (st.status != StageStatus::Converged) {
           // Fallback: the explicit-normals minimizer to full accuracy (from the start it gave,

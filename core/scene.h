@@ -238,10 +238,11 @@ class Scene {
     std::vector<double> historyTimes;
     double time = 0.0;
     int explicitFirstStages = 0;
+    int explicitFirstRun = 20;
   };
   Snapshot Save() const {
     return {states_, softStates_, history_, softHistory_, historyTimes_, time_,
-            explicitFirstStages_};
+            explicitFirstStages_, explicitFirstRun_};
   }
   void Restore(const Snapshot& s) {
     states_ = s.states;
@@ -251,6 +252,7 @@ class Scene {
     historyTimes_ = s.historyTimes;
     time_ = s.time;
     explicitFirstStages_ = s.explicitFirstStages;
+    explicitFirstRun_ = s.explicitFirstRun;
   }
   int HistoryBlocks() const;
   // The packed-state layout: calls visit(block, offset, actor ref, actor index) for every dynamic
@@ -312,6 +314,7 @@ class Scene {
   bool hasDissipation_ = false;  // HasDissipation(), cached by Prepare
   // Residual modes: stages left that start from the explicit-normals minimizer (SolveStage).
   int explicitFirstStages_ = 0;
+  int explicitFirstRun_ = 20;  // the length of the next such run
   std::vector<int> dofOffset_;
   int numDofs_ = 0;
   ContactPipeline pipeline_;
