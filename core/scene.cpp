@@ -373,7 +373,6 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
         // iterations per step against a full-accuracy start). If the residual solve fails, the
         // explicit-normals minimizer, continued to full accuracy, is the fallback (below).
         constexpr int kResidualFirstIterations = 8;
-        constexpr int kExplicitFirstStages = 20;
         constexpr int kMaxExplicitFirstStages = 320;
         constexpr double kStartRelativeGradient = 1e-2;
         const std::vector<RigidPose> guess = *poses;

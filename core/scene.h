@@ -238,7 +238,7 @@ class Scene {
     std::vector<double> historyTimes;
     double time = 0.0;
     int explicitFirstStages = 0;
-    int explicitFirstRun = 20;
+    int explicitFirstRun = kExplicitFirstStages;
   };
   Snapshot Save() const {
     return {states_, softStates_, history_, softHistory_, historyTimes_, time_,
@@ -312,9 +312,11 @@ class Scene {
   };
   ResetOnCopy prepared_;
   bool hasDissipation_ = false;  // HasDissipation(), cached by Prepare
-  // Residual modes: stages left that start from the explicit-normals minimizer (SolveStage).
+  // Residual modes: stages left that start from the explicit-normals minimizer, and the length of
+  // the next such run (SolveStage).
+  static constexpr int kExplicitFirstStages = 20;
   int explicitFirstStages_ = 0;
-  int explicitFirstRun_ = 20;  // the length of the next such run
+  int explicitFirstRun_ = kExplicitFirstStages;
   std::vector<int> dofOffset_;
   int numDofs_ = 0;
   ContactPipeline pipeline_;
