@@ -262,6 +262,12 @@ DissipationSetup ContactPipeline::MakeSetup(const PairContactParams& params,
   return setup;
 }
 
+size_t ContactPipeline::RigidPairWork() const {
+  size_t work = 0;
+  for (const ContactPair& p : pairs_) work += (*models_)[p.colliding].samples.size();
+  return work;
+}
+
 void ContactPipeline::StepLimits(const std::vector<RigidPose>& poses,
                                  const std::vector<RigidPose>& trial,
                                  std::vector<double>* alpha) {
@@ -276,9 +282,7 @@ void ContactPipeline::StepLimits(const std::vector<RigidPose>& poses,
                            models[cp.collider], poses[cp.collider], trial[cp.collider],
                            PenaltyOf(cp.params));
   };
-  size_t work = 0;
-  for (const ContactPair& p : pairs_) work += models[p.colliding].samples.size();
-  ForEachPair(pairs_.size(), work >= kParallelSampleWork, evaluate);
+  ForEachPair(pairs_.size(), RigidPairWork() >= kParallelSampleWork, evaluate);
   for (size_t k = 0; k < pairs_.size(); ++k) {
     double& a = (*alpha)[pairs_[k].colliding];
     double& b = (*alpha)[pairs_[k].collider];
@@ -303,8 +307,6 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
   // Projected Hessians are the globalization model: the Coulomb term's isotropic majorizer.
   const bool isotropic = potential && projection != PsdProjection::None;
   const std::vector<RigidStageStart>* reference = stageStart;
-  size_t work = 0;
-  for (const ContactPair& p : pairs_) work += models[p.colliding].samples.size();
 
   auto evaluate = [&](size_t k) {
     const ContactPair& cp = pairs_[k];
@@ -332,7 +334,7 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
     if (order >= 2 && any && projection != PsdProjection::None)
       ProjectToPsd(&r.hessian, projection == PsdProjection::Abs);
   };
-  ForEachPair(pairs_.size(), work >= kParallelSampleWork, evaluate);
+  ForEachPair(pairs_.size(), RigidPairWork() >= kParallelSampleWork, evaluate);
 
   // Fixed-order reduction.
   double energy = 0.0;

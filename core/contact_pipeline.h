@@ -116,6 +116,8 @@ class ContactPipeline {
   void FindPairs(const std::vector<RigidPose>& poses, const DissipationContext* dissipation,
                  const std::vector<RigidStageStart>* stageStart, const SoftView* soft);
   int RigidActor(int i) const { return rigidActor_.empty() ? i : rigidActor_[i]; }
+  /// Samples of the colliding actors over pairs_: whether a sweep pays for parallel workers.
+  size_t RigidPairWork() const;
   /// `isotropicFriction`: DissipationSetup::isotropicFrictionHessian.
   DissipationSetup MakeSetup(const PairContactParams& params,
                              const DissipationContext& dissipation,

@@ -56,7 +56,7 @@ struct SymmetricSolver::Impl {
   SparseMatrix compressed;       // scratch copy when the caller passes an uncompressed matrix
   LinearSolverSettings settings;
   LinearSolveInfo info;
-  // Conjugate gradients: the matrix, its inverse diagonal, and the iteration's vectors.
+  // Conjugate gradients: the matrix, its block-Jacobi preconditioner, the iteration's vectors.
   SparseMatrix matrix;
   BlockJacobi3 preconditioner;
   Eigen::VectorXd r, z, p, q;
