@@ -213,10 +213,23 @@ const char* SymmetricSolver::Backend() const {
   return "none";
 }
 
+// Eigen's UMFPACK wrapper solves with J only; the adjoint pass needs Jᵀ x = b from the same
+// factors (UMFPACK_At).
+class UmfPackLUWithTranspose : public Eigen::UmfPackLU<SparseMatrix> {
+ public:
+  bool SolveTransposed(const Eigen::VectorXd& b, Eigen::VectorXd* x) {
+    x->resize(b.size());
+    const SparseMatrix& A = mp_matrix;
+    return umfpack_di_solve(UMFPACK_At, A.outerIndexPtr(), A.innerIndexPtr(), A.valuePtr(),
+                            x->data(), b.data(), m_numeric, m_control.data(),
+                            m_umfpackInfo.data()) == UMFPACK_OK;
+  }
+};
+
 struct UnsymmetricSolver::Impl {
   /// Below this size a dense partial-pivoting LU is cheaper than UMFPACK's setup.
   static constexpr Eigen::Index kDenseLimit = 48;
-  Eigen::UmfPackLU<SparseMatrix> lu;
+  UmfPackLUWithTranspose lu;
   Eigen::PartialPivLU<Eigen::MatrixXd> denseLu;
   bool dense = false;
   std::vector<SparseMatrix::StorageIndex> outer, inner;
@@ -326,6 +339,15 @@ Eigen::VectorXd UnsymmetricSolver::Solve(const Eigen::VectorXd& b) {
       return Eigen::VectorXd::Constant(b.size(), std::numeric_limits<double>::quiet_NaN());
   }
   return s.lu.solve(b);
+}
+
+Eigen::VectorXd UnsymmetricSolver::SolveTransposed(const Eigen::VectorXd& b) {
+  Impl& s = *impl_;
+  s.info = LinearSolveInfo();
+  if (s.dense) return s.denseLu.transpose().solve(b);
+  Eigen::VectorXd x;
+  if ((s.luValid || s.FactorizeLu()) && s.lu.SolveTransposed(b, &x)) return x;
+  return Eigen::VectorXd::Constant(b.size(), std::numeric_limits<double>::quiet_NaN());
 }
 
 const char* ToString(LinearSolverKind kind) {

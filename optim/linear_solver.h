@@ -100,6 +100,9 @@ class UnsymmetricSolver {
   /// Solves with the last factorization. Iterative: BiCGSTAB from x = 0; no convergence within
   /// maxIterations (or a breakdown): the LU solve.
   Eigen::VectorXd Solve(const Eigen::VectorXd& b);
+  /// Solves Jᵀ x = b with the LU factors of the last factorization (made now if the last
+  /// Factorize prepared the iterative solver); all NaN if J is singular.
+  Eigen::VectorXd SolveTransposed(const Eigen::VectorXd& b);
   const LinearSolveInfo& LastSolve() const;
 
  private:

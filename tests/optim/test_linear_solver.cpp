@@ -284,3 +284,27 @@ TEST_CASE("block-Jacobi preconditioner: exact on a 3x3-block-diagonal matrix", "
   CHECK(!P.PositiveDefinite());
   CHECK(!s.Factorize(H));
 }
+
+TEST_CASE("transposed solves with the LU factors: UMFPACK, dense and after an iterative "
+          "factorization", "[optim]") {
+  std::mt19937 rng(21);
+  for (int n : {30, 400}) {  // dense LU below 48 unknowns, UMFPACK above
+    SparseMatrix J = RandomSpd(n, 3 * n, rng);
+    for (Eigen::Index k = 0; k < J.outerSize(); ++k)
+      for (SparseMatrix::InnerIterator e(J, k); e; ++e)
+        if (e.row() > e.col()) e.valueRef() *= 1.7;  // unsymmetric
+    const SparseMatrix Jt = J.transpose();
+    const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
+    UnsymmetricSolver lu;
+    REQUIRE(lu.Factorize(J));
+    const Eigen::VectorXd x = lu.SolveTransposed(b);
+    CHECK(RelativeResidual(Jt, x, b) <= 1e-12);
+    CHECK(RelativeResidual(Jt, lu.Solve(b), b) > 1e-3);  // not the plain solve
+    LinearSolverSettings iterative;
+    iterative.kind = LinearSolverKind::Iterative;
+    UnsymmetricSolver bicg;
+    bicg.SetSettings(iterative);
+    REQUIRE(bicg.Factorize(J));
+    CHECK(RelativeResidual(Jt, bicg.SolveTransposed(b), b) <= 1e-12);
+  }
+}
