@@ -81,13 +81,18 @@ struct EnergyReport {
 };
 
 /// One step's stages as core/sensitivity.h needs them: each stage's accepted solution, the
-/// dissipation mode it was solved in, and the LU factors of the stage Jacobian ∂r/∂δ there.
+/// dissipation mode it was solved in, the stage Jacobian ∂r/∂δ there and its LU factors.
 struct StageTapeEntry {
   std::vector<RigidPose> poses;
   std::vector<Eigen::VectorXd> softX;
   DissipationMode mode = DissipationMode::ExplicitNormals;
+  Eigen::SparseMatrix<double> jacobian;
   std::unique_ptr<UnsymmetricSolver> lu = std::make_unique<UnsymmetricSolver>();
   bool factored = false;
+  /// Inject mode (core/step_linearization.h): the stage's solution is taken as poses ⊕ inject
+  /// (the stage's chart, δ = [δp, δθ] per dynamic body, δx per free soft node; empty = 0), and
+  /// the stage residual there, with the inputs of the perturbed step, is kept in `residual`.
+  Eigen::VectorXd inject, residual;
 };
 struct StepTape {
   std::vector<StageTapeEntry> stages;  ///< kept from step to step (symbolic analyses reused)
@@ -175,6 +180,8 @@ class Scene {
   /// Replaces a soft actor's Young's modulus and density (validated); Lamé parameters and the
   /// lumped masses follow. Poisson's ratio and stiffness damping are kept.
   bool SetSoftMaterial(ActorHandle a, double youngsModulus, double density, Error* error);
+  /// Whether the scene holds multistep history (any step since the last state change).
+  bool HasStepHistory() const { return !history_.empty(); }
   /// The smallest V_f over the actors [m/s].
   double MinFrictionFalloffVel() const;
   /// The actor of that name (invalid handle if none).
@@ -217,10 +224,13 @@ class Scene {
                          ContactStats* contact, const SoftStage* soft = nullptr,
                          std::vector<Eigen::VectorXd>* softX = nullptr);
   friend class ForwardSensitivity;
+  friend class StepLinearizer;
+  friend class AdjointSensitivity;
   // Differentiation support: Record keeps each stage's solution and factored Jacobian in *tape_;
   // Replay replaces each stage solve by one Newton step from the recorded solution with the
-  // recorded factors, r evaluated with the current (perturbed) inputs.
-  enum class TapeMode { Off, Record, Replay };
+  // recorded factors, r evaluated with the current (perturbed) inputs; Inject takes each stage's
+  // solution as the recorded one moved by the entry's `inject` and keeps the residual there.
+  enum class TapeMode { Off, Record, Replay, Inject };
   TapeMode tapeMode_ = TapeMode::Off;
   StepTape* tape_ = nullptr;
   int tapeStage_ = 0;
@@ -228,6 +238,9 @@ class Scene {
                    const std::vector<RigidPose>& poses, const SoftStage* soft,
                    std::vector<Eigen::VectorXd>* softX);
   void ReplayStage(const StageTargets& targets, const StageDissipation& dissipation,
+                   std::vector<RigidPose>* poses, const SoftStage* soft,
+                   std::vector<Eigen::VectorXd>* softX);
+  void InjectStage(const StageTargets& targets, const StageDissipation& dissipation,
                    std::vector<RigidPose>* poses, const SoftStage* soft,
                    std::vector<Eigen::VectorXd>* softX);
   struct Snapshot {

@@ -44,21 +44,6 @@ double* ContactField(ContactParams* c, SceneParameterKind kind) {
   }
 }
 
-// The smallest stage step Δt_i of one step of the method: γ·dt for the BDF methods (γ = 1, 2/3,
-// 6/11 for BDF1-3; the first steps run BackwardEuler or DIRK33), min a_ii·dt for the DIRKs.
-double SmallestStageStep(IntegrationMethod method, double dt) {
-  double fraction = 1.0;
-  if (IsMultistep(method)) {
-    fraction = BdfSteps(method) == 2 ? 2.0 / 3.0 : 6.0 / 11.0;
-    const DirkTableau& startup = TableauOf(IntegrationMethod::DIRK33);
-    for (int i = 0; i < startup.stages; ++i) fraction = std::min(fraction, startup.a[i][i]);
-  } else {
-    const DirkTableau& T = TableauOf(method);
-    for (int i = 0; i < T.stages; ++i) fraction = std::min(fraction, T.a[i][i]);
-  }
-  return fraction * dt;
-}
-
 bool IsContactKind(SceneParameterKind k) { return k <= SceneParameterKind::FrictionFalloffVel; }
 
 }  // namespace
@@ -168,6 +153,93 @@ bool SetParameterValue(Scene* scene, const SceneParameter& p, double value, Erro
   return scene->SetState(p.actor, s, error);
 }
 
+namespace {
+
+// The smallest stage step Δt_i of one step of the method: γ·dt for the BDF methods (γ = 1, 2/3,
+// 6/11 for BDF1-3; the first steps run BackwardEuler or DIRK33), min a_ii·dt for the DIRKs.
+double SmallestStageStep(IntegrationMethod method, double dt) {
+  double fraction = 1.0;
+  if (IsMultistep(method)) {
+    fraction = BdfSteps(method) == 2 ? 2.0 / 3.0 : 6.0 / 11.0;
+    const DirkTableau& startup = TableauOf(IntegrationMethod::DIRK33);
+    for (int i = 0; i < startup.stages; ++i) fraction = std::min(fraction, startup.a[i][i]);
+  } else {
+    const DirkTableau& T = TableauOf(method);
+    for (int i = 0; i < T.stages; ++i) fraction = std::min(fraction, T.a[i][i]);
+  }
+  return fraction * dt;
+}
+
+}  // namespace
+
+// Perturbation sizes. r is most curved in the stage velocity (Y − Y⁰)/Δt_i through the friction
+// regularization ρ, on the scale V_f: a position perturbation s moves it by s/Δt_i, a velocity
+// perturbation δv by δv. The state moves by at most s = 0.012 V_f min Δt_i in positions and
+// s/dt in velocities, which keeps that curvature's O(η²) share small, and the Richardson
+// combination below removes it; much below that the rounding of the stage velocities
+// (x − x⁰)/Δt_i, and for the DIRKs of their slopes (V − v⁰)/Δt_i, takes over. Measured on the
+// tests' scenes (worst of 43 derivatives against trajectory differences): 2.9e-5 at 0.006
+// (rounding, SymplecticDIRK22), 1.3e-5 at 0.008, 8.1e-6 at 0.012, 1.9e-5 at 0.016 (a box at rest
+// under BackwardEuler: near V_t = 0 ρ's |V|³ term makes r only C¹ in V, and the difference is
+// O(s) off there — 4.7e-4 on a box slid to rest under DIRK22). Model parameters move by at most
+// 1e-4 of their value.
+double DifferenceStateStep(const Scene& scene, double dt) {
+  return 0.012 * scene.MinFrictionFalloffVel() * SmallestStageStep(scene.Settings().integrator, dt);
+}
+
+bool CheckDifferentiable(Scene& scene, const SceneParameter& p, int index, Error* error) {
+  if (!p.actor.IsValid() || p.actor.index >= scene.NumActors())
+    return Fail(error, "parameter " + std::to_string(index) + ": invalid actor handle");
+  const std::string name = ToString(scene, p);
+  if (!p.IsInitialState()) {
+    if (!(ParameterValue(scene, p) > 0))
+      return Fail(error, name + ": differentiated at positive values only (the pair value "
+                         "is the geometric mean of the two actors', not differentiable at "
+                         "0); start from a value > 0");
+    return true;
+  }
+  if (scene.HasStepHistory())
+    return Fail(error, name + ": an initial-state parameter is differentiated from the first "
+                       "step (the scene already has step history)");
+  return true;
+}
+
+Eigen::VectorXd InitialStateDirection(Scene& scene, const SceneParameter& p) {
+  Eigen::VectorXd d = Eigen::VectorXd::Zero(scene.StateSize());
+  if (!p.IsInitialState()) return d;
+  const int o = scene.StateOffset(p.actor);
+  const int c = p.component;
+  if (scene.IsSoft(p.actor)) {
+    const int n = 3 * scene.SoftModel(p.actor).NumNodes();
+    const int base = p.kind == SceneParameterKind::Position ? o : o + n;
+    for (int i = c; i < n; i += 3) d[base + i] = 1.0;
+  } else if (p.kind == SceneParameterKind::Position) {
+    d[o + c] = 1.0;
+  } else if (p.kind == SceneParameterKind::Velocity) {
+    d[o + 12 + c] = 1.0;
+  } else {  // Ṙ = [ω]× R
+    const Eigen::Matrix3d dRdot = Skew(Eigen::Vector3d::Unit(c)) * scene.State(p.actor).R;
+    d.segment(o + 15, 9) = Eigen::Map<const Eigen::VectorXd>(dRdot.data(), 9);
+  }
+  return d;
+}
+
+Eigen::SparseMatrix<double> CenterOfMassMap(Scene& scene, ActorHandle a) {
+  Eigen::SparseMatrix<double> C(3, scene.StateSize());
+  const int o = scene.StateOffset(a);
+  if (o < 0) return C;
+  std::vector<Eigen::Triplet<double>> t;
+  if (!scene.IsSoft(a)) {
+    for (int c = 0; c < 3; ++c) t.emplace_back(c, o + c, 1.0);
+  } else {
+    const SoftBodyModel& m = scene.SoftModel(a);
+    for (int i = 0; i < m.NumNodes(); ++i)
+      for (int c = 0; c < 3; ++c) t.emplace_back(c, o + 3 * i + c, m.nodeMass[i] / m.mass);
+  }
+  C.setFromTriplets(t.begin(), t.end());
+  return C;
+}
+
 bool ForwardSensitivity::Begin(Scene* scene, const std::vector<SceneParameter>& parameters,
                                Error* error) {
   scene_ = scene;
@@ -176,42 +248,8 @@ bool ForwardSensitivity::Begin(Scene* scene, const std::vector<SceneParameter>& 
   const int P = static_cast<int>(parameters.size());
   dS_ = Eigen::MatrixXd::Zero(scene->StateSize(), P);
   for (int j = 0; j < P; ++j) {
-    const SceneParameter& p = parameters[j];
-    if (!p.actor.IsValid() || p.actor.index >= scene->NumActors())
-      return Fail(error, "parameter " + std::to_string(j) + ": invalid actor handle");
-    const std::string name = ToString(*scene, p);
-    switch (p.kind) {
-      case SceneParameterKind::CoulombFrictionCoefficient:
-      case SceneParameterKind::ViscousFrictionCoefficient:
-      case SceneParameterKind::NormalViscousDampingCoefficient:
-      case SceneParameterKind::PenaltyCoefficient:
-      case SceneParameterKind::FrictionFalloffVel:
-      case SceneParameterKind::YoungsModulus:
-      case SceneParameterKind::Density:
-        if (!(ParameterValue(*scene, p) > 0))
-          return Fail(error, name + ": differentiated at positive values only (the pair value "
-                             "is the geometric mean of the two actors', not differentiable at "
-                             "0); start from a value > 0");
-        continue;
-      default: break;
-    }
-    if (!scene->history_.empty())
-      return Fail(error, name + ": an initial-state parameter is differentiated from the first "
-                         "step (the scene already has step history)");
-    const int o = scene->StateOffset(p.actor);
-    const int c = p.component;
-    if (scene->IsSoft(p.actor)) {
-      const int n = 3 * scene->SoftModel(p.actor).NumNodes();
-      const int base = p.kind == SceneParameterKind::Position ? o : o + n;
-      for (int i = c; i < n; i += 3) dS_(base + i, j) = 1.0;
-    } else if (p.kind == SceneParameterKind::Position) {
-      dS_(o + c, j) = 1.0;
-    } else if (p.kind == SceneParameterKind::Velocity) {
-      dS_(o + 12 + c, j) = 1.0;
-    } else {  // Ṙ = [ω]× R
-      const Eigen::Matrix3d dRdot = Skew(Eigen::Vector3d::Unit(c)) * scene->State(p.actor).R;
-      dS_.block(o + 15, j, 9, 1) = Eigen::Map<const Eigen::VectorXd>(dRdot.data(), 9);
-    }
+    if (!CheckDifferentiable(*scene, parameters[j], j, error)) return false;
+    dS_.col(j) = InitialStateDirection(*scene, parameters[j]);
   }
   return true;
 }
@@ -240,19 +278,7 @@ bool ForwardSensitivity::Step(double dt, StepReport* report, Error* error) {
   const Scene::Snapshot after = scene.Save();
   const int P = static_cast<int>(parameters_.size());
   Eigen::MatrixXd next(dS_.rows(), P);
-  // Perturbation sizes. r is most curved in the stage velocity (Y − Y⁰)/Δt_i through the friction
-  // regularization ρ, on the scale V_f: a position perturbation s moves it by s/Δt_i, a velocity
-  // perturbation δv by δv. The state moves by at most s = 0.012 V_f min Δt_i in positions and
-  // s/dt in velocities, which keeps that curvature's O(η²) share small, and the Richardson
-  // combination below removes it; much below that the rounding of the stage velocities
-  // (x − x⁰)/Δt_i, and for the DIRKs of their slopes (V − v⁰)/Δt_i, takes over. Measured on the
-  // tests' scenes (worst of 43 derivatives against trajectory differences): 2.9e-5 at 0.006
-  // (rounding, SymplecticDIRK22), 1.3e-5 at 0.008, 8.1e-6 at 0.012, 1.9e-5 at 0.016 (a box at rest
-  // under BackwardEuler: near V_t = 0 ρ's |V|³ term makes r only C¹ in V, and the difference is
-  // O(s) off there — 4.7e-4 on a box slid to rest under DIRK22). Model parameters move by at most
-  // 1e-4 of their value.
-  const double stateStep =
-      0.012 * scene.MinFrictionFalloffVel() * SmallestStageStep(scene.Settings().integrator, dt);
+  const double stateStep = DifferenceStateStep(scene, dt);
   const Eigen::VectorXd weight =
       (Eigen::VectorXd::Ones(dS_.rows()) + (dt - 1.0) * scene.PackedVelocityMask());
   // (S(+e) − S(−e)) / 2e for direction j with the state and parameter moved together.
@@ -302,14 +328,7 @@ bool ForwardSensitivity::Step(double dt, StepReport* report, Error* error) {
 }
 
 Eigen::MatrixXd ForwardSensitivity::CenterOfMassJacobian(ActorHandle a) const {
-  const int P = static_cast<int>(parameters_.size());
-  const int o = scene_->StateOffset(a);
-  if (o < 0) return Eigen::MatrixXd::Zero(3, P);
-  if (!scene_->IsSoft(a)) return dS_.block(o, 0, 3, P);
-  const SoftBodyModel& m = scene_->SoftModel(a);
-  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(3, P);
-  for (int i = 0; i < m.NumNodes(); ++i) J += m.nodeMass[i] * dS_.block(o + 3 * i, 0, 3, P);
-  return J / m.mass;
+  return CenterOfMassMap(*scene_, a) * dS_;
 }
 
 }  // namespace superdex

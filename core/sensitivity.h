@@ -68,6 +68,21 @@ double ParameterValue(const Scene& scene, const SceneParameter& parameter);
 /// current state (rigid: p, v or ω; soft: every node's position or velocity component).
 bool SetParameterValue(Scene* scene, const SceneParameter& parameter, double value, Error* error);
 
+/// Whether p can be differentiated at the scene's current state: a valid actor; a model
+/// parameter at a positive value (the pair value √(c_A c_B) is not differentiable at 0); an
+/// initial-state parameter only before the first step. `index` names it in the message.
+bool CheckDifferentiable(Scene& scene, const SceneParameter& p, int index, Error* error);
+/// ∂S/∂θ of the current packed state (Scene::PackState) for an initial-state parameter: unit
+/// entries (soft: every node's component), Ṙ = [e_c]× R for an angular velocity; zero for a model
+/// parameter.
+Eigen::VectorXd InitialStateDirection(Scene& scene, const SceneParameter& p);
+/// C with centre of mass of actor a = C S for the packed state S (3 × StateSize; soft: the node
+/// masses' weights; all zero for a static actor).
+Eigen::SparseMatrix<double> CenterOfMassMap(Scene& scene, ActorHandle a);
+/// The state step η of the central differences of the step map [m] (velocities: η/dt [m/s]):
+/// 0.012 V_f min Δt_i, smallest V_f over the actors, smallest stage step of the method.
+double DifferenceStateStep(const Scene& scene, double dt);
+
 /// Forward sensitivities for a few parameters, carried along a simulation.
 class ForwardSensitivity {
  public:
@@ -82,7 +97,7 @@ class ForwardSensitivity {
   /// dS/dθ: one column per parameter, rows as Scene::PackState.
   const Eigen::MatrixXd& StateJacobian() const { return dS_; }
   /// d(centre of mass of actor a)/dθ, 3 × P (soft: mass-weighted over the nodes).
-  Eigen::MatrixXd CenterOfMassJacobian(ActorHandle a) const;
+  Eigen::MatrixXd CenterOfMassJacobian(ActorHandle a) const;  // = CenterOfMassMap · dS/dθ
   /// Wall seconds in the nominal steps and in the replays, since Begin.
   double StepSeconds() const { return stepSeconds_; }
   double TangentSeconds() const { return tangentSeconds_; }

@@ -5,24 +5,14 @@
 #include <functional>
 
 #include "core/sensitivity.h"
-#include "scene_builders.h"
+#include "sensitivity_scenes.h"
 
 using namespace superdex;
+using namespace superdex::test;
 
 namespace {
 
 using Builder = std::function<Scene()>;
-
-SceneSettings TightSettings(IntegrationMethod method, DissipationMode mode) {
-  SceneSettings s;
-  s.integrator = method;
-  s.eval.explicitNormals = mode == DissipationMode::ExplicitNormals;
-  s.eval.implicitNormalForceForDissipation = mode == DissipationMode::ImplicitLoad;
-  s.solver.absoluteTolerance = 1e-18;
-  s.solver.relativeTolerance = 1e-14;
-  s.solver.stepTolerance = 1e-14;
-  return s;
-}
 
 // Final centre of mass of `actor` after `steps` steps of dt, with parameter `name` set to value.
 Eigen::Vector3d FinalCom(const Builder& build, const std::string& name, double value,
@@ -81,57 +71,6 @@ void CheckAgainstTrajectoryDifferences(const Builder& build, const std::vector<P
     CHECK(scale > 0);
     CHECK(err < 1e-5);
   }
-}
-
-// A 0.2 m, 1 kg box resting 0.5 mm into the ground, sliding along x at 0.5 m/s (μ = 0.5 on both,
-// c_n = 1 s/m on both, c_t = 0.2 s/m on the box and the ground).
-Scene SlidingBox(IntegrationMethod method, DissipationMode mode) {
-  Scene scene(TightSettings(method, mode));
-  Error error;
-  RigidActorDesc ground = test::Ground(Eigen::Vector3d::UnitZ(), 1e7, 0.5, 1.0);
-  ground.contact.viscousFrictionCoefficient = 0.2;
-  REQUIRE(scene.AddRigidActor(ground, &error).IsValid());
-  RigidActorDesc box = test::Cube(1e7, 0.5, 1.0);
-  box.contact.viscousFrictionCoefficient = 0.2;
-  box.position = Eigen::Vector3d(0, 0, 0.1 - 5e-4);
-  box.linearVelocity = Eigen::Vector3d(0.5, 0, 0);
-  REQUIRE(scene.AddRigidActor(box, &error).IsValid());
-  return scene;
-}
-
-// The box dropped from 2 cm, tilted, with normal damping: impact, bounce, settle.
-Scene BouncingBox(IntegrationMethod method, DissipationMode mode) {
-  Scene scene(TightSettings(method, mode));
-  Error error;
-  REQUIRE(scene.AddRigidActor(test::Ground(Eigen::Vector3d::UnitZ(), 1e7, 0.3, 2.0), &error)
-              .IsValid());
-  RigidActorDesc box = test::Cube(1e7, 0.3, 2.0);
-  box.position = Eigen::Vector3d(0, 0, 0.13);
-  box.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(0.2, Eigen::Vector3d(1, 1, 0).normalized()));
-  box.linearVelocity = Eigen::Vector3d(0.3, 0, -0.5);
-  REQUIRE(scene.AddRigidActor(box, &error).IsValid());
-  return scene;
-}
-
-// A soft cube (2 × 2 × 2 cells, 0.1 m, E = 1e5 Pa) dropped 1 cm onto the ground, moving sideways.
-Scene SoftCube(IntegrationMethod method) {
-  Scene scene(TightSettings(method, DissipationMode::ReconstructedLoad));
-  Error error;
-  REQUIRE(scene.AddRigidActor(test::Ground(Eigen::Vector3d::UnitZ(), 1e7, 0.5, 1.0), &error)
-              .IsValid());
-  SoftActorDesc d;
-  d.name = "soft";
-  d.mesh = std::make_shared<TetMesh>(
-      MakeTetBox(Eigen::Vector3d::Constant(0.05), Eigen::Vector3i::Constant(2)));
-  d.position = Eigen::Vector3d(0, 0, 0.06);
-  d.linearVelocity = Eigen::Vector3d(0.3, 0, 0);
-  d.material.youngsModulus = 1e5;
-  d.material.poissonRatio = 0.3;
-  d.material.density = 1000.0;
-  d.contact.penaltyCoefficient = 1e7;
-  d.contact.normalViscousDampingCoefficient = 1.0;
-  REQUIRE(scene.AddSoftActor(d, &error).IsValid());
-  return scene;
 }
 
 }  // namespace
