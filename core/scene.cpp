@@ -342,8 +342,11 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
     dissipation.mode = ModeOf(settings_.eval);
     dissipation.fadeFriction = settings_.eval.fadeFriction;
   }
-  if (tapeMode_ == TapeMode::Replay) {
-    ReplayStage(targets, dissipation, poses, soft, softX);
+  if (tapeMode_ == TapeMode::Replay || tapeMode_ == TapeMode::Inject) {
+    if (tapeMode_ == TapeMode::Replay)
+      ReplayStage(targets, dissipation, poses, soft, softX);
+    else
+      InjectStage(targets, dissipation, poses, soft, softX);
     SolverStats st;
     st.status = StageStatus::Converged;
     return st;
@@ -468,6 +471,7 @@ void Scene::RecordStage(const StageTargets& targets, const StageDissipation& dis
   Eigen::SparseMatrix<double> J;
   problem.EvaluateResidual(&r, &J);
   e.factored = numDofs_ > 0 && e.lu->Factorize(J);
+  e.jacobian = std::move(J);
 }
 
 void Scene::ReplayStage(const StageTargets& targets, const StageDissipation& dissipation,
@@ -484,6 +488,26 @@ void Scene::ReplayStage(const StageTargets& targets, const StageDissipation& dis
   Eigen::VectorXd r;
   problem.Residual(Eigen::VectorXd::Zero(numDofs_), &r);
   problem.Commit(-e.lu->Solve(r));
+}
+
+void Scene::InjectStage(const StageTargets& targets, const StageDissipation& dissipation,
+                        std::vector<RigidPose>* poses, const SoftStage* soft,
+                        std::vector<Eigen::VectorXd>* softX) {
+  StageTapeEntry& e = tape_->stages[tapeStage_++];
+  *poses = e.poses;
+  if (softX) *softX = e.softX;
+  if (numDofs_ == 0) {
+    e.residual.resize(0);
+    return;
+  }
+  StageDissipation d = dissipation;
+  d.mode = e.mode;
+  SceneStageProblem problem(models_, dofOffset_, numDofs_, targets, settings_.gravity, &pipeline_,
+                            poses, d, soft, softX, &workspace_);
+  const Eigen::VectorXd delta =
+      e.inject.size() == numDofs_ ? e.inject : Eigen::VectorXd::Zero(numDofs_);
+  problem.Residual(delta, &e.residual);
+  problem.Commit(delta);
 }
 
 bool Scene::Step(double h, StepReport* report, Error* error) {
@@ -682,7 +706,7 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
   softStates_ = std::move(softNext);
   time_ += h;
   rep.time = time_;
-  if (tapeMode_ == TapeMode::Replay) {  // the caller wants the state only
+  if (tapeMode_ == TapeMode::Replay || tapeMode_ == TapeMode::Inject) {  // the state only
     if (report) *report = rep;
     return true;
   }

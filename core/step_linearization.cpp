@@ -1,0 +1,289 @@
+#include "core/step_linearization.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace superdex {
+namespace {
+
+// A body or soft node as the differences see it: the z columns of its local coordinates with
+// their steps η, and the units (bodies and nodes) whose rows its moves reach.
+struct Mover {
+  std::vector<int> columns;
+  std::vector<double> steps;
+  std::vector<int> reach;
+  bool alone = false;  // a prescribed soft node: no column in J_i, moved by itself
+};
+
+}  // namespace
+
+bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
+                               const std::vector<SceneParameter>& parameters, StepReport* report,
+                               Error* error) {
+  Scene& scene = *scenePtr;
+  std::vector<SceneParameter> model;
+  for (size_t j = 0; j < parameters.size(); ++j) {
+    if (parameters[j].IsInitialState()) continue;
+    if (!CheckDifferentiable(scene, parameters[j], static_cast<int>(j), error)) return false;
+    model.push_back(parameters[j]);
+  }
+  const Scene::Snapshot before = scene.Save();
+  const Eigen::VectorXd S0 = scene.PackState();
+  StepReport rep;
+  scene.tape_ = &tape_;
+  scene.tapeMode_ = Scene::TapeMode::Record;
+  const bool ok = scene.Step(dt, &rep, error);
+  scene.tapeMode_ = Scene::TapeMode::Off;
+  if (report) *report = rep;
+  if (!ok) return false;
+  if (rep.status != StageStatus::Converged)
+    return Fail(error, "a stage did not converge (" + rep.message +
+                           "): the derivative of this step is not defined");
+  const int s = tape_.used;
+  const int nd = scene.numDofs_;
+  for (int i = 0; i < s; ++i)
+    if (nd > 0 && !tape_.stages[i].factored)
+      return Fail(error, "the stage Jacobian at the solution is singular: the derivative of this "
+                         "step is not defined");
+  const Scene::Snapshot after = scene.Save();
+  const int ns = static_cast<int>(S0.size());
+  const int P = static_cast<int>(model.size());
+  const int zSize = ns + s * nd;
+  const int m = s * nd + ns;
+  stateSize_ = ns;
+  numDofs_ = nd;
+  parameters_ = P;
+  runs_ = 0;
+  unattributed_ = 0.0;
+
+  // The movers, and the unit of each output row (ρ_i rows by dof, S_{n+1} rows by state entry).
+  const int blocks = 1 + scene.HistoryBlocks();
+  const int blockSize = ns / blocks;
+  // Each column moves one coordinate of a body by the full step, where the forward replay moves
+  // the state along a sensitivity direction: at resting contacts (V_t ≈ 0, where r is only C¹ in
+  // V_t through ρ) the columns' O(η/V_f) error is larger than the forward replay's. A tenth of
+  // its step: four boxes with friction (tests/core/test_adjoint.cpp) 1e-4 → 5e-6 typical
+  // disagreement with the forward sensitivities; below, the rounding of (Y − Y⁰)/Δt_i grows.
+  const double h = 0.1 * DifferenceStateStep(scene, dt);
+  std::vector<Mover> movers;
+  std::vector<int> rowUnit(m, -1), dofUnit(nd, -1);
+  auto claimRows = [&](int unit, int stateEntry, int count) {
+    for (int b = 0; b < blocks; ++b)
+      for (int k = 0; k < count; ++k) rowUnit[s * nd + b * blockSize + stateEntry + k] = unit;
+  };
+  auto addColumns = [&](Mover* mv, int first, int count, double step) {
+    for (int k = 0; k < count; ++k) {
+      mv->columns.push_back(first + k);
+      mv->steps.push_back(step);
+    }
+  };
+  const std::vector<ActorHandle> rigid = scene.RigidActors();
+  for (size_t i = 0; i < scene.models_.size(); ++i) {
+    const RigidBodyModel& body = scene.models_[i];
+    if (!body.dynamic) continue;
+    const int u = static_cast<int>(movers.size());
+    Mover mv;
+    const double radius = std::max(std::sqrt(body.secondMoment.trace() / body.mass), 1e-6);
+    const int o = scene.StateOffset(rigid[i]);
+    for (int b = 0; b < blocks; ++b) {  // p, R, v, Ṙ
+      const int base = b * blockSize + o;
+      addColumns(&mv, base, 3, h);
+      addColumns(&mv, base + 3, 9, h / radius);
+      addColumns(&mv, base + 12, 3, h / dt);
+      addColumns(&mv, base + 15, 9, h / (dt * radius));
+    }
+    claimRows(u, o, 24);
+    const int dof = scene.dofOffset_[i];
+    for (int k = 0; k < 6; ++k) dofUnit[dof + k] = u;
+    for (int st = 0; st < s; ++st) {
+      addColumns(&mv, ns + st * nd + dof, 3, h);
+      addColumns(&mv, ns + st * nd + dof + 3, 3, h / radius);
+      for (int k = 0; k < 6; ++k) rowUnit[st * nd + dof + k] = u;
+    }
+    movers.push_back(std::move(mv));
+  }
+  const std::vector<ActorHandle> soft = scene.SoftActors();
+  for (size_t a = 0; a < soft.size(); ++a) {
+    const SoftBodyModel& body = scene.softModels_[a];
+    const int N = body.NumNodes();
+    const int o = scene.StateOffset(soft[a]);
+    for (int k = 0; k < N; ++k) {
+      const int u = static_cast<int>(movers.size());
+      Mover mv;
+      for (int b = 0; b < blocks; ++b) {  // x, v
+        addColumns(&mv, b * blockSize + o + 3 * k, 3, h);
+        addColumns(&mv, b * blockSize + o + 3 * N + 3 * k, 3, h / dt);
+      }
+      claimRows(u, o + 3 * k, 3);
+      claimRows(u, o + 3 * N + 3 * k, 3);
+      const int free = body.freeIndex[k];
+      mv.alone = free < 0;
+      if (!mv.alone) {
+        const int dof = scene.softDofOffset_[a] + 3 * free;
+        for (int c = 0; c < 3; ++c) dofUnit[dof + c] = u;
+        for (int st = 0; st < s; ++st) {
+          addColumns(&mv, ns + st * nd + dof, 3, h);
+          for (int c = 0; c < 3; ++c) rowUnit[st * nd + dof + c] = u;
+        }
+      }
+      movers.push_back(std::move(mv));
+    }
+  }
+  const int U = static_cast<int>(movers.size());
+
+  // Reach: the units coupled in any stage's Jacobian (column unit reaches row unit), and itself.
+  for (int u = 0; u < U; ++u) movers[u].reach.push_back(u);
+  for (int st = 0; st < s; ++st) {
+    const Eigen::SparseMatrix<double>& J = tape_.stages[st].jacobian;
+    for (int c = 0; c < J.outerSize(); ++c)
+      for (Eigen::SparseMatrix<double>::InnerIterator e(J, c); e; ++e)
+        movers[dofUnit[c]].reach.push_back(dofUnit[e.row()]);
+  }
+  std::vector<std::vector<int>> reachedBy(U);
+  for (int u = 0; u < U; ++u) {
+    std::vector<int>& r = movers[u].reach;
+    std::sort(r.begin(), r.end());
+    r.erase(std::unique(r.begin(), r.end()), r.end());
+    for (int w : r) reachedBy[w].push_back(u);
+  }
+  // Greedy distance-2 colouring: two movers share a colour only if no unit is reached by both.
+  std::vector<int> color(U, -1), stamp;
+  std::vector<std::vector<int>> members;
+  for (int u = 0; u < U; ++u) {
+    if (movers[u].alone) continue;
+    for (int w : movers[u].reach)
+      for (int v : reachedBy[w])
+        if (color[v] >= 0) stamp[color[v]] = u;
+    int c = 0;
+    while (c < static_cast<int>(stamp.size()) && stamp[c] == u) ++c;
+    if (c == static_cast<int>(stamp.size())) {
+      stamp.push_back(-1);
+      members.emplace_back();
+    }
+    color[u] = c;
+    members[c].push_back(u);
+  }
+  for (int u = 0; u < U; ++u)
+    if (movers[u].alone) members.push_back({u});
+  colors_ = static_cast<int>(members.size());
+
+  // One run of the step in Inject mode: z moved by `moves`, parameter `param` by paramStep.
+  auto run = [&](const std::vector<std::pair<int, double>>& moves, int param, double paramStep,
+                 Eigen::VectorXd* y) -> bool {
+    scene.Restore(before);
+    Eigen::VectorXd S = S0;
+    for (int st = 0; st < s; ++st) tape_.stages[st].inject.setZero(nd);
+    for (const auto& [k, v] : moves) {
+      if (k < ns)
+        S[k] += v;
+      else
+        tape_.stages[(k - ns) / nd].inject[(k - ns) % nd] += v;
+    }
+    scene.UnpackState(S);
+    const double theta = param >= 0 ? ParameterValue(scene, model[param]) : 0.0;
+    if (param >= 0 && !SetParameterValue(&scene, model[param], theta + paramStep, error))
+      return false;
+    scene.tapeMode_ = Scene::TapeMode::Inject;
+    const bool stepped = scene.Step(dt, nullptr, error);
+    scene.tapeMode_ = Scene::TapeMode::Off;
+    if (param >= 0) SetParameterValue(&scene, model[param], theta, nullptr);
+    if (!stepped) return false;
+    y->resize(m);
+    for (int st = 0; st < s; ++st) y->segment(st * nd, nd) = tape_.stages[st].residual;
+    y->tail(ns) = scene.PackState();
+    ++runs_;
+    return true;
+  };
+  // (4 D(η/2) − D(η))/3 with D(η) = (y(+η) − y(−η))/(2η), times η (divided by each row's η later).
+  auto richardson = [&](const std::vector<std::pair<int, double>>& moves, int param,
+                        double paramStep, Eigen::VectorXd* e) -> bool {
+    Eigen::VectorXd plus, minus, full;
+    std::vector<std::pair<int, double>> scaled = moves;
+    for (double f : {1.0, 0.5}) {
+      for (size_t k = 0; k < moves.size(); ++k) scaled[k].second = f * moves[k].second;
+      if (!run(scaled, param, f * paramStep, &plus)) return false;
+      for (auto& mv : scaled) mv.second = -mv.second;
+      if (!run(scaled, param, -f * paramStep, &minus)) return false;
+      if (f == 1.0)
+        full = plus - minus;
+      else
+        *e = (4.0 * (plus - minus) - 0.5 * full) / 3.0;
+    }
+    return true;
+  };
+
+  std::vector<Eigen::Triplet<double>> triplets;
+  std::vector<int> owner(U, -1);
+  Eigen::VectorXd e;
+  bool good = true;
+  for (const std::vector<int>& group : members) {
+    if (!good) break;
+    size_t locals = 0;
+    for (int u : group) {
+      locals = std::max(locals, movers[u].columns.size());
+      for (int w : movers[u].reach) owner[w] = u;
+    }
+    const bool alone = group.size() == 1 && movers[group[0]].alone;
+    for (size_t j = 0; j < locals && good; ++j) {
+      std::vector<std::pair<int, double>> moves;
+      for (int u : group)
+        if (j < movers[u].columns.size())
+          moves.emplace_back(movers[u].columns[j], movers[u].steps[j]);
+      good = richardson(moves, -1, 0.0, &e);
+      for (int r = 0; good && r < m; ++r) {
+        if (e[r] == 0.0) continue;
+        const int u = alone ? group[0] : owner[rowUnit[r]];
+        if (u < 0 || j >= movers[u].columns.size()) {
+          unattributed_ = std::max(unattributed_, std::abs(e[r]) / h);
+          continue;
+        }
+        triplets.emplace_back(r, movers[u].columns[j], e[r] / movers[u].steps[j]);
+      }
+    }
+    for (int u : group)
+      for (int w : movers[u].reach) owner[w] = -1;
+  }
+  for (int p = 0; p < P && good; ++p) {
+    const double step = 1e-4 * std::abs(ParameterValue(scene, model[p]));
+    good = richardson({}, p, step, &e);
+    for (int r = 0; good && r < m; ++r)
+      if (e[r] != 0.0) triplets.emplace_back(r, zSize + p, e[r] / step);
+  }
+  scene.Restore(after);
+  if (!good) return false;
+  partials_.resize(m, zSize + P);
+  partials_.setFromTriplets(triplets.begin(), triplets.end());
+  return true;
+}
+
+Eigen::MatrixXd StepLinearizer::Tangent(const Eigen::MatrixXd& dS, const Eigen::MatrixXd& dTheta) {
+  const int s = tape_.used, nd = numDofs_, ns = stateSize_;
+  Eigen::MatrixXd out(ns, dS.cols());
+  Eigen::VectorXd x(partials_.cols());
+  for (Eigen::Index c = 0; c < dS.cols(); ++c) {
+    x.setZero();
+    x.head(ns) = dS.col(c);
+    if (parameters_ > 0) x.tail(parameters_) = dTheta.col(c);
+    for (int i = 0; i < s && nd > 0; ++i) {
+      const Eigen::VectorXd rho = (partials_ * x).segment(i * nd, nd);
+      x.segment(ns + i * nd, nd) = -tape_.stages[i].lu->Solve(rho);
+    }
+    out.col(c) = (partials_ * x).tail(ns);
+  }
+  return out;
+}
+
+void StepLinearizer::Adjoint(const Eigen::VectorXd& lambda, Eigen::VectorXd* lambdaPrevious,
+                             Eigen::VectorXd* parameterGradient) {
+  const int s = tape_.used, nd = numDofs_, ns = stateSize_;
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(partials_.rows());
+  y.tail(ns) = lambda;
+  for (int i = s - 1; i >= 0 && nd > 0; --i) {
+    const Eigen::VectorXd w = partials_.middleCols(ns + i * nd, nd).transpose() * y;
+    y.segment(i * nd, nd) = -tape_.stages[i].lu->SolveTransposed(w);
+  }
+  *lambdaPrevious = partials_.leftCols(ns).transpose() * y;
+  *parameterGradient = partials_.rightCols(parameters_).transpose() * y;
+}
+
+}  // namespace superdex
