@@ -167,26 +167,55 @@ bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
     if (movers[u].alone) members.push_back({u});
   colors_ = static_cast<int>(members.size());
 
-  // One run of the step in Inject mode: z moved by `moves`, parameter `param` by paramStep.
-  auto run = [&](const std::vector<std::pair<int, double>>& moves, int param, double paramStep,
-                 Eigen::VectorXd* y) -> bool {
+  // Model parameters of a dynamic rigid actor reach the rows its mover reaches (the pair values
+  // of its contacts): they are moved with its colour. Others (static and soft actors') alone.
+  std::vector<std::vector<int>> owned(U);
+  std::vector<int> aloneParameters;
+  {
+    std::vector<int> moverOfRigid(scene.models_.size(), -1);
+    int u = 0;
+    for (size_t i = 0; i < scene.models_.size(); ++i)
+      if (scene.models_[i].dynamic) moverOfRigid[i] = u++;
+    for (int p = 0; p < P; ++p) {
+      const Scene::ActorRef& a = scene.actors_[model[p].actor.index];
+      const int mover = a.soft ? -1 : moverOfRigid[a.local];
+      if (mover >= 0 && model[p].kind <= SceneParameterKind::FrictionFalloffVel)
+        owned[mover].push_back(p);
+      else
+        aloneParameters.push_back(p);
+    }
+  }
+  std::vector<double> parameterStep(P);
+  for (int p = 0; p < P; ++p) parameterStep[p] = 1e-4 * std::abs(ParameterValue(scene, model[p]));
+
+  // One run of the step in Inject mode with z and the parameters moved by `moves`
+  // (z index, or zSize + parameter index; amount).
+  using Moves = std::vector<std::pair<int, double>>;
+  auto run = [&](const Moves& moves, Eigen::VectorXd* y) -> bool {
     scene.Restore(before);
     Eigen::VectorXd S = S0;
     for (int st = 0; st < s; ++st) tape_.stages[st].inject.setZero(nd);
+    std::vector<std::pair<int, double>> changed;  // parameter, nominal value
+    bool valid = true;
     for (const auto& [k, v] : moves) {
-      if (k < ns)
+      if (k < ns) {
         S[k] += v;
-      else
+      } else if (k < zSize) {
         tape_.stages[(k - ns) / nd].inject[(k - ns) % nd] += v;
+      } else if (valid) {
+        const SceneParameter& p = model[k - zSize];
+        changed.emplace_back(k - zSize, ParameterValue(scene, p));
+        valid = SetParameterValue(&scene, p, changed.back().second + v, error);
+      }
     }
     scene.UnpackState(S);
-    const double theta = param >= 0 ? ParameterValue(scene, model[param]) : 0.0;
-    if (param >= 0 && !SetParameterValue(&scene, model[param], theta + paramStep, error))
-      return false;
-    scene.tapeMode_ = Scene::TapeMode::Inject;
-    const bool stepped = scene.Step(dt, nullptr, error);
-    scene.tapeMode_ = Scene::TapeMode::Off;
-    if (param >= 0) SetParameterValue(&scene, model[param], theta, nullptr);
+    bool stepped = false;
+    if (valid) {
+      scene.tapeMode_ = Scene::TapeMode::Inject;
+      stepped = scene.Step(dt, nullptr, error);
+      scene.tapeMode_ = Scene::TapeMode::Off;
+    }
+    for (const auto& [p, value] : changed) SetParameterValue(&scene, model[p], value, nullptr);
     if (!stepped) return false;
     y->resize(m);
     for (int st = 0; st < s; ++st) y->segment(st * nd, nd) = tape_.stages[st].residual;
@@ -195,15 +224,14 @@ bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
     return true;
   };
   // (4 D(η/2) − D(η))/3 with D(η) = (y(+η) − y(−η))/(2η), times η (divided by each row's η later).
-  auto richardson = [&](const std::vector<std::pair<int, double>>& moves, int param,
-                        double paramStep, Eigen::VectorXd* e) -> bool {
+  auto richardson = [&](const Moves& moves, Eigen::VectorXd* e) -> bool {
     Eigen::VectorXd plus, minus, full;
-    std::vector<std::pair<int, double>> scaled = moves;
+    Moves scaled = moves;
     for (double f : {1.0, 0.5}) {
       for (size_t k = 0; k < moves.size(); ++k) scaled[k].second = f * moves[k].second;
-      if (!run(scaled, param, f * paramStep, &plus)) return false;
+      if (!run(scaled, &plus)) return false;
       for (auto& mv : scaled) mv.second = -mv.second;
-      if (!run(scaled, param, -f * paramStep, &minus)) return false;
+      if (!run(scaled, &minus)) return false;
       if (f == 1.0)
         full = plus - minus;
       else
@@ -216,38 +244,50 @@ bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
   std::vector<int> owner(U, -1);
   Eigen::VectorXd e;
   bool good = true;
+  // Moves a column or parameter slot j of every mover of a group at once and attributes each
+  // changed row to the mover that reaches it.
+  auto differentiate = [&](const std::vector<int>& group, bool alone, size_t j, bool parameters) {
+    Moves moves;
+    auto column = [&](int u) {
+      if (parameters) return j < owned[u].size() ? zSize + owned[u][j] : -1;
+      return j < movers[u].columns.size() ? movers[u].columns[j] : -1;
+    };
+    auto step = [&](int u) {
+      return parameters ? parameterStep[owned[u][j]] : movers[u].steps[j];
+    };
+    for (int u : group)
+      if (column(u) >= 0) moves.emplace_back(column(u), step(u));
+    if (moves.empty()) return;
+    good = richardson(moves, &e);
+    for (int r = 0; good && r < m; ++r) {
+      if (e[r] == 0.0) continue;
+      const int u = alone ? group[0] : owner[rowUnit[r]];
+      if (u < 0 || column(u) < 0) {
+        unattributed_ = std::max(unattributed_, std::abs(e[r]) / h);
+        continue;
+      }
+      triplets.emplace_back(r, column(u), e[r] / step(u));
+    }
+  };
   for (const std::vector<int>& group : members) {
     if (!good) break;
-    size_t locals = 0;
+    size_t locals = 0, slots = 0;
     for (int u : group) {
       locals = std::max(locals, movers[u].columns.size());
+      slots = std::max(slots, owned[u].size());
       for (int w : movers[u].reach) owner[w] = u;
     }
     const bool alone = group.size() == 1 && movers[group[0]].alone;
-    for (size_t j = 0; j < locals && good; ++j) {
-      std::vector<std::pair<int, double>> moves;
-      for (int u : group)
-        if (j < movers[u].columns.size())
-          moves.emplace_back(movers[u].columns[j], movers[u].steps[j]);
-      good = richardson(moves, -1, 0.0, &e);
-      for (int r = 0; good && r < m; ++r) {
-        if (e[r] == 0.0) continue;
-        const int u = alone ? group[0] : owner[rowUnit[r]];
-        if (u < 0 || j >= movers[u].columns.size()) {
-          unattributed_ = std::max(unattributed_, std::abs(e[r]) / h);
-          continue;
-        }
-        triplets.emplace_back(r, movers[u].columns[j], e[r] / movers[u].steps[j]);
-      }
-    }
+    for (size_t j = 0; j < locals && good; ++j) differentiate(group, alone, j, false);
+    for (size_t j = 0; j < slots && good; ++j) differentiate(group, alone, j, true);
     for (int u : group)
       for (int w : movers[u].reach) owner[w] = -1;
   }
-  for (int p = 0; p < P && good; ++p) {
-    const double step = 1e-4 * std::abs(ParameterValue(scene, model[p]));
-    good = richardson({}, p, step, &e);
+  for (int p : aloneParameters) {
+    if (!good) break;
+    good = richardson({{zSize + p, parameterStep[p]}}, &e);
     for (int r = 0; good && r < m; ++r)
-      if (e[r] != 0.0) triplets.emplace_back(r, zSize + p, e[r] / step);
+      if (e[r] != 0.0) triplets.emplace_back(r, zSize + p, e[r] / parameterStep[p]);
   }
   scene.Restore(after);
   if (!good) return false;

@@ -23,12 +23,16 @@
 // or node's inputs reach only the residual rows it is coupled with in J_i (its contact partners,
 // the nodes of its tets). Bodies and nodes whose reached rows do not overlap (a greedy distance-2
 // colouring of the union of the stages' Jacobian graphs) are moved together in one run, and each
-// changed row is attributed to the one mover that reaches it. A step's linearization costs
-//   4 × (colours × local coordinates + model parameters)
+// changed row is attributed to the one mover that reaches it. The contact parameters of a dynamic
+// rigid actor reach the same rows as its body (the pair values of its contacts) and are moved
+// with its colour, one slot per parameter of that actor; those of static and soft actors are moved
+// alone. A step's linearization costs
+//   4 × (colours × (local coordinates + parameter slots) + other parameters)
 // runs of the explicit part and the stage residuals: independent of the number of bodies at a
-// fixed contact valence, and of the number of initial-state parameters. (Local coordinates: 24 per
-// rigid body and 6 per soft node for each state block, plus 6 or 3 per stage. Prescribed soft
-// nodes, which have no column in J_i, are moved alone.)
+// fixed contact valence, of the number of initial-state parameters and of the number of rigid
+// actors with fitted contact parameters. (Local coordinates: 24 per rigid body and 6 per soft node
+// for each state block, plus 6 or 3 per stage. Prescribed soft nodes, which have no column in J_i,
+// are moved alone.)
 #pragma once
 
 #include <vector>
