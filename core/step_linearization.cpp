@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
 
 namespace superdex {
 namespace {
@@ -13,6 +17,14 @@ struct Mover {
   std::vector<double> steps;
   std::vector<int> reach;
   bool alone = false;  // a prescribed soft node: no column in J_i, moved by itself
+};
+
+// A copy of the scene that one thread runs the step on, with its own tape.
+struct Replica {
+  explicit Replica(const Scene& s) : scene(s) {}
+  Scene scene;
+  StepTape tape;
+  Error error;
 };
 
 }  // namespace
@@ -45,7 +57,6 @@ bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
     if (nd > 0 && !tape_.stages[i].factored)
       return Fail(error, "the stage Jacobian at the solution is singular: the derivative of this "
                          "step is not defined");
-  const Scene::Snapshot after = scene.Save();
   const int ns = static_cast<int>(S0.size());
   const int P = static_cast<int>(model.size());
   const int zSize = ns + s * nd;
@@ -188,50 +199,51 @@ bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
   std::vector<double> parameterStep(P);
   for (int p = 0; p < P; ++p) parameterStep[p] = 1e-4 * std::abs(ParameterValue(scene, model[p]));
 
-  // One run of the step in Inject mode with z and the parameters moved by `moves`
+  // One run of the step in Inject mode on a replica, with z and the parameters moved by `moves`
   // (z index, or zSize + parameter index; amount).
   using Moves = std::vector<std::pair<int, double>>;
-  auto run = [&](const Moves& moves, Eigen::VectorXd* y) -> bool {
-    scene.Restore(before);
+  auto run = [&](Replica& rep, const Moves& moves, Eigen::VectorXd* y) -> bool {
+    Scene& sc = rep.scene;
+    sc.Restore(before);
     Eigen::VectorXd S = S0;
-    for (int st = 0; st < s; ++st) tape_.stages[st].inject.setZero(nd);
+    for (int st = 0; st < s; ++st) rep.tape.stages[st].inject.setZero(nd);
     std::vector<std::pair<int, double>> changed;  // parameter, nominal value
     bool valid = true;
     for (const auto& [k, v] : moves) {
       if (k < ns) {
         S[k] += v;
       } else if (k < zSize) {
-        tape_.stages[(k - ns) / nd].inject[(k - ns) % nd] += v;
+        rep.tape.stages[(k - ns) / nd].inject[(k - ns) % nd] += v;
       } else if (valid) {
         const SceneParameter& p = model[k - zSize];
-        changed.emplace_back(k - zSize, ParameterValue(scene, p));
-        valid = SetParameterValue(&scene, p, changed.back().second + v, error);
+        changed.emplace_back(k - zSize, ParameterValue(sc, p));
+        valid = SetParameterValue(&sc, p, changed.back().second + v, &rep.error);
       }
     }
-    scene.UnpackState(S);
+    sc.UnpackState(S);
     bool stepped = false;
     if (valid) {
-      scene.tapeMode_ = Scene::TapeMode::Inject;
-      stepped = scene.Step(dt, nullptr, error);
-      scene.tapeMode_ = Scene::TapeMode::Off;
+      sc.tape_ = &rep.tape;
+      sc.tapeMode_ = Scene::TapeMode::Inject;
+      stepped = sc.Step(dt, nullptr, &rep.error);
+      sc.tapeMode_ = Scene::TapeMode::Off;
     }
-    for (const auto& [p, value] : changed) SetParameterValue(&scene, model[p], value, nullptr);
+    for (const auto& [p, value] : changed) SetParameterValue(&sc, model[p], value, nullptr);
     if (!stepped) return false;
     y->resize(m);
-    for (int st = 0; st < s; ++st) y->segment(st * nd, nd) = tape_.stages[st].residual;
-    y->tail(ns) = scene.PackState();
-    ++runs_;
+    for (int st = 0; st < s; ++st) y->segment(st * nd, nd) = rep.tape.stages[st].residual;
+    y->tail(ns) = sc.PackState();
     return true;
   };
   // (4 D(η/2) − D(η))/3 with D(η) = (y(+η) − y(−η))/(2η), times η (divided by each row's η later).
-  auto richardson = [&](const Moves& moves, Eigen::VectorXd* e) -> bool {
+  auto richardson = [&](Replica& rep, const Moves& moves, Eigen::VectorXd* e) -> bool {
     Eigen::VectorXd plus, minus, full;
     Moves scaled = moves;
     for (double f : {1.0, 0.5}) {
       for (size_t k = 0; k < moves.size(); ++k) scaled[k].second = f * moves[k].second;
-      if (!run(scaled, &plus)) return false;
+      if (!run(rep, scaled, &plus)) return false;
       for (auto& mv : scaled) mv.second = -mv.second;
-      if (!run(scaled, &minus)) return false;
+      if (!run(rep, scaled, &minus)) return false;
       if (f == 1.0)
         full = plus - minus;
       else
@@ -239,36 +251,50 @@ bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
     }
     return true;
   };
+  // The runs are independent: each thread works on its own copy of the scene (made on first use,
+  // with the recorded stage solutions), and every result is attributed afterwards in a fixed
+  // order, so the partials do not depend on the number of threads.
+  tbb::enumerable_thread_specific<std::unique_ptr<Replica>> replicas;
+  auto replica = [&]() -> Replica& {
+    std::unique_ptr<Replica>& r = replicas.local();
+    if (!r) {
+      r = std::make_unique<Replica>(scene);
+      r->tape.stages.resize(s);
+      for (int st = 0; st < s; ++st) {
+        r->tape.stages[st].poses = tape_.stages[st].poses;
+        r->tape.stages[st].softX = tape_.stages[st].softX;
+        r->tape.stages[st].mode = tape_.stages[st].mode;
+      }
+      r->tape.used = s;
+    }
+    return *r;
+  };
+  // Runs the jobs (each a set of moves) in parallel: results[k] for jobs[k]; false on the first
+  // failure, with its message in *error.
+  std::vector<Eigen::VectorXd> results;
+  auto runJobs = [&](const std::vector<Moves>& jobs) -> bool {
+    results.assign(jobs.size(), Eigen::VectorXd());
+    std::vector<char> ok(jobs.size(), 0);
+    tbb::parallel_for(size_t(0), jobs.size(), [&](size_t k) {
+      Replica& rep = replica();
+      ok[k] = richardson(rep, jobs[k], &results[k]);
+      if (!ok[k]) results[k].resize(0);
+    });
+    runs_ += 4 * static_cast<int>(jobs.size());
+    for (size_t k = 0; k < jobs.size(); ++k)
+      if (!ok[k]) {
+        for (const std::unique_ptr<Replica>& r : replicas)
+          if (r && !r->error.message.empty()) return Fail(error, r->error.message);
+        return Fail(error, "a run of the step in Inject mode failed");
+      }
+    return true;
+  };
 
   std::vector<Eigen::Triplet<double>> triplets;
   std::vector<int> owner(U, -1);
-  Eigen::VectorXd e;
   bool good = true;
-  // Moves a column or parameter slot j of every mover of a group at once and attributes each
-  // changed row to the mover that reaches it.
-  auto differentiate = [&](const std::vector<int>& group, bool alone, size_t j, bool parameters) {
-    Moves moves;
-    auto column = [&](int u) {
-      if (parameters) return j < owned[u].size() ? zSize + owned[u][j] : -1;
-      return j < movers[u].columns.size() ? movers[u].columns[j] : -1;
-    };
-    auto step = [&](int u) {
-      return parameters ? parameterStep[owned[u][j]] : movers[u].steps[j];
-    };
-    for (int u : group)
-      if (column(u) >= 0) moves.emplace_back(column(u), step(u));
-    if (moves.empty()) return;
-    good = richardson(moves, &e);
-    for (int r = 0; good && r < m; ++r) {
-      if (e[r] == 0.0) continue;
-      const int u = alone ? group[0] : owner[rowUnit[r]];
-      if (u < 0 || column(u) < 0) {
-        unattributed_ = std::max(unattributed_, std::abs(e[r]) / h);
-        continue;
-      }
-      triplets.emplace_back(r, column(u), e[r] / step(u));
-    }
-  };
+  // Per group: column or parameter slot j of every mover moved at once; each changed row is
+  // attributed to the mover that reaches it.
   for (const std::vector<int>& group : members) {
     if (!good) break;
     size_t locals = 0, slots = 0;
@@ -278,18 +304,53 @@ bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
       for (int w : movers[u].reach) owner[w] = u;
     }
     const bool alone = group.size() == 1 && movers[group[0]].alone;
-    for (size_t j = 0; j < locals && good; ++j) differentiate(group, alone, j, false);
-    for (size_t j = 0; j < slots && good; ++j) differentiate(group, alone, j, true);
+    auto column = [&](int u, size_t j, bool parameters) {
+      if (parameters) return j < owned[u].size() ? zSize + owned[u][j] : -1;
+      return j < movers[u].columns.size() ? movers[u].columns[j] : -1;
+    };
+    auto step = [&](int u, size_t j, bool parameters) {
+      return parameters ? parameterStep[owned[u][j]] : movers[u].steps[j];
+    };
+    std::vector<Moves> jobs;
+    std::vector<std::pair<size_t, bool>> slot;  // (j, parameters) per job
+    for (bool parameters : {false, true})
+      for (size_t j = 0; j < (parameters ? slots : locals); ++j) {
+        Moves moves;
+        for (int u : group)
+          if (column(u, j, parameters) >= 0)
+            moves.emplace_back(column(u, j, parameters), step(u, j, parameters));
+        if (moves.empty()) continue;
+        jobs.push_back(std::move(moves));
+        slot.emplace_back(j, parameters);
+      }
+    good = runJobs(jobs);
+    for (size_t k = 0; good && k < jobs.size(); ++k) {
+      const auto [j, parameters] = slot[k];
+      const Eigen::VectorXd& e = results[k];
+      for (int r = 0; r < m; ++r) {
+        if (e[r] == 0.0) continue;
+        const int u = alone ? group[0] : owner[rowUnit[r]];
+        if (u < 0 || column(u, j, parameters) < 0) {
+          unattributed_ = std::max(unattributed_, std::abs(e[r]) / h);
+          continue;
+        }
+        triplets.emplace_back(r, column(u, j, parameters), e[r] / step(u, j, parameters));
+      }
+    }
     for (int u : group)
       for (int w : movers[u].reach) owner[w] = -1;
   }
-  for (int p : aloneParameters) {
-    if (!good) break;
-    good = richardson({{zSize + p, parameterStep[p]}}, &e);
-    for (int r = 0; good && r < m; ++r)
-      if (e[r] != 0.0) triplets.emplace_back(r, zSize + p, e[r] / parameterStep[p]);
+  if (good) {
+    std::vector<Moves> jobs;
+    for (int p : aloneParameters) jobs.push_back({{zSize + p, parameterStep[p]}});
+    good = runJobs(jobs);
+    for (size_t k = 0; good && k < jobs.size(); ++k) {
+      const int p = aloneParameters[k];
+      for (int r = 0; r < m; ++r)
+        if (results[k][r] != 0.0)
+          triplets.emplace_back(r, zSize + p, results[k][r] / parameterStep[p]);
+    }
   }
-  scene.Restore(after);
   if (!good) return false;
   partials_.resize(m, zSize + P);
   partials_.setFromTriplets(triplets.begin(), triplets.end());

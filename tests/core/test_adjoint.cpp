@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 #include <functional>
 #include <random>
+#include <tbb/global_control.h>
 
 #include "core/adjoint.h"
 #include "core/step_linearization.h"
@@ -318,3 +319,23 @@ TEST_CASE("Adjoint: refusals", "[adjoint]") {
   CHECK(error.message.find("positive values only") != std::string::npos);
 }
 
+
+TEST_CASE("Step linearization: the partials do not depend on the number of threads", "[adjoint]") {
+  Scene scene = FourBoxes(IntegrationMethod::BDF2, DissipationMode::ReconstructedLoad);
+  Error error;
+  for (int n = 0; n < 5; ++n) REQUIRE(scene.Step(2e-3, nullptr, &error));
+  const std::vector<SceneParameter> params =
+      Parse(scene, {"b.coulomb_friction_coefficient", "ground.coulomb_friction_coefficient"});
+  Scene copy = scene;
+  StepLinearizer parallel, serial;
+  REQUIRE(parallel.Linearize(&scene, 2e-3, params, nullptr, &error));
+  {
+    tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    REQUIRE(serial.Linearize(&copy, 2e-3, params, nullptr, &error));
+  }
+  const Eigen::MatrixXd a = Eigen::MatrixXd(parallel.Partials());
+  const Eigen::MatrixXd b = Eigen::MatrixXd(serial.Partials());
+  CHECK(a.nonZeros() > 0);
+  CHECK((a - b).cwiseAbs().maxCoeff() == 0.0);
+  CHECK(scene.PackState() == copy.PackState());
+}
