@@ -8,6 +8,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "core/adjoint.h"
+
 namespace superdex {
 namespace {
 
@@ -158,9 +160,18 @@ bool ReadObservedTrajectory(const std::string& path, ObservedTrajectory* out, Er
   return true;
 }
 
-bool FitSceneParameters(const SceneFile& file, const ObservedTrajectory& observed,
-                        const FitOptions& options, FitResult* result, Error* error) {
-  const auto t0 = std::chrono::steady_clock::now();
+namespace {
+
+// The parameters and the observations on the step grid, from the user's input.
+struct FitSetup {
+  std::vector<SceneParameter> params;
+  std::vector<Observation> obs;  // sorted by step
+  double dt = 0.0;
+  int steps = 0;
+};
+
+bool PrepareFit(const SceneFile& file, const ObservedTrajectory& observed,
+                const FitOptions& options, FitSetup* setup, Error* error) {
   const Scene& base = *file.scene;
   const double dt = options.dt.value_or(file.dt);
   if (!(dt > 0 && std::isfinite(dt))) return Fail(error, "dt: must be > 0 and finite");
@@ -190,6 +201,127 @@ bool FitSceneParameters(const SceneFile& file, const ObservedTrajectory& observe
   if (obs.empty()) return Fail(error, "observed: no actor position in any frame");
   std::stable_sort(obs.begin(), obs.end(),
                    [](const Observation& a, const Observation& b) { return a.step < b.step; });
+  *setup = {std::move(params), std::move(obs), dt, steps};
+  return true;
+}
+
+// The cost ½ Σ r² and its gradient in θ by one simulation and one adjoint pass.
+bool AdjointCost(const Scene& base, const FitSetup& setup, const std::vector<double>& theta,
+                 double* cost, Eigen::VectorXd* gradient, TrajectoryGradient* stats,
+                 Error* error) {
+  Scene scene = base;
+  for (size_t j = 0; j < setup.params.size(); ++j)
+    if (!SetParameterValue(&scene, setup.params[j], theta[j], error)) return false;
+  AdjointSensitivity adjoint;
+  if (!adjoint.Run(&scene, std::vector<double>(setup.steps, setup.dt), nullptr, error))
+    return false;
+  // First observation of each step, and each observed actor's centre-of-mass map.
+  std::vector<size_t> first(setup.steps + 2, setup.obs.size());
+  for (size_t k = setup.obs.size(); k-- > 0;) first[setup.obs[k].step] = k;
+  for (int n = setup.steps; n >= 0; --n) first[n] = std::min(first[n], first[n + 1]);
+  std::vector<Eigen::SparseMatrix<double>> com(scene.NumActors());
+  for (const Observation& o : setup.obs)
+    if (com[o.actor.index].cols() == 0) com[o.actor.index] = CenterOfMassMap(scene, o.actor);
+  *cost = 0.0;
+  const auto loss = [&](int n, Scene& s, Eigen::VectorXd* dL) {
+    for (size_t k = first[n]; k < first[n + 1]; ++k) {
+      const Observation& o = setup.obs[k];
+      const Eigen::Vector3d r = s.CenterOfMass(o.actor) - o.position;
+      *cost += 0.5 * r.squaredNorm();
+      *dL += com[o.actor.index].transpose() * r;
+    }
+  };
+  if (!adjoint.Gradient(setup.params, loss, gradient, error)) return false;
+  if (stats) {
+    stats->simulationSeconds = adjoint.RunSeconds();
+    stats->gradientSeconds = adjoint.GradientSeconds();
+    stats->colors = adjoint.MaxColors();
+    stats->runsPerStep = double(adjoint.InjectRuns()) / std::max(1, setup.steps);
+  }
+  return true;
+}
+
+// L-BFGS variables: u = log(θ/θ₀) for model parameters (positive), u = θ − θ₀ for initial states.
+class AdjointCostFunction : public ceres::FirstOrderFunction {
+ public:
+  AdjointCostFunction(const Scene& base, const FitSetup& setup, std::vector<double> theta0)
+      : base_(base), setup_(setup), theta0_(std::move(theta0)) {}
+  int NumParameters() const override { return static_cast<int>(theta0_.size()); }
+  std::vector<double> Theta(const double* u) const {
+    std::vector<double> theta(theta0_.size());
+    for (size_t j = 0; j < theta.size(); ++j)
+      theta[j] = setup_.params[j].IsInitialState() ? theta0_[j] + u[j]
+                                                   : theta0_[j] * std::exp(u[j]);
+    return theta;
+  }
+  bool Evaluate(const double* u, double* cost, double* gradient) const override {
+    ++evaluations_;
+    const std::vector<double> theta = Theta(u);
+    Eigen::VectorXd g;
+    Error error;
+    if (!AdjointCost(base_, setup_, theta, cost, &g, nullptr, &error)) {
+      lastError_ = error.message;
+      return false;
+    }
+    if (gradient)
+      for (size_t j = 0; j < theta.size(); ++j)
+        gradient[j] = setup_.params[j].IsInitialState() ? g[j] : g[j] * theta[j];
+    return true;
+  }
+  int Evaluations() const { return evaluations_; }
+  const std::string& LastError() const { return lastError_; }
+
+ private:
+  const Scene& base_;
+  const FitSetup& setup_;
+  std::vector<double> theta0_;
+  mutable int evaluations_ = 0;
+  mutable std::string lastError_;
+};
+
+}  // namespace
+
+const char* ToString(FitMethod method) {
+  return method == FitMethod::Lbfgs ? "lbfgs" : "lm";
+}
+
+bool ParseFitMethod(const std::string& name, FitMethod* method) {
+  if (name == "lm") *method = FitMethod::LevenbergMarquardt;
+  else if (name == "lbfgs") *method = FitMethod::Lbfgs;
+  else return false;
+  return true;
+}
+
+bool ComputeTrajectoryGradient(const SceneFile& file, const ObservedTrajectory& observed,
+                               const FitOptions& options, TrajectoryGradient* result,
+                               Error* error) {
+  FitSetup setup;
+  if (!PrepareFit(file, observed, options, &setup, error)) return false;
+  *result = TrajectoryGradient();
+  std::vector<double> theta;
+  for (const SceneParameter& p : setup.params) {
+    theta.push_back(ParameterValue(*file.scene, p));
+    result->names.push_back(ToString(*file.scene, p));
+  }
+  result->values = theta;
+  Eigen::VectorXd g;
+  if (!AdjointCost(*file.scene, setup, theta, &result->cost, &g, result, error)) return false;
+  result->gradient.assign(g.data(), g.data() + g.size());
+  result->residuals = 3 * static_cast<int>(setup.obs.size());
+  result->steps = setup.steps;
+  return true;
+}
+
+bool FitSceneParameters(const SceneFile& file, const ObservedTrajectory& observed,
+                        const FitOptions& options, FitResult* result, Error* error) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const Scene& base = *file.scene;
+  FitSetup setup;
+  if (!PrepareFit(file, observed, options, &setup, error)) return false;
+  const std::vector<SceneParameter>& params = setup.params;
+  const std::vector<Observation>& obs = setup.obs;
+  const double dt = setup.dt;
+  const int steps = setup.steps;
 
   const int P = static_cast<int>(params.size());
   TrajectoryProblem problem(base, params, obs, dt, steps);
@@ -199,6 +331,41 @@ bool FitSceneParameters(const SceneFile& file, const ObservedTrajectory& observe
     theta[j] = ParameterValue(base, params[j]);
     result->names.push_back(ToString(base, params[j]));
     result->initial.push_back(theta[j]);
+  }
+  result->residuals = problem.NumResiduals();
+  auto finish = [&] {
+    result->wallSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return true;
+  };
+  if (options.method == FitMethod::Lbfgs) {
+    // The start is checked first, so that its error is the user's message.
+    double cost = 0.0;
+    Eigen::VectorXd g;
+    if (!AdjointCost(base, setup, theta, &cost, &g, nullptr, error)) return false;
+    auto* function = new AdjointCostFunction(base, setup, theta);
+    ceres::GradientProblem gp(function);  // owns the function
+    ceres::GradientProblemSolver::Options go;
+    go.line_search_direction_type = ceres::LBFGS;
+    go.max_num_iterations = options.maxIterations;
+    go.function_tolerance = 1e-12;
+    go.parameter_tolerance = 1e-10;
+    go.gradient_tolerance = 1e-12;
+    ceres::GradientProblemSolver::Summary summary;
+    std::vector<double> u(P, 0.0);
+    ceres::Solve(go, gp, u.data(), &summary);
+    result->fitted = function->Theta(u.data());
+    result->initialCost = summary.initial_cost;
+    result->finalCost = summary.final_cost;
+    result->iterations = static_cast<int>(summary.iterations.size()) - 1;
+    result->converged = summary.termination_type == ceres::CONVERGENCE;
+    result->message = summary.message;
+    if (!function->LastError().empty() && !result->converged)
+      result->message += " (last failed simulation: " + function->LastError() + ")";
+    result->rmsResidual = std::sqrt(2.0 * summary.final_cost / result->residuals);
+    result->standardError.assign(P, NAN);
+    result->simulations = 1 + function->Evaluations();
+    return finish();
   }
   // Check the start before handing it to Ceres, so that its error is the user's message.
   {
@@ -230,7 +397,6 @@ bool FitSceneParameters(const SceneFile& file, const ObservedTrajectory& observe
   result->message = summary.message;
   if (!problem.LastError().empty() && !result->converged)
     result->message += " (last failed simulation: " + problem.LastError() + ")";
-  result->residuals = problem.NumResiduals();
   // Standard errors from the Jacobian at the solution.
   std::vector<double> r(problem.NumResiduals());
   Eigen::MatrixXd J(problem.NumResiduals(), P);
@@ -248,9 +414,7 @@ bool FitSceneParameters(const SceneFile& file, const ObservedTrajectory& observe
     }
   }
   result->simulations = problem.Simulations();
-  result->wallSeconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return true;
+  return finish();
 }
 
 }  // namespace superdex

@@ -1,10 +1,13 @@
-// Fitting scene parameters to an observed trajectory: Ceres least squares between simulated and
-// observed centres of mass, with the Jacobian from the forward sensitivities (core/sensitivity.h).
+// Fitting scene parameters to an observed trajectory: Ceres between simulated and observed centres
+// of mass,
 //
 //   minimize ½ Σ_k Σ_a ‖c_a(t_k; θ) − ĉ_a(t_k)‖²     [m²]
 //
 // over the parameters θ (names as in core/sensitivity.h, "ACTOR.NAME"), with c_a the simulated
-// centre of mass of actor a at the observed times t_k (which must fall on the step grid).
+// centre of mass of actor a at the observed times t_k (which must fall on the step grid). Two
+// methods: Levenberg–Marquardt with the residuals' Jacobian from the forward sensitivities
+// (core/sensitivity.h; its cost grows with each parameter by a replay of every step), or L-BFGS
+// with the cost's gradient from one adjoint pass (core/adjoint.h; for many parameters).
 #pragma once
 
 #include <optional>
@@ -29,10 +32,24 @@ struct ObservedTrajectory {
 };
 bool ReadObservedTrajectory(const std::string& path, ObservedTrajectory* out, Error* error);
 
+enum class FitMethod {
+  /// Ceres Levenberg–Marquardt (dense QR) with the Jacobian of the residuals from forward
+  /// sensitivities; gives standard errors. For a few parameters.
+  LevenbergMarquardt,
+  /// Ceres L-BFGS on the cost with its gradient from an adjoint pass, in log θ for the
+  /// (positive) model parameters and in θ for initial states. For many parameters; no standard
+  /// errors.
+  Lbfgs,
+};
+const char* ToString(FitMethod method);
+/// "lm" or "lbfgs"; false for anything else.
+bool ParseFitMethod(const std::string& name, FitMethod* method);
+
 struct FitOptions {
   std::vector<std::string> parameters;  ///< "ACTOR.NAME"
   std::optional<double> dt;             ///< overrides the scene's dt [s]
   int maxIterations = 50;
+  FitMethod method = FitMethod::LevenbergMarquardt;
 };
 
 struct FitResult {
@@ -40,7 +57,7 @@ struct FitResult {
   std::vector<double> initial, fitted;
   /// One-sigma standard errors from the Gauss–Newton covariance σ² (JᵀJ)⁻¹ with
   /// σ² = 2 cost / (residuals − parameters) (meaningful for independent, equal observation noise).
-  std::vector<double> standardError;
+  std::vector<double> standardError;  ///< NaN with FitMethod::Lbfgs
   double initialCost = 0.0, finalCost = 0.0;  ///< ½ Σ r² [m²]
   double rmsResidual = 0.0;                   ///< √(2 cost / residuals) [m]
   int residuals = 0;
@@ -56,5 +73,23 @@ struct FitResult {
 /// simulation fails (a stage that does not converge).
 bool FitSceneParameters(const SceneFile& file, const ObservedTrajectory& observed,
                         const FitOptions& options, FitResult* result, Error* error);
+
+/// The cost and its gradient at the scene file's parameter values, by one simulation and one
+/// adjoint pass (options.method and maxIterations are not used).
+struct TrajectoryGradient {
+  std::vector<std::string> names;
+  std::vector<double> values;    ///< θ
+  double cost = 0.0;             ///< ½ Σ r² [m²]
+  std::vector<double> gradient;  ///< d cost / dθ [m² per unit of θ]
+  int residuals = 0;
+  int steps = 0;
+  double simulationSeconds = 0.0;  ///< the simulation with its checkpoints
+  double gradientSeconds = 0.0;    ///< the adjoint pass
+  int colors = 0;                  ///< most colours of a step's linearization
+  double runsPerStep = 0.0;        ///< residual runs per step in the adjoint pass
+};
+bool ComputeTrajectoryGradient(const SceneFile& file, const ObservedTrajectory& observed,
+                               const FitOptions& options, TrajectoryGradient* result,
+                               Error* error);
 
 }  // namespace superdex

@@ -2,7 +2,8 @@
 //   superdex run SCENE.json [--dt S] [--duration S] [--integrator NAME] [--solver NAME]
 //                [--out FILE] [--vtk DIR] [--quiet]
 //   superdex fit SCENE.json --observed TRAJ.jsonl --params ACTOR.NAME,... [--dt S]
-//                [--max-iterations N] [--out FITTED.json]
+//                [--method lm|lbfgs] [--max-iterations N] [--out FITTED.json]
+//   superdex gradient SCENE.json --observed TRAJ.jsonl --params ACTOR.NAME,... [--dt S]
 // Exit codes: 0 success; 2 invalid input (scene file, options); 3 a stage did not converge
 // (Stopped or Diverged) or the fit did not converge; 4 a scene expectation failed.
 #include <CLI/CLI.hpp>
@@ -49,31 +50,61 @@ class ProgressBar {
   long iterations_ = 0;
 };
 
-int RunFit(const std::string& scenePath, const std::string& observedPath,
-           const std::vector<std::string>& params, double dt, int maxIterations,
-           const std::string& outPath) {
-  superdex::SceneFile file;
+// The scene file and the observed trajectory of `fit` and `gradient`; false (message printed)
+// on bad input.
+bool LoadFitInput(const std::string& scenePath, const std::string& observedPath,
+                  superdex::SceneFile* file, superdex::ObservedTrajectory* observed) {
   superdex::Error error;
-  if (!superdex::LoadSceneFile(scenePath, &file, &error)) {
+  if (!superdex::LoadSceneFile(scenePath, file, &error) ||
+      !superdex::ReadObservedTrajectory(observedPath, observed, &error)) {
     std::cerr << "error: " << error.message << "\n";
-    return 2;
+    return false;
   }
+  return true;
+}
+
+int ExitCodeFor(const superdex::Error& error) {
+  std::cerr << "error: " << error.message << "\n";
+  return error.message.find("converge") != std::string::npos ? 3 : 2;
+}
+
+int RunGradient(const std::string& scenePath, const std::string& observedPath,
+                const std::vector<std::string>& params, double dt) {
+  superdex::SceneFile file;
   superdex::ObservedTrajectory observed;
-  if (!superdex::ReadObservedTrajectory(observedPath, &observed, &error)) {
-    std::cerr << "error: " << error.message << "\n";
-    return 2;
-  }
+  if (!LoadFitInput(scenePath, observedPath, &file, &observed)) return 2;
+  superdex::FitOptions options;
+  options.parameters = params;
+  if (dt > 0) options.dt = dt;
+  superdex::TrajectoryGradient g;
+  superdex::Error error;
+  if (!superdex::ComputeTrajectoryGradient(file, observed, options, &g, &error))
+    return ExitCodeFor(error);
+  std::printf("%-45s %14s %16s\n", "parameter", "value", "d cost / d value");
+  for (size_t j = 0; j < g.names.size(); ++j)
+    std::printf("%-45s %14.6g %16.6g\n", g.names[j].c_str(), g.values[j], g.gradient[j]);
+  std::printf("cost ½Σr²: %.6g m² over %d residuals, %d steps\n", g.cost, g.residuals, g.steps);
+  std::printf("simulation %.2f s, adjoint pass %.2f s (%d colours, %.0f residual runs per step)\n",
+              g.simulationSeconds, g.gradientSeconds, g.colors, g.runsPerStep);
+  return 0;
+}
+
+int RunFit(const std::string& scenePath, const std::string& observedPath,
+           const std::vector<std::string>& params, double dt, superdex::FitMethod method,
+           int maxIterations, const std::string& outPath) {
+  superdex::SceneFile file;
+  superdex::ObservedTrajectory observed;
+  if (!LoadFitInput(scenePath, observedPath, &file, &observed)) return 2;
+  superdex::Error error;
   superdex::FitOptions options;
   options.parameters = params;
   if (dt > 0) options.dt = dt;
   options.maxIterations = maxIterations;
+  options.method = method;
   superdex::FitResult r;
   std::cerr << "fitting " << params.size() << " parameters to " << observed.frames.size()
             << " observed frames ...\n";
-  if (!superdex::FitSceneParameters(file, observed, options, &r, &error)) {
-    std::cerr << "error: " << error.message << "\n";
-    return error.message.find("converge") != std::string::npos ? 3 : 2;
-  }
+  if (!superdex::FitSceneParameters(file, observed, options, &r, &error)) return ExitCodeFor(error);
   std::printf("%-45s %14s %14s %12s\n", "parameter", "initial", "fitted", "std. error");
   for (size_t j = 0; j < r.names.size(); ++j)
     std::printf("%-45s %14.6g %14.6g %12.3g\n", r.names[j].c_str(), r.initial[j], r.fitted[j],
@@ -124,26 +155,36 @@ int main(int argc, char** argv) {
                   "stages only), ceres; the last two are dense checks for small scenes");
   run->add_flag("--quiet", quiet, "No progress bar");
   CLI::App* fit = app.add_subcommand(
-      "fit", "Fit scene parameters to an observed trajectory (Ceres least squares on centres of "
-             "mass, Jacobian from forward sensitivities)");
-  std::string fitScene, observedPath, fitOut;
+      "fit", "Fit scene parameters to an observed trajectory (Ceres on the centres of mass: "
+             "Levenberg-Marquardt with forward sensitivities, or L-BFGS with adjoint gradients)");
+  CLI::App* gradient = app.add_subcommand(
+      "gradient", "The fitting cost ½Σr² of an observed trajectory and its gradient in the "
+                  "parameters, by one simulation and one adjoint pass");
+  std::string fitScene, observedPath, fitOut, fitMethod = "lm";
   std::vector<std::string> fitParams;
   double fitDt = 0.0;
   int maxIterations = 50;
-  fit->add_option("scene", fitScene, "Scene file (JSON): the model and the initial guess")
-      ->required();
-  fit->add_option("--observed", observedPath,
-                  "Observed trajectory (the trajectory format: header, frames with t and actors' p)")
-      ->required();
-  fit->add_option("--params", fitParams,
-                  "Parameters ACTOR.NAME, comma-separated: penalty_coefficient, "
-                  "coulomb_friction_coefficient, viscous_friction_coefficient, "
-                  "normal_viscous_damping_coefficient, friction_falloff_vel, youngs_modulus, "
-                  "density, position.x|y|z, velocity.x|y|z, angular_velocity.x|y|z")
-      ->required()
-      ->delimiter(',');
-  fit->add_option("--dt", fitDt, "Time step [s] (overrides settings.dt)");
-  fit->add_option("--max-iterations", maxIterations, "Levenberg-Marquardt iterations (default 50)");
+  for (CLI::App* sub : {fit, gradient}) {
+    sub->add_option("scene", fitScene, "Scene file (JSON): the model and the initial guess")
+        ->required();
+    sub->add_option("--observed", observedPath,
+                    "Observed trajectory (the trajectory format: header, frames with t and "
+                    "actors' p)")
+        ->required();
+    sub->add_option("--params", fitParams,
+                    "Parameters ACTOR.NAME, comma-separated: penalty_coefficient, "
+                    "coulomb_friction_coefficient, viscous_friction_coefficient, "
+                    "normal_viscous_damping_coefficient, friction_falloff_vel, youngs_modulus, "
+                    "density, position.x|y|z, velocity.x|y|z, angular_velocity.x|y|z")
+        ->required()
+        ->delimiter(',');
+    sub->add_option("--dt", fitDt, "Time step [s] (overrides settings.dt)");
+  }
+  fit->add_option("--method", fitMethod,
+                  "lm: Levenberg-Marquardt, Jacobian from forward sensitivities, standard errors "
+                  "(default; for a few parameters); lbfgs: L-BFGS with adjoint gradients (for "
+                  "many parameters)");
+  fit->add_option("--max-iterations", maxIterations, "Solver iterations (default 50)");
   fit->add_option("--out", fitOut, "Write the fitted values as JSON");
   try {
     app.parse(argc, argv);
@@ -152,8 +193,18 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : 2;
   }
 
-  if (fit->parsed()) return RunFit(fitScene, observedPath, fitParams, fit->count("--dt") ? fitDt : 0.0,
-                                   maxIterations, fitOut);
+  if (gradient->parsed())
+    return RunGradient(fitScene, observedPath, fitParams, gradient->count("--dt") ? fitDt : 0.0);
+  if (fit->parsed()) {
+    superdex::FitMethod method;
+    if (!superdex::ParseFitMethod(fitMethod, &method)) {
+      std::cerr << "error: --method: unknown value \"" << fitMethod
+                << "\" (expected one of: lm, lbfgs)\n";
+      return 2;
+    }
+    return RunFit(fitScene, observedPath, fitParams, fit->count("--dt") ? fitDt : 0.0, method,
+                  maxIterations, fitOut);
+  }
   superdex::SceneFile file;
   superdex::Error error;
   if (!superdex::LoadSceneFile(scenePath, &file, &error)) {

@@ -1,4 +1,5 @@
-// Trajectory sensitivities and parameter fitting (core/sensitivity.h, scenes/fit.h).
+// Trajectory sensitivities, adjoint gradients and parameter fitting (core/sensitivity.h,
+// core/adjoint.h, scenes/fit.h).
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
@@ -53,6 +54,28 @@ ObservedTrajectory ObservedFromArrays(const std::vector<std::string>& actors,
       if (rows[k].allFinite()) obs.frames[k].position[a] = rows[k];  // NaN: not observed
   }
   return obs;
+}
+
+// The observation of superdex.fit and superdex.trajectory_gradient: a file, or arrays.
+ObservedTrajectory Observed(const SceneFile& file, const std::optional<std::string>& observed,
+                            const py::object& times, const std::optional<py::dict>& positions) {
+  ObservedTrajectory obs;
+  if (observed) {
+    if (!times.is_none() || positions)
+      throw py::value_error("observed: give a file or times and positions, not both");
+    Error e;
+    if (!ReadObservedTrajectory(*observed, &obs, &e)) throw py::value_error(e.message);
+    return obs;
+  }
+  if (times.is_none() || !positions)
+    throw py::value_error("observed: give a trajectory file, or times and positions");
+  return ObservedFromArrays(file.actorNames, times, *positions);
+}
+
+// A failed fit or gradient: RuntimeError for a simulation that did not converge, else ValueError.
+[[noreturn]] void Raise(const Error& e) {
+  if (e.message.find("converge") != std::string::npos) throw std::runtime_error(e.message);
+  throw py::value_error(e.message);
 }
 
 }  // namespace
@@ -131,43 +154,78 @@ void BindFit(py::module_& m) {
       "fit",
       [](const SceneFile& file, const std::vector<std::string>& parameters,
          std::optional<std::string> observed, py::object times, std::optional<py::dict> positions,
-         std::optional<double> dt, int maxIterations) {
-        ObservedTrajectory obs;
-        Error e;
-        if (observed) {
-          if (!times.is_none() || positions)
-            throw py::value_error("observed: give a file or times and positions, not both");
-          if (!ReadObservedTrajectory(*observed, &obs, &e)) throw py::value_error(e.message);
-        } else {
-          if (times.is_none() || !positions)
-            throw py::value_error("observed: give a trajectory file, or times and positions");
-          obs = ObservedFromArrays(file.actorNames, times, *positions);
-        }
+         std::optional<double> dt, int maxIterations, const std::string& method) {
+        const ObservedTrajectory obs = Observed(file, observed, times, positions);
         FitOptions options;
         options.parameters = parameters;
         options.dt = dt;
         options.maxIterations = maxIterations;
+        if (!ParseFitMethod(method, &options.method))
+          throw py::value_error("method: must be 'lm' or 'lbfgs', got '" + method + "'");
         FitResult r;
+        Error e;
         bool ok;
         {
           py::gil_scoped_release release;
           ok = FitSceneParameters(file, obs, options, &r, &e);
         }
-        if (!ok) {
-          if (e.message.find("converge") != std::string::npos) throw std::runtime_error(e.message);
-          throw py::value_error(e.message);
-        }
+        if (!ok) Raise(e);
         return r;
       },
       py::arg("scene_file"), py::arg("parameters"), py::arg("observed") = py::none(),
       py::arg("times") = py::none(), py::arg("positions") = py::none(),
-      py::arg("dt") = py::none(), py::arg("max_iterations") = 50,
+      py::arg("dt") = py::none(), py::arg("max_iterations") = 50, py::arg("method") = "lm",
       "Fits parameters ('ACTOR.NAME': penalty_coefficient, coulomb_friction_coefficient,\n"
       "viscous_friction_coefficient, normal_viscous_damping_coefficient, friction_falloff_vel,\n"
       "youngs_modulus, density, position.x|y|z, velocity.x|y|z, angular_velocity.x|y|z) of a\n"
       "loaded scene file (left unchanged) to observed centres of mass: a trajectory file\n"
       "(`observed`), or `times` (K,) [s] with `positions` {actor name: (K, 3) array [m], NaN\n"
-      "rows unobserved}. Times must fall on the step grid. Returns a FitResult.");
+      "rows unobserved}. Times must fall on the step grid. method 'lm': Levenberg-Marquardt\n"
+      "with forward sensitivities and standard errors (a few parameters); 'lbfgs': L-BFGS with\n"
+      "adjoint gradients (many parameters, no standard errors). Returns a FitResult.");
+
+  py::class_<TrajectoryGradient>(m, "TrajectoryGradient",
+                                 "The outcome of superdex.trajectory_gradient.")
+      .def_readonly("names", &TrajectoryGradient::names)
+      .def_readonly("values", &TrajectoryGradient::values)
+      .def_readonly("cost", &TrajectoryGradient::cost, "½ Σ r² [m²]")
+      .def_property_readonly(
+          "gradient",
+          [](const TrajectoryGradient& g) {
+            return Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(g.gradient.data(),
+                                                                     g.gradient.size()));
+          },
+          "d cost / d value, one entry per parameter")
+      .def_readonly("residuals", &TrajectoryGradient::residuals)
+      .def_readonly("steps", &TrajectoryGradient::steps)
+      .def_readonly("simulation_seconds", &TrajectoryGradient::simulationSeconds)
+      .def_readonly("gradient_seconds", &TrajectoryGradient::gradientSeconds);
+
+  m.def(
+      "trajectory_gradient",
+      [](const SceneFile& file, const std::vector<std::string>& parameters,
+         std::optional<std::string> observed, py::object times, std::optional<py::dict> positions,
+         std::optional<double> dt) {
+        const ObservedTrajectory obs = Observed(file, observed, times, positions);
+        FitOptions options;
+        options.parameters = parameters;
+        options.dt = dt;
+        TrajectoryGradient g;
+        Error e;
+        bool ok;
+        {
+          py::gil_scoped_release release;
+          ok = ComputeTrajectoryGradient(file, obs, options, &g, &e);
+        }
+        if (!ok) Raise(e);
+        return g;
+      },
+      py::arg("scene_file"), py::arg("parameters"), py::arg("observed") = py::none(),
+      py::arg("times") = py::none(), py::arg("positions") = py::none(),
+      py::arg("dt") = py::none(),
+      "The fitting cost ½ Σ ‖c_a(t_k) − ĉ_a(t_k)‖² of superdex.fit at the scene file's values\n"
+      "and its gradient in `parameters`, by one simulation and one adjoint pass (its cost does\n"
+      "not grow with the number of initial-state parameters). Returns a TrajectoryGradient.");
 }
 
 }  // namespace superdex::python

@@ -78,3 +78,30 @@ def test_fit_errors():
         sd.fit(f, ["box.coulomb_friction_coefficient"])
     with pytest.raises(ValueError, match="no actor named"):
         sd.ForwardSensitivity(f.scene, ["crate.density"])
+
+
+def test_adjoint_gradient_and_lbfgs_fit():
+    times, com = synthetic(0.4, 4.0)
+    names = ["box.coulomb_friction_coefficient", "box.velocity.x"]
+    g = sd.trajectory_gradient(sd.load_scene(THROW), names, times=times, positions={"box": com})
+    assert g.gradient.shape == (2,)
+    assert g.values == pytest.approx([0.6, 2.0])
+    # d cost / dμ against central differences of the cost (tests/scenes/test_fit.cpp states the
+    # accuracy).
+    h = 1e-5 * 0.6
+    costs = []
+    for sign in (1, -1):
+        f = sd.load_scene(THROW)
+        c = f.scene.actor("box").contact_params
+        c.coulomb_friction_coefficient = 0.6 + sign * h
+        f.scene.actor("box").contact_params = c
+        costs.append(sd.trajectory_gradient(f, names, times=times, positions={"box": com}).cost)
+    assert g.gradient[0] == pytest.approx((costs[0] - costs[1]) / (2 * h), rel=1e-4)
+    assert g.gradient[1] != 0.0
+    r = sd.fit(sd.load_scene(THROW), ["box.coulomb_friction_coefficient",
+                                      "box.normal_viscous_damping_coefficient"],
+               times=times, positions={"box": com}, method="lbfgs", max_iterations=100)
+    assert r.converged, r.message
+    assert r.fitted == pytest.approx([0.4, 4.0], rel=1e-2)
+    with pytest.raises(ValueError, match="method: must be 'lm' or 'lbfgs'"):
+        sd.fit(sd.load_scene(THROW), names, times=times, positions={"box": com}, method="newton")
