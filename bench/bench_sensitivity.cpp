@@ -23,17 +23,24 @@ double Seconds(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// Runs `steps` steps of a copy of `base`, carrying sensitivities for `names` (none: plain).
-double Run(const Scene& base, const std::vector<std::string>& names, double dt, int steps,
-           double* tangentShare) {
-  Scene scene = base;
-  Error error;
+// The named parameters of the scene; exits with the message on an unknown one.
+std::vector<SceneParameter> ParseOrExit(const Scene& scene, const std::vector<std::string>& names) {
   std::vector<SceneParameter> params(names.size());
+  Error error;
   for (size_t j = 0; j < names.size(); ++j)
     if (!ParseSceneParameter(scene, names[j], &params[j], &error)) {
       std::fprintf(stderr, "%s\n", error.message.c_str());
       std::exit(2);
     }
+  return params;
+}
+
+// Runs `steps` steps of a copy of `base`, carrying sensitivities for `names` (none: plain).
+double Run(const Scene& base, const std::vector<std::string>& names, double dt, int steps,
+           double* tangentShare) {
+  Scene scene = base;
+  Error error;
+  const std::vector<SceneParameter> params = ParseOrExit(scene, names);
   ForwardSensitivity sens;
   const auto t0 = std::chrono::steady_clock::now();
   if (!names.empty() && !sens.Begin(&scene, params, &error)) {
@@ -59,12 +66,7 @@ double Adjoint(const Scene& base, const std::vector<std::string>& names, double 
                int* colors, double* runsPerStep) {
   Scene scene = base;
   Error error;
-  std::vector<SceneParameter> params(names.size());
-  for (size_t j = 0; j < names.size(); ++j)
-    if (!ParseSceneParameter(scene, names[j], &params[j], &error)) {
-      std::fprintf(stderr, "%s\n", error.message.c_str());
-      std::exit(2);
-    }
+  const std::vector<SceneParameter> params = ParseOrExit(scene, names);
   std::vector<Eigen::SparseMatrix<double>> com;
   for (int a = 0; a < scene.NumActors(); ++a) com.push_back(CenterOfMassMap(scene, {a}));
   AdjointSensitivity adjoint;

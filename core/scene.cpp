@@ -452,6 +452,24 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
   return st;
 }
 
+bool Scene::StepAndRecord(double dt, StepTape* tape, StepReport* report, Error* error) {
+  StepReport rep;
+  tape_ = tape;
+  tapeMode_ = TapeMode::Record;
+  const bool ok = Step(dt, &rep, error);
+  tapeMode_ = TapeMode::Off;
+  if (report) *report = rep;
+  if (!ok) return false;
+  if (rep.status != StageStatus::Converged)
+    return Fail(error, "a stage did not converge (" + rep.message +
+                           "): the derivative of this step is not defined");
+  for (int s = 0; s < tape->used; ++s)
+    if (numDofs_ > 0 && !tape->stages[s].factored)
+      return Fail(error, "the stage Jacobian at the solution is singular: the derivative of this "
+                         "step is not defined");
+  return true;
+}
+
 void Scene::RecordStage(const StageTargets& targets, const StageDissipation& dissipation,
                         const std::vector<RigidPose>& poses, const SoftStage* soft,
                         std::vector<Eigen::VectorXd>* softX) {

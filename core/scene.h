@@ -234,6 +234,10 @@ class Scene {
   TapeMode tapeMode_ = TapeMode::Off;
   StepTape* tape_ = nullptr;
   int tapeStage_ = 0;
+  // Steps by dt recording every stage in *tape (TapeMode::Record). False, with the reason, for
+  // invalid input, a stage that did not converge or a singular stage Jacobian at the solution:
+  // the derivative of such a step is not defined. The step's report in *report either way.
+  bool StepAndRecord(double dt, StepTape* tape, StepReport* report, Error* error);
   void RecordStage(const StageTargets& targets, const StageDissipation& dissipation,
                    const std::vector<RigidPose>& poses, const SoftStage* soft,
                    std::vector<Eigen::VectorXd>* softX);

@@ -259,22 +259,10 @@ bool ForwardSensitivity::Step(double dt, StepReport* report, Error* error) {
   const auto t0 = std::chrono::steady_clock::now();
   const Scene::Snapshot before = scene.Save();
   const Eigen::VectorXd S0 = scene.PackState();
-  StepReport rep;
-  scene.tape_ = &tape_;
-  scene.tapeMode_ = Scene::TapeMode::Record;
-  const bool ok = scene.Step(dt, &rep, error);
-  scene.tapeMode_ = Scene::TapeMode::Off;
-  if (report) *report = rep;
-  if (!ok) return false;
+  const bool ok = scene.StepAndRecord(dt, &tape_, report, error);
   const auto t1 = std::chrono::steady_clock::now();
   stepSeconds_ += std::chrono::duration<double>(t1 - t0).count();
-  if (rep.status != StageStatus::Converged)
-    return Fail(error, "a stage did not converge (" + rep.message +
-                           "): the sensitivities of this step are not defined");
-  for (int s = 0; s < tape_.used; ++s)
-    if (!tape_.stages[s].factored)
-      return Fail(error, "the stage Jacobian at the solution is singular: the sensitivities of "
-                         "this step are not defined");
+  if (!ok) return false;
   const Scene::Snapshot after = scene.Save();
   const int P = static_cast<int>(parameters_.size());
   Eigen::MatrixXd next(dS_.rows(), P);

@@ -41,22 +41,9 @@ bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
   }
   const Scene::Snapshot before = scene.Save();
   const Eigen::VectorXd S0 = scene.PackState();
-  StepReport rep;
-  scene.tape_ = &tape_;
-  scene.tapeMode_ = Scene::TapeMode::Record;
-  const bool ok = scene.Step(dt, &rep, error);
-  scene.tapeMode_ = Scene::TapeMode::Off;
-  if (report) *report = rep;
-  if (!ok) return false;
-  if (rep.status != StageStatus::Converged)
-    return Fail(error, "a stage did not converge (" + rep.message +
-                           "): the derivative of this step is not defined");
+  if (!scene.StepAndRecord(dt, &tape_, report, error)) return false;
   const int s = tape_.used;
   const int nd = scene.numDofs_;
-  for (int i = 0; i < s; ++i)
-    if (nd > 0 && !tape_.stages[i].factored)
-      return Fail(error, "the stage Jacobian at the solution is singular: the derivative of this "
-                         "step is not defined");
   const int ns = static_cast<int>(S0.size());
   const int P = static_cast<int>(model.size());
   const int zSize = ns + s * nd;
