@@ -1,5 +1,7 @@
 #include "core/step_linearization.h"
 
+#include "core/rigid_math.h"
+
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -10,11 +12,17 @@
 namespace superdex {
 namespace {
 
-// A body or soft node as the differences see it: the z columns of its local coordinates with
-// their steps η, and the units (bodies and nodes) whose rows its moves reach.
+// One difference direction: z (or parameter) moved by step × `move`; the directional derivative
+// D is entered into the partials' columns as D × `spread`.
+struct Direction {
+  std::vector<std::pair<int, double>> move, spread;
+  double step = 0.0;
+};
+
+// A body or soft node as the differences see it: the directions of its local coordinates and of
+// its own contact parameters, and the units (bodies and nodes) whose rows its moves reach.
 struct Mover {
-  std::vector<int> columns;
-  std::vector<double> steps;
+  std::vector<Direction> directions, parameters;
   std::vector<int> reach;
   bool alone = false;  // a prescribed soft node: no column in J_i, moved by itself
 };
@@ -70,9 +78,23 @@ bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
       for (int k = 0; k < count; ++k) rowUnit[s * nd + b * blockSize + stateEntry + k] = unit;
   };
   auto addColumns = [&](Mover* mv, int first, int count, double step) {
-    for (int k = 0; k < count; ++k) {
-      mv->columns.push_back(first + k);
-      mv->steps.push_back(step);
+    for (int k = 0; k < count; ++k) mv->directions.push_back({{{first + k, 1.0}}, {{first + k, 1.0}}, step});
+  };
+  // The rotation block R (9 entries from `first`): only the three tangent directions [e_k]× R are
+  // differenced — every state the step sees has R on SO(3), and so has every variation of it
+  // (dR = [ξ]× R) — and each derivative D_k is entered as D_k V_kᵀ/2 over the nine entries
+  // (V_k = vec([e_k]× R), V_kᵀV_l = 2δ_kl), which reproduces D_k on every tangent variation.
+  auto addRotation = [&](Mover* mv, int first, double step) {
+    const Eigen::Matrix3d R = Eigen::Map<const Eigen::Matrix3d>(S0.data() + first);
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Matrix3d V = Skew(Eigen::Vector3d::Unit(k)) * R;
+      Direction d;
+      d.step = step;
+      for (int e = 0; e < 9; ++e) {
+        d.move.emplace_back(first + e, V.data()[e]);
+        d.spread.emplace_back(first + e, 0.5 * V.data()[e]);
+      }
+      mv->directions.push_back(std::move(d));
     }
   };
   const std::vector<ActorHandle> rigid = scene.RigidActors();
@@ -86,7 +108,7 @@ bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
     for (int b = 0; b < blocks; ++b) {  // p, R, v, Ṙ
       const int base = b * blockSize + o;
       addColumns(&mv, base, 3, h);
-      addColumns(&mv, base + 3, 9, h / radius);
+      addRotation(&mv, base + 3, h / radius);
       addColumns(&mv, base + 12, 3, h / dt);
       addColumns(&mv, base + 15, 9, h / (dt * radius));
     }
@@ -185,6 +207,9 @@ bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
   }
   std::vector<double> parameterStep(P);
   for (int p = 0; p < P; ++p) parameterStep[p] = 1e-4 * std::abs(ParameterValue(scene, model[p]));
+  for (int u = 0; u < U; ++u)
+    for (int p : owned[u])
+      movers[u].parameters.push_back({{{zSize + p, 1.0}}, {{zSize + p, 1.0}}, parameterStep[p]});
 
   // One run of the step in Inject mode on a replica, with z and the parameters moved by `moves`
   // (z index, or zSize + parameter index; amount).
@@ -286,17 +311,14 @@ bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
     if (!good) break;
     size_t locals = 0, slots = 0;
     for (int u : group) {
-      locals = std::max(locals, movers[u].columns.size());
-      slots = std::max(slots, owned[u].size());
+      locals = std::max(locals, movers[u].directions.size());
+      slots = std::max(slots, movers[u].parameters.size());
       for (int w : movers[u].reach) owner[w] = u;
     }
     const bool alone = group.size() == 1 && movers[group[0]].alone;
-    auto column = [&](int u, size_t j, bool parameters) {
-      if (parameters) return j < owned[u].size() ? zSize + owned[u][j] : -1;
-      return j < movers[u].columns.size() ? movers[u].columns[j] : -1;
-    };
-    auto step = [&](int u, size_t j, bool parameters) {
-      return parameters ? parameterStep[owned[u][j]] : movers[u].steps[j];
+    auto direction = [&](int u, size_t j, bool parameters) -> const Direction* {
+      const std::vector<Direction>& list = parameters ? movers[u].parameters : movers[u].directions;
+      return j < list.size() ? &list[j] : nullptr;
     };
     std::vector<Moves> jobs;
     std::vector<std::pair<size_t, bool>> slot;  // (j, parameters) per job
@@ -304,8 +326,8 @@ bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
       for (size_t j = 0; j < (parameters ? slots : locals); ++j) {
         Moves moves;
         for (int u : group)
-          if (column(u, j, parameters) >= 0)
-            moves.emplace_back(column(u, j, parameters), step(u, j, parameters));
+          if (const Direction* d = direction(u, j, parameters))
+            for (const auto& [z, w] : d->move) moves.emplace_back(z, w * d->step);
         if (moves.empty()) continue;
         jobs.push_back(std::move(moves));
         slot.emplace_back(j, parameters);
@@ -317,11 +339,12 @@ bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
       for (int r = 0; r < m; ++r) {
         if (e[r] == 0.0) continue;
         const int u = alone ? group[0] : owner[rowUnit[r]];
-        if (u < 0 || column(u, j, parameters) < 0) {
+        const Direction* d = u < 0 ? nullptr : direction(u, j, parameters);
+        if (!d) {
           unattributed_ = std::max(unattributed_, std::abs(e[r]) / h);
           continue;
         }
-        triplets.emplace_back(r, column(u, j, parameters), e[r] / step(u, j, parameters));
+        for (const auto& [z, w] : d->spread) triplets.emplace_back(r, z, w * e[r] / d->step);
       }
     }
     for (int u : group)

@@ -30,9 +30,10 @@
 //   4 × (colours × (local coordinates + parameter slots) + other parameters)
 // runs of the explicit part and the stage residuals: independent of the number of bodies at a
 // fixed contact valence, of the number of initial-state parameters and of the number of rigid
-// actors with fitted contact parameters. (Local coordinates: 24 per rigid body and 6 per soft node
-// for each state block, plus 6 or 3 per stage. Prescribed soft nodes, which have no column in J_i,
-// are moved alone.)
+// actors with fitted contact parameters. (Local coordinates: 18 per rigid body — p, v, Ṙ and the
+// three tangent directions of R, the only variations of R a trajectory has — and 6 per soft node
+// for each state block, plus 6 or 3 per stage. Prescribed soft nodes, which have no column in
+// J_i, are moved alone.)
 #pragma once
 
 #include <vector>

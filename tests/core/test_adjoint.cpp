@@ -187,9 +187,10 @@ TEST_CASE("Step linearization: the difference partials reproduce the stage Jacob
     REQUIRE(lin.Linearize(&scene, 2e-3, params, &rep, &error));
     CHECK(lin.Colors() == 2);  // {a, c} and {b, d}
     CHECK(lin.Unattributed() == 0.0);
-    // Runs: 4 × (2 colours × local coordinates (24 per state block, 6 per stage) + a's slot for
-    // its μ + the ground's penalty coefficient alone).
-    const int locals = 24 * (method == IntegrationMethod::BDF2 ? 2 : 1) + 6 * lin.Stages();
+    // Runs: 4 × (2 colours × local directions (18 per state block: p, the three tangent
+    // directions of R, v, Ṙ; 6 per stage) + a's slot for its μ + the ground's penalty
+    // coefficient alone).
+    const int locals = 18 * (method == IntegrationMethod::BDF2 ? 2 : 1) + 6 * lin.Stages();
     CHECK(lin.Runs() == 4 * (2 * locals + 1 + 1));
     // ∂ρ_i/∂δ_i by differences against the recorded J_i.
     const int ns = scene.StateSize();
