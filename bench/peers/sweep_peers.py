@@ -33,7 +33,12 @@ SUPERDEX_CURVES = [("BDF2", False), ("BDF2", True), ("BackwardEuler", False), ("
 # and the peers, and the superdex curves run (all four unless limited).
 SCENES = {
     "drop": dict(label="|1 - e| (restitution of the first bounce)", duration=(0.6, 0.6),
-                 sdx=([1e-3, 3e-4, 1e-4, 3e-5], [1e-3, 3e-4, 1e-4]),
+                 sdx=([1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5], [1e-2, 3e-3, 1e-3, 3e-4, 1e-4]),
+                 # The drop has no damping: the energy-conserving symplectic methods, and BDF2.
+                 sdx_curves=([("SymplecticDIRK12", False), ("SymplecticDIRK22", False),
+                              ("SymplecticDIRK22", True), ("BDF2", False)],
+                             [("SymplecticDIRK12", False), ("SymplecticDIRK22", False),
+                              ("BDF2", False)]),
                  peer=([1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5], [1e-2, 3e-3, 1e-3, 3e-4, 1e-4])),
     "incline": dict(label="relative error of the sliding acceleration", duration=(2.0, 1.5),
                     sdx=([1e-1, 5e-2, 2e-2, 1e-2, 3e-3, 1e-3, 3e-4], [5e-2, 1e-2, 3e-3, 1e-3]),
