@@ -27,6 +27,40 @@ struct Mover {
   bool alone = false;  // a prescribed soft node: no column in J_i, moved by itself
 };
 
+// Greedy distance-2 colouring: two movers share a colour only if no unit is reached by both.
+// Sorts each mover's reach; returns the colour classes, the movers that must move alone last,
+// each in a class of its own.
+std::vector<std::vector<int>> ColourMovers(std::vector<Mover>* moversPtr) {
+  std::vector<Mover>& movers = *moversPtr;
+  const int U = static_cast<int>(movers.size());
+  std::vector<std::vector<int>> reachedBy(U);
+  for (int u = 0; u < U; ++u) {
+    std::vector<int>& r = movers[u].reach;
+    std::sort(r.begin(), r.end());
+    r.erase(std::unique(r.begin(), r.end()), r.end());
+    for (int w : r) reachedBy[w].push_back(u);
+  }
+  std::vector<int> color(U, -1), stamp;
+  std::vector<std::vector<int>> members;
+  for (int u = 0; u < U; ++u) {
+    if (movers[u].alone) continue;
+    for (int w : movers[u].reach)
+      for (int v : reachedBy[w])
+        if (color[v] >= 0) stamp[color[v]] = u;
+    int c = 0;
+    while (c < static_cast<int>(stamp.size()) && stamp[c] == u) ++c;
+    if (c == static_cast<int>(stamp.size())) {
+      stamp.push_back(-1);
+      members.emplace_back();
+    }
+    color[u] = c;
+    members[c].push_back(u);
+  }
+  for (int u = 0; u < U; ++u)
+    if (movers[u].alone) members.push_back({u});
+  return members;
+}
+
 // A copy of the scene that one thread runs the step on, with its own tape.
 struct Replica {
   explicit Replica(const Scene& s) : scene(s) {}
@@ -159,32 +193,7 @@ bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
       for (Eigen::SparseMatrix<double>::InnerIterator e(J, c); e; ++e)
         movers[dofUnit[c]].reach.push_back(dofUnit[e.row()]);
   }
-  std::vector<std::vector<int>> reachedBy(U);
-  for (int u = 0; u < U; ++u) {
-    std::vector<int>& r = movers[u].reach;
-    std::sort(r.begin(), r.end());
-    r.erase(std::unique(r.begin(), r.end()), r.end());
-    for (int w : r) reachedBy[w].push_back(u);
-  }
-  // Greedy distance-2 colouring: two movers share a colour only if no unit is reached by both.
-  std::vector<int> color(U, -1), stamp;
-  std::vector<std::vector<int>> members;
-  for (int u = 0; u < U; ++u) {
-    if (movers[u].alone) continue;
-    for (int w : movers[u].reach)
-      for (int v : reachedBy[w])
-        if (color[v] >= 0) stamp[color[v]] = u;
-    int c = 0;
-    while (c < static_cast<int>(stamp.size()) && stamp[c] == u) ++c;
-    if (c == static_cast<int>(stamp.size())) {
-      stamp.push_back(-1);
-      members.emplace_back();
-    }
-    color[u] = c;
-    members[c].push_back(u);
-  }
-  for (int u = 0; u < U; ++u)
-    if (movers[u].alone) members.push_back({u});
+  const std::vector<std::vector<int>> members = ColourMovers(&movers);
   colors_ = static_cast<int>(members.size());
 
   // Model parameters of a dynamic rigid actor reach the rows its mover reaches (the pair values
