@@ -105,7 +105,7 @@ TEST_CASE("Fitting: bad input is refused with the reason", "[fit]") {
   CHECK_FALSE(FitSceneParameters(file, stranger, options, &r, &error));
   CHECK(error.message.find("'crate' is not in the scene") != std::string::npos);
 
-  const std::string path = "fit_bad_observed.jsonl";
+  const std::string path = SUPERDEX_BINARY_DIR "/fit_bad_observed.jsonl";
   std::ofstream(path) << "{\"actors\": [{\"name\": \"ground\"}, {\"name\": \"box\"}]}\n"
                       << "{\"t\": 0.02, \"actors\": [null]}\n";
   ObservedTrajectory bad;
@@ -117,7 +117,7 @@ TEST_CASE("Fitting: bad input is refused with the reason", "[fit]") {
 }
 
 TEST_CASE("superdex fit recovers the shipped measurement's parameters", "[fit][cli]") {
-  const std::string out = "fit_throw_fitted.json";
+  const std::string out = SUPERDEX_BINARY_DIR "/fit_throw_fitted.json";
   std::remove(out.c_str());
   const std::string cmd = std::string(SUPERDEX_CLI) + " fit " + SUPERDEX_SOURCE_DIR +
                           "/scenes/data/fit_throw.json --observed " + SUPERDEX_SOURCE_DIR +
@@ -203,7 +203,7 @@ TEST_CASE("superdex gradient prints the cost gradient; fit --method is validated
                             "/scenes/data/fit_throw.json --observed " + SUPERDEX_SOURCE_DIR +
                             "/scenes/data/fit_throw_observed.jsonl --params "
                             "box.coulomb_friction_coefficient,box.velocity.x";
-  const std::string out = "gradient_out.txt";
+  const std::string out = SUPERDEX_BINARY_DIR "/gradient_out.txt";
   REQUIRE(std::system((base + " gradient" + input + " > " + out + " 2>&1").c_str()) == 0);
   std::ifstream in(out);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
