@@ -343,10 +343,7 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
     dissipation.fadeFriction = settings_.eval.fadeFriction;
   }
   if (tapeMode_ == TapeMode::Replay || tapeMode_ == TapeMode::Inject) {
-    if (tapeMode_ == TapeMode::Replay)
-      ReplayStage(targets, dissipation, poses, soft, softX);
-    else
-      InjectStage(targets, dissipation, poses, soft, softX);
+    TapedStage(targets, dissipation, poses, soft, softX);
     SolverStats st;
     st.status = StageStatus::Converged;
     return st;
@@ -492,25 +489,9 @@ void Scene::RecordStage(const StageTargets& targets, const StageDissipation& dis
   e.jacobian = std::move(J);
 }
 
-void Scene::ReplayStage(const StageTargets& targets, const StageDissipation& dissipation,
-                        std::vector<RigidPose>* poses, const SoftStage* soft,
-                        std::vector<Eigen::VectorXd>* softX) {
-  StageTapeEntry& e = tape_->stages[tapeStage_++];
-  *poses = e.poses;
-  if (softX) *softX = e.softX;
-  if (numDofs_ == 0) return;
-  StageDissipation d = dissipation;
-  d.mode = e.mode;
-  SceneStageProblem problem(models_, dofOffset_, numDofs_, targets, settings_.gravity, &pipeline_,
-                            poses, d, soft, softX, &workspace_);
-  Eigen::VectorXd r;
-  problem.Residual(Eigen::VectorXd::Zero(numDofs_), &r);
-  problem.Commit(-e.lu->Solve(r));
-}
-
-void Scene::InjectStage(const StageTargets& targets, const StageDissipation& dissipation,
-                        std::vector<RigidPose>* poses, const SoftStage* soft,
-                        std::vector<Eigen::VectorXd>* softX) {
+void Scene::TapedStage(const StageTargets& targets, const StageDissipation& dissipation,
+                       std::vector<RigidPose>* poses, const SoftStage* soft,
+                       std::vector<Eigen::VectorXd>* softX) {
   StageTapeEntry& e = tape_->stages[tapeStage_++];
   *poses = e.poses;
   if (softX) *softX = e.softX;
@@ -522,7 +503,13 @@ void Scene::InjectStage(const StageTargets& targets, const StageDissipation& dis
   d.mode = e.mode;
   SceneStageProblem problem(models_, dofOffset_, numDofs_, targets, settings_.gravity, &pipeline_,
                             poses, d, soft, softX, &workspace_);
-  const Eigen::VectorXd delta =
+  if (tapeMode_ == TapeMode::Replay) {  // one Newton step with the recorded factors
+    Eigen::VectorXd r;
+    problem.Residual(Eigen::VectorXd::Zero(numDofs_), &r);
+    problem.Commit(-e.lu->Solve(r));
+    return;
+  }
+  const Eigen::VectorXd delta =  // Inject
       e.inject.size() == numDofs_ ? e.inject : Eigen::VectorXd::Zero(numDofs_);
   problem.Residual(delta, &e.residual);
   problem.Commit(delta);

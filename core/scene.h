@@ -241,12 +241,10 @@ class Scene {
   void RecordStage(const StageTargets& targets, const StageDissipation& dissipation,
                    const std::vector<RigidPose>& poses, const SoftStage* soft,
                    std::vector<Eigen::VectorXd>* softX);
-  void ReplayStage(const StageTargets& targets, const StageDissipation& dissipation,
-                   std::vector<RigidPose>* poses, const SoftStage* soft,
-                   std::vector<Eigen::VectorXd>* softX);
-  void InjectStage(const StageTargets& targets, const StageDissipation& dissipation,
-                   std::vector<RigidPose>* poses, const SoftStage* soft,
-                   std::vector<Eigen::VectorXd>* softX);
+  // Replay or Inject in place of a stage solve.
+  void TapedStage(const StageTargets& targets, const StageDissipation& dissipation,
+                  std::vector<RigidPose>* poses, const SoftStage* soft,
+                  std::vector<Eigen::VectorXd>* softX);
   struct Snapshot {
     std::vector<RigidBodyState> states;
     std::vector<SoftBodyState> softStates;
