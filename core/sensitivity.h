@@ -27,6 +27,7 @@
 // not differentiable at 0: those parameters are differentiated at positive values only.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -83,7 +84,10 @@ Eigen::SparseMatrix<double> CenterOfMassMap(Scene& scene, ActorHandle a);
 /// 0.012 V_f min Δt_i, smallest V_f over the actors, smallest stage step of the method.
 double DifferenceStateStep(const Scene& scene, double dt);
 
-/// Forward sensitivities for a few parameters, carried along a simulation.
+/// Forward sensitivities for a few parameters, carried along a simulation. With 4 or more
+/// parameters and no soft actors the parameters' replays run in parallel, each thread on its own
+/// copy of the scene made at its first replay: the scene's parameters must not change between
+/// Begin and the last Step.
 class ForwardSensitivity {
  public:
   /// Starts at the scene's current state with dS/dθ = ∂S/∂θ of that state (unit directions for
@@ -107,6 +111,8 @@ class ForwardSensitivity {
   std::vector<SceneParameter> parameters_;
   Eigen::MatrixXd dS_;
   StepTape tape_;
+  struct Replicas;  // per-thread copies of the scene for parallel replays, kept across steps
+  std::shared_ptr<Replicas> replicas_;
   double stepSeconds_ = 0.0, tangentSeconds_ = 0.0;
 };
 

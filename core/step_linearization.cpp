@@ -1,6 +1,7 @@
 #include "core/step_linearization.h"
 
 #include "core/rigid_math.h"
+#include "core/scene_replica.h"
 
 #include <algorithm>
 #include <cmath>
@@ -61,13 +62,6 @@ std::vector<std::vector<int>> ColourMovers(std::vector<Mover>* moversPtr) {
   return members;
 }
 
-// A copy of the scene that one thread runs the step on, with its own tape.
-struct Replica {
-  explicit Replica(const Scene& s) : scene(s) {}
-  Scene scene;
-  StepTape tape;
-  Error error;
-};
 
 }  // namespace
 
@@ -223,7 +217,7 @@ bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
   // One run of the step in Inject mode on a replica, with z and the parameters moved by `moves`
   // (z index, or zSize + parameter index; amount).
   using Moves = std::vector<std::pair<int, double>>;
-  auto run = [&](Replica& rep, const Moves& moves, Eigen::VectorXd* y) -> bool {
+  auto run = [&](SceneReplica& rep, const Moves& moves, Eigen::VectorXd* y) -> bool {
     Scene& sc = rep.scene;
     sc.Restore(before);
     Eigen::VectorXd S = S0;
@@ -257,7 +251,7 @@ bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
     return true;
   };
   // (4 D(η/2) − D(η))/3 with D(η) = (y(+η) − y(−η))/(2η), times η (divided by each row's η later).
-  auto richardson = [&](Replica& rep, const Moves& moves, Eigen::VectorXd* e) -> bool {
+  auto richardson = [&](SceneReplica& rep, const Moves& moves, Eigen::VectorXd* e) -> bool {
     Eigen::VectorXd plus, minus, full;
     Moves scaled = moves;
     for (double f : {1.0, 0.5}) {
@@ -275,19 +269,10 @@ bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
   // The runs are independent: each thread works on its own copy of the scene (made on first use,
   // with the recorded stage solutions), and every result is attributed afterwards in a fixed
   // order, so the partials do not depend on the number of threads.
-  tbb::enumerable_thread_specific<std::unique_ptr<Replica>> replicas;
-  auto replica = [&]() -> Replica& {
-    std::unique_ptr<Replica>& r = replicas.local();
-    if (!r) {
-      r = std::make_unique<Replica>(scene);
-      r->tape.stages.resize(s);
-      for (int st = 0; st < s; ++st) {
-        r->tape.stages[st].poses = tape_.stages[st].poses;
-        r->tape.stages[st].softX = tape_.stages[st].softX;
-        r->tape.stages[st].mode = tape_.stages[st].mode;
-      }
-      r->tape.used = s;
-    }
+  tbb::enumerable_thread_specific<std::unique_ptr<SceneReplica>> replicas;
+  auto replica = [&]() -> SceneReplica& {
+    std::unique_ptr<SceneReplica>& r = replicas.local();
+    if (!r) r = std::make_unique<SceneReplica>(scene, tape_, false);
     return *r;
   };
   // Runs the jobs (each a set of moves) in parallel: results[k] for jobs[k]; false on the first
@@ -297,14 +282,14 @@ bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
     results.assign(jobs.size(), Eigen::VectorXd());
     std::vector<char> ok(jobs.size(), 0);
     tbb::parallel_for(size_t(0), jobs.size(), [&](size_t k) {
-      Replica& rep = replica();
+      SceneReplica& rep = replica();
       ok[k] = richardson(rep, jobs[k], &results[k]);
       if (!ok[k]) results[k].resize(0);
     });
     runs_ += 4 * static_cast<int>(jobs.size());
     for (size_t k = 0; k < jobs.size(); ++k)
       if (!ok[k]) {
-        for (const std::unique_ptr<Replica>& r : replicas)
+        for (const std::unique_ptr<SceneReplica>& r : replicas)
           if (r && !r->error.message.empty()) return Fail(error, r->error.message);
         return Fail(error, "a run of the step in Inject mode failed");
       }

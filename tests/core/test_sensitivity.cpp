@@ -3,6 +3,7 @@
 // modes. Tolerance: 1e-5 relative to the largest entry of the compared derivative.
 #include <catch2/catch.hpp>
 #include <functional>
+#include <tbb/global_control.h>
 
 #include "core/sensitivity.h"
 #include "sensitivity_scenes.h"
@@ -160,4 +161,26 @@ TEST_CASE("Sensitivity parameters: parsing and refusals", "[sensitivity]") {
   ForwardSensitivity sens;
   CHECK_FALSE(sens.Begin(&scene, {p}, &error));
   CHECK(error.message.find("positive values only") != std::string::npos);
+}
+
+TEST_CASE("Sensitivities do not depend on the number of threads", "[sensitivity]") {
+  // Four parameters replay in parallel, each on one thread's copy of the scene.
+  const std::vector<std::string> names = {"cube.coulomb_friction_coefficient",
+                                          "cube.normal_viscous_damping_coefficient",
+                                          "cube.viscous_friction_coefficient", "cube.velocity.x"};
+  Eigen::MatrixXd jacobian[2];
+  for (int threads : {1, 2}) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    Scene scene = SlidingBox(IntegrationMethod::BDF2, DissipationMode::ReconstructedLoad);
+    std::vector<SceneParameter> params(names.size());
+    Error error;
+    for (size_t j = 0; j < names.size(); ++j)
+      REQUIRE(ParseSceneParameter(scene, names[j], &params[j], &error));
+    ForwardSensitivity sens;
+    REQUIRE(sens.Begin(&scene, params, &error));
+    for (int n = 0; n < 20; ++n) REQUIRE(sens.Step(2e-3, nullptr, &error));
+    jacobian[threads - 1] = sens.StateJacobian();
+  }
+  CHECK(jacobian[0].cwiseAbs().maxCoeff() > 0.0);
+  CHECK((jacobian[0] - jacobian[1]).cwiseAbs().maxCoeff() == 0.0);
 }
