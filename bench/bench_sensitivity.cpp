@@ -109,12 +109,8 @@ void Table(const char* title, const Scene& base, double dt, const std::vector<st
               colors, runs, all.size(), wall, wall / forward);
 }
 
-// 16 boxes (0.2 m, 1 kg, μ = 0.5, c_n = 1 s/m) on a 4 × 4 grid of pitch 0.5 m, resting 0.5 mm
-// into the ground and sliding in different directions at up to 1 m/s.
-Scene SlidingBoxes(std::vector<std::string>* parameters) {
-  SceneSettings settings;
-  Scene scene(settings);
-  Error error;
+// A static ground plane z <= 0 (k = 1e7 Pa/m, μ = 0.5, c_n = 1 s/m).
+RigidActorDesc Ground() {
   RigidActorDesc ground;
   ground.name = "ground";
   ground.dynamic = false;
@@ -122,7 +118,16 @@ Scene SlidingBoxes(std::vector<std::string>* parameters) {
   ground.contact.penaltyCoefficient = 1e7;
   ground.contact.coulombFrictionCoefficient = 0.5;
   ground.contact.normalViscousDampingCoefficient = 1.0;
-  scene.AddRigidActor(ground, &error);
+  return ground;
+}
+
+// 16 boxes (0.2 m, 1 kg, μ = 0.5, c_n = 1 s/m) on a 4 × 4 grid of pitch 0.5 m, resting 0.5 mm
+// into the ground and sliding in different directions at up to 1 m/s.
+Scene SlidingBoxes(std::vector<std::string>* parameters) {
+  SceneSettings settings;
+  Scene scene(settings);
+  Error error;
+  scene.AddRigidActor(Ground(), &error);
   for (int k = 0; k < 16; ++k) {
     RigidActorDesc d;
     d.name = "b" + std::to_string(k);
@@ -162,13 +167,7 @@ int main() {
 
   SceneSettings settings;
   Scene soft(settings);
-  RigidActorDesc ground;
-  ground.name = "ground";
-  ground.dynamic = false;
-  ground.shape.kind = RigidShapeKind::Plane;
-  ground.contact.penaltyCoefficient = 1e7;
-  ground.contact.normalViscousDampingCoefficient = 1.0;
-  soft.AddRigidActor(ground, &error);
+  soft.AddRigidActor(Ground(), &error);
   SoftActorDesc d;
   d.name = "soft";
   d.mesh = std::make_shared<TetMesh>(

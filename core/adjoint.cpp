@@ -59,8 +59,7 @@ bool AdjointSensitivity::Gradient(const std::vector<SceneParameter>& parameters,
   bool ok = true;
   for (int n = N - 1; n >= 0 && ok; --n) {
     scene.Restore(checkpoints_[n]);
-    StepReport rep;
-    ok = linearizer.Linearize(&scene, dts_[n], parameters, &rep, error);
+    ok = linearizer.Linearize(&scene, dts_[n], parameters, nullptr, error);
     if (!ok) {
       if (error) error->message = "step " + std::to_string(n) + ": " + error->message;
       break;

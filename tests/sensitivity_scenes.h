@@ -5,9 +5,22 @@
 #include <catch2/catch.hpp>
 
 #include "core/scene.h"
+#include "core/sensitivity.h"
 #include "scene_builders.h"
 
 namespace superdex::test {
+
+/// The named parameters of `scene` ("ACTOR.NAME"); a test failure naming the one that is wrong.
+inline std::vector<SceneParameter> ParseParameters(const Scene& scene,
+                                                   const std::vector<std::string>& names) {
+  std::vector<SceneParameter> out(names.size());
+  Error error;
+  for (size_t j = 0; j < names.size(); ++j) {
+    INFO(names[j] << ": " << error.message);
+    REQUIRE(ParseSceneParameter(scene, names[j], &out[j], &error));
+  }
+  return out;
+}
 
 inline SceneSettings TightSettings(IntegrationMethod method, DissipationMode mode) {
   SceneSettings s;

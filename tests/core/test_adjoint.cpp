@@ -44,16 +44,6 @@ Scene FourBoxes(IntegrationMethod method, DissipationMode mode, double mu = 0.5)
   return scene;
 }
 
-std::vector<SceneParameter> Parse(const Scene& scene, const std::vector<std::string>& names) {
-  std::vector<SceneParameter> out(names.size());
-  Error error;
-  for (size_t j = 0; j < names.size(); ++j) {
-    INFO(names[j]);
-    REQUIRE(ParseSceneParameter(scene, names[j], &out[j], &error));
-  }
-  return out;
-}
-
 // L = Σ_n Σ_a w_a · c_a(S_n): a weighted sum of every dynamic actor's centre of mass over the run.
 struct ComLoss {
   std::vector<ActorHandle> actors;
@@ -82,7 +72,7 @@ Eigen::VectorXd AdjointGradient(const std::function<Scene()>& build,
                                 const std::vector<std::string>& names, int steps, double dt,
                                 AdjointSensitivity* adjoint = nullptr) {
   Scene scene = build();
-  const std::vector<SceneParameter> params = Parse(scene, names);
+  const std::vector<SceneParameter> params = ParseParameters(scene, names);
   const ComLoss loss(scene);
   AdjointSensitivity own;
   AdjointSensitivity& adj = adjoint ? *adjoint : own;
@@ -100,7 +90,7 @@ Eigen::VectorXd AdjointGradient(const std::function<Scene()>& build,
 Eigen::VectorXd ForwardGradient(const std::function<Scene()>& build,
                                 const std::vector<std::string>& names, int steps, double dt) {
   Scene scene = build();
-  const std::vector<SceneParameter> params = Parse(scene, names);
+  const std::vector<SceneParameter> params = ParseParameters(scene, names);
   const ComLoss loss(scene);
   ForwardSensitivity fwd;
   Error error;
@@ -117,7 +107,7 @@ Eigen::VectorXd ForwardGradient(const std::function<Scene()>& build,
 double LossAlongTrajectory(const std::function<Scene()>& build, const std::string& name,
                            double value, int steps, double dt) {
   Scene scene = build();
-  const std::vector<SceneParameter> p = Parse(scene, {name});
+  const std::vector<SceneParameter> p = ParseParameters(scene, {name});
   Error error;
   REQUIRE(SetParameterValue(&scene, p[0], value, &error));
   const ComLoss loss(scene);
@@ -155,7 +145,7 @@ void CheckAgainstTrajectoryDifferences(const std::function<Scene()>& build,
   const Eigen::VectorXd g = AdjointGradient(build, names, steps, dt);
   for (size_t j = 0; j < probes.size(); ++j) {
     Scene probe = build();
-    const SceneParameter p = Parse(probe, {names[j]})[0];
+    const SceneParameter p = ParseParameters(probe, {names[j]})[0];
     const double theta = ParameterValue(probe, p);
     const double h = p.IsInitialState() ? probes[j].second : probes[j].second * std::abs(theta);
     const double fd = (LossAlongTrajectory(build, names[j], theta + h, steps, dt) -
@@ -180,7 +170,7 @@ TEST_CASE("Step linearization: the difference partials reproduce the stage Jacob
     Error error;
     for (int n = 0; n < 10; ++n) REQUIRE(scene.Step(2e-3, nullptr, &error));
     const std::vector<SceneParameter> params =
-        Parse(scene, {"a.coulomb_friction_coefficient", "ground.penalty_coefficient"});
+        ParseParameters(scene, {"a.coulomb_friction_coefficient", "ground.penalty_coefficient"});
     StepLinearizer lin;
     StepReport rep;
     INFO(error.message);
@@ -310,9 +300,9 @@ TEST_CASE("Adjoint: refusals", "[adjoint]") {
   REQUIRE(scene.Step(1e-3, nullptr, &error));
   REQUIRE(adjoint.Run(&scene, {1e-3, 1e-3}, nullptr, &error));
   // The trajectory starts after a step: its initial state is not a parameter any more.
-  CHECK_FALSE(adjoint.Gradient(Parse(scene, {"cube.velocity.x"}), none, &g, &error));
+  CHECK_FALSE(adjoint.Gradient(ParseParameters(scene, {"cube.velocity.x"}), none, &g, &error));
   CHECK(error.message.find("initial-state parameter") != std::string::npos);
-  std::vector<SceneParameter> mu = Parse(scene, {"cube.coulomb_friction_coefficient"});
+  std::vector<SceneParameter> mu = ParseParameters(scene, {"cube.coulomb_friction_coefficient"});
   REQUIRE(adjoint.Gradient(mu, none, &g, &error));
   CHECK(g.size() == 1);
   CHECK(g[0] == 0.0);  // a zero loss
@@ -328,7 +318,7 @@ TEST_CASE("Step linearization: the partials do not depend on the number of threa
   Error error;
   for (int n = 0; n < 5; ++n) REQUIRE(scene.Step(2e-3, nullptr, &error));
   const std::vector<SceneParameter> params =
-      Parse(scene, {"b.coulomb_friction_coefficient", "ground.coulomb_friction_coefficient"});
+      ParseParameters(scene, {"b.coulomb_friction_coefficient", "ground.coulomb_friction_coefficient"});
   Scene copy = scene;
   StepLinearizer parallel, serial;
   REQUIRE(parallel.Linearize(&scene, 2e-3, params, nullptr, &error));

@@ -45,10 +45,8 @@ void CheckAgainstTrajectoryDifferences(const Builder& build, const std::vector<P
   std::vector<std::string> names;
   for (const Probe& p : probes) names.push_back(p.name);
   Scene scene = build();
-  std::vector<SceneParameter> params(names.size());
+  const std::vector<SceneParameter> params = ParseParameters(scene, names);
   Error error;
-  for (size_t j = 0; j < names.size(); ++j)
-    REQUIRE(ParseSceneParameter(scene, names[j], &params[j], &error));
   ForwardSensitivity sens;
   REQUIRE(sens.Begin(&scene, params, &error));
   for (int n = 0; n < steps; ++n) {
@@ -172,10 +170,8 @@ TEST_CASE("Sensitivities do not depend on the number of threads", "[sensitivity]
   for (int threads : {1, 2}) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
     Scene scene = SlidingBox(IntegrationMethod::BDF2, DissipationMode::ReconstructedLoad);
-    std::vector<SceneParameter> params(names.size());
+    const std::vector<SceneParameter> params = ParseParameters(scene, names);
     Error error;
-    for (size_t j = 0; j < names.size(); ++j)
-      REQUIRE(ParseSceneParameter(scene, names[j], &params[j], &error));
     ForwardSensitivity sens;
     REQUIRE(sens.Begin(&scene, params, &error));
     for (int n = 0; n < 20; ++n) REQUIRE(sens.Step(2e-3, nullptr, &error));
