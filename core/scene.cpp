@@ -10,6 +10,7 @@
 #include "core/integrators.h"
 #include "core/rigid_math.h"
 #include "core/scene_stage.h"
+#include "core/warm_start.h"
 #include "optim/ceres_stage_solver.h"
 #include "optim/ipopt_stage_solver.h"
 #include "optim/residual_newton.h"
@@ -319,7 +320,7 @@ std::vector<RigidPose> Scene::CurrentPoses() const {
 SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& start,
                               const std::vector<RigidPose>& last, std::vector<RigidPose>* poses,
                               ContactStats* contact, const SoftStage* soft,
-                              std::vector<Eigen::VectorXd>* softX) {
+                              std::vector<Eigen::VectorXd>* softX, double predictTime) {
   StageTargets targets;
   targets.dt = dt;
   targets.pHat.resize(models_.size());
@@ -351,10 +352,32 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
   SceneStageProblem problem(models_, dofOffset_, numDofs_, targets, settings_.gravity, &pipeline_,
                             poses, dissipation, soft, softX, &workspace_);
   SolverStats st;
+  // The warm start (Newton only: Ipopt and Ceres check the cold stage) and the cold start's norm,
+  // which keeps the relative convergence test where the cold start puts it.
+  double coldNorm = 0.0;
+  // Kept cold: (1) scenes with soft actors: soft nodes are not predicted, and a soft collider's
+  // stages are only piecewise smooth (its deformed grid SDF's gradient jumps across tet and cell
+  // faces), so that at tolerances near round-off Newton ends in the iteration cap from some starts
+  // (cold or warm alike: tests/core/test_soft_body.cpp's soft-on-soft scene stalls at Δt = 1.8e-3
+  // cold and at 2e-3 warm). (2) Recorded steps (sensitivities, adjoint): their derivatives are
+  // evaluated at the recorded solution, which a start reaches only to the solver's tolerance, and
+  // through the friction kinks the derivatives move with that point (up to 1.2e-3 relative in the
+  // four-box ω_z sensitivity, tests/core/test_adjoint.cpp); the cold start keeps that point where
+  // the sensitivity tests measured it.
+  if (settings_.stageSolver == StageSolverKind::Newton && predictTime > 0.0 &&
+      settings_.warmStart && softModels_.empty() && tapeMode_ == TapeMode::Off) {
+    const bool history = !history_.empty() && !historyTimes_.empty();
+    const std::vector<RigidPose> predicted =
+        PredictPoses(models_, states_, history ? &history_[0] : nullptr,
+                     history ? time_ - historyTimes_[0] : 0.0, predictTime);
+    coldNorm = WarmStart(problem, TangentStep(dofOffset_, numDofs_, *poses, predicted),
+                         settings_.solver.psdProjection)
+                   .coldNorm;
+  }
   switch (settings_.stageSolver) {
     case StageSolverKind::Newton:
       if (problem.IsPotential()) {
-        st = MinimizeNewton(problem, settings_.solver, dt, solvers_.symmetric.get());
+        st = MinimizeNewton(problem, settings_.solver, dt, solvers_.symmetric.get(), coldNorm);
         break;
       }
       {
@@ -406,7 +429,8 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
             if (softX) *softX = softGuess;
           }
         }
-        st = SolveResidualNewton(problem, settings_.solver, dt, solvers_.unsymmetric.get());
+        st = SolveResidualNewton(problem, settings_.solver, dt, solvers_.unsymmetric.get(),
+                                 coldNorm);
         if (!explicitFirst) {
           if (st.status != StageStatus::Converged || st.iterations > kResidualFirstIterations) {
             explicitFirstStages_ = explicitFirstRun_;
@@ -590,7 +614,7 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
     }
     ApplyConstraints(time_ + h, &softX);
     const SoftStage soft = MakeSoftStage(dt, softStart, softStepStart);
-    account(SolveStage(dt, start, stepStart, &poses, &stageContact, &soft, &softX));
+    account(SolveStage(dt, start, stepStart, &poses, &stageContact, &soft, &softX, h));
     for (size_t s = 0; s < ns; ++s) {
       softNext[s].x = softX[s];
       softNext[s].v = (softX[s] - softStart[s].x) / dt;
@@ -635,7 +659,7 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
       const std::vector<RigidPose> last = st == 0 ? stepStart : Q[st - 1];
       ApplyConstraints(time_ + cStage * h, &softX);
       const SoftStage soft = MakeSoftStage(dt, softStart, softLast);
-      account(SolveStage(dt, start, last, &poses, &stageContact, &soft, &softX));
+      account(SolveStage(dt, start, last, &poses, &stageContact, &soft, &softX, cStage * h));
       Q[st] = poses;
       for (size_t s = 0; s < ns; ++s) {
         softVK[st][s].x = (softX[s] - softStart[s].x) / dt;

@@ -2,6 +2,7 @@
 
 #include "optim/linear_solver.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -32,7 +33,8 @@ void CompleteDiagonal(SparseMatrix* J) {
 }  // namespace
 
 SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverParams& params,
-                                double timeScale, UnsymmetricSolver* solver) {
+                                double timeScale, UnsymmetricSolver* solver,
+                                double referenceNorm) {
   SolverStats st;
   auto diverge = [&st](const std::string& message) {
     st.status = StageStatus::Diverged;
@@ -108,7 +110,8 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
     std::ostringstream why;
     if (decrement <= params.absoluteTolerance) {
       why << "residual decrement 0.5|r.d| = " << decrement << " <= absolute_tolerance";
-    } else if (st.finalGradientNorm <= params.relativeTolerance * st.initialGradientNorm) {
+    } else if (st.finalGradientNorm <=
+               params.relativeTolerance * std::max(st.initialGradientNorm, referenceNorm)) {
       why << "residual norm |r|_inf = " << st.finalGradientNorm << " <= relative_tolerance * |r0|";
     } else if (stepVelocity <= params.stepTolerance) {
       why << "step StepNorm(d)/dt = " << stepVelocity << " m/s <= step_tolerance";

@@ -68,6 +68,10 @@ def test_bad_values_raise_value_error_naming_the_field_and_rule():
     assert s.experimental_eval_params.implicit_normal_force_for_dissipation is False
     with pytest.raises(ValueError, match="stage_solver"):
         sd.SceneSettings().stage_solver = "lbfgs"
+    w = sd.SceneSettings()
+    assert w.warm_start is True
+    w.warm_start = False
+    assert w.warm_start is False
     with pytest.raises(ValueError, match="no actor named"):
         sd.Scene().actor("nobody")
 

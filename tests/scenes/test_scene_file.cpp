@@ -73,6 +73,8 @@ TEST_CASE("scene file: each defect gives one error with its JSON path", "[scenes
             .rfind("settings.integrator: unknown value \"DIRK32\"", 0) == 0);
   CHECK(LoadError(Replace(kGood, R"("duration": 0.01})", R"("duration": 0.01, "stage_solver": "lbfgs"})")) ==
         "settings.stage_solver: unknown value \"lbfgs\" (expected one of: newton, ipopt, ceres)");
+  CHECK(LoadError(Replace(kGood, R"("duration": 0.01})", R"("duration": 0.01, "warm_start": "yes"})")) ==
+        "settings.warm_start: must be true or false, got string");
   CHECK(LoadError(Replace(kGood, R"("duration": 0.01})",
                           R"("duration": 0.01, "experimental_eval_params": {"explicit_normals": true, "implicit_normal_force_for_dissipation": true}})")) ==
         "settings.experimental_eval_params.explicit_normals, implicit_normal_force_for_dissipation: "
@@ -88,6 +90,11 @@ TEST_CASE("scene file: each defect gives one error with its JSON path", "[scenes
                           R"("duration": 0.01, "solver": {"linear_solver": "iterative", "linear_tolerance": 1e-6, "linear_max_iterations": 50}})")) ==
         "<loaded>");
   CHECK(LoadError("{ not json").rfind("(file): not valid JSON", 0) == 0);
+  SceneFile cold;
+  Error e;
+  REQUIRE(LoadSceneText(Replace(kGood, R"("duration": 0.01})", R"("duration": 0.01, "warm_start": false})"),
+                        ".", &cold, &e));
+  CHECK_FALSE(cold.scene->Settings().warmStart);
 }
 
 TEST_CASE("command line: bad scene files exit with code 2", "[scenes][cli]") {

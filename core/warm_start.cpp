@@ -1,0 +1,74 @@
+#include "core/warm_start.h"
+
+#include <cmath>
+
+#include "core/rigid_math.h"
+
+namespace superdex {
+
+std::vector<RigidPose> PredictPoses(const std::vector<RigidBodyModel>& models,
+                                    const std::vector<RigidBodyState>& current,
+                                    const std::vector<RigidBodyState>* previous, double hPrevious,
+                                    double tau) {
+  const bool history = previous && previous->size() == current.size() && hPrevious > 0.0;
+  std::vector<RigidPose> out(current.size());
+  for (size_t i = 0; i < current.size(); ++i) {
+    const RigidBodyState& s = current[i];
+    out[i].p = s.p;
+    out[i].R = s.R;
+    if (!models[i].dynamic) continue;
+    Eigen::Vector3d a = Eigen::Vector3d::Zero(), alpha = Eigen::Vector3d::Zero();
+    const Eigen::Vector3d omega = s.AngularVelocity();
+    if (history) {
+      a = (s.v - (*previous)[i].v) / hPrevious;
+      alpha = (omega - (*previous)[i].AngularVelocity()) / hPrevious;
+    }
+    out[i].p = s.p + tau * s.v + 0.5 * tau * tau * a;
+    out[i].R = ExpSo3(tau * omega + 0.5 * tau * tau * alpha) * s.R;
+  }
+  return out;
+}
+
+Eigen::VectorXd TangentStep(const std::vector<int>& dofOffset, int numDofs,
+                            const std::vector<RigidPose>& from, const std::vector<RigidPose>& to) {
+  Eigen::VectorXd d = Eigen::VectorXd::Zero(numDofs);
+  for (size_t i = 0; i < dofOffset.size() && i < from.size() && i < to.size(); ++i) {
+    const int o = dofOffset[i];
+    if (o < 0) continue;
+    d.segment<3>(o) = to[i].p - from[i].p;
+    d.segment<3>(o + 3) = LogSo3(to[i].R * from[i].R.transpose());
+  }
+  return d;
+}
+
+WarmStartResult WarmStart(StageProblem& problem, Eigen::VectorXd d, PsdProjection projection) {
+  WarmStartResult out;
+  const int n = problem.NumDofs();
+  if (n == 0 || d.size() != n) return out;
+  Eigen::VectorXd cold(n);
+  if (problem.IsPotential()) {
+    const double f0 = problem.Evaluate(&cold, nullptr, projection);
+    out.coldNorm = cold.lpNorm<Eigen::Infinity>();
+    if (!d.allFinite() || d.lpNorm<Eigen::Infinity>() == 0.0 || !std::isfinite(f0)) return out;
+    problem.LimitStep(&d);
+    const double f1 = problem.Value(d);
+    if (std::isfinite(f1) && f1 < f0) {
+      problem.Commit(d);
+      out.moved = true;
+    }
+    return out;
+  }
+  Eigen::VectorXd trial(n);
+  problem.Residual(Eigen::VectorXd::Zero(n), &cold);
+  out.coldNorm = cold.lpNorm<Eigen::Infinity>();
+  if (!d.allFinite() || d.lpNorm<Eigen::Infinity>() == 0.0 || !cold.allFinite()) return out;
+  problem.LimitStep(&d);
+  problem.Residual(d, &trial);
+  if (trial.allFinite() && trial.squaredNorm() < cold.squaredNorm()) {
+    problem.Commit(d);
+    out.moved = true;
+  }
+  return out;
+}
+
+}  // namespace superdex
