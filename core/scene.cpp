@@ -352,32 +352,29 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
   SceneStageProblem problem(models_, dofOffset_, numDofs_, targets, settings_.gravity, &pipeline_,
                             poses, dissipation, soft, softX, &workspace_);
   SolverStats st;
-  // The warm start (Newton only: Ipopt and Ceres check the cold stage) and the cold start's norm,
-  // which keeps the relative convergence test where the cold start puts it.
-  double coldNorm = 0.0;
-  // Kept cold: (1) scenes with soft actors: soft nodes are not predicted, and a soft collider's
-  // stages are only piecewise smooth (its deformed grid SDF's gradient jumps across tet and cell
-  // faces), so that at tolerances near round-off Newton ends in the iteration cap from some starts
-  // (cold or warm alike: tests/core/test_soft_body.cpp's soft-on-soft scene stalls at Δt = 1.8e-3
-  // cold and at 2e-3 warm). (2) Recorded steps (sensitivities, adjoint): their derivatives are
-  // evaluated at the recorded solution, which a start reaches only to the solver's tolerance, and
-  // through the friction kinks the derivatives move with that point (up to 1.2e-3 relative in the
-  // four-box ω_z sensitivity, tests/core/test_adjoint.cpp); the cold start keeps that point where
-  // the sensitivity tests measured it.
+  // The warm start (core/warm_start.h; Newton only: Ipopt and Ceres check the cold stage). Kept
+  // cold: (1) scenes with soft actors: soft nodes are not predicted, and a soft collider's stages
+  // are only piecewise smooth (its deformed grid SDF's gradient jumps across tet and cell faces),
+  // so that at tolerances near round-off Newton ends in the iteration cap from some starts (cold or
+  // warm alike: tests/core/test_soft_body.cpp's soft-on-soft scene stalls at Δt = 1.8e-3 cold and
+  // at 2e-3 warm). (2) Recorded steps (sensitivities, adjoint): their derivatives are evaluated at
+  // the recorded solution, which a start reaches only to the solver's tolerance, and through the
+  // friction kinks the derivatives move with that point (up to 1.2e-3 relative in the four-box ω_z
+  // sensitivity, tests/core/test_adjoint.cpp); the cold start keeps that point where the
+  // sensitivity tests measured it.
   if (settings_.stageSolver == StageSolverKind::Newton && predictTime > 0.0 &&
       settings_.warmStart && softModels_.empty() && tapeMode_ == TapeMode::Off) {
     const bool history = !history_.empty() && !historyTimes_.empty();
     const std::vector<RigidPose> predicted =
         PredictPoses(models_, states_, history ? &history_[0] : nullptr,
                      history ? time_ - historyTimes_[0] : 0.0, predictTime);
-    coldNorm = WarmStart(problem, TangentStep(dofOffset_, numDofs_, *poses, predicted),
-                         settings_.solver.psdProjection)
-                   .coldNorm;
+    WarmStart(problem, TangentStep(dofOffset_, numDofs_, *poses, predicted),
+              settings_.solver.stepTolerance * dt);
   }
   switch (settings_.stageSolver) {
     case StageSolverKind::Newton:
       if (problem.IsPotential()) {
-        st = MinimizeNewton(problem, settings_.solver, dt, solvers_.symmetric.get(), coldNorm);
+        st = MinimizeNewton(problem, settings_.solver, dt, solvers_.symmetric.get());
         break;
       }
       {
@@ -429,8 +426,7 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
             if (softX) *softX = softGuess;
           }
         }
-        st = SolveResidualNewton(problem, settings_.solver, dt, solvers_.unsymmetric.get(),
-                                 coldNorm);
+        st = SolveResidualNewton(problem, settings_.solver, dt, solvers_.unsymmetric.get());
         if (!explicitFirst) {
           if (st.status != StageStatus::Converged || st.iterations > kResidualFirstIterations) {
             explicitFirstStages_ = explicitFirstRun_;

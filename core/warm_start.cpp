@@ -1,6 +1,5 @@
 #include "core/warm_start.h"
 
-#include <cmath>
 
 #include "core/rigid_math.h"
 
@@ -41,34 +40,13 @@ Eigen::VectorXd TangentStep(const std::vector<int>& dofOffset, int numDofs,
   return d;
 }
 
-WarmStartResult WarmStart(StageProblem& problem, Eigen::VectorXd d, PsdProjection projection) {
-  WarmStartResult out;
+bool WarmStart(StageProblem& problem, Eigen::VectorXd d, double negligibleStep) {
   const int n = problem.NumDofs();
-  if (n == 0 || d.size() != n) return out;
-  Eigen::VectorXd cold(n);
-  if (problem.IsPotential()) {
-    const double f0 = problem.Evaluate(&cold, nullptr, projection);
-    out.coldNorm = cold.lpNorm<Eigen::Infinity>();
-    if (!d.allFinite() || d.lpNorm<Eigen::Infinity>() == 0.0 || !std::isfinite(f0)) return out;
-    problem.LimitStep(&d);
-    const double f1 = problem.Value(d);
-    if (std::isfinite(f1) && f1 < f0) {
-      problem.Commit(d);
-      out.moved = true;
-    }
-    return out;
-  }
-  Eigen::VectorXd trial(n);
-  problem.Residual(Eigen::VectorXd::Zero(n), &cold);
-  out.coldNorm = cold.lpNorm<Eigen::Infinity>();
-  if (!d.allFinite() || d.lpNorm<Eigen::Infinity>() == 0.0 || !cold.allFinite()) return out;
+  if (n == 0 || d.size() != n || !d.allFinite() || problem.StepNorm(d) <= negligibleStep)
+    return false;
   problem.LimitStep(&d);
-  problem.Residual(d, &trial);
-  if (trial.allFinite() && trial.squaredNorm() < cold.squaredNorm()) {
-    problem.Commit(d);
-    out.moved = true;
-  }
-  return out;
+  problem.Commit(d);
+  return true;
 }
 
 }  // namespace superdex

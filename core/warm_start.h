@@ -6,11 +6,16 @@
 //   R = Exp(τ ω_n + ½ τ² α) R_n,       α = (ω_n − ω_{n−1}) / h_{n−1}            [rad]
 // with τ the stage's time after t_n [s] (a BDF stage: h; a DIRK stage: c_i h), a = α = 0 without
 // history. It is exact for constant acceleration (a sliding box, free flight), where the cold
-// start is a whole step's motion away. Each body's predicted move is shortened by the stage
-// problem's contact step limit (no sample's depth more than doubles, StageProblem::LimitStep),
-// and the stage starts there only if it is better by the solver's own measure: a lower
-// incremental potential Φ for potential stages, a lower ½‖r‖² for the residual modes. Soft nodes
-// keep their cold start. The solution is the stage's root either way; only the path changes.
+// start is a whole step's motion away. Where contact is about to change (an impact), each body's
+// predicted move is shortened by the stage problem's contact step limit, as Newton's own steps
+// are. Soft nodes keep their cold start. The solution is the stage's root either way; only the
+// path to it changes.
+//
+// Measured against a merit safeguard (start there only if Φ, or ½‖r‖² for the residual modes, is
+// lower than at the cold start, relative test scaled by the cold start's gradient): the same
+// Newton iterations on every shipped scene and the 300-sphere pile, but its two extra gradient
+// sweeps per stage cost 6 % more instructions on the settling 10-box stack than the cold start;
+// without it the warm start costs 7 % fewer (callgrind, Δt = 1e-2).
 #pragma once
 
 #include <vector>
@@ -35,16 +40,10 @@ std::vector<RigidPose> PredictPoses(const std::vector<RigidBodyModel>& models,
 Eigen::VectorXd TangentStep(const std::vector<int>& dofOffset, int numDofs,
                             const std::vector<RigidPose>& from, const std::vector<RigidPose>& to);
 
-/// What WarmStart did.
-struct WarmStartResult {
-  bool moved = false;         ///< the problem now starts at the (limited) predicted start
-  double coldNorm = 0.0;      ///< ‖g‖∞ (potential) or ‖r‖∞ (residual) at the cold start: the
-                              ///< relative test's scale for the solve that follows
-};
-
-/// Moves `problem` from its current (cold) state by the step d (shortened by LimitStep) if that
-/// lowers the solver's merit: Φ for a potential problem, ½‖r‖² otherwise. Costs one gradient (or
-/// residual) evaluation at the cold start and one value (or residual) evaluation at the trial.
-WarmStartResult WarmStart(StageProblem& problem, Eigen::VectorXd d, PsdProjection projection);
+/// Moves `problem` from its current (cold) state by the predicted step d, shortened blockwise by
+/// the problem's step limit (StageProblem::LimitStep: no contact sample's depth more than doubles).
+/// A step with StepNorm(d) <= negligibleStep [m] (e.g. step_tolerance × Δt: a body at rest) is not
+/// taken. Returns whether the problem moved. Costs one step-limit sweep, no evaluation.
+bool WarmStart(StageProblem& problem, Eigen::VectorXd d, double negligibleStep = 0.0);
 
 }  // namespace superdex

@@ -127,8 +127,7 @@ std::string ValidateSolverInput(const NonlinearSolverParams& params, double time
 }
 
 SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& params,
-                           double timeScale, SymmetricSolver* solverCache,
-                           double referenceNorm) {
+                           double timeScale, SymmetricSolver* solverCache) {
   SolverStats st;
   auto diverge = [&st](const std::string& message) {
     st.status = StageStatus::Diverged;
@@ -277,11 +276,10 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
     if (decrement <= params.absoluteTolerance) {
       converged = Passed("Newton decrement 0.5 g^T H^-1 g", decrement, "absolute_tolerance",
                          params.absoluteTolerance);
-    } else if (st.finalGradientNorm <=
-               params.relativeTolerance * std::max(st.initialGradientNorm, referenceNorm)) {
+    } else if (st.finalGradientNorm <= params.relativeTolerance * st.initialGradientNorm) {
       converged = Passed("gradient norm |g|_inf", st.finalGradientNorm,
                          "relative_tolerance * |g0|_inf",
-                         params.relativeTolerance * std::max(st.initialGradientNorm, referenceNorm));
+                         params.relativeTolerance * st.initialGradientNorm);
     } else if (stepVelocity <= params.stepTolerance) {
       converged = Passed("step StepNorm(d)/dt [m/s]", stepVelocity, "step_tolerance",
                          params.stepTolerance);

@@ -18,7 +18,6 @@
 //      SolverStats::message):
 //        a. Newton decrement  λ = ½ gᵀH̃⁻¹g = −½ g·d <= absoluteTolerance            [J]
 //        b. gradient          ‖g_k‖∞ <= relativeTolerance ‖g_0‖∞                     [-]
-//           (‖g_0‖∞ raised to the caller's referenceNorm, see MinimizeNewton)
 //           (if ‖g_0‖∞ == 0 the solve is Converged at once, with 0 iterations)
 //        c. step              StepNorm(d) / timeScale <= stepTolerance               [m/s]
 //      When one passes, the full step d is still committed if f(s ⊕ d) <= f(s) (or lies in the
@@ -113,12 +112,8 @@ Eigen::VectorXd SolveCounted(LinearSolver& solver, const Eigen::VectorXd& b, Sol
 /// iteration whose decrement test passes).
 /// `solver` (may be null) is a linear solver kept across calls (its symbolic analysis survives
 /// from stage to stage while the Hessian's pattern holds).
-/// `referenceNorm` >= 0 scales the relative test: ‖g‖∞ <= relativeTolerance max(‖g_0‖∞,
-/// referenceNorm). A caller that moved the start closer to the solution (a warm start) passes the
-/// gradient norm of the cold start, so that the accuracy asked for does not change with the start.
 SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& params,
-                           double timeScale, SymmetricSolver* solver = nullptr,
-                           double referenceNorm = 0.0);
+                           double timeScale, SymmetricSolver* solver = nullptr);
 
 /// Validates the parameters; returns an empty string if valid, else a message for the first
 /// invalid field in declaration order, named as in the scene file:

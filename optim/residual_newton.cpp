@@ -2,7 +2,6 @@
 
 #include "optim/linear_solver.h"
 
-#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -33,8 +32,7 @@ void CompleteDiagonal(SparseMatrix* J) {
 }  // namespace
 
 SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverParams& params,
-                                double timeScale, UnsymmetricSolver* solver,
-                                double referenceNorm) {
+                                double timeScale, UnsymmetricSolver* solver) {
   SolverStats st;
   auto diverge = [&st](const std::string& message) {
     st.status = StageStatus::Diverged;
@@ -110,8 +108,7 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
     std::ostringstream why;
     if (decrement <= params.absoluteTolerance) {
       why << "residual decrement 0.5|r.d| = " << decrement << " <= absolute_tolerance";
-    } else if (st.finalGradientNorm <=
-               params.relativeTolerance * std::max(st.initialGradientNorm, referenceNorm)) {
+    } else if (st.finalGradientNorm <= params.relativeTolerance * st.initialGradientNorm) {
       why << "residual norm |r|_inf = " << st.finalGradientNorm << " <= relative_tolerance * |r0|";
     } else if (stepVelocity <= params.stepTolerance) {
       why << "step StepNorm(d)/dt = " << stepVelocity << " m/s <= step_tolerance";

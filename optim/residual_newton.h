@@ -27,10 +27,7 @@ namespace superdex {
 /// SolverStats fields keep their names: "gradient" norms are residual norms, finalDecrement is
 /// ½|r·d| [J], finalValue is θ = ½‖r‖². `solver` (may be null) is a linear solver kept across
 /// calls, so that its symbolic analysis survives from stage to stage while the pattern holds.
-/// `referenceNorm` >= 0 scales the relative test as in MinimizeNewton (a warm start's caller
-/// passes the cold start's ‖r‖∞).
 SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverParams& params,
-                                double timeScale, UnsymmetricSolver* solver = nullptr,
-                                double referenceNorm = 0.0);
+                                double timeScale, UnsymmetricSolver* solver = nullptr);
 
 }  // namespace superdex
