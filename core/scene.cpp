@@ -63,7 +63,7 @@ int Severity(StageStatus s) {
 std::string Validate(const SceneSettings& s, const std::string& prefix) {
   if (!s.gravity.allFinite()) return prefix + "gravity: must be finite";
   if (std::string m = Validate(s.solver); !m.empty()) return prefix + "solver." + m;
-  if (std::string m = Validate(s.eval, prefix + "experimental_eval_params."); !m.empty()) return m;
+  if (std::string m = Validate(s.eval); !m.empty()) return prefix + "experimental_eval_params." + m;
   IntegrationMethod check;
   if (!Parse(ToString(s.integrator), &check))
     return prefix + "integrator: must be one of " + AllNames(s.integrator);

@@ -370,13 +370,17 @@ bool ParseLinearSolverKind(const std::string& name, LinearSolverKind* kind) {
 }
 
 std::string Validate(const LinearSolverSettings& s) {
+  // The stream is built only for a message: this runs before every stage solve.
+  const bool kindOk = s.kind == LinearSolverKind::Auto || s.kind == LinearSolverKind::Direct ||
+                      s.kind == LinearSolverKind::Iterative;
+  const bool toleranceOk = s.tolerance > 0.0 && s.tolerance < 1.0;
+  if (kindOk && toleranceOk && s.maxIterations >= 1) return std::string();
   std::ostringstream m;
-  if (s.kind != LinearSolverKind::Auto && s.kind != LinearSolverKind::Direct &&
-      s.kind != LinearSolverKind::Iterative)
+  if (!kindOk)
     m << "linear_solver: must be auto, direct or iterative, got " << static_cast<int>(s.kind);
-  else if (!(s.tolerance > 0.0 && s.tolerance < 1.0))
+  else if (!toleranceOk)
     m << "linear_tolerance: must be in (0, 1), got " << s.tolerance;
-  else if (s.maxIterations < 1)
+  else
     m << "linear_max_iterations: must be >= 1, got " << s.maxIterations;
   return m.str();
 }

@@ -4,6 +4,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <memory>
 #include <sstream>
 
 namespace superdex {
@@ -43,8 +45,9 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
   const int n = problem.NumDofs();
   Eigen::VectorXd r, rTrial, d(n), step(n);
   SparseMatrix J, shifted;
-  UnsymmetricSolver ownSolver;
-  UnsymmetricSolver& lu = solver ? *solver : ownSolver;
+  std::unique_ptr<UnsymmetricSolver> ownSolver;  // only without a cached solver
+  if (!solver) ownSolver = std::make_unique<UnsymmetricSolver>();
+  UnsymmetricSolver& lu = solver ? *solver : *ownSolver;
   lu.SetSettings(params.linear);
   if (n == 0) {
     st.status = StageStatus::Converged;
@@ -103,17 +106,23 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
     const double decrement = 0.5 * std::abs(r.dot(d));
     st.finalDecrement = decrement;
 
+    // The message is formatted only when a test passes (no stream per iteration).
     std::string converged;
     const double stepVelocity = problem.StepNorm(d) / timeScale;
-    std::ostringstream why;
+    char why[160];
     if (decrement <= params.absoluteTolerance) {
-      why << "residual decrement 0.5|r.d| = " << decrement << " <= absolute_tolerance";
+      std::snprintf(why, sizeof why, "residual decrement 0.5|r.d| = %g <= absolute_tolerance",
+                    decrement);
+      converged = why;
     } else if (st.finalGradientNorm <= params.relativeTolerance * st.initialGradientNorm) {
-      why << "residual norm |r|_inf = " << st.finalGradientNorm << " <= relative_tolerance * |r0|";
+      std::snprintf(why, sizeof why, "residual norm |r|_inf = %g <= relative_tolerance * |r0|",
+                    st.finalGradientNorm);
+      converged = why;
     } else if (stepVelocity <= params.stepTolerance) {
-      why << "step StepNorm(d)/dt = " << stepVelocity << " m/s <= step_tolerance";
+      std::snprintf(why, sizeof why, "step StepNorm(d)/dt = %g m/s <= step_tolerance",
+                    stepVelocity);
+      converged = why;
     }
-    converged = why.str();
     if (!converged.empty()) {
       t0 = Clock::now();
       problem.Residual(d, &rTrial);
