@@ -8,7 +8,11 @@ namespace superdex {
 void FindOverlappingPairs(const std::vector<Aabb>& boxes, std::vector<std::pair<int, int>>* pairs) {
   pairs->clear();
   const int n = static_cast<int>(boxes.size());
-  std::vector<int> finite, infinite;
+  // Scratch kept per thread: the broad phase runs at every evaluation of a stage, and for a few
+  // actors these two allocations cost more than the sweep.
+  thread_local std::vector<int> finite, infinite;
+  finite.clear();
+  infinite.clear();
   finite.reserve(n);
   for (int i = 0; i < n; ++i) {
     if (boxes[i].IsEmpty()) continue;
