@@ -1,6 +1,5 @@
 #include "core/warm_start.h"
 
-
 #include "core/rigid_math.h"
 
 namespace superdex {
