@@ -37,9 +37,10 @@ struct SceneSettings {
   NonlinearSolverParams solver;
   StageSolverKind stageSolver = StageSolverKind::Newton;
   ExperimentalEvalParams eval;
-  /// Newton stage solves start from the motion's prediction (the last step's acceleration
-  /// continued) where the solver's merit is lower there (core/warm_start.h). Changes the path to
-  /// each stage's solution, not the solution or the convergence tests.
+  /// Newton stage solves of rigid bodies start from the motion's prediction (the last step's
+  /// acceleration continued, each body's move limited by the contact step limit;
+  /// core/warm_start.h). Changes the path to each stage's solution, not the solution or the
+  /// convergence tests.
   bool warmStart = true;
 };
 /// "" when valid, else a message naming the field.
@@ -224,7 +225,7 @@ class Scene {
   // *poses; on return *poses holds the stage solution.
   // `last` is the last configuration the bodies occupied (the dissipation geometry).
   // `predictTime` > 0 is the stage's time after t_n [s]: the Newton solvers then start from the
-  // predicted poses where that is better (core/warm_start.h).
+  // predicted poses, limited by the contact step limit (core/warm_start.h).
   SolverStats SolveStage(double dt, const std::vector<RigidBodyState>& start,
                          const std::vector<RigidPose>& last, std::vector<RigidPose>* poses,
                          ContactStats* contact, const SoftStage* soft = nullptr,

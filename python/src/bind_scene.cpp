@@ -291,8 +291,8 @@ void BindScene(py::module_& m) {
       .def_readwrite("solver", &SceneSettings::solver)
       .def_readwrite("experimental_eval_params", &SceneSettings::eval)
       .def_readwrite("warm_start", &SceneSettings::warmStart,
-                     "Newton stage solves start from the motion's prediction where that is "
-                     "better. Default True.")
+                     "Newton stage solves of rigid bodies start from the motion's prediction "
+                     "(the last step's acceleration continued). Default True.")
       .def_property(
           "stage_solver", [](const SceneSettings& s) { return std::string(ToString(s.stageSolver)); },
           [](SceneSettings& s, const std::string& name) {
