@@ -67,27 +67,6 @@ void FindDiagonal(SparseMatrix* H, std::vector<Eigen::Index>* diagonal) {
   }
 }
 
-/// Appends x with 6 significant digits (as %g; std::to_chars: no locale, no stream).
-void AppendNumber(double x, std::string* out) {
-  char digits[32];
-  const std::to_chars_result r =
-      std::to_chars(digits, digits + sizeof digits, x, std::chars_format::general, 6);
-  out->append(digits, r.ptr);
-}
-
-/// Formats "<what> = <value> <= <bound> = <boundValue>". Once per stage solve: formatting it with
-/// a stream or printf cost 8-12 % of a free-flight step.
-std::string Passed(const char* what, double value, const char* bound, double boundValue) {
-  std::string s = what;
-  s += " = ";
-  AppendNumber(value, &s);
-  s += " <= ";
-  s += bound;
-  s += " = ";
-  AppendNumber(boundValue, &s);
-  return s;
-}
-
 template <typename T>
 std::string Rule(const char* field, const char* rule, T value) {
   std::ostringstream s;
@@ -99,6 +78,24 @@ bool NonNegative(double x) { return std::isfinite(x) && x >= 0.0; }
 bool InOpenUnitInterval(double x) { return x > 0.0 && x < 1.0; }
 
 }  // namespace
+
+std::string PassedTest(const char* what, double value, const char* bound, double boundValue) {
+  // Once per stage solve: formatting it with a stream or printf cost 8-12 % of a free-flight step.
+  auto append = [](double x, std::string* out) {
+    char digits[32];
+    const std::to_chars_result r =
+        std::to_chars(digits, digits + sizeof digits, x, std::chars_format::general, 6);
+    out->append(digits, r.ptr);
+  };
+  std::string s = what;
+  s += " = ";
+  append(value, &s);
+  s += " <= ";
+  s += bound;
+  s += " = ";
+  append(boundValue, &s);
+  return s;
+}
 
 const char* ToString(StageStatus status) {
   switch (status) {
@@ -291,14 +288,14 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
     std::string converged;
     const double stepVelocity = problem.StepNorm(d) / timeScale;
     if (decrement <= params.absoluteTolerance) {
-      converged = Passed("Newton decrement 0.5 g^T H^-1 g", decrement, "absolute_tolerance",
+      converged = PassedTest("Newton decrement 0.5 g^T H^-1 g", decrement, "absolute_tolerance",
                          params.absoluteTolerance);
     } else if (st.finalGradientNorm <= params.relativeTolerance * st.initialGradientNorm) {
-      converged = Passed("gradient norm |g|_inf", st.finalGradientNorm,
+      converged = PassedTest("gradient norm |g|_inf", st.finalGradientNorm,
                          "relative_tolerance * |g0|_inf",
                          params.relativeTolerance * st.initialGradientNorm);
     } else if (stepVelocity <= params.stepTolerance) {
-      converged = Passed("step StepNorm(d)/dt [m/s]", stepVelocity, "step_tolerance",
+      converged = PassedTest("step StepNorm(d)/dt [m/s]", stepVelocity, "step_tolerance",
                          params.stepTolerance);
     }
     if (!converged.empty()) {

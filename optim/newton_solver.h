@@ -115,6 +115,10 @@ Eigen::VectorXd SolveCounted(LinearSolver& solver, const Eigen::VectorXd& b, Sol
 SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& params,
                            double timeScale, SymmetricSolver* solver = nullptr);
 
+/// The message of a passed convergence test, "<what> = <value> <= <bound> = <boundValue>" (values
+/// with 6 significant digits; formatted without streams), shared by the Newton solvers.
+std::string PassedTest(const char* what, double value, const char* bound, double boundValue);
+
 /// Validates the parameters; returns an empty string if valid, else a message for the first
 /// invalid field in declaration order, named as in the scene file:
 /// "<field>: <rule>, got <value>", e.g. "max_iterations: must be >= 1, got 0". Rules: maxIterations

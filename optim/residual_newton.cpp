@@ -4,7 +4,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <memory>
 #include <sstream>
 
@@ -109,19 +108,16 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
     // The message is formatted only when a test passes (no stream per iteration).
     std::string converged;
     const double stepVelocity = problem.StepNorm(d) / timeScale;
-    char why[160];
     if (decrement <= params.absoluteTolerance) {
-      std::snprintf(why, sizeof why, "residual decrement 0.5|r.d| = %g <= absolute_tolerance",
-                    decrement);
-      converged = why;
+      converged = PassedTest("residual decrement 0.5|r.d|", decrement, "absolute_tolerance",
+                             params.absoluteTolerance);
     } else if (st.finalGradientNorm <= params.relativeTolerance * st.initialGradientNorm) {
-      std::snprintf(why, sizeof why, "residual norm |r|_inf = %g <= relative_tolerance * |r0|",
-                    st.finalGradientNorm);
-      converged = why;
+      converged = PassedTest("residual norm |r|_inf", st.finalGradientNorm,
+                             "relative_tolerance * |r0|_inf",
+                             params.relativeTolerance * st.initialGradientNorm);
     } else if (stepVelocity <= params.stepTolerance) {
-      std::snprintf(why, sizeof why, "step StepNorm(d)/dt = %g m/s <= step_tolerance",
-                    stepVelocity);
-      converged = why;
+      converged = PassedTest("step StepNorm(d)/dt [m/s]", stepVelocity, "step_tolerance",
+                             params.stepTolerance);
     }
     if (!converged.empty()) {
       t0 = Clock::now();
