@@ -1,7 +1,10 @@
 // Actor descriptions shared by the physics tests.
 #pragma once
 
+#include <cmath>
 #include <string>
+
+#include <Eigen/Geometry>
 
 #include "core/rigid_body.h"
 
@@ -54,6 +57,15 @@ inline RigidActorDesc Cube(double k, double mu, double cn) {
   d.contact.penaltyCoefficient = k;
   d.contact.coulombFrictionCoefficient = mu;
   d.contact.normalViscousDampingCoefficient = cn;
+  return d;
+}
+
+/// The cube of Cube(k, mu, cn) released face down, 10 µm above contact, on the plane through the
+/// origin tilted by theta [rad] about y (outward normal (sin θ, 0, cos θ); add Ground(n, ...)).
+inline RigidActorDesc CubeOnIncline(double theta, double k, double mu, double cn) {
+  RigidActorDesc d = Cube(k, mu, cn);
+  d.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitY()));
+  d.position = Eigen::Vector3d(std::sin(theta), 0, std::cos(theta)) * (0.1 + 1e-5);
   return d;
 }
 

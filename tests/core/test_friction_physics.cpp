@@ -34,9 +34,7 @@ InclineRun RunIncline(const ExperimentalEvalParams& eval, double mu, double vf, 
   const Eigen::Vector3d n(std::sin(kTheta), 0, std::cos(kTheta));
   const Eigen::Vector3d down(std::cos(kTheta), 0, -std::sin(kTheta));
   REQUIRE(scene.AddRigidActor(test::Ground(n, 1e9, mu, cn), &e).IsValid());
-  RigidActorDesc cube = test::Cube(1e9, mu, cn);
-  cube.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(kTheta, Eigen::Vector3d::UnitY()));
-  cube.position = n * (0.1 + 1e-5);
+  RigidActorDesc cube = test::CubeOnIncline(kTheta, 1e9, mu, cn);
   cube.contact.frictionFalloffVel = vf;
   REQUIRE(scene.AddRigidActor(cube, &e).IsValid());
   const ActorHandle h{1};

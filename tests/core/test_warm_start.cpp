@@ -138,10 +138,7 @@ TEST_CASE("Warm-started stages reach the cold start's solutions in fewer Newton 
     const double theta = M_PI / 6;
     const Eigen::Vector3d n(std::sin(theta), 0, std::cos(theta));
     REQUIRE(scene.AddRigidActor(test::Ground(n, 1e9, 0.5, 1.0), &e).IsValid());
-    RigidActorDesc cube = test::Cube(1e9, 0.5, 1.0);
-    cube.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitY()));
-    cube.position = n * (0.1 + 1e-5);
-    REQUIRE(scene.AddRigidActor(cube, &e).IsValid());
+    REQUIRE(scene.AddRigidActor(test::CubeOnIncline(theta, 1e9, 0.5, 1.0), &e).IsValid());
     return RunScene(scene, 0.05, 20);
   };
   // A resting heap of 50 spheres with small sliding velocities (explicit normals, DIRK22).
