@@ -80,13 +80,31 @@ Vec3<T> CurrentModeDissipationGradient(const Vec3<T>& Y, const Vec3<T>& NA,
 }
 
 /// The current-mode kernel g = ∂R/∂V at the sample's evaluation point Y (with N_A) and its
-/// derivatives G_Y = ∂g/∂Y, G_N = ∂g/∂N_A, by forward-mode AD in those six arguments; callers
-/// chain them to their stencils.
+/// derivatives G_Y = ∂g/∂Y [Pa/m], G_N = ∂g/∂N_A [Pa]; callers chain them to their stencils.
 struct CurrentModeLinearization {
   Eigen::Vector3d g;
   Eigen::Matrix3d GY, GN;
 };
-inline CurrentModeLinearization LinearizeCurrentModeGradient(
+
+/// Closed form of the linearization (dissipation_kernels.cpp). With g = L D(N, V), L = a λ_n:
+///   G_Y = D ∂L/∂Yᵀ + L (∂D/∂V / Δt + ∂D/∂N ∂N/∂Y),   G_N = D ∂L/∂N_Aᵀ + L ∂D/∂N ∂N/∂N_A,
+///   ∂D/∂V = (μ ρ'/V_t + c_t) P + μ (ρ'' − ρ'/V_t) t tᵀ + c_n N Nᵀ,
+///   ∂D/∂N = (c_n I − A_t)(N Vᵀ + V_n I),  A_t = (μ ρ'/V_t + c_t) I + μ (ρ'' − ρ'/V_t) t tᵀ,
+///   ∂λ_n/∂Y = −W''(φ_load) ∂φ_load/∂Y,  ∂φ_load/∂Y = ∇Φ (ImplicitLoad) or ∇²Φ (Y_n − Y)
+///   (ReconstructedLoad), ∂a/∂Y = −∇²Φ N_A/(m + 1), ∂a/∂N_A = −∇Φ/(m + 1) (fading),
+///   ∂N/∂Y = (I − N Nᵀ) ∇²Φ/|∇Φ| (N = ∇Φ/|∇Φ|) or ∂N/∂N_A = −(I − N Nᵀ)/|N_A| (N = −N_A/|N_A|).
+/// Equal to LinearizeCurrentModeGradientByJets to round-off (tests/core/test_dissipation_kernels).
+CurrentModeLinearization LinearizeCurrentModeGradient(const Eigen::Vector3d& Y,
+                                                      const Eigen::Vector3d& NA,
+                                                      const SdfSample& field,
+                                                      const Eigen::Vector3d& Yn,
+                                                      const Eigen::Vector3d& Y0,
+                                                      const DissipationSetup& s);
+
+/// The same linearization by forward-mode AD of CurrentModeDissipationGradient in its six
+/// arguments (Y, N_A): the reference the closed form is tested against (about three times its
+/// cost per sample).
+inline CurrentModeLinearization LinearizeCurrentModeGradientByJets(
     const Eigen::Vector3d& Y, const Eigen::Vector3d& NA, const SdfSample& field,
     const Eigen::Vector3d& Yn, const Eigen::Vector3d& Y0, const DissipationSetup& s) {
   using Jet = ceres::Jet<double, 6>;

@@ -1,0 +1,71 @@
+#include "core/dissipation_kernels.h"
+
+#include <cmath>
+
+namespace superdex {
+namespace dissipation_kernels {
+
+CurrentModeLinearization LinearizeCurrentModeGradient(const Eigen::Vector3d& Y,
+                                                      const Eigen::Vector3d& NA,
+                                                      const SdfSample& field,
+                                                      const Eigen::Vector3d& Yn,
+                                                      const Eigen::Vector3d& Y0,
+                                                      const DissipationSetup& s) {
+  const Eigen::Vector3d& G = field.gradient;
+  const Eigen::Matrix3d& HPhi = field.hessian;
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  const DissipationCoefficients& c = s.coefficients;
+
+  // Normal load λ_n = −W'(φ_load) [Pa] and its derivative in Y.
+  const bool implicitLoad = s.mode == DissipationMode::ImplicitLoad;
+  const double phiLoad = implicitLoad ? field.value : field.value + G.dot(Yn - Y);
+  const Eigen::Vector3d dPhiLoad = implicitLoad ? G : Eigen::Vector3d(HPhi * (Yn - Y));
+  const PenaltyDensity pd = NormalPenaltyDensity(phiLoad, s.penalty);
+  const double lambda = -pd.dW;
+  const Eigen::Vector3d dLambda = -pd.d2W * dPhiLoad;
+
+  // Alignment factor a(G·N_A) [-].
+  const double factor = AlignmentFactor(G.dot(NA), s);
+  Eigen::Vector3d dFactorY = Eigen::Vector3d::Zero(), dFactorN = Eigen::Vector3d::Zero();
+  if (s.fadeFriction && s.maxAlignment > -1.0) {
+    dFactorY = -(HPhi * NA) / (s.maxAlignment + 1.0);
+    dFactorN = -G / (s.maxAlignment + 1.0);
+  }
+  const double L = factor * lambda;
+  const Eigen::Vector3d dLY = factor * dLambda + lambda * dFactorY;
+  const Eigen::Vector3d dLN = lambda * dFactorN;
+
+  // Split direction N and its derivatives.
+  const Eigen::Vector3d N = SplitDirection(G, NA, s);
+  const Eigen::Matrix3d P = I - N * N.transpose();
+  Eigen::Matrix3d dNY = Eigen::Matrix3d::Zero(), dNN = Eigen::Matrix3d::Zero();
+  if (s.frictionWithColliderNormal)
+    dNY = P * HPhi / G.norm();
+  else
+    dNN = -P / NA.norm();
+
+  // D = ∂R/∂V at unit load, and its derivatives in V and N.
+  const Eigen::Vector3d V = (Y - Y0) / s.dt;
+  const double Vn = V.dot(N);
+  const Eigen::Vector3d Vt = V - Vn * N;
+  const double speed = Vt.norm();
+  const FrictionRamp f = EvaluateFrictionRamp(speed, c.vf);
+  const double inPlane = c.mu * f.slope + c.ct;
+  const Eigen::Vector3d D = inPlane * Vt + c.cn * Vn * N;
+  Eigen::Matrix3d At = inPlane * I;
+  if (speed > 0.0) {
+    const Eigen::Vector3d t = Vt / speed;
+    At += c.mu * f.curvature * t * t.transpose();
+  }
+  const Eigen::Matrix3d DV = At * P + c.cn * N * N.transpose();  // P At P = At P here
+  const Eigen::Matrix3d DN = (c.cn * I - At) * (N * V.transpose() + Vn * I);
+
+  CurrentModeLinearization out;
+  out.g = L * D;
+  out.GY = D * dLY.transpose() + L * (DV / s.dt + DN * dNY);
+  out.GN = D * dLN.transpose() + L * DN * dNN;
+  return out;
+}
+
+}  // namespace dissipation_kernels
+}  // namespace superdex
