@@ -135,6 +135,26 @@ SdfSample RigidCollider::Evaluate(const Eigen::Vector3d& X) const {
   }
 }
 
+double RigidCollider::Value(const Eigen::Vector3d& X) const {
+  switch (type) {
+    case ColliderType::Sphere: return sphere.Value(X);
+    case ColliderType::Box: return box.Value(X);
+    case ColliderType::Plane: return plane.Value(X);
+    default: return Evaluate(X).value;
+  }
+}
+
+bool RigidCollider::EvaluateBelow(const Eigen::Vector3d& X, double bound, SdfSample* s) const {
+  switch (type) {
+    case ColliderType::Sphere: return sphere.EvaluateBelow(X, bound, s);
+    case ColliderType::Box: return box.EvaluateBelow(X, bound, s);
+    case ColliderType::Plane: return plane.EvaluateBelow(X, bound, s);
+    default:  // mesh and grid fields evaluate in full
+      *s = Evaluate(X);
+      return !(s->value >= bound);
+  }
+}
+
 Eigen::Vector3d RigidBodyState::AngularVelocity() const { return Axial(Rdot * R.transpose()); }
 
 bool BuildRigidBody(const RigidActorDesc& d, const std::string& prefix, RigidBodyModel* m,

@@ -90,6 +90,13 @@ struct RigidCollider {
   double lipschitz = 1.0;
   double boundingRadius = 0.0;  ///< max |X| over the shape (infinite for a plane) [m]
   SdfSample Evaluate(const Eigen::Vector3d& X) const;
+  /// Φ(X) alone (culling tests and inactive samples): the analytic fields skip their gradient
+  /// and Hessian; mesh and grid fields evaluate in full.
+  double Value(const Eigen::Vector3d& X) const;
+  /// Φ(X), with ∇Φ and ∇∇Φ unless Φ >= bound: fills *s (its value always) and returns false
+  /// only where Φ >= bound (a NaN is evaluated in full and returns true, as Evaluate would pass
+  /// it on). For the per-sample loops, where most samples lie beyond the contact threshold.
+  bool EvaluateBelow(const Eigen::Vector3d& X, double bound, SdfSample* s) const;
 };
 
 /// Everything about a rigid actor that stays fixed during a run. The body frame has its origin at

@@ -78,16 +78,17 @@ void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& a, const
   // sample of a node has φ >= φ(centre) − L radius.
   const double L = B.collider.lipschitz;
   auto near = [&](const Eigen::Vector3d& center, double radius) {
-    return B.collider.Evaluate(YA + RBtRA * center).value - L * radius < delta;
+    return B.collider.Value(YA + RBtRA * center) - L * radius < delta;
   };
   ForEachSampleRange(A, near, [&](int begin, int end) {
     for (int k = begin; k < end; ++k) {
       const SurfaceSample& s = A.samples[k];
       const Eigen::Vector3d Y = YA + RBtRA * s.X;
       if (std::isfinite(reach) && Y.squaredNorm() >= reach * reach) continue;
-      const SdfSample f = B.collider.Evaluate(Y);
+      SdfSample f;
+      const bool below = B.collider.EvaluateBelow(Y, delta, &f);
       out->minPhi = std::min(out->minPhi, f.value);
-      if (f.value >= delta) continue;
+      if (!below) continue;
       if (alignmentTest) {
         const Eigen::Vector3d G = sameReference
                                       ? f.gradient
@@ -145,16 +146,16 @@ double RigidPairStepLimit(const RigidBodyModel& A, const RigidPose& a0, const Ri
                        angle(b1.R, b0.R) * ((a0.p - b0.p).norm() + rA);
   if (L * moved <= 0.25 * params.eps) return alpha;
   auto deep = [&](const Eigen::Vector3d& center, double radius) {
-    return B.collider.Evaluate(YA1 + RBtRA1 * center).value - L * radius < phiLimit;
+    return B.collider.Value(YA1 + RBtRA1 * center) - L * radius < phiLimit;
   };
   ForEachSampleRange(A, deep, [&](int begin, int end) {
     for (int k = begin; k < end; ++k) {
       const Eigen::Vector3d Y1 = YA1 + RBtRA1 * A.samples[k].X;
       if (std::isfinite(reach) && Y1.squaredNorm() >= reach * reach) continue;
-      const double s1 = params.delta - B.collider.Evaluate(Y1).value;
+      const double s1 = params.delta - B.collider.Value(Y1);
       if (s1 <= 0.5 * params.eps) continue;
       const double s0 =
-          params.delta - B.collider.Evaluate(YA0 + RBtRA0 * A.samples[k].X).value;
+          params.delta - B.collider.Value(YA0 + RBtRA0 * A.samples[k].X);
       const double cap = std::max(2.0 * s0, 0.5 * params.eps);
       if (s1 > cap) alpha = std::min(alpha, (cap - s0) / (s1 - s0));
     }

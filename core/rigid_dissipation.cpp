@@ -99,8 +99,8 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
   // Whole-pair rejection (exact SDFs are 1-Lipschitz): no sample of A can carry a load when both
   // A's current and last actual sample clouds stay farther than δ from B.
   const double L = B.collider.lipschitz;
-  const bool nearNow = B.collider.Evaluate(YA).value - L * A.samplesRadius < delta;
-  const bool nearThen = B.collider.Evaluate(YnA).value - L * A.samplesRadius < delta;
+  const bool nearNow = B.collider.Value(YA) - L * A.samplesRadius < delta;
+  const bool nearThen = B.collider.Value(YnA) - L * A.samplesRadius < delta;
   if (explicitNormals ? !nearThen : !(nearNow || nearThen)) return;
 
   CurrentModeSample sample;
@@ -115,21 +115,20 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
   const double slack = setup.mode == DissipationMode::ImplicitLoad ? 0.0 : L * shift;
   auto near = [&](const Eigen::Vector3d& center, double radius) {
     if (explicitNormals)
-      return B.collider.Evaluate(YnA + RnBtRA * center).value - L * radius < delta;
-    return B.collider.Evaluate(YA + RBtRA * center).value - L * radius - slack < delta;
+      return B.collider.Value(YnA + RnBtRA * center) - L * radius < delta;
+    return B.collider.Value(YA + RBtRA * center) - L * radius - slack < delta;
   };
   ForEachSampleRange(A, near, [&](int begin, int end) {
     for (int k = begin; k < end; ++k) {
       const SurfaceSample& q = A.samples[k];
       const Eigen::Vector3d Y = YA + RBtRA * q.X;
-      const Eigen::Vector3d Y0 = Y0A + R0BinvRA * q.X;
       const Eigen::Vector3d Yn = YnA + RnBtRA * q.X;
       double lambdaHat = 0.0;
       Eigen::Vector3d N;
       if (explicitNormals) {
         if (finiteReach && Yn.squaredNorm() >= reach * reach) continue;
-        const SdfSample f0 = B.collider.Evaluate(Yn);
-        if (f0.value >= delta) continue;
+        SdfSample f0;
+        if (!B.collider.EvaluateBelow(Yn, delta, &f0)) continue;
         const Eigen::Vector3d NA0 = RnBtRA * q.normal;
         const double s = f0.gradient.dot(NA0);
         if (s > m + kAlignmentRoundoff) continue;  // rejected
@@ -139,7 +138,12 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
       } else {
         if (finiteReach && Y.squaredNorm() >= reach * reach && Yn.squaredNorm() >= reach * reach)
           continue;
-        const SdfSample f = B.collider.Evaluate(Y);
+        // φ_load >= φ − L |Y_n − Y| (ReconstructedLoad): no load where that bound reaches δ.
+        SdfSample f;
+        const double reachLoad = setup.mode == DissipationMode::ImplicitLoad
+                                     ? delta
+                                     : delta + L * (Yn - Y).norm();
+        if (!B.collider.EvaluateBelow(Y, reachLoad, &f)) continue;
         const double phiLoad = setup.mode == DissipationMode::ImplicitLoad
                                    ? f.value
                                    : f.value + f.gradient.dot(Yn - Y);
@@ -153,12 +157,13 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
         sample.X = q.X;
         sample.normal = q.normal;
         sample.Y = Y;
-        sample.Y0 = Y0;
         sample.Yn = Yn;
         sample.field = f;
       }
       if (lambdaHat == 0.0) continue;
       ++out->activeSamples;
+      const Eigen::Vector3d Y0 = Y0A + R0BinvRA * q.X;
+      sample.Y0 = Y0;
       const Eigen::Vector3d V = (Y - Y0) / dt;
       const DissipationDensity D =
           EvaluateDissipation(lambdaHat, N, V, setup.coefficients,

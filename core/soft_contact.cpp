@@ -129,11 +129,11 @@ void EvaluateSoftRigidPair(const SoftPairInput& in, const RigidBodyModel& B, con
     const Eigen::Vector3d cn = (xns[0] + xns[1] + xns[2]) / 3.0;
     const double radn =
         std::max({(xns[0] - cn).norm(), (xns[1] - cn).norm(), (xns[2] - cn).norm()});
-    const double phiNow = B.collider.Evaluate(RBt * (c - b.p)).value - L * rad;
+    const double phiNow = B.collider.Value(RBt * (c - b.p)) - L * rad;
     bool needed = phiNow < delta;  // the penalty looks at the current face only
     if (withDissipation && !needed) {
       if (explicitNormals) {
-        needed = B.collider.Evaluate(RnBt * (cn - bn.p)).value - L * radn < delta;
+        needed = B.collider.Value(RnBt * (cn - bn.p)) - L * radn < delta;
       } else if (diss->mode == DissipationMode::ReconstructedLoad) {
         // φ + G·(Y_n − Y) >= φ − L|Y_n − Y| for every sample of the face.
         const double shift = (RnBt * (cn - bn.p) - RBt * (c - b.p)).norm() + rad + radn;

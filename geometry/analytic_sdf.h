@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 
 namespace superdex {
 
@@ -18,6 +19,9 @@ struct SdfSample {
 struct SphereSdf {
   double radius = 1.0;
   SdfSample Evaluate(const Eigen::Vector3d& X) const;
+  double Value(const Eigen::Vector3d& X) const { return X.norm() - radius; }  ///< Φ only
+  /// Fills s->value; the gradient and Hessian too and returns true unless Φ >= bound.
+  bool EvaluateBelow(const Eigen::Vector3d& X, double bound, SdfSample* s) const;
 };
 
 /// Axis-aligned box centred at the origin with half extents b, exact inside and outside:
@@ -28,6 +32,12 @@ struct SphereSdf {
 struct BoxSdf {
   Eigen::Vector3d halfExtents = Eigen::Vector3d::Ones();
   SdfSample Evaluate(const Eigen::Vector3d& X) const;
+  /// Fills s->value; the gradient and Hessian too and returns true unless Φ >= bound.
+  bool EvaluateBelow(const Eigen::Vector3d& X, double bound, SdfSample* s) const;
+  double Value(const Eigen::Vector3d& X) const {  ///< Φ only
+    const Eigen::Vector3d d = X.cwiseAbs() - halfExtents;
+    return d.cwiseMax(0.0).norm() + std::min(d.maxCoeff(), 0.0);
+  }
 };
 
 /// Half space {X : n·X <= offset} with unit normal n: Φ = n·X - offset, ∇Φ = n, ∇∇Φ = 0.
@@ -35,6 +45,9 @@ struct PlaneSdf {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
   double offset = 0.0;
   SdfSample Evaluate(const Eigen::Vector3d& X) const;
+  double Value(const Eigen::Vector3d& X) const { return normal.dot(X) - offset; }  ///< Φ only
+  /// Fills s->value; the gradient and Hessian too and returns true unless Φ >= bound.
+  bool EvaluateBelow(const Eigen::Vector3d& X, double bound, SdfSample* s) const;
 };
 
 }  // namespace superdex

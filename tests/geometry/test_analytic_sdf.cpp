@@ -187,3 +187,43 @@ TEST_CASE("sdf: half space", "[geometry][sdf]") {
     CHECK(std::abs(plane.Evaluate(X - s.value * s.gradient).value) <= 1e-15);
   }
 }
+
+TEST_CASE("sdf: value-only and bounded evaluations agree with the full one", "[geometry][sdf]") {
+  SphereSdf sphere;
+  sphere.radius = 0.3;
+  BoxSdf box;
+  box.halfExtents = Eigen::Vector3d(0.2, 0.5, 0.1);
+  PlaneSdf plane;
+  plane.normal = Eigen::Vector3d(1.0, 2.0, -2.0).normalized();
+  plane.offset = 0.1;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-0.8, 0.8);
+  int below = 0, beyond = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Eigen::Vector3d X(u(rng), u(rng), u(rng));
+    const double bound = 0.5 * u(rng);
+    auto check = [&](const SdfSample& full, double value, bool isBelow, const SdfSample& bounded) {
+      CHECK(value == Approx(full.value).margin(1e-15));
+      CHECK(bounded.value == Approx(full.value).margin(1e-15));
+      CHECK(isBelow == (full.value < bound));
+      if (isBelow) {
+        ++below;
+        CHECK((bounded.gradient - full.gradient).norm() <= 1e-15);
+        CHECK((bounded.hessian - full.hessian).norm() <= 1e-12);
+      } else {
+        ++beyond;
+      }
+    };
+    SdfSample s;
+    bool b = sphere.EvaluateBelow(X, bound, &s);
+    check(sphere.Evaluate(X), sphere.Value(X), b, s);
+    SdfSample t;
+    b = box.EvaluateBelow(X, bound, &t);
+    check(box.Evaluate(X), box.Value(X), b, t);
+    SdfSample w;
+    b = plane.EvaluateBelow(X, bound, &w);
+    check(plane.Evaluate(X), plane.Value(X), b, w);
+  }
+  CHECK(below > 200);  // both branches exercised (3 fields × 2000 points)
+  CHECK(beyond > 200);
+}
