@@ -131,8 +131,7 @@ double SceneStageProblem::Evaluate(Eigen::VectorXd* gradient,
   const double value = EvaluateAt(*poses_, SoftPositions(), hessian ? 2 : 1, projection,
                                   gradient, gradient, &lastStats_, &lastMinDetF_);
   if (hessian) {
-    hessian->resize(numDofs_, numDofs_);
-    hessian->setFromTriplets(triplets_.begin(), triplets_.end());
+    ws_->hessianAssembly.Assemble(triplets_, numDofs_, hessian);
   }
   return value;
 }
@@ -160,8 +159,7 @@ void SceneStageProblem::EvaluateResidual(Eigen::VectorXd* r, Eigen::SparseMatrix
         for (int k = 0; k < 3; ++k)
           if (S(k, c) != 0.0) triplets_.emplace_back(o + 3 + k, o + 3 + c, S(k, c));
     }
-    J->resize(numDofs_, numDofs_);
-    J->setFromTriplets(triplets_.begin(), triplets_.end());
+    ws_->jacobianAssembly.Assemble(triplets_, numDofs_, J);
   }
   *r += scratch_;
 }

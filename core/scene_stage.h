@@ -13,6 +13,7 @@
 #include "core/soft_terms.h"
 #include "core/rigid_body.h"
 #include "optim/stage_problem.h"
+#include "optim/triplet_assembly.h"
 
 namespace superdex {
 
@@ -45,6 +46,8 @@ struct SoftStage {
 struct StageWorkspace {
   std::vector<Eigen::Triplet<double>> triplets;
   std::vector<SoftTermScratch> soft;
+  TripletAssembly hessianAssembly;   ///< Evaluate's Hessians (pattern kept between iterations)
+  TripletAssembly jacobianAssembly;  ///< EvaluateResidual's Jacobians
 };
 
 class SceneStageProblem : public StageProblem {

@@ -2,6 +2,7 @@
 
 #include "optim/linear_solver.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -24,6 +25,15 @@ constexpr double kRoundoffBand = 1e-14;
 /// Adds explicit zeros on the diagonal so that J and J + τI share one pattern (Eigen keeps the
 /// explicit zeros of a sum's union pattern).
 void CompleteDiagonal(SparseMatrix* J) {
+  J->makeCompressed();
+  bool complete = J->rows() == J->cols();
+  using Index = SparseMatrix::StorageIndex;
+  for (Eigen::Index k = 0; complete && k < J->outerSize(); ++k) {
+    const Index* begin = J->innerIndexPtr() + J->outerIndexPtr()[k];
+    const Index* end = J->innerIndexPtr() + J->outerIndexPtr()[k + 1];
+    complete = std::binary_search(begin, end, static_cast<Index>(k));
+  }
+  if (complete) return;  // every diagonal entry already stored (the usual case)
   SparseMatrix I(J->rows(), J->cols());
   I.setIdentity();
   *J = *J + 0.0 * I;
