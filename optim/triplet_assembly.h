@@ -1,10 +1,10 @@
 // Sparse assembly from triplets that keeps the pattern between calls.
 //
 // A Newton solve assembles its Hessian or Jacobian from the same (row, col) sequence at most
-// iterations (the contact pairs and their stencils change rarely). When the sequence equals the
+// iterations while the contact pairs and their stencils stay. When the sequence equals the
 // previous call's, the values are scattered into the previous pattern through a stored slot per
-// triplet (no sort, no transposition, no allocation); otherwise the matrix is built by Eigen's
-// setFromTriplets and the slots are found for the next call. Either way the entries are the same
+// triplet (no sort, no transposition, no allocation; the slots are found the first time a
+// sequence comes back); otherwise the matrix is built by Eigen's setFromTriplets. Either way the entries are the same
 // sums in the same order as setFromTriplets (duplicates added left to right in triplet order), so
 // the result is bitwise identical to it.
 #pragma once
@@ -26,11 +26,13 @@ class TripletAssembly {
 
  private:
   bool SamePattern(const std::vector<Triplet>& triplets, Eigen::Index n) const;
+  void FindSlots();
   Eigen::SparseMatrix<double> pattern_;
   Eigen::Index n_ = -1;
   std::vector<int> rows_, cols_;    // the (row, col) sequence of the stored pattern
   std::vector<Eigen::Index> slot_;  // triplet k's entry in pattern_.valuePtr()
   std::vector<char> first_;         // triplet k is the first one of its entry
+  std::vector<char> seen_;          // scratch of FindSlots
   long reused_ = 0, rebuilt_ = 0;
 };
 
