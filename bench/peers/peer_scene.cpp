@@ -54,7 +54,11 @@ PeerBody ReadBody(const json& a) {
     b.normal = (b.orientation * Vec(s, "normal", Eigen::Vector3d::UnitZ())).normalized();
   } else if (type == "box") {
     b.shape = ShapeKind::Box;
-    b.halfExtents = s.contains("size") ? Eigen::Vector3d(0.5 * Vec(s, "size", {})) : Vec(s, "half_extents", {});
+    // The scene file gives exactly one of the two (superdex's reader enforces it).
+    if (s.contains("size") == s.contains("half_extents"))
+      throw std::runtime_error(b.name + ": a box needs exactly one of \"size\" and \"half_extents\"");
+    b.halfExtents = s.contains("size") ? Eigen::Vector3d(0.5 * Vec(s, "size", Eigen::Vector3d::Zero()))
+                                       : Vec(s, "half_extents", Eigen::Vector3d::Zero());
     volume = 8.0 * b.halfExtents.prod();
   } else if (type == "sphere") {
     b.shape = ShapeKind::Sphere;
