@@ -142,8 +142,26 @@ void SceneStageProblem::Residual(const Eigen::VectorXd& d, Eigen::VectorXd* r) {
 }
 
 void SceneStageProblem::EvaluateResidual(Eigen::VectorXd* r, Eigen::SparseMatrix<double>* J) {
-  EvaluateAt(*poses_, SoftPositions(), J ? 2 : 1, PsdProjection::None, r, &scratch_,
-             &lastStats_, &lastMinDetF_);
+  ResidualAndJacobian(*poses_, SoftPositions(), r, J, &lastStats_, &lastMinDetF_);
+}
+
+bool SceneStageProblem::EvaluateResidualAt(const Eigen::VectorXd& d, Eigen::VectorXd* r,
+                                           Eigen::SparseMatrix<double>* J) {
+  // trial_ is what Commit(d) installs (the same Retract), so the sums below are those that
+  // EvaluateResidual forms after it, bit for bit.
+  Retract(d, &trial_, &softTrial_);
+  ResidualAndJacobian(trial_, softTrial_, r, J, &pendingStats_,
+                      &pendingMinDetF_);
+  pendingStep_ = d;
+  hasPending_ = true;
+  return true;
+}
+
+void SceneStageProblem::ResidualAndJacobian(const std::vector<RigidPose>& poses,
+                                            const std::vector<Eigen::VectorXd>& softX,
+                                            Eigen::VectorXd* r, Eigen::SparseMatrix<double>* J,
+                                            ContactStats* stats, double* minDetF) {
+  EvaluateAt(poses, softX, J ? 2 : 1, PsdProjection::None, r, &scratch_, stats, minDetF);
   if (J) {
     // The rotation entries of r are world torques τ. Along the retraction exp([δθ]×) R the torque
     // of a potential changes by (H − ½[τ]×) δθ, H its second derivative (assembled above); the
@@ -198,6 +216,11 @@ void SceneStageProblem::Commit(const Eigen::VectorXd& d) {
   Retract(d, &trial_, &softTrial_);
   *poses_ = trial_;
   if (soft_) *softX_ = softTrial_;
+  if (hasPending_ && pendingStep_ == d) {
+    lastStats_ = pendingStats_;
+    lastMinDetF_ = pendingMinDetF_;
+  }
+  hasPending_ = false;
 }
 
 bool SceneStageProblem::LimitStep(Eigen::VectorXd* d) {

@@ -72,6 +72,9 @@ class SceneStageProblem : public StageProblem {
   /// J = ∂r/∂δ: the (unprojected) Hessian of the potential terms with the rotation blocks'
   /// trivialization term −½[τ]× (τ: that body's potential torque), plus the dissipation Jacobian.
   void EvaluateResidual(Eigen::VectorXd* r, Eigen::SparseMatrix<double>* J) override;
+  /// The contact statistics of the evaluation become LastContactStats when Commit(d) follows.
+  bool EvaluateResidualAt(const Eigen::VectorXd& d, Eigen::VectorXd* r,
+                          Eigen::SparseMatrix<double>* J) override;
   bool SupportsChart() const override { return true; }
   void SetChartOrigin() override;
   /// p = p₀ + δp, R = exp([δθ]×) R₀.
@@ -94,6 +97,10 @@ class SceneStageProblem : public StageProblem {
 
  private:
   double BodyEnergy(size_t i, const RigidPose& pose) const;
+  /// EvaluateResidual's work at the given configuration.
+  void ResidualAndJacobian(const std::vector<RigidPose>& poses,
+                           const std::vector<Eigen::VectorXd>& softX, Eigen::VectorXd* r,
+                           Eigen::SparseMatrix<double>* J, ContactStats* stats, double* minDetF);
   /// The rigid poses (and, if softOut is not null, the soft positions) at s ⊕ d.
   void Retract(const Eigen::VectorXd& d, std::vector<RigidPose>* out,
                std::vector<Eigen::VectorXd>* softOut) const;
@@ -120,6 +127,11 @@ class SceneStageProblem : public StageProblem {
   DissipationContext context_;
   Eigen::VectorXd scratch_;
   ContactStats lastStats_;
+  // EvaluateResidualAt's step and statistics, adopted by a Commit of that step.
+  Eigen::VectorXd pendingStep_;
+  bool hasPending_ = false;
+  ContactStats pendingStats_;
+  double pendingMinDetF_ = INFINITY;
   std::vector<RigidPose> origin_;
   const std::vector<Eigen::VectorXd>& SoftPositions() const { return softX_ ? *softX_ : noSoft_; }
   const SoftStage* soft_ = nullptr;

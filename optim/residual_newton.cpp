@@ -53,7 +53,8 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
   if (std::string m = ValidateSolverInput(params, timeScale); !m.empty()) return diverge(m);
   const int n = problem.NumDofs();
   Eigen::VectorXd r, rTrial, d(n), step(n);
-  SparseMatrix J, shifted;
+  SparseMatrix J, JTrial, shifted;
+  bool evaluated = false;  // r and J already hold the current state's (from an accepted trial)
   std::unique_ptr<UnsymmetricSolver> ownSolver;  // only without a cached solver
   if (!solver) ownSolver = std::make_unique<UnsymmetricSolver>();
   UnsymmetricSolver& lu = solver ? *solver : *ownSolver;
@@ -66,7 +67,8 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
 
   for (int it = 0; it < params.maxIterations; ++it) {
     Clock::time_point t0 = Clock::now();
-    problem.EvaluateResidual(&r, &J);
+    if (!evaluated) problem.EvaluateResidual(&r, &J);
+    evaluated = false;
     st.assemblySeconds += SecondsSince(t0);
     if (r.size() != n || J.rows() != n || J.cols() != n)
       return diverge("the stage problem provides no residual of the right size");
@@ -151,7 +153,10 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
     const int trials = params.lineSearch == LineSearchKind::None ? 1 : params.maxLineSearchSteps;
     for (int trial = 0; trial < trials; ++trial) {
       step.noalias() = alpha * d;
-      problem.Residual(step, &rTrial);
+      // The full step is usually taken: its Jacobian is formed with its residual, to serve the
+      // next iteration (wasted only when the step is cut back).
+      const bool withJacobian = trial == 0 && problem.EvaluateResidualAt(step, &rTrial, &JTrial);
+      if (!withJacobian) problem.Residual(step, &rTrial);
       trialTheta = 0.5 * rTrial.squaredNorm();
       const bool finite = std::isfinite(trialTheta);
       if (finite && (params.lineSearch == LineSearchKind::None ||
@@ -159,6 +164,11 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
                      (std::abs(trialTheta - theta) <= kRoundoffBand * theta &&
                       alpha * decrement <= kRoundoffBand * theta))) {
         accepted = true;
+        if (withJacobian) {
+          r.swap(rTrial);
+          J.swap(JTrial);
+          evaluated = true;
+        }
         break;
       }
       ++st.lineSearchSteps;

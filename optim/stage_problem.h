@@ -49,6 +49,14 @@ class StageProblem {
   /// general). Default: not provided.
   virtual void EvaluateResidual(Eigen::VectorXd* r, Eigen::SparseMatrix<double>* J);
 
+  /// r and J at s ⊕ d without changing s, entry for entry what EvaluateResidual returns after
+  /// Commit(d) (so a solver that accepts the trial step d need not evaluate the new state again).
+  /// Returns false when the problem does not provide it (the default).
+  virtual bool EvaluateResidualAt(const Eigen::VectorXd& /*d*/, Eigen::VectorXd* /*r*/,
+                                  Eigen::SparseMatrix<double>* /*J*/) {
+    return false;
+  }
+
   // --- Chart interface, for general-purpose solvers (Ipopt, Ceres) that iterate on a vector d of
   // a fixed chart s = s₀ ⊕ d. The chart's derivatives follow from the local ones by the tangent
   // map T(d), defined by s₀ ⊕ (d + ε) = (s₀ ⊕ d) ⊕ (T(d) ε) + O(ε²):

@@ -1,7 +1,9 @@
 #include <catch2/catch.hpp>
+#include <cstring>
 
 #include "core/rigid_math.h"
 #include "core/scene_stage.h"
+#include "optim/residual_newton.h"
 #include "derivative_check.h"
 
 using namespace superdex;
@@ -95,6 +97,108 @@ TEST_CASE("rigid stage: residual Jacobian and potential gradient with dissipatio
             1e-7);
         INFO("gradient error " << (g - gfd).norm() / gfd.norm());
         CHECK((g - gfd).norm() < 1e-6 * gfd.norm());
+      }
+    }
+  }
+}
+
+TEST_CASE("rigid stage: the residual at a trial step equals the one after committing it, bit for "
+          "bit", "[core][dissipation]") {
+  for (DissipationMode mode : {DissipationMode::ExplicitNormals, DissipationMode::ReconstructedLoad,
+                               DissipationMode::ImplicitLoad}) {
+    DYNAMIC_SECTION(ToString(mode)) {
+      Fixture f;
+      StageDissipation diss;
+      diss.enabled = true;
+      diss.mode = mode;
+      std::vector<RigidPose> poses = f.poses;
+      SceneStageProblem problem(f.models, f.dofOffset, 12, f.targets, Eigen::Vector3d(0, 0, -9.81),
+                                &f.pipeline, &poses, diss);
+      Eigen::VectorXd r0, rTrial, rCommitted, rOnly;
+      Eigen::SparseMatrix<double> J0, JTrial, JCommitted;
+      problem.EvaluateResidual(&r0, &J0);
+      const ContactStats before = problem.LastContactStats();
+      // A step that moves both boxes by up to 1 mm and turns them.
+      Eigen::VectorXd d(12);
+      d << 1e-4, -2e-4, -1e-3, 3e-3, -1e-3, 2e-3, -1e-4, 2e-4, -5e-4, 1e-3, 2e-3, -1e-3;
+      REQUIRE(problem.EvaluateResidualAt(d, &rTrial, &JTrial));
+      // Not adopted before the commit: the statistics still describe the current state.
+      CHECK(problem.LastContactStats().minSignedDistance == before.minSignedDistance);
+      problem.Residual(d, &rOnly);
+      problem.Commit(d);
+      CHECK(problem.LastContactStats().minSignedDistance != before.minSignedDistance);
+      const ContactStats adopted = problem.LastContactStats();
+      problem.EvaluateResidual(&rCommitted, &JCommitted);
+      CHECK(problem.LastContactStats().minSignedDistance == adopted.minSignedDistance);
+      CHECK(problem.LastContactStats().activeSamples == adopted.activeSamples);
+      CHECK(problem.LastContactStats().energy == adopted.energy);
+      REQUIRE(rTrial.size() == rCommitted.size());
+      CHECK(std::memcmp(rTrial.data(), rCommitted.data(), sizeof(double) * rTrial.size()) == 0);
+      REQUIRE(JTrial.nonZeros() == JCommitted.nonZeros());
+      CHECK(std::memcmp(JTrial.valuePtr(), JCommitted.valuePtr(),
+                        sizeof(double) * JTrial.nonZeros()) == 0);
+      CHECK(std::memcmp(JTrial.innerIndexPtr(), JCommitted.innerIndexPtr(),
+                        sizeof(int) * JTrial.nonZeros()) == 0);
+      // And the same residual as the residual-only evaluation, up to the order of its sums.
+      CHECK((rOnly - rTrial).norm() <= 1e-12 * rTrial.norm());
+      CHECK((rTrial - r0).norm() > 1e-3 * r0.norm());  // the step changed something
+    }
+  }
+}
+
+namespace {
+
+// The problem as a solver sees it, without EvaluateResidualAt (the residual solver then evaluates
+// every accepted state again).
+class WithoutTrialJacobian : public StageProblem {
+ public:
+  explicit WithoutTrialJacobian(StageProblem& p) : p_(p) {}
+  int NumDofs() const override { return p_.NumDofs(); }
+  double Value(const Eigen::VectorXd& d) override { return p_.Value(d); }
+  double Evaluate(Eigen::VectorXd* g, Eigen::SparseMatrix<double>* H,
+                  PsdProjection projection) override {
+    return p_.Evaluate(g, H, projection);
+  }
+  void Commit(const Eigen::VectorXd& d) override { p_.Commit(d); }
+  bool IsPotential() const override { return p_.IsPotential(); }
+  void Residual(const Eigen::VectorXd& d, Eigen::VectorXd* r) override { p_.Residual(d, r); }
+  void EvaluateResidual(Eigen::VectorXd* r, Eigen::SparseMatrix<double>* J) override {
+    p_.EvaluateResidual(r, J);
+  }
+  double StepNorm(const Eigen::VectorXd& d) const override { return p_.StepNorm(d); }
+
+ private:
+  StageProblem& p_;
+};
+
+}  // namespace
+
+TEST_CASE("residual Newton: reusing the accepted trial's Jacobian leaves the iterates unchanged",
+          "[core][dissipation]") {
+  for (DissipationMode mode : {DissipationMode::ReconstructedLoad, DissipationMode::ImplicitLoad}) {
+    DYNAMIC_SECTION(ToString(mode)) {
+      Fixture f;
+      StageDissipation diss;
+      diss.enabled = true;
+      diss.mode = mode;
+      NonlinearSolverParams params;
+      std::vector<RigidPose> reused = f.poses, plain = f.poses;
+      SceneStageProblem a(f.models, f.dofOffset, 12, f.targets, Eigen::Vector3d(0, 0, -9.81),
+                          &f.pipeline, &reused, diss);
+      SceneStageProblem b(f.models, f.dofOffset, 12, f.targets, Eigen::Vector3d(0, 0, -9.81),
+                          &f.pipeline, &plain, diss);
+      WithoutTrialJacobian bPlain(b);
+      const SolverStats sa = SolveResidualNewton(a, params, f.targets.dt, nullptr);
+      const SolverStats sb = SolveResidualNewton(bPlain, params, f.targets.dt, nullptr);
+      INFO(sa.message << " / " << sb.message);
+      CHECK(sa.status == StageStatus::Converged);
+      CHECK(sa.iterations >= 2);  // at least one accepted trial was reused
+      CHECK(sa.iterations == sb.iterations);
+      CHECK(sa.lineSearchSteps == sb.lineSearchSteps);
+      CHECK(sa.finalGradientNorm == sb.finalGradientNorm);
+      for (size_t i = 0; i < reused.size(); ++i) {
+        CHECK(reused[i].p == plain[i].p);
+        CHECK(reused[i].R == plain[i].R);
       }
     }
   }
