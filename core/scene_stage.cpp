@@ -128,11 +128,31 @@ double SceneStageProblem::Value(const Eigen::VectorXd& d) {
 double SceneStageProblem::Evaluate(Eigen::VectorXd* gradient,
                                    Eigen::SparseMatrix<double>* hessian,
                                    PsdProjection projection) {
-  const double value = EvaluateAt(*poses_, SoftPositions(), hessian ? 2 : 1, projection,
-                                  gradient, gradient, &lastStats_, &lastMinDetF_);
-  if (hessian) {
-    ws_->hessianAssembly.Assemble(triplets_, numDofs_, hessian);
-  }
+  return ValueAndDerivatives(*poses_, SoftPositions(), gradient, hessian, projection, &lastStats_,
+                             &lastMinDetF_);
+}
+
+bool SceneStageProblem::EvaluateAtStep(const Eigen::VectorXd& d, double* value,
+                                       Eigen::VectorXd* gradient,
+                                       Eigen::SparseMatrix<double>* hessian,
+                                       PsdProjection projection) {
+  Retract(d, &trial_, &softTrial_);  // what Commit(d) installs
+  *value = ValueAndDerivatives(trial_, softTrial_, gradient, hessian, projection, &pendingStats_,
+                               &pendingMinDetF_);
+  pendingStep_ = d;
+  hasPending_ = true;
+  return true;
+}
+
+double SceneStageProblem::ValueAndDerivatives(const std::vector<RigidPose>& poses,
+                                              const std::vector<Eigen::VectorXd>& softX,
+                                              Eigen::VectorXd* gradient,
+                                              Eigen::SparseMatrix<double>* hessian,
+                                              PsdProjection projection, ContactStats* stats,
+                                              double* minDetF) {
+  const double value = EvaluateAt(poses, softX, hessian ? 2 : 1, projection, gradient, gradient,
+                                  stats, minDetF);
+  if (hessian) ws_->hessianAssembly.Assemble(triplets_, numDofs_, hessian);
   return value;
 }
 
@@ -145,8 +165,8 @@ void SceneStageProblem::EvaluateResidual(Eigen::VectorXd* r, Eigen::SparseMatrix
   ResidualAndJacobian(*poses_, SoftPositions(), r, J, &lastStats_, &lastMinDetF_);
 }
 
-bool SceneStageProblem::EvaluateResidualAt(const Eigen::VectorXd& d, Eigen::VectorXd* r,
-                                           Eigen::SparseMatrix<double>* J) {
+bool SceneStageProblem::EvaluateResidualAtStep(const Eigen::VectorXd& d, Eigen::VectorXd* r,
+                                               Eigen::SparseMatrix<double>* J) {
   // trial_ is what Commit(d) installs (the same Retract), so the sums below are those that
   // EvaluateResidual forms after it, bit for bit.
   Retract(d, &trial_, &softTrial_);

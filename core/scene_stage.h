@@ -73,8 +73,11 @@ class SceneStageProblem : public StageProblem {
   /// trivialization term −½[τ]× (τ: that body's potential torque), plus the dissipation Jacobian.
   void EvaluateResidual(Eigen::VectorXd* r, Eigen::SparseMatrix<double>* J) override;
   /// The contact statistics of the evaluation become LastContactStats when Commit(d) follows.
-  bool EvaluateResidualAt(const Eigen::VectorXd& d, Eigen::VectorXd* r,
-                          Eigen::SparseMatrix<double>* J) override;
+  bool EvaluateResidualAtStep(const Eigen::VectorXd& d, Eigen::VectorXd* r,
+                              Eigen::SparseMatrix<double>* J) override;
+  /// As EvaluateResidualAtStep, for the potential.
+  bool EvaluateAtStep(const Eigen::VectorXd& d, double* value, Eigen::VectorXd* gradient,
+                      Eigen::SparseMatrix<double>* hessian, PsdProjection projection) override;
   bool SupportsChart() const override { return true; }
   void SetChartOrigin() override;
   /// p = p₀ + δp, R = exp([δθ]×) R₀.
@@ -97,6 +100,11 @@ class SceneStageProblem : public StageProblem {
 
  private:
   double BodyEnergy(size_t i, const RigidPose& pose) const;
+  /// Evaluate's work at the given configuration.
+  double ValueAndDerivatives(const std::vector<RigidPose>& poses,
+                             const std::vector<Eigen::VectorXd>& softX, Eigen::VectorXd* gradient,
+                             Eigen::SparseMatrix<double>* hessian, PsdProjection projection,
+                             ContactStats* stats, double* minDetF);
   /// EvaluateResidual's work at the given configuration.
   void ResidualAndJacobian(const std::vector<RigidPose>& poses,
                            const std::vector<Eigen::VectorXd>& softX, Eigen::VectorXd* r,

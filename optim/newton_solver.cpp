@@ -150,8 +150,10 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
   if (std::string m = ValidateSolverInput(params, timeScale); !m.empty()) return diverge(m);
 
   const int n = problem.NumDofs();
-  Eigen::VectorXd g(n), d(n), step(n), limited(n);
-  SparseMatrix H, shifted;
+  Eigen::VectorXd g(n), d(n), step(n), limited(n), gTrial;
+  SparseMatrix H, shifted, HTrial;
+  bool evaluated = false;  // f, g, H already hold the current state's (from an accepted trial)
+  double evaluatedValue = 0.0;
   std::vector<Eigen::Index> diagonal;
   std::unique_ptr<SymmetricSolver> ownSolver;  // only without a cached solver
   if (!solverCache) ownSolver = std::make_unique<SymmetricSolver>();
@@ -175,7 +177,9 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
     // --- Assembly: f, g, H at the current state s.
     Clock::time_point t0 = Clock::now();
     const bool exact = tryExact && params.psdProjection != PsdProjection::None;
-    double f = problem.Evaluate(&g, &H, exact ? PsdProjection::None : params.psdProjection);
+    double f = evaluated ? evaluatedValue
+                         : problem.Evaluate(&g, &H, exact ? PsdProjection::None : params.psdProjection);
+    evaluated = false;
     st.assemblySeconds += SecondsSince(t0);
     if (exact) {
       // Accept the exact Hessian only if it factorizes as is and gives a descent direction.
@@ -335,12 +339,24 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
     } else {
       for (int trial = 0; trial < params.maxLineSearchSteps; ++trial) {
         step.noalias() = alpha * dir;
-        trialValue = problem.Value(step);
+        // The full, unshortened step is usually taken: its gradient and Hessian (the exact one,
+        // as the next iteration tries first) are formed with its value, to serve the next
+        // iteration (wasted only when the step is cut back).
+        const bool withDerivatives =
+            trial == 0 && !isLimited &&
+            problem.EvaluateAtStep(step, &trialValue, &gTrial, &HTrial, PsdProjection::None);
+        if (!withDerivatives) trialValue = problem.Value(step);
         // Non-finite values (e.g. inverted elements) are rejections; comparisons with NaN fail.
         if (std::isfinite(trialValue) &&
             (trialValue <= f + params.armijoConstant * alpha * dirSlope ||
              withinRoundoff(trialValue, alpha * dirSlope / slope))) {
           accepted = true;
+          if (withDerivatives) {
+            g.swap(gTrial);
+            H.swap(HTrial);
+            evaluatedValue = trialValue;
+            evaluated = true;
+          }
           break;
         }
         ++st.lineSearchSteps;

@@ -33,7 +33,9 @@
 //      α|g·d| (≈ α‖d‖²_H̃: the step is tiny in the Hessian norm) is also <= 1e-14 |f(s)|, i.e. when
 //      f cannot resolve the decrease any more. Non-finite trial values are rejections. After
 //      maxLineSearchSteps rejections → Diverged. LineSearchKind::None takes α = 1 (Diverged only if
-//      f(s ⊕ d) is not finite). s ← s ⊕ αd.
+//      f(s ⊕ d) is not finite). s ← s ⊕ αd. The unshortened full step's trial is evaluated with
+//      its gradient and exact Hessian where the problem offers EvaluateAtStep (equal bit for bit
+//      to step 1 after the commit): when it is accepted, step 1 of the next iteration is skipped.
 //   After maxIterations iterations without convergence → Stopped (the last step is committed but
 //   not tested: Stopped is reported even if it happened to reach the minimum).
 #pragma once

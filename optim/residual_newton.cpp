@@ -155,7 +155,8 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
       step.noalias() = alpha * d;
       // The full step is usually taken: its Jacobian is formed with its residual, to serve the
       // next iteration (wasted only when the step is cut back).
-      const bool withJacobian = trial == 0 && problem.EvaluateResidualAt(step, &rTrial, &JTrial);
+      const bool withJacobian =
+          trial == 0 && problem.EvaluateResidualAtStep(step, &rTrial, &JTrial);
       if (!withJacobian) problem.Residual(step, &rTrial);
       trialTheta = 0.5 * rTrial.squaredNorm();
       const bool finite = std::isfinite(trialTheta);

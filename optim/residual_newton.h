@@ -15,7 +15,7 @@
 //        θ(s ⊕ αd) <= (1 − 2cα) θ(s)   (c = armijoConstant; d is a descent direction of θ with
 //      slope −2θ because J d = −r), or |θ(s ⊕ αd) − θ(s)| within round-off of θ(s) while
 //      α‖d‖ is negligible. maxLineSearchSteps rejections → Diverged. The full step's trial is
-//      evaluated with its Jacobian where the problem offers EvaluateResidualAt (equal bit for bit
+//      evaluated with its Jacobian where the problem offers EvaluateResidualAtStep (equal bit for bit
 //      to step 1 after the commit): when it is accepted, step 1 of the next iteration is skipped.
 //   Iteration cap → Stopped.
 #pragma once

@@ -52,8 +52,16 @@ class StageProblem {
   /// r and J at s ⊕ d without changing s, entry for entry what EvaluateResidual returns after
   /// Commit(d) (so a solver that accepts the trial step d need not evaluate the new state again).
   /// Returns false when the problem does not provide it (the default).
-  virtual bool EvaluateResidualAt(const Eigen::VectorXd& /*d*/, Eigen::VectorXd* /*r*/,
-                                  Eigen::SparseMatrix<double>* /*J*/) {
+  virtual bool EvaluateResidualAtStep(const Eigen::VectorXd& /*d*/, Eigen::VectorXd* /*r*/,
+                                      Eigen::SparseMatrix<double>* /*J*/) {
+    return false;
+  }
+
+  /// f, g and H at s ⊕ d without changing s, entry for entry what Evaluate returns after
+  /// Commit(d); false when the problem does not provide it (the default).
+  virtual bool EvaluateAtStep(const Eigen::VectorXd& /*d*/, double* /*value*/,
+                              Eigen::VectorXd* /*gradient*/, Eigen::SparseMatrix<double>* /*hessian*/,
+                              PsdProjection /*projection*/) {
     return false;
   }
 

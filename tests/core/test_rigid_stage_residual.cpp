@@ -121,7 +121,7 @@ TEST_CASE("rigid stage: the residual at a trial step equals the one after commit
       // A step that moves both boxes by up to 1 mm and turns them.
       Eigen::VectorXd d(12);
       d << 1e-4, -2e-4, -1e-3, 3e-3, -1e-3, 2e-3, -1e-4, 2e-4, -5e-4, 1e-3, 2e-3, -1e-3;
-      REQUIRE(problem.EvaluateResidualAt(d, &rTrial, &JTrial));
+      REQUIRE(problem.EvaluateResidualAtStep(d, &rTrial, &JTrial));
       // Not adopted before the commit: the statistics still describe the current state.
       CHECK(problem.LastContactStats().minSignedDistance == before.minSignedDistance);
       problem.Residual(d, &rOnly);
@@ -148,11 +148,11 @@ TEST_CASE("rigid stage: the residual at a trial step equals the one after commit
 
 namespace {
 
-// The problem as a solver sees it, without EvaluateResidualAt (the residual solver then evaluates
-// every accepted state again).
-class WithoutTrialJacobian : public StageProblem {
+// The problem as a solver sees it, without EvaluateResidualAtStep and EvaluateAtStep (the solvers
+// then evaluate every accepted state again).
+class WithoutTrialDerivatives : public StageProblem {
  public:
-  explicit WithoutTrialJacobian(StageProblem& p) : p_(p) {}
+  explicit WithoutTrialDerivatives(StageProblem& p) : p_(p) {}
   int NumDofs() const override { return p_.NumDofs(); }
   double Value(const Eigen::VectorXd& d) override { return p_.Value(d); }
   double Evaluate(Eigen::VectorXd* g, Eigen::SparseMatrix<double>* H,
@@ -165,6 +165,7 @@ class WithoutTrialJacobian : public StageProblem {
   void EvaluateResidual(Eigen::VectorXd* r, Eigen::SparseMatrix<double>* J) override {
     p_.EvaluateResidual(r, J);
   }
+  bool LimitStep(Eigen::VectorXd* d) override { return p_.LimitStep(d); }
   double StepNorm(const Eigen::VectorXd& d) const override { return p_.StepNorm(d); }
 
  private:
@@ -187,7 +188,7 @@ TEST_CASE("residual Newton: reusing the accepted trial's Jacobian leaves the ite
                           &f.pipeline, &reused, diss);
       SceneStageProblem b(f.models, f.dofOffset, 12, f.targets, Eigen::Vector3d(0, 0, -9.81),
                           &f.pipeline, &plain, diss);
-      WithoutTrialJacobian bPlain(b);
+      WithoutTrialDerivatives bPlain(b);
       const SolverStats sa = SolveResidualNewton(a, params, f.targets.dt, nullptr);
       const SolverStats sb = SolveResidualNewton(bPlain, params, f.targets.dt, nullptr);
       INFO(sa.message << " / " << sb.message);
@@ -196,6 +197,73 @@ TEST_CASE("residual Newton: reusing the accepted trial's Jacobian leaves the ite
       CHECK(sa.iterations == sb.iterations);
       CHECK(sa.lineSearchSteps == sb.lineSearchSteps);
       CHECK(sa.finalGradientNorm == sb.finalGradientNorm);
+      for (size_t i = 0; i < reused.size(); ++i) {
+        CHECK(reused[i].p == plain[i].p);
+        CHECK(reused[i].R == plain[i].R);
+      }
+    }
+  }
+}
+
+TEST_CASE("rigid stage: the potential's derivatives at a trial step equal those after committing "
+          "it, bit for bit", "[core][dissipation]") {
+  for (bool dissipation : {false, true}) {
+    DYNAMIC_SECTION((dissipation ? "explicit-normals dissipation" : "conservative")) {
+      Fixture f;
+      StageDissipation diss;
+      diss.enabled = dissipation;
+      diss.mode = DissipationMode::ExplicitNormals;
+      std::vector<RigidPose> poses = f.poses;
+      SceneStageProblem problem(f.models, f.dofOffset, 12, f.targets, Eigen::Vector3d(0, 0, -9.81),
+                                &f.pipeline, &poses, diss);
+      REQUIRE(problem.IsPotential());
+      Eigen::VectorXd d(12);
+      d << 1e-4, -2e-4, -1e-3, 3e-3, -1e-3, 2e-3, -1e-4, 2e-4, -5e-4, 1e-3, 2e-3, -1e-3;
+      for (PsdProjection projection : {PsdProjection::None, PsdProjection::Clamp}) {
+        Eigen::VectorXd gTrial, gCommitted;
+        Eigen::SparseMatrix<double> HTrial, HCommitted;
+        std::vector<RigidPose> start = poses;
+        double fTrial = 0.0;
+        REQUIRE(problem.EvaluateAtStep(d, &fTrial, &gTrial, &HTrial, projection));
+        CHECK(fTrial == problem.Value(d));
+        problem.Commit(d);
+        const double fCommitted = problem.Evaluate(&gCommitted, &HCommitted, projection);
+        CHECK(fTrial == fCommitted);
+        REQUIRE(gTrial.size() == gCommitted.size());
+        CHECK(std::memcmp(gTrial.data(), gCommitted.data(), sizeof(double) * gTrial.size()) == 0);
+        REQUIRE(HTrial.nonZeros() == HCommitted.nonZeros());
+        CHECK(std::memcmp(HTrial.valuePtr(), HCommitted.valuePtr(),
+                          sizeof(double) * HTrial.nonZeros()) == 0);
+        poses = start;  // back to the stage's state for the next projection
+      }
+    }
+  }
+}
+
+TEST_CASE("projected Newton: reusing the accepted trial's derivatives leaves the iterates unchanged",
+          "[core][dissipation]") {
+  for (PsdProjection projection : {PsdProjection::None, PsdProjection::Clamp}) {
+    DYNAMIC_SECTION("projection " << static_cast<int>(projection)) {
+      Fixture f;
+      StageDissipation diss;
+      diss.enabled = true;
+      diss.mode = DissipationMode::ExplicitNormals;
+      NonlinearSolverParams params;
+      params.psdProjection = projection;
+      std::vector<RigidPose> reused = f.poses, plain = f.poses;
+      SceneStageProblem a(f.models, f.dofOffset, 12, f.targets, Eigen::Vector3d(0, 0, -9.81),
+                          &f.pipeline, &reused, diss);
+      SceneStageProblem b(f.models, f.dofOffset, 12, f.targets, Eigen::Vector3d(0, 0, -9.81),
+                          &f.pipeline, &plain, diss);
+      WithoutTrialDerivatives bPlain(b);
+      const SolverStats sa = MinimizeNewton(a, params, f.targets.dt, nullptr);
+      const SolverStats sb = MinimizeNewton(bPlain, params, f.targets.dt, nullptr);
+      INFO(sa.message << " / " << sb.message);
+      CHECK(sa.status == StageStatus::Converged);
+      CHECK(sa.iterations >= 2);
+      CHECK(sa.iterations == sb.iterations);
+      CHECK(sa.lineSearchSteps == sb.lineSearchSteps);
+      CHECK(sa.finalValue == sb.finalValue);
       for (size_t i = 0; i < reused.size(); ++i) {
         CHECK(reused[i].p == plain[i].p);
         CHECK(reused[i].R == plain[i].R);
