@@ -382,7 +382,27 @@ def main():
     ap.add_argument("--scenes", default=",".join(SCENES), help="comma-separated subset")
     ap.add_argument("--out", default=os.path.join(SOURCE, "out", "peers"))
     ap.add_argument("--timeout", type=float, default=None, help="per run [s] (quick 300, full 3600)")
+    ap.add_argument("--repeat", type=int, default=5,
+                    help="runs of each configuration whose wall time is below 1 s; the least wall "
+                         "time is reported (default 5)")
     a = ap.parse_args()
+    if a.repeat < 1:
+        ap.error("--repeat: must be >= 1")
+
+    def timed(run):
+        """The run's result with the least wall time over up to a.repeat runs: a run of a few
+        milliseconds scatters by tens of percent with the machine's load, the same way for every
+        engine. Runs of a second or more, and failed runs, are not repeated."""
+        best = run()
+        for _ in range(a.repeat - 1):
+            if best.get("failed") or best.get("wall_seconds", 1.0) >= 1.0:
+                break
+            r = run()
+            if not r.get("failed") and r["wall_seconds"] < best["wall_seconds"]:
+                best["wall_seconds"] = r["wall_seconds"]
+                best["wall_per_simulated_second"] = r["wall_per_simulated_second"]
+        return best
+
     build = os.path.abspath(a.build)
     os.makedirs(a.out, exist_ok=True)
     timeout = a.timeout or (300 if a.quick else 3600)
@@ -395,7 +415,8 @@ def main():
             runs = []
             for integrator, explicit in cfg["sdx_curves"][k] if "sdx_curves" in cfg else SUPERDEX_CURVES:
                 for dt in cfg["sdx"][k]:
-                    r = run_superdex(build, scene, integrator, explicit, dt, duration, tmp, timeout)
+                    r = timed(lambda: run_superdex(build, scene, integrator, explicit, dt, duration,
+                                                   tmp, timeout))
                     r["curve"] = curve_name(integrator, explicit)
                     runs.append(r)
                     print(f"  {scene} {r['curve']} dt={dt:g}: {fmt(r.get('metrics', {}).get('error'))}"
@@ -406,7 +427,7 @@ def main():
                           file=sys.stderr)
                     continue
                 for dt in cfg["peer"][k]:
-                    r = run_peer(build, adapter, args, scene, dt, duration, timeout)
+                    r = timed(lambda: run_peer(build, adapter, args, scene, dt, duration, timeout))
                     r["curve"] = name
                     runs.append(r)
                     print(f"  {scene} {name} dt={dt:g}: {fmt(r.get('metrics', {}).get('error'))}"
