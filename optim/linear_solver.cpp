@@ -47,6 +47,7 @@ struct SymmetricSolver::Impl {
   Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> cholmod;
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower> ldlt;
   Eigen::LLT<Eigen::MatrixXd, Eigen::Lower> dense;
+  Eigen::MatrixXd denseMatrix;   // the dense backend's copy of H (kept: no allocation per call)
   // Pattern (rows, outer and inner index arrays) of the last symbolic analysis.
   Eigen::Index rows = -1;
   std::vector<SparseMatrix::StorageIndex> outer, inner;
@@ -128,7 +129,8 @@ bool SymmetricSolver::Factorize(const Eigen::SparseMatrix<double>& H) {
     return true;
   }
   if (A->rows() <= kDenseLimit) {
-    s.dense.compute(Eigen::MatrixXd(*A));
+    s.denseMatrix = *A;
+    s.dense.compute(s.denseMatrix);
     if (s.dense.info() == Eigen::Success) {
       s.backend = BackendKind::Dense;
       return true;
@@ -154,16 +156,23 @@ void SymmetricSolver::SetSettings(const LinearSolverSettings& settings) {
 const LinearSolveInfo& SymmetricSolver::LastSolve() const { return impl_->info; }
 
 Eigen::VectorXd SymmetricSolver::Solve(const Eigen::VectorXd& b) const {
+  Eigen::VectorXd x;
+  Solve(b, &x);
+  return x;
+}
+
+void SymmetricSolver::Solve(const Eigen::VectorXd& b, Eigen::VectorXd* out) const {
   Impl& s = *impl_;
   s.info = LinearSolveInfo();
+  Eigen::VectorXd& x = *out;
   if (s.backend == BackendKind::Pcg) {
     // Preconditioned conjugate gradients (M: the 3×3 diagonal blocks of H), x₀ = 0.
     const Eigen::Index n = b.size();
     const double nan = std::numeric_limits<double>::quiet_NaN();
     s.info.iterative = true;
-    Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+    x.setZero(n);
     const double bNorm = b.norm();
-    if (bNorm == 0.0) return x;
+    if (bNorm == 0.0) return;
     s.r = b;
     s.preconditioner.Apply(s.r, &s.z);
     s.p = s.z;
@@ -174,11 +183,14 @@ Eigen::VectorXd SymmetricSolver::Solve(const Eigen::VectorXd& b) const {
       const double curvature = s.p.dot(s.q);
       s.info.iterations = k + 1;
       // pᵀHp <= 0: H is not positive definite (what a failed Cholesky reports).
-      if (!(curvature > 0.0)) return Eigen::VectorXd::Constant(n, nan);
+      if (!(curvature > 0.0)) {
+        x.setConstant(nan);
+        return;
+      }
       const double a = rz / curvature;
       x += a * s.p;
       s.r -= a * s.q;
-      if (s.r.norm() <= stop) return x;
+      if (s.r.norm() <= stop) return;
       s.preconditioner.Apply(s.r, &s.z);
       const double rzNext = s.r.dot(s.z);
       s.p = s.z + (rzNext / rz) * s.p;
@@ -187,19 +199,24 @@ Eigen::VectorXd SymmetricSolver::Solve(const Eigen::VectorXd& b) const {
     // Not converged: the direct solve of the same matrix.
     s.info.fellBack = true;
     if (!s.SamePattern(s.matrix)) s.StorePattern(s.matrix);
-    if (s.FactorizeCholmod(s.matrix)) return s.cholmod.solve(b);
-    if (s.FactorizeLdlt(s.matrix)) return s.ldlt.solve(b);
-    return Eigen::VectorXd::Constant(n, nan);
+    if (s.FactorizeCholmod(s.matrix)) {
+      x = s.cholmod.solve(b);
+    } else if (s.FactorizeLdlt(s.matrix)) {
+      x = s.ldlt.solve(b);
+    } else {
+      x.setConstant(nan);
+    }
+    return;
   }
   switch (impl_->backend) {
-    case BackendKind::Dense: return impl_->dense.solve(b);
-    case BackendKind::Cholmod: return impl_->cholmod.solve(b);
-    case BackendKind::Ldlt: return impl_->ldlt.solve(b);
+    case BackendKind::Dense: x = impl_->dense.solve(b); return;
+    case BackendKind::Cholmod: x = impl_->cholmod.solve(b); return;
+    case BackendKind::Ldlt: x = impl_->ldlt.solve(b); return;
     case BackendKind::Pcg:
     case BackendKind::None: break;
   }
   // No valid factorization (never factorized, or the last Factorize failed and overwrote it).
-  return Eigen::VectorXd::Constant(b.size(), std::numeric_limits<double>::quiet_NaN());
+  x.setConstant(b.size(), std::numeric_limits<double>::quiet_NaN());
 }
 
 const char* SymmetricSolver::Backend() const {
@@ -231,6 +248,7 @@ struct UnsymmetricSolver::Impl {
   static constexpr Eigen::Index kDenseLimit = 48;
   UmfPackLUWithTranspose lu;
   Eigen::PartialPivLU<Eigen::MatrixXd> denseLu;
+  Eigen::MatrixXd denseMatrix;  // the dense backend's copy of J (kept: no allocation per call)
   bool dense = false;
   std::vector<SparseMatrix::StorageIndex> outer, inner;
   // UMFPACK's solve reads the matrix again (iterative refinement) and Eigen's wrapper keeps a
@@ -298,9 +316,10 @@ bool UnsymmetricSolver::Factorize(const Eigen::SparseMatrix<double>& J) {
   Impl& s = *impl_;
   s.dense = J.rows() <= Impl::kDenseLimit;
   if (s.dense) {
-    s.denseLu.compute(Eigen::MatrixXd(J));
+    s.denseMatrix = J;
+    s.denseLu.compute(s.denseMatrix);
     // PartialPivLU does not report singularity: check the pivots.
-    const Eigen::VectorXd pivots = s.denseLu.matrixLU().diagonal().cwiseAbs();
+    const auto pivots = s.denseLu.matrixLU().diagonal().cwiseAbs();
     return pivots.minCoeff() > 1e-14 * std::max(pivots.maxCoeff(), 1e-300);
   }
   s.matrix = J;
@@ -325,20 +344,32 @@ void UnsymmetricSolver::SetSettings(const LinearSolverSettings& settings) {
 const LinearSolveInfo& UnsymmetricSolver::LastSolve() const { return impl_->info; }
 
 Eigen::VectorXd UnsymmetricSolver::Solve(const Eigen::VectorXd& b) {
+  Eigen::VectorXd x;
+  Solve(b, &x);
+  return x;
+}
+
+void UnsymmetricSolver::Solve(const Eigen::VectorXd& b, Eigen::VectorXd* out) {
   Impl& s = *impl_;
   s.info = LinearSolveInfo();
-  if (s.dense) return s.denseLu.solve(b);
+  Eigen::VectorXd& x = *out;
+  if (s.dense) {
+    x = s.denseLu.solve(b);
+    return;
+  }
   if (s.iterative && !s.luValid) {
     s.info.iterative = true;
-    Eigen::VectorXd x = s.krylov.solve(b);
+    x = s.krylov.solve(b);
     s.info.iterations = static_cast<int>(s.krylov.iterations());
-    if (s.krylov.info() == Eigen::Success && x.allFinite()) return x;
+    if (s.krylov.info() == Eigen::Success && x.allFinite()) return;
     // Not converged, or broken down: the LU of the same matrix (kept for further solves).
     s.info.fellBack = true;
-    if (!s.FactorizeLu())
-      return Eigen::VectorXd::Constant(b.size(), std::numeric_limits<double>::quiet_NaN());
+    if (!s.FactorizeLu()) {
+      x.setConstant(b.size(), std::numeric_limits<double>::quiet_NaN());
+      return;
+    }
   }
-  return s.lu.solve(b);
+  x = s.lu.solve(b);
 }
 
 Eigen::VectorXd UnsymmetricSolver::SolveTransposed(const Eigen::VectorXd& b) {

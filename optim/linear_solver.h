@@ -70,6 +70,9 @@ class SymmetricSolver {
   /// x = 0; a direction of non-positive curvature (H is not positive definite) gives all NaN, as
   /// a failed Cholesky would; no convergence within maxIterations: the direct solve.
   Eigen::VectorXd Solve(const Eigen::VectorXd& b) const;
+  /// The same into *x (resized only when its size differs: no allocation in a Newton loop on the
+  /// dense and iterative backends; CHOLMOD allocates its own result).
+  void Solve(const Eigen::VectorXd& b, Eigen::VectorXd* x) const;
   /// "dense" (<= 48 unknowns), "cholmod", "ldlt" or "pcg": the backend of the last
   /// factorization; "none" if it failed.
   const char* Backend() const;
@@ -100,6 +103,8 @@ class UnsymmetricSolver {
   /// Solves with the last factorization. Iterative: BiCGSTAB from x = 0; no convergence within
   /// maxIterations (or a breakdown): the LU solve.
   Eigen::VectorXd Solve(const Eigen::VectorXd& b);
+  /// The same into *x (resized only when its size differs; UMFPACK allocates its own workspace).
+  void Solve(const Eigen::VectorXd& b, Eigen::VectorXd* x);
   /// Solves Jᵀ x = b with the LU factors of the last factorization (made now if the last
   /// Factorize prepared the iterative solver); all NaN if J is singular.
   Eigen::VectorXd SolveTransposed(const Eigen::VectorXd& b);

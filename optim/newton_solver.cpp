@@ -188,7 +188,7 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
       bool good = Eigen::Map<const Eigen::VectorXd>(H.valuePtr(), H.nonZeros()).allFinite() &&
                   g.allFinite() && solver.Factorize(H);
       if (good) {
-        d = -SolveCounted(solver, g, &st);
+        SolveNegated(solver, g, &d, &st);
         good = d.allFinite() && g.dot(d) < 0.0;
       }
       st.factorizationSeconds += SecondsSince(t0);
@@ -233,7 +233,7 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
     } else if (exact && tryExact) {
       ok = true;  // the exact Hessian's direction, solved above
     } else if (solver.Factorize(H)) {
-      d = -SolveCounted(solver, g, &st);
+      SolveNegated(solver, g, &d, &st);
       ok = d.allFinite() && g.dot(d) < 0.0;
     }
     if (!ok) {
@@ -262,7 +262,7 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
         for (Eigen::Index k = 0; k < n; ++k)
           shifted.valuePtr()[diagonal[k]] = H.valuePtr()[diagonal[k]] + tau;
         if (solver.Factorize(shifted)) {
-          d = -SolveCounted(solver, g, &st);
+          SolveNegated(solver, g, &d, &st);
           ok = d.allFinite() && g.dot(d) < 0.0;
         }
       }

@@ -97,14 +97,22 @@ struct SolverStats {
   bool fallback = false;               ///< set by a caller that re-solved the stage another way
 };
 
-/// x = solver.Solve(b) (a SymmetricSolver or UnsymmetricSolver), adding its Krylov iterations
-/// and fallbacks to *stats.
+/// *x = H⁻¹ b by solver.Solve (a SymmetricSolver or UnsymmetricSolver), adding its Krylov
+/// iterations and fallbacks to *stats.
 template <typename LinearSolver>
-Eigen::VectorXd SolveCounted(LinearSolver& solver, const Eigen::VectorXd& b, SolverStats* stats) {
-  Eigen::VectorXd x = solver.Solve(b);
+void SolveCounted(LinearSolver& solver, const Eigen::VectorXd& b, Eigen::VectorXd* x,
+                  SolverStats* stats) {
+  solver.Solve(b, x);
   stats->krylovIterations += solver.LastSolve().iterations;
   stats->krylovFallbacks += solver.LastSolve().fellBack ? 1 : 0;
-  return x;
+}
+
+/// d = −H⁻¹ b (the Newton direction) into the preallocated d.
+template <typename LinearSolver>
+void SolveNegated(LinearSolver& solver, const Eigen::VectorXd& b, Eigen::VectorXd* d,
+                  SolverStats* stats) {
+  SolveCounted(solver, b, d, stats);
+  *d = -*d;
 }
 
 /// Minimizes the problem from its current state. The problem is left at the last accepted iterate.

@@ -90,7 +90,7 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
     CompleteDiagonal(&J);
     bool ok = false;
     if (lu.Factorize(J)) {
-      d = -SolveCounted(lu, r, &st);
+      SolveNegated(lu, r, &d, &st);
       ok = d.allFinite();
     }
     if (!ok) {
@@ -103,7 +103,7 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
         shifted = J;
         for (Eigen::Index i = 0; i < n; ++i) shifted.coeffRef(i, i) += tau;
         if (lu.Factorize(shifted)) {
-          d = -SolveCounted(lu, r, &st);
+          SolveNegated(lu, r, &d, &st);
           ok = d.allFinite();
         }
       }
