@@ -374,7 +374,8 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
   switch (settings_.stageSolver) {
     case StageSolverKind::Newton:
       if (problem.IsPotential()) {
-        st = MinimizeNewton(problem, settings_.solver, dt, solvers_.symmetric.get());
+        st = MinimizeNewton(problem, settings_.solver, dt, solvers_.symmetric.get(),
+                            &solvers_.newton);
         break;
       }
       {
@@ -403,7 +404,8 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
         auto minimizeExplicit = [&](const NonlinearSolverParams& params) {  // from *poses, *softX
           SceneStageProblem stage(models_, dofOffset_, numDofs_, targets, settings_.gravity,
                                   &pipeline_, poses, potential, soft, softX, &workspace_);
-          const SolverStats out = MinimizeNewton(stage, params, dt, solvers_.symmetric.get());
+          const SolverStats out =
+              MinimizeNewton(stage, params, dt, solvers_.symmetric.get(), &solvers_.newton);
           explicitContact = stage.LastContactStats();
           return out;
         };
@@ -426,7 +428,8 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
             if (softX) *softX = softGuess;
           }
         }
-        st = SolveResidualNewton(problem, settings_.solver, dt, solvers_.unsymmetric.get());
+        st = SolveResidualNewton(problem, settings_.solver, dt, solvers_.unsymmetric.get(),
+                                 &solvers_.newton);
         if (!explicitFirst) {
           if (st.status != StageStatus::Converged || st.iterations > kResidualFirstIterations) {
             explicitFirstStages_ = explicitFirstRun_;

@@ -349,6 +349,7 @@ class Scene {
   struct Solvers {
     std::unique_ptr<SymmetricSolver> symmetric = std::make_unique<SymmetricSolver>();
     std::unique_ptr<UnsymmetricSolver> unsymmetric = std::make_unique<UnsymmetricSolver>();
+    NewtonWorkspace newton;  ///< the Newton solvers' buffers, from stage to stage
     Solvers() = default;
     Solvers(const Solvers&) : Solvers() {}
     Solvers& operator=(const Solvers&) { return *this; }

@@ -140,7 +140,8 @@ std::string ValidateSolverInput(const NonlinearSolverParams& params, double time
 }
 
 SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& params,
-                           double timeScale, SymmetricSolver* solverCache) {
+                           double timeScale, SymmetricSolver* solverCache,
+                           NewtonWorkspace* work) {
   SolverStats st;
   auto diverge = [&st](const std::string& message) {
     st.status = StageStatus::Diverged;
@@ -150,11 +151,18 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
   if (std::string m = ValidateSolverInput(params, timeScale); !m.empty()) return diverge(m);
 
   const int n = problem.NumDofs();
-  Eigen::VectorXd g(n), d(n), step(n), limited(n), gTrial;
-  SparseMatrix H, shifted, HTrial;
+  NewtonWorkspace ownWork;  // only without the caller's
+  NewtonWorkspace& w = work ? *work : ownWork;
+  Eigen::VectorXd &g = w.gradient, &d = w.direction, &step = w.step, &limited = w.limited,
+                  &gTrial = w.trialGradient;
+  g.resize(n);
+  d.resize(n);
+  step.resize(n);
+  limited.resize(n);
+  SparseMatrix &H = w.matrix, &shifted = w.shifted, &HTrial = w.trialMatrix;
   bool evaluated = false;  // f, g, H already hold the current state's (from an accepted trial)
   double evaluatedValue = 0.0;
-  std::vector<Eigen::Index> diagonal;
+  std::vector<Eigen::Index>& diagonal = w.diagonal;
   std::unique_ptr<SymmetricSolver> ownSolver;  // only without a cached solver
   if (!solverCache) ownSolver = std::make_unique<SymmetricSolver>();
   SymmetricSolver& solver = solverCache ? *solverCache : *ownSolver;

@@ -115,15 +115,25 @@ void SolveNegated(LinearSolver& solver, const Eigen::VectorXd& b, Eigen::VectorX
   *d = -*d;
 }
 
+/// The vectors and matrices a Newton solve works in (MinimizeNewton, SolveResidualNewton), kept
+/// by a caller that solves stage after stage so that none is allocated again once the sizes
+/// settle. Carries nothing from one solve to the next.
+struct NewtonWorkspace {
+  Eigen::VectorXd gradient, direction, step, limited, trialGradient;
+  Eigen::SparseMatrix<double> matrix, shifted, trialMatrix;
+  std::vector<Eigen::Index> diagonal;
+};
+
 /// Minimizes the problem from its current state. The problem is left at the last accepted iterate.
 /// `timeScale` > 0 is the stage time step Δt_i [s] used by the step test. Invalid `params` (see
 /// Validate) or `timeScale` give Diverged with the reason, without touching the problem.
 /// `iterations` counts the Newton directions computed: a quadratic takes 2 (the step, then the
 /// iteration whose decrement test passes).
 /// `solver` (may be null) is a linear solver kept across calls (its symbolic analysis survives
-/// from stage to stage while the Hessian's pattern holds).
+/// from stage to stage while the Hessian's pattern holds); `work` (may be null) its buffers.
 SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& params,
-                           double timeScale, SymmetricSolver* solver = nullptr);
+                           double timeScale, SymmetricSolver* solver = nullptr,
+                           NewtonWorkspace* work = nullptr);
 
 /// The message of a passed convergence test, "<what> = <value> <= <bound> = <boundValue>" (values
 /// with 6 significant digits; formatted without streams), shared by the Newton solvers.

@@ -43,7 +43,8 @@ void CompleteDiagonal(SparseMatrix* J) {
 }  // namespace
 
 SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverParams& params,
-                                double timeScale, UnsymmetricSolver* solver) {
+                                double timeScale, UnsymmetricSolver* solver,
+                                NewtonWorkspace* work) {
   SolverStats st;
   auto diverge = [&st](const std::string& message) {
     st.status = StageStatus::Diverged;
@@ -52,8 +53,12 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
   };
   if (std::string m = ValidateSolverInput(params, timeScale); !m.empty()) return diverge(m);
   const int n = problem.NumDofs();
-  Eigen::VectorXd r, rTrial, d(n), step(n);
-  SparseMatrix J, JTrial, shifted;
+  NewtonWorkspace ownWork;  // only without the caller's
+  NewtonWorkspace& w = work ? *work : ownWork;
+  Eigen::VectorXd &r = w.gradient, &rTrial = w.trialGradient, &d = w.direction, &step = w.step;
+  d.resize(n);
+  step.resize(n);
+  SparseMatrix &J = w.matrix, &JTrial = w.trialMatrix, &shifted = w.shifted;
   bool evaluated = false;  // r and J already hold the current state's (from an accepted trial)
   std::unique_ptr<UnsymmetricSolver> ownSolver;  // only without a cached solver
   if (!solver) ownSolver = std::make_unique<UnsymmetricSolver>();

@@ -28,8 +28,10 @@ namespace superdex {
 /// Solves r(s) = 0 from the problem's current state; leaves it at the last accepted iterate.
 /// SolverStats fields keep their names: "gradient" norms are residual norms, finalDecrement is
 /// ½|r·d| [J], finalValue is θ = ½‖r‖². `solver` (may be null) is a linear solver kept across
-/// calls, so that its symbolic analysis survives from stage to stage while the pattern holds.
+/// calls, so that its symbolic analysis survives from stage to stage while the pattern holds;
+/// `work` (may be null) its buffers.
 SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverParams& params,
-                                double timeScale, UnsymmetricSolver* solver = nullptr);
+                                double timeScale, UnsymmetricSolver* solver = nullptr,
+                                NewtonWorkspace* work = nullptr);
 
 }  // namespace superdex
