@@ -21,11 +21,16 @@ SceneStageProblem::SceneStageProblem(const std::vector<RigidBodyModel>& models,
       contact_(contact),
       poses_(poses),
       ws_(workspace ? workspace : &ownWorkspace_),
+      trial_(ws_->trial),
+      softTrial_(ws_->softTrial),
+      limits_(ws_->limits),
+      scratch_(ws_->scratch),
+      pendingStep_(ws_->pendingStep),
       triplets_(ws_->triplets),
       dissipation_(dissipation),
       soft_(soft && softX && !soft->targets.empty() ? soft : nullptr),
       softX_(soft_ ? softX : nullptr) {
-  trial_ = *poses;
+  trial_.resize(poses->size());  // Retract writes every entry
   if (soft_) {
     softTrial_ = *softX_;
     if (ws_->soft.size() < soft_->targets.size()) ws_->soft.resize(soft_->targets.size());

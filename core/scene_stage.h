@@ -43,7 +43,14 @@ struct SoftStage {
 };
 
 /// Buffers that one stage hands to the next (no allocation after the first stage of a scene).
+/// Problems that share it must be used one after the other (a solve ends before the next
+/// problem's begins), as the stage solves are.
 struct StageWorkspace {
+  std::vector<RigidPose> trial;            ///< the configuration s ⊕ d under evaluation
+  std::vector<Eigen::VectorXd> softTrial;  ///< its soft positions
+  std::vector<double> limits;              ///< LimitStep's fractions per body
+  Eigen::VectorXd scratch;                 ///< the dissipative residual's part
+  Eigen::VectorXd pendingStep;             ///< the step of the last EvaluateAtStep-like call
   std::vector<Eigen::Triplet<double>> triplets;
   std::vector<SoftTermScratch> soft;
   TripletAssembly hessianAssembly;   ///< Evaluate's Hessians (pattern kept between iterations)
@@ -126,17 +133,19 @@ class SceneStageProblem : public StageProblem {
   Eigen::Vector3d gravity_;
   ContactPipeline* contact_;
   std::vector<RigidPose>* poses_;
-  std::vector<RigidPose> trial_;
-  std::vector<double> limits_;
   StageWorkspace ownWorkspace_;
   StageWorkspace* ws_;  // the caller's, or ownWorkspace_
+  std::vector<RigidPose>& trial_;
+  std::vector<Eigen::VectorXd>& softTrial_;
+  std::vector<double>& limits_;
+  Eigen::VectorXd& scratch_;
+  Eigen::VectorXd& pendingStep_;  // EvaluateResidualAtStep's or EvaluateAtStep's step
   std::vector<Eigen::Triplet<double>>& triplets_;
   StageDissipation dissipation_;
   DissipationContext context_;
-  Eigen::VectorXd scratch_;
   ContactStats lastStats_;
-  // EvaluateResidualAt's step and statistics, adopted by a Commit of that step.
-  Eigen::VectorXd pendingStep_;
+  // Whether pendingStep_ and these statistics are this problem's (EvaluateResidualAtStep's or
+  // EvaluateAtStep's), adopted by a Commit of that step.
   bool hasPending_ = false;
   ContactStats pendingStats_;
   double pendingMinDetF_ = INFINITY;
@@ -144,7 +153,7 @@ class SceneStageProblem : public StageProblem {
   const std::vector<Eigen::VectorXd>& SoftPositions() const { return softX_ ? *softX_ : noSoft_; }
   const SoftStage* soft_ = nullptr;
   std::vector<Eigen::VectorXd>* softX_ = nullptr;
-  std::vector<Eigen::VectorXd> softTrial_, softOrigin_, noSoft_;
+  std::vector<Eigen::VectorXd> softOrigin_, noSoft_;
   double lastMinDetF_ = INFINITY;
 };
 
