@@ -366,8 +366,8 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
       settings_.warmStart && softModels_.empty() && tapeMode_ == TapeMode::Off) {
     const bool history = !history_.empty() && !historyTimes_.empty();
     const std::vector<RigidPose> predicted =
-        PredictPoses(models_, states_, history ? &history_[0] : nullptr,
-                     history ? time_ - historyTimes_[0] : 0.0, predictTime);
+        PredictStagePoses(models_, states_, history ? &history_[0] : nullptr,
+                          history ? time_ - historyTimes_[0] : 0.0, predictTime, start, dt);
     WarmStart(problem, TangentStep(dofOffset_, numDofs_, *poses, predicted),
               settings_.solver.stepTolerance * dt);
   }

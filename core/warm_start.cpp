@@ -27,6 +27,24 @@ std::vector<RigidPose> PredictPoses(const std::vector<RigidBodyModel>& models,
   return out;
 }
 
+std::vector<RigidPose> PredictStagePoses(const std::vector<RigidBodyModel>& models,
+                                         const std::vector<RigidBodyState>& current,
+                                         const std::vector<RigidBodyState>* previous,
+                                         double hPrevious, double tau,
+                                         const std::vector<RigidBodyState>& stageStart,
+                                         double stageDt) {
+  std::vector<RigidPose> out = PredictPoses(models, current, previous, hPrevious, tau);
+  const bool history = previous && previous->size() == current.size() && hPrevious > 0.0;
+  for (size_t i = 0; i < current.size() && i < stageStart.size(); ++i) {
+    if (!models[i].dynamic) continue;
+    const RigidBodyState& s = current[i];
+    Eigen::Vector3d v = s.v;
+    if (history) v += tau * (s.v - (*previous)[i].v) / hPrevious;
+    out[i].p = stageStart[i].p + stageDt * v;
+  }
+  return out;
+}
+
 Eigen::VectorXd TangentStep(const std::vector<int>& dofOffset, int numDofs,
                             const std::vector<RigidPose>& from, const std::vector<RigidPose>& to) {
   Eigen::VectorXd d = Eigen::VectorXd::Zero(numDofs);
