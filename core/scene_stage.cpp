@@ -137,15 +137,21 @@ double SceneStageProblem::Evaluate(Eigen::VectorXd* gradient,
                              &lastMinDetF_);
 }
 
+void SceneStageProblem::BeginTrial(const Eigen::VectorXd& d) {
+  // trial_ is what Commit(d) installs (the same Retract), so the sums evaluated there are those
+  // that Evaluate and EvaluateResidual form after it, bit for bit.
+  Retract(d, &trial_, &softTrial_);
+  pendingStep_ = d;
+  hasPending_ = true;
+}
+
 bool SceneStageProblem::EvaluateAtStep(const Eigen::VectorXd& d, double* value,
                                        Eigen::VectorXd* gradient,
                                        Eigen::SparseMatrix<double>* hessian,
                                        PsdProjection projection) {
-  Retract(d, &trial_, &softTrial_);  // what Commit(d) installs
+  BeginTrial(d);
   *value = ValueAndDerivatives(trial_, softTrial_, gradient, hessian, projection, &pendingStats_,
                                &pendingMinDetF_);
-  pendingStep_ = d;
-  hasPending_ = true;
   return true;
 }
 
@@ -172,13 +178,8 @@ void SceneStageProblem::EvaluateResidual(Eigen::VectorXd* r, Eigen::SparseMatrix
 
 bool SceneStageProblem::EvaluateResidualAtStep(const Eigen::VectorXd& d, Eigen::VectorXd* r,
                                                Eigen::SparseMatrix<double>* J) {
-  // trial_ is what Commit(d) installs (the same Retract), so the sums below are those that
-  // EvaluateResidual forms after it, bit for bit.
-  Retract(d, &trial_, &softTrial_);
-  ResidualAndJacobian(trial_, softTrial_, r, J, &pendingStats_,
-                      &pendingMinDetF_);
-  pendingStep_ = d;
-  hasPending_ = true;
+  BeginTrial(d);
+  ResidualAndJacobian(trial_, softTrial_, r, J, &pendingStats_, &pendingMinDetF_);
   return true;
 }
 

@@ -107,6 +107,8 @@ class SceneStageProblem : public StageProblem {
 
  private:
   double BodyEnergy(size_t i, const RigidPose& pose) const;
+  /// Moves trial_ to s ⊕ d and marks d as the step whose statistics a Commit(d) adopts.
+  void BeginTrial(const Eigen::VectorXd& d);
   /// Evaluate's work at the given configuration.
   double ValueAndDerivatives(const std::vector<RigidPose>& poses,
                              const std::vector<Eigen::VectorXd>& softX, Eigen::VectorXd* gradient,

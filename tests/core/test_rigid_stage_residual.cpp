@@ -59,6 +59,18 @@ struct Fixture {
   }
 };
 
+// The fixture's stage problem in one dissipation mode, on its own copy of the poses.
+struct Stage {
+  Fixture f;
+  std::vector<RigidPose> poses = f.poses;
+  StageDissipation dissipation;
+  SceneStageProblem problem;
+  explicit Stage(DissipationMode mode, bool enabled = true)
+      : dissipation{enabled, mode, true},
+        problem(f.models, f.dofOffset, 12, f.targets, Eigen::Vector3d(0, 0, -9.81), &f.pipeline,
+                &poses, dissipation) {}
+};
+
 }  // namespace
 
 TEST_CASE("rigid stage: residual Jacobian and potential gradient with dissipation",
@@ -66,13 +78,8 @@ TEST_CASE("rigid stage: residual Jacobian and potential gradient with dissipatio
   for (DissipationMode mode : {DissipationMode::ExplicitNormals, DissipationMode::ReconstructedLoad,
                                DissipationMode::ImplicitLoad}) {
     DYNAMIC_SECTION(ToString(mode)) {
-      Fixture f;
-      StageDissipation diss;
-      diss.enabled = true;
-      diss.mode = mode;
-      std::vector<RigidPose> poses = f.poses;
-      SceneStageProblem problem(f.models, f.dofOffset, 12, f.targets, Eigen::Vector3d(0, 0, -9.81),
-                                &f.pipeline, &poses, diss);
+      Stage stage(mode);
+      SceneStageProblem& problem = stage.problem;
       CHECK(problem.IsPotential() == (mode == DissipationMode::ExplicitNormals));
       Eigen::VectorXd r;
       Eigen::SparseMatrix<double> J;
@@ -107,13 +114,8 @@ TEST_CASE("rigid stage: the residual at a trial step equals the one after commit
   for (DissipationMode mode : {DissipationMode::ExplicitNormals, DissipationMode::ReconstructedLoad,
                                DissipationMode::ImplicitLoad}) {
     DYNAMIC_SECTION(ToString(mode)) {
-      Fixture f;
-      StageDissipation diss;
-      diss.enabled = true;
-      diss.mode = mode;
-      std::vector<RigidPose> poses = f.poses;
-      SceneStageProblem problem(f.models, f.dofOffset, 12, f.targets, Eigen::Vector3d(0, 0, -9.81),
-                                &f.pipeline, &poses, diss);
+      Stage stage(mode);
+      SceneStageProblem& problem = stage.problem;
       Eigen::VectorXd r0, rTrial, rCommitted, rOnly;
       Eigen::SparseMatrix<double> J0, JTrial, JCommitted;
       problem.EvaluateResidual(&r0, &J0);
@@ -172,35 +174,33 @@ class WithoutTrialDerivatives : public StageProblem {
   StageProblem& p_;
 };
 
+// The same solve with and without reusing accepted trials: same iterations, bitwise the same
+// solution.
+void CheckSameSolve(const SolverStats& sa, const SolverStats& sb, const Stage& a, const Stage& b) {
+  INFO(sa.message << " / " << sb.message);
+  CHECK(sa.status == StageStatus::Converged);
+  CHECK(sa.iterations >= 2);  // at least one accepted trial was reused
+  CHECK(sa.iterations == sb.iterations);
+  CHECK(sa.lineSearchSteps == sb.lineSearchSteps);
+  for (size_t i = 0; i < a.poses.size(); ++i) {
+    CHECK(a.poses[i].p == b.poses[i].p);
+    CHECK(a.poses[i].R == b.poses[i].R);
+  }
+}
+
 }  // namespace
 
 TEST_CASE("residual Newton: reusing the accepted trial's Jacobian leaves the iterates unchanged",
           "[core][dissipation]") {
   for (DissipationMode mode : {DissipationMode::ReconstructedLoad, DissipationMode::ImplicitLoad}) {
     DYNAMIC_SECTION(ToString(mode)) {
-      Fixture f;
-      StageDissipation diss;
-      diss.enabled = true;
-      diss.mode = mode;
+      Stage a(mode), b(mode);
       NonlinearSolverParams params;
-      std::vector<RigidPose> reused = f.poses, plain = f.poses;
-      SceneStageProblem a(f.models, f.dofOffset, 12, f.targets, Eigen::Vector3d(0, 0, -9.81),
-                          &f.pipeline, &reused, diss);
-      SceneStageProblem b(f.models, f.dofOffset, 12, f.targets, Eigen::Vector3d(0, 0, -9.81),
-                          &f.pipeline, &plain, diss);
-      WithoutTrialDerivatives bPlain(b);
-      const SolverStats sa = SolveResidualNewton(a, params, f.targets.dt, nullptr);
-      const SolverStats sb = SolveResidualNewton(bPlain, params, f.targets.dt, nullptr);
-      INFO(sa.message << " / " << sb.message);
-      CHECK(sa.status == StageStatus::Converged);
-      CHECK(sa.iterations >= 2);  // at least one accepted trial was reused
-      CHECK(sa.iterations == sb.iterations);
-      CHECK(sa.lineSearchSteps == sb.lineSearchSteps);
+      WithoutTrialDerivatives bPlain(b.problem);
+      const SolverStats sa = SolveResidualNewton(a.problem, params, a.f.targets.dt, nullptr);
+      const SolverStats sb = SolveResidualNewton(bPlain, params, b.f.targets.dt, nullptr);
+      CheckSameSolve(sa, sb, a, b);
       CHECK(sa.finalGradientNorm == sb.finalGradientNorm);
-      for (size_t i = 0; i < reused.size(); ++i) {
-        CHECK(reused[i].p == plain[i].p);
-        CHECK(reused[i].R == plain[i].R);
-      }
     }
   }
 }
@@ -209,13 +209,9 @@ TEST_CASE("rigid stage: the potential's derivatives at a trial step equal those 
           "it, bit for bit", "[core][dissipation]") {
   for (bool dissipation : {false, true}) {
     DYNAMIC_SECTION((dissipation ? "explicit-normals dissipation" : "conservative")) {
-      Fixture f;
-      StageDissipation diss;
-      diss.enabled = dissipation;
-      diss.mode = DissipationMode::ExplicitNormals;
-      std::vector<RigidPose> poses = f.poses;
-      SceneStageProblem problem(f.models, f.dofOffset, 12, f.targets, Eigen::Vector3d(0, 0, -9.81),
-                                &f.pipeline, &poses, diss);
+      Stage stage(DissipationMode::ExplicitNormals, dissipation);
+      SceneStageProblem& problem = stage.problem;
+      std::vector<RigidPose>& poses = stage.poses;
       REQUIRE(problem.IsPotential());
       Eigen::VectorXd d(12);
       d << 1e-4, -2e-4, -1e-3, 3e-3, -1e-3, 2e-3, -1e-4, 2e-4, -5e-4, 1e-3, 2e-3, -1e-3;
@@ -244,30 +240,14 @@ TEST_CASE("projected Newton: reusing the accepted trial's derivatives leaves the
           "[core][dissipation]") {
   for (PsdProjection projection : {PsdProjection::None, PsdProjection::Clamp}) {
     DYNAMIC_SECTION("projection " << static_cast<int>(projection)) {
-      Fixture f;
-      StageDissipation diss;
-      diss.enabled = true;
-      diss.mode = DissipationMode::ExplicitNormals;
+      Stage a(DissipationMode::ExplicitNormals), b(DissipationMode::ExplicitNormals);
       NonlinearSolverParams params;
       params.psdProjection = projection;
-      std::vector<RigidPose> reused = f.poses, plain = f.poses;
-      SceneStageProblem a(f.models, f.dofOffset, 12, f.targets, Eigen::Vector3d(0, 0, -9.81),
-                          &f.pipeline, &reused, diss);
-      SceneStageProblem b(f.models, f.dofOffset, 12, f.targets, Eigen::Vector3d(0, 0, -9.81),
-                          &f.pipeline, &plain, diss);
-      WithoutTrialDerivatives bPlain(b);
-      const SolverStats sa = MinimizeNewton(a, params, f.targets.dt, nullptr);
-      const SolverStats sb = MinimizeNewton(bPlain, params, f.targets.dt, nullptr);
-      INFO(sa.message << " / " << sb.message);
-      CHECK(sa.status == StageStatus::Converged);
-      CHECK(sa.iterations >= 2);
-      CHECK(sa.iterations == sb.iterations);
-      CHECK(sa.lineSearchSteps == sb.lineSearchSteps);
+      WithoutTrialDerivatives bPlain(b.problem);
+      const SolverStats sa = MinimizeNewton(a.problem, params, a.f.targets.dt, nullptr);
+      const SolverStats sb = MinimizeNewton(bPlain, params, b.f.targets.dt, nullptr);
+      CheckSameSolve(sa, sb, a, b);
       CHECK(sa.finalValue == sb.finalValue);
-      for (size_t i = 0; i < reused.size(); ++i) {
-        CHECK(reused[i].p == plain[i].p);
-        CHECK(reused[i].R == plain[i].R);
-      }
     }
   }
 }
