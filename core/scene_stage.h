@@ -7,6 +7,7 @@
 // the stage is the residual r = ∇(Φ without R) + Σ w J_Yᵀ ∂R/∂V (core/rigid_dissipation.h).
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "core/contact_pipeline.h"
@@ -135,8 +136,8 @@ class SceneStageProblem : public StageProblem {
   Eigen::Vector3d gravity_;
   ContactPipeline* contact_;
   std::vector<RigidPose>* poses_;
-  StageWorkspace ownWorkspace_;
-  StageWorkspace* ws_;  // the caller's, or ownWorkspace_
+  std::unique_ptr<StageWorkspace> ownWorkspace_;  // only without the caller's
+  StageWorkspace* ws_;  // the caller's, or *ownWorkspace_
   std::vector<RigidPose>& trial_;
   std::vector<Eigen::VectorXd>& softTrial_;
   std::vector<double>& limits_;

@@ -6,8 +6,8 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
-#include <memory>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <vector>
 
@@ -151,8 +151,10 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
   if (std::string m = ValidateSolverInput(params, timeScale); !m.empty()) return diverge(m);
 
   const int n = problem.NumDofs();
-  NewtonWorkspace ownWork;  // only without the caller's
-  NewtonWorkspace& w = work ? *work : ownWork;
+  // Only without the caller's: even empty, its sparse matrices allocate their outer index.
+  std::unique_ptr<NewtonWorkspace> ownWork;
+  if (!work) ownWork = std::make_unique<NewtonWorkspace>();
+  NewtonWorkspace& w = work ? *work : *ownWork;
   Eigen::VectorXd &g = w.gradient, &d = w.direction, &step = w.step, &limited = w.limited,
                   &gTrial = w.trialGradient;
   g.resize(n);

@@ -53,8 +53,10 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
   };
   if (std::string m = ValidateSolverInput(params, timeScale); !m.empty()) return diverge(m);
   const int n = problem.NumDofs();
-  NewtonWorkspace ownWork;  // only without the caller's
-  NewtonWorkspace& w = work ? *work : ownWork;
+  // Only without the caller's: even empty, its sparse matrices allocate their outer index.
+  std::unique_ptr<NewtonWorkspace> ownWork;
+  if (!work) ownWork = std::make_unique<NewtonWorkspace>();
+  NewtonWorkspace& w = work ? *work : *ownWork;
   Eigen::VectorXd &r = w.gradient, &rTrial = w.trialGradient, &d = w.direction, &step = w.step;
   d.resize(n);
   step.resize(n);
