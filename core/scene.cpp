@@ -448,11 +448,11 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
           if (softX) *softX = haveExplicit ? softExplicit : softGuess;
           const SolverStats outcome = minimizeExplicit(settings_.solver);
           AddSolverWork(outcome, &work);
-          const std::string why = st.message;
+          const std::string why = st.Message();
           st = outcome;
           CopySolverWork(work, &st);
           st.message = "residual solve failed (" + why + "); stage re-solved with explicit "
-                       "normals" + (outcome.status == StageStatus::Converged ? "" : ": " + outcome.message);
+                       "normals" + (outcome.status == StageStatus::Converged ? "" : ": " + outcome.Message());
           st.fallback = true;
           *contact = explicitContact;
           if (tapeMode_ == TapeMode::Record) RecordStage(targets, potential, *poses, soft, softX);
@@ -562,7 +562,7 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
     rep.lineSearchSteps += st.lineSearchSteps;
     if (st.fallback) {
       ++rep.fallbacks;
-      if (rep.fallbackMessage.empty()) rep.fallbackMessage = st.message;
+      if (rep.fallbackMessage.empty()) rep.fallbackMessage = st.Message();
     }
     rep.assemblySeconds += st.assemblySeconds;
     rep.factorizationSeconds += st.factorizationSeconds;
@@ -572,7 +572,7 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
     rep.finalGradientNorm = std::max(rep.finalGradientNorm, st.finalGradientNorm);
     if (Severity(st.status) > Severity(rep.status)) {
       rep.status = st.status;
-      rep.message = st.message;
+      rep.message = st.Message();
     }
   };
 

@@ -79,21 +79,22 @@ bool InOpenUnitInterval(double x) { return x > 0.0 && x < 1.0; }
 
 }  // namespace
 
-std::string PassedTest(const char* what, double value, const char* bound, double boundValue) {
-  // Once per stage solve: formatting it with a stream or printf cost 8-12 % of a free-flight step.
+std::string Format(const ConvergenceTest& test) {
+  if (!test.what) return std::string();
   auto append = [](double x, std::string* out) {
     char digits[32];
     const std::to_chars_result r =
         std::to_chars(digits, digits + sizeof digits, x, std::chars_format::general, 6);
     out->append(digits, r.ptr);
   };
-  std::string s = what;
+  std::string s = test.what;
   s += " = ";
-  append(value, &s);
+  append(test.value, &s);
   s += " <= ";
-  s += bound;
+  s += test.bound;
   s += " = ";
-  append(boundValue, &s);
+  append(test.boundValue, &s);
+  s += test.note;
   return s;
 }
 
@@ -299,20 +300,19 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
     };
 
     // --- Convergence tests (see newton_solver.h), before stepping.
-    std::string converged;
+    ConvergenceTest converged;
     const double stepVelocity = problem.StepNorm(d) / timeScale;
     if (decrement <= params.absoluteTolerance) {
-      converged = PassedTest("Newton decrement 0.5 g^T H^-1 g", decrement, "absolute_tolerance",
-                         params.absoluteTolerance);
+      converged = {"Newton decrement 0.5 g^T H^-1 g", decrement, "absolute_tolerance",
+                   params.absoluteTolerance};
     } else if (st.finalGradientNorm <= params.relativeTolerance * st.initialGradientNorm) {
-      converged = PassedTest("gradient norm |g|_inf", st.finalGradientNorm,
-                         "relative_tolerance * |g0|_inf",
-                         params.relativeTolerance * st.initialGradientNorm);
+      converged = {"gradient norm |g|_inf", st.finalGradientNorm, "relative_tolerance * |g0|_inf",
+                   params.relativeTolerance * st.initialGradientNorm};
     } else if (stepVelocity <= params.stepTolerance) {
-      converged = PassedTest("step StepNorm(d)/dt [m/s]", stepVelocity, "step_tolerance",
-                         params.stepTolerance);
+      converged = {"step StepNorm(d)/dt [m/s]", stepVelocity, "step_tolerance",
+                   params.stepTolerance};
     }
-    if (!converged.empty()) {
+    if (converged.what) {
       // Take the last Newton correction as well, unless it would raise f.
       t0 = Clock::now();
       const double trialValue = problem.Value(d);
@@ -324,7 +324,8 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
       }
       st.lineSearchSeconds += SecondsSince(t0);
       st.status = StageStatus::Converged;
-      st.message = converged + (commit ? "" : " (last step not taken: it would raise f)");
+      st.passed = converged;
+      if (!commit) st.passed.note = " (last step not taken: it would raise f)";
       return st;
     }
 

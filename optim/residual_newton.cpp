@@ -124,21 +124,20 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
     const double decrement = 0.5 * std::abs(r.dot(d));
     st.finalDecrement = decrement;
 
-    // The message is formatted only when a test passes (no stream per iteration).
-    std::string converged;
+    // The passed test is kept, formatted only on demand (SolverStats::Message).
+    ConvergenceTest converged;
     const double stepVelocity = problem.StepNorm(d) / timeScale;
     if (decrement <= params.absoluteTolerance) {
-      converged = PassedTest("residual decrement 0.5|r.d|", decrement, "absolute_tolerance",
-                             params.absoluteTolerance);
+      converged = {"residual decrement 0.5|r.d|", decrement, "absolute_tolerance",
+                   params.absoluteTolerance};
     } else if (st.finalGradientNorm <= params.relativeTolerance * st.initialGradientNorm) {
-      converged = PassedTest("residual norm |r|_inf", st.finalGradientNorm,
-                             "relative_tolerance * |r0|_inf",
-                             params.relativeTolerance * st.initialGradientNorm);
+      converged = {"residual norm |r|_inf", st.finalGradientNorm, "relative_tolerance * |r0|_inf",
+                   params.relativeTolerance * st.initialGradientNorm};
     } else if (stepVelocity <= params.stepTolerance) {
-      converged = PassedTest("step StepNorm(d)/dt [m/s]", stepVelocity, "step_tolerance",
-                             params.stepTolerance);
+      converged = {"step StepNorm(d)/dt [m/s]", stepVelocity, "step_tolerance",
+                   params.stepTolerance};
     }
-    if (!converged.empty()) {
+    if (converged.what) {
       t0 = Clock::now();
       problem.Residual(d, &rTrial);
       const bool commit = rTrial.allFinite() && 0.5 * rTrial.squaredNorm() <= theta;
@@ -149,7 +148,8 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
       }
       st.lineSearchSeconds += SecondsSince(t0);
       st.status = StageStatus::Converged;
-      st.message = converged + (commit ? "" : " (last step not taken: it would raise |r|)");
+      st.passed = converged;
+      if (!commit) st.passed.note = " (last step not taken: it would raise |r|)";
       return st;
     }
 

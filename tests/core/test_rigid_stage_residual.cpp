@@ -177,7 +177,7 @@ class WithoutTrialDerivatives : public StageProblem {
 // The same solve with and without reusing accepted trials: same iterations, bitwise the same
 // solution.
 void CheckSameSolve(const SolverStats& sa, const SolverStats& sb, const Stage& a, const Stage& b) {
-  INFO(sa.message << " / " << sb.message);
+  INFO(sa.Message() << " / " << sb.Message());
   CHECK(sa.status == StageStatus::Converged);
   CHECK(sa.iterations >= 2);  // at least one accepted trial was reused
   CHECK(sa.iterations == sb.iterations);

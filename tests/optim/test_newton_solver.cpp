@@ -211,7 +211,7 @@ NonlinearSolverParams TightParams() {
 std::string Describe(const SolverStats& st) {
   return std::string(ToString(st.status)) + " after " + std::to_string(st.iterations) +
          " iterations, " + std::to_string(st.lineSearchSteps) + " rejected trials, " +
-         std::to_string(st.regularizations) + " regularizations: " + st.message;
+         std::to_string(st.regularizations) + " regularizations: " + st.Message();
 }
 
 }  // namespace
@@ -228,7 +228,7 @@ TEST_CASE("a separable quadratic converges after one Newton step", "[optim]") {
   CHECK(st.iterations == 2);
   CHECK(st.lineSearchSteps == 0);
   CHECK(st.regularizations == 0);
-  CHECK(st.message.find("Newton decrement") != std::string::npos);
+  CHECK(st.Message().find("Newton decrement") != std::string::npos);
   CHECK((p.x - c).lpNorm<Eigen::Infinity>() <= 1e-14);
   CHECK(st.finalValue <= 1e-28);
   CHECK(st.initialGradientNorm == Approx(a.cwiseProduct(c).lpNorm<Eigen::Infinity>()));
@@ -412,7 +412,7 @@ TEST_CASE("a stationary start converges at once; other step tests", "[optim]") {
   INFO(Describe(sq));
   CHECK(sq.status == StageStatus::Converged);
   CHECK(sq.iterations == 1);
-  CHECK(sq.message.find("step") == 0);
+  CHECK(sq.Message().find("step") == 0);
   CHECK(q.x[0] == Approx(1e-6).epsilon(1e-12));  // the last correction was committed
 
   // The relative gradient test.
@@ -421,7 +421,7 @@ TEST_CASE("a stationary start converges at once; other step tests", "[optim]") {
   params.relativeTolerance = 1.0;  // passes at the first iterate
   const SolverStats sr = MinimizeNewton(r, params, 1.0);
   CHECK(sr.status == StageStatus::Converged);
-  CHECK(sr.message.find("gradient norm") == 0);
+  CHECK(sr.Message().find("gradient norm") == 0);
   CHECK(r.x[0] == Approx(1.0));
 }
 
