@@ -8,6 +8,18 @@ namespace superdex {
 void FindOverlappingPairs(const std::vector<Aabb>& boxes, std::vector<std::pair<int, int>>* pairs) {
   pairs->clear();
   const int n = static_cast<int>(boxes.size());
+  // A few boxes (a body over a plane, a small stack): every pair is tested directly, already in
+  // the sorted order of the result; the sweep's setup and sorts cost more than that (a sphere
+  // over a plane: 460 instructions per call, 11 % of a free-flight drop step with the pair setup).
+  constexpr int kDirectLimit = 8;
+  if (n <= kDirectLimit) {
+    for (int i = 0; i < n; ++i) {
+      if (boxes[i].IsEmpty()) continue;
+      for (int j = i + 1; j < n; ++j)
+        if (!boxes[j].IsEmpty() && boxes[i].Overlaps(boxes[j])) pairs->emplace_back(i, j);
+    }
+    return;
+  }
   // Scratch kept per thread: the broad phase runs at every evaluation of a stage, and for a few
   // actors these two allocations cost more than the sweep.
   thread_local std::vector<int> finite, infinite;
