@@ -4,10 +4,14 @@
 
 namespace superdex {
 
-std::vector<RigidPose> PredictPoses(const std::vector<RigidBodyModel>& models,
-                                    const std::vector<RigidBodyState>& current,
-                                    const std::vector<RigidBodyState>* previous, double hPrevious,
-                                    double tau) {
+namespace {
+
+// PredictPoses, and with `stageStart` PredictStagePoses: the position through the stage's slope.
+std::vector<RigidPose> Predict(const std::vector<RigidBodyModel>& models,
+                               const std::vector<RigidBodyState>& current,
+                               const std::vector<RigidBodyState>* previous, double hPrevious,
+                               double tau, const std::vector<RigidBodyState>* stageStart,
+                               double stageDt) {
   const bool history = previous && previous->size() == current.size() && hPrevious > 0.0;
   std::vector<RigidPose> out(current.size());
   for (size_t i = 0; i < current.size(); ++i) {
@@ -15,16 +19,32 @@ std::vector<RigidPose> PredictPoses(const std::vector<RigidBodyModel>& models,
     out[i].p = s.p;
     out[i].R = s.R;
     if (!models[i].dynamic) continue;
-    Eigen::Vector3d a = Eigen::Vector3d::Zero(), alpha = Eigen::Vector3d::Zero();
+    Eigen::Vector3d dv = Eigen::Vector3d::Zero(), alpha = Eigen::Vector3d::Zero();
     const Eigen::Vector3d omega = s.AngularVelocity();
     if (history) {
-      a = (s.v - (*previous)[i].v) / hPrevious;
+      dv = s.v - (*previous)[i].v;
       alpha = (omega - (*previous)[i].AngularVelocity()) / hPrevious;
     }
-    out[i].p = s.p + tau * s.v + 0.5 * tau * tau * a;
+    if (stageStart && i < stageStart->size()) {
+      Eigen::Vector3d v = s.v;
+      if (history) v += tau * dv / hPrevious;
+      out[i].p = (*stageStart)[i].p + stageDt * v;
+    } else {
+      const Eigen::Vector3d a = history ? Eigen::Vector3d(dv / hPrevious) : dv;
+      out[i].p = s.p + tau * s.v + 0.5 * tau * tau * a;
+    }
     out[i].R = ExpSo3(tau * omega + 0.5 * tau * tau * alpha) * s.R;
   }
   return out;
+}
+
+}  // namespace
+
+std::vector<RigidPose> PredictPoses(const std::vector<RigidBodyModel>& models,
+                                    const std::vector<RigidBodyState>& current,
+                                    const std::vector<RigidBodyState>* previous, double hPrevious,
+                                    double tau) {
+  return Predict(models, current, previous, hPrevious, tau, nullptr, 0.0);
 }
 
 std::vector<RigidPose> PredictStagePoses(const std::vector<RigidBodyModel>& models,
@@ -33,16 +53,7 @@ std::vector<RigidPose> PredictStagePoses(const std::vector<RigidBodyModel>& mode
                                          double hPrevious, double tau,
                                          const std::vector<RigidBodyState>& stageStart,
                                          double stageDt) {
-  std::vector<RigidPose> out = PredictPoses(models, current, previous, hPrevious, tau);
-  const bool history = previous && previous->size() == current.size() && hPrevious > 0.0;
-  for (size_t i = 0; i < current.size() && i < stageStart.size(); ++i) {
-    if (!models[i].dynamic) continue;
-    const RigidBodyState& s = current[i];
-    Eigen::Vector3d v = s.v;
-    if (history) v += tau * (s.v - (*previous)[i].v) / hPrevious;
-    out[i].p = stageStart[i].p + stageDt * v;
-  }
-  return out;
+  return Predict(models, current, previous, hPrevious, tau, &stageStart, stageDt);
 }
 
 Eigen::VectorXd TangentStep(const std::vector<int>& dofOffset, int numDofs,
