@@ -126,6 +126,50 @@ TEST_CASE("rigid pair penalty: derivatives through both retractions", "[core][gr
   }
 }
 
+TEST_CASE("AddFunctionOfPullback: the block assembly equals the full stencil products bit for bit",
+          "[core][contact]") {
+  // Reference: w·(J_xᵀ R_B H_Y R_Bᵀ J_x) with the full 3×12 J_x = [I, −[r]×, −I, [d]×] and plain
+  // matrix products, plus the same retraction curvature. The block form drops only products with
+  // J_x's zeros and ones, so every entry must be equal, not just close.
+  std::mt19937 rng(11);
+  std::normal_distribution<double> n01;
+  auto vec = [&]() { return Eigen::Vector3d(n01(rng), n01(rng), n01(rng)); };
+  for (int trial = 0; trial < 20; ++trial) {
+    const Eigen::Vector3d r = vec(), d = vec(), gY = vec();
+    const Eigen::Matrix3d RB = ExpSo3(vec());
+    Eigen::Matrix3d HY;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) HY(i, j) = n01(rng);  // not symmetric: every entry counts
+    const double w = std::abs(n01(rng)) + 0.1;
+    for (bool bDynamic : {false, true}) {
+      const int n = bDynamic ? 12 : 6;
+      StencilVector grad = StencilVector::Zero(n);
+      StencilMatrix H = StencilMatrix::Zero(n, n);
+      AddFunctionOfPullback(r, d, RB, gY, &HY, bDynamic, w, &grad, &H);
+
+      StencilMatrix reference = StencilMatrix::Zero(n, n);
+      const Eigen::Matrix3d Hw = w * (RB * HY * RB.transpose());
+      Eigen::Matrix<double, 3, 12> Jx;
+      Jx << Eigen::Matrix3d::Identity(), -Skew(r), -Eigen::Matrix3d::Identity(), Skew(d);
+      const Eigen::Matrix<double, 3, 12> HJ = Hw * Jx;
+      const Eigen::Matrix<double, 12, 12> full = Jx.transpose().lazyProduct(HJ);
+      reference.topLeftCorner(n, n) = full.topLeftCorner(n, n);
+      // The curvature terms alone: the function with a zero H_Y adds exactly them.
+      StencilVector g0 = StencilVector::Zero(n);
+      StencilMatrix curvature = StencilMatrix::Zero(n, n);
+      const Eigen::Matrix3d zero = Eigen::Matrix3d::Zero();
+      AddFunctionOfPullback(r, d, RB, gY, &zero, bDynamic, w, &g0, &curvature);
+      INFO("trial " << trial << (bDynamic ? ", dynamic B" : ", static B"));
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          INFO("entry (" << i << ", " << j << ")");
+          REQUIRE(H(i, j) == reference(i, j) + curvature(i, j));
+        }
+      CHECK(grad == g0);
+    }
+  }
+}
+
 TEST_CASE("Step limit: a sample's penetration depth may at most double (or reach eps/2) per step",
           "[core][contact]") {
   PairCase c{Build(Sphere(0.05, 2), true), Build(Box({1, 1, 0.1}, 2), false), {}, {}, false};
