@@ -12,6 +12,18 @@ using namespace dissipation_kernels;
 /// One sample of a current-geometry mode. Its world residual is
 ///   [f_A, r × f_A, −f_A, −d × f_A],   f_A = R_B g(Y, N_A),   g = ∂R/∂V (dissipation_kernels.h),
 /// with r = R_A X, d = p_A + r − p_B, Y = R_Bᵀ d and N_A = R_Bᵀ R_A n_A (6 or 12 entries).
+/// S M for a skew S (zero diagonal) and a 3×N block M: each entry sums the two products with
+/// S's nonzero entries, in the order of a full product (the third term is a product with 0).
+template <int N>
+Eigen::Matrix<double, 3, N> SkewTimes(const Eigen::Matrix3d& S, const Eigen::Matrix<double, 3, N>& M) {
+  Eigen::Matrix<double, 3, N> out;
+  for (int i = 0; i < 3; ++i) {
+    const int k1 = (i + 1) % 3, k2 = (i + 2) % 3;
+    out.row(i) = S(i, k1) * M.row(k1) + S(i, k2) * M.row(k2);
+  }
+  return out;
+}
+
 struct CurrentModeSample {
   const RigidPose* a = nullptr;
   const RigidPose* b = nullptr;
@@ -37,29 +49,50 @@ struct CurrentModeSample {
     const CurrentModeLinearization lin =
         LinearizeCurrentModeGradient(Y, RB.transpose() * nw, field, Yn, Y0, *setup);
     const Eigen::Vector3d f = RB * lin.g;
-    const Eigen::Matrix3d Sr = Skew(r), Sd = Skew(d), Sf = Skew(f), Sn = Skew(nw);
+    const Eigen::Matrix3d Sr = Skew(r), Sd = Skew(d), Sn = Skew(nw);
     const Eigen::Matrix3d RBGY = RB * lin.GY * RB.transpose();  // df per world dY-direction
     const Eigen::Matrix3d RBGN = RB * lin.GN * RB.transpose() * Sn;
+    Eigen::Matrix<double, 3, 12> df;
     if (bDynamic) {
-      Eigen::Matrix<double, 3, 12> df, dr, dd;
-      df << RBGY, -RBGY * Sr - RBGN, -RBGY, RBGY * Sd + RBGN - Sf;
-      dr << Eigen::Matrix3d::Zero(), -Sr, Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero();
-      dd << Eigen::Matrix3d::Identity(), -Sr, -Eigen::Matrix3d::Identity(), Eigen::Matrix3d::Zero();
-      J->block<3, 12>(0, 0) += w * df;
-      J->block<3, 12>(3, 0) += w * (Sr * df - Sf * dr);
-      J->block<3, 12>(6, 0) -= w * df;
-      J->block<3, 12>(9, 0) += w * (Sf * dd - Sd * df);
+      df << RBGY, -RBGY * Sr - RBGN, -RBGY, RBGY * Sd + RBGN - Skew(f);
     } else {
-      Eigen::Matrix<double, 3, 6> df;
-      df << RBGY, -RBGY * Sr - RBGN;
-      J->block<3, 6>(0, 0) += w * df;
-      J->block<3, 6>(3, 0) += w * Sr * df;
-      J->block<3, 3>(3, 3) += w * Sf * Sr;  // −[f]× dr with dr = −[r]× δθ_A
+      df.leftCols<6>() << RBGY, -RBGY * Sr - RBGN;
+      df.rightCols<6>().setZero();  // not read
     }
+    AddForceJacobian(r, d, f, df, bDynamic, w, J);
   }
 };
 
 }  // namespace
+
+void AddForceJacobian(const Eigen::Vector3d& r, const Eigen::Vector3d& d, const Eigen::Vector3d& f,
+                      const Eigen::Matrix<double, 3, 12>& df, bool bDynamic, double w,
+                      StencilMatrix* J) {
+  // Skew products with only their nonzero terms: sums of the same products as the full
+  // Eigen products (dr, dd are [0, −[r]×, 0, 0] and [I, −[r]×, −I, 0]), equal to the bit.
+  const Eigen::Matrix3d Sr = Skew(r), Sd = Skew(d), Sf = Skew(f);
+  if (!bDynamic) {
+    const Eigen::Matrix<double, 3, 6> dfA = df.leftCols<6>();
+    J->block<3, 6>(0, 0) += w * dfA;
+    J->block<3, 6>(3, 0) += SkewTimes<6>(w * Sr, dfA);
+    J->block<3, 3>(3, 3) += SkewTimes<3>(w * Sf, Sr);  // −[f]× dr with dr = −[r]× δθ_A
+    return;
+  }
+  const Eigen::Matrix<double, 3, 12> SrDf = SkewTimes<12>(Sr, df);
+  const Eigen::Matrix<double, 3, 12> SdDf = SkewTimes<12>(Sd, df);
+  const Eigen::Matrix3d SfSr = SkewTimes<3>(Sf, Eigen::Matrix3d(-Sr));  // [f]× (−[r]×)
+  J->block<3, 12>(0, 0) += w * df;
+  Eigen::Matrix<double, 3, 12> row = SrDf;  // [r]× df − [f]× dr
+  row.middleCols<3>(3) -= SfSr;
+  J->block<3, 12>(3, 0) += w * row;
+  J->block<3, 12>(6, 0) -= w * df;
+  // [f]× dd − [d]× df,  [f]× dd = [[f]×, [f]× (−[r]×), −[f]×, 0]
+  row.leftCols<3>() = Sf - SdDf.leftCols<3>();
+  row.middleCols<3>(3) = SfSr - SdDf.middleCols<3>(3);
+  row.middleCols<3>(6) = -Sf - SdDf.middleCols<3>(6);
+  row.rightCols<3>() = -SdDf.rightCols<3>();
+  J->block<3, 12>(9, 0) += w * row;
+}
 
 const char* ToString(DissipationMode mode) {
   switch (mode) {

@@ -74,6 +74,13 @@ struct RigidPairDissipation {
   double maxCoulombRatio = 0.0;  ///< max over samples of ‖T_C‖ / (μ λ̂_n) (<= 1 by construction)
 };
 
+/// Adds w ∂(J_Yᵀ f)/∂δ, the stencil rows [df; [r]× df − [f]× dr; −df; [f]× dd − [d]× df] of a
+/// sample force f (world) whose differential is df (3×12: δ = [δp_A, δθ_A, δp_B, δθ_B]; with a
+/// static B only the first 6 columns are read), dr = −[r]× δθ_A, dd = δp_A − [r]× δθ_A − δp_B.
+void AddForceJacobian(const Eigen::Vector3d& r, const Eigen::Vector3d& d, const Eigen::Vector3d& f,
+                      const Eigen::Matrix<double, 3, 12>& df, bool bDynamic, double w,
+                      StencilMatrix* J);
+
 /// order: 0 value only, 1 with the residual, 2 with the residual and its Jacobian.
 void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
                                   const RigidStageStart& a0, const RigidBodyModel& B,
