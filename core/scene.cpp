@@ -87,7 +87,8 @@ bool ParseStageSolver(const std::string& name, StageSolverKind* kind) {
   return true;
 }
 
-Scene::Scene(const SceneSettings& settings) : settings_(settings) {}
+Scene::Scene(const SceneSettings& settings)
+    : settings_(settings), settingsError_(Validate(settings)) {}
 
 bool Scene::SetStageSolver(StageSolverKind kind, Error* error) {
   if (kind == StageSolverKind::Ipopt && HasDissipation() && !settings_.eval.explicitNormals)
@@ -95,6 +96,7 @@ bool Scene::SetStageSolver(StageSolverKind kind, Error* error) {
                        "dissipation is not a potential (explicit_normals = false); use newton or "
                        "ceres, or set experimental_eval_params.explicit_normals = true");
   settings_.stageSolver = kind;
+  settingsError_ = Validate(settings_);
   return true;
 }
 
@@ -231,6 +233,7 @@ bool Scene::SetIntegrator(IntegrationMethod method, Error* error) {
   s.integrator = method;
   if (std::string m = Validate(s); !m.empty()) return Fail(error, m);
   settings_ = s;
+  settingsError_.clear();
   ClearHistory();
   return true;
 }
@@ -544,7 +547,7 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
     s << "dt: must be > 0 and finite, got " << h;
     return Fail(error, s.str());
   }
-  if (std::string m = Validate(settings_); !m.empty()) return Fail(error, m);
+  if (!settingsError_.empty()) return Fail(error, settingsError_);
   if (settings_.stageSolver == StageSolverKind::Ipopt && !SetStageSolver(settings_.stageSolver, error))
     return false;
   const auto t0 = std::chrono::steady_clock::now();

@@ -304,6 +304,7 @@ class Scene {
   double MinDetF() const;
 
   SceneSettings settings_;
+  std::string settingsError_;  ///< Validate(settings_), kept with every change of settings_
   std::vector<RigidBodyModel> models_;
   std::vector<RigidBodyState> states_;
   std::vector<SoftBodyModel> softModels_;

@@ -1,5 +1,7 @@
 #include "core/scene_stage.h"
 
+#include <Eigen/Cholesky>
+
 #include "core/rigid_math.h"
 #include "energies/psd_projection.h"
 #include "energies/rigid_inertia.h"
@@ -98,7 +100,12 @@ double SceneStageProblem::EvaluateAt(const std::vector<RigidPose>& poses,
     gPot->segment<3>(o) -= m.mass * gravity_;
     if (order < 2) continue;
     StencilMatrix H = w * t.hessian;
-    if (projection != PsdProjection::None) ProjectToPsd(&H, projection == PsdProjection::Abs);
+    // The inertia Hessian is block diagonal: w m I (positive) and the rotation block. When the
+    // rotation block factorizes, the whole matrix is positive definite (its LLT's pivots are the
+    // blocks' own) and ProjectToPsd would return it unchanged.
+    if (projection != PsdProjection::None &&
+        Eigen::LLT<Eigen::Matrix3d>(H.bottomRightCorner<3, 3>()).info() != Eigen::Success)
+      ProjectToPsd(&H, projection == PsdProjection::Abs);
     for (int c = 0; c < 6; ++c)
       for (int r = 0; r < 6; ++r)
         if (H(r, c) != 0.0) triplets_.emplace_back(o + r, o + c, H(r, c));
