@@ -315,16 +315,21 @@ double Scene::MinDetF() const {
 }
 
 std::vector<RigidPose> Scene::CurrentPoses() const {
-  std::vector<RigidPose> poses(states_.size());
-  for (size_t i = 0; i < states_.size(); ++i) poses[i] = {states_[i].p, states_[i].R};
+  std::vector<RigidPose> poses;
+  CurrentPoses(&poses);
   return poses;
+}
+
+void Scene::CurrentPoses(std::vector<RigidPose>* poses) const {
+  poses->resize(states_.size());
+  for (size_t i = 0; i < states_.size(); ++i) (*poses)[i] = {states_[i].p, states_[i].R};
 }
 
 SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& start,
                               const std::vector<RigidPose>& last, std::vector<RigidPose>* poses,
                               ContactStats* contact, const SoftStage* soft,
                               std::vector<Eigen::VectorXd>* softX, double predictTime) {
-  StageTargets targets;
+  StageTargets& targets = buffers_.targets;
   targets.dt = dt;
   targets.pHat.resize(models_.size());
   targets.RHat.resize(models_.size());
@@ -368,11 +373,11 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
   if (settings_.stageSolver == StageSolverKind::Newton && predictTime > 0.0 &&
       settings_.warmStart && softModels_.empty() && tapeMode_ == TapeMode::Off) {
     const bool history = !history_.empty() && !historyTimes_.empty();
-    const std::vector<RigidPose> predicted =
-        PredictStagePoses(models_, states_, history ? &history_[0] : nullptr,
-                          history ? time_ - historyTimes_[0] : 0.0, predictTime, start, dt);
-    WarmStart(problem, TangentStep(dofOffset_, numDofs_, *poses, predicted),
-              settings_.solver.stepTolerance * dt);
+    PredictStagePoses(models_, states_, history ? &history_[0] : nullptr,
+                      history ? time_ - historyTimes_[0] : 0.0, predictTime, start, dt,
+                      &buffers_.predicted);
+    TangentStep(dofOffset_, numDofs_, *poses, buffers_.predicted, &buffers_.warmStep);
+    WarmStart(problem, &buffers_.warmStep, settings_.solver.stepTolerance * dt);
   }
   switch (settings_.stageSolver) {
     case StageSolverKind::Newton:
@@ -399,7 +404,8 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
         constexpr int kResidualFirstIterations = 8;
         constexpr int kMaxExplicitFirstStages = 320;
         constexpr double kStartRelativeGradient = 1e-2;
-        const std::vector<RigidPose> guess = *poses;
+        std::vector<RigidPose>& guess = buffers_.guess;
+        guess = *poses;
         const std::vector<Eigen::VectorXd> softGuess = softX ? *softX : std::vector<Eigen::VectorXd>();
         StageDissipation potential = dissipation;
         potential.mode = DissipationMode::ExplicitNormals;
@@ -581,9 +587,12 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
 
   const size_t n = models_.size();
   const size_t ns = softModels_.size();
-  std::vector<RigidPose> poses = CurrentPoses();
-  const std::vector<RigidPose> stepStart = poses;
-  std::vector<RigidBodyState> next = states_;
+  std::vector<RigidPose>& poses = buffers_.poses;
+  CurrentPoses(&poses);
+  buffers_.stepStart = poses;
+  const std::vector<RigidPose>& stepStart = buffers_.stepStart;
+  std::vector<RigidBodyState>& next = buffers_.next;
+  next = states_;
   std::vector<Eigen::VectorXd> softX = CurrentSoftPositions();
   const std::vector<Eigen::VectorXd> softStepStart = softX;
   std::vector<SoftBodyState> softNext = softStates_;
@@ -596,11 +605,13 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
   if (IsMultistep(method) && !bdf3Startup) {
     // BDF-k with variable steps.
     const int k = std::min<int>(BdfSteps(method), static_cast<int>(history_.size()) + 1);
-    std::vector<double> times = {time_ + h, time_};
+    std::vector<double>& times = buffers_.bdfTimes;
+    times.assign({time_ + h, time_});
     for (int j = 0; j + 1 < k; ++j) times.push_back(historyTimes_[j]);
-    std::vector<double> weights;
+    std::vector<double>& weights = buffers_.bdfWeights;
     const double dt = BdfCoefficients(times, &weights);
-    std::vector<RigidBodyState> start(n);
+    std::vector<RigidBodyState>& start = buffers_.start;
+    start.resize(n);
     for (size_t i = 0; i < n; ++i) {
       start[i] = Affine(weights[0], states_[i], 0.0, states_[i]);
       for (int j = 1; j < k; ++j) start[i] = Affine(1.0, start[i], weights[j], history_[j - 1][i]);
@@ -631,14 +642,26 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
   } else {
     // DIRK stages in material-point form, with the three rotation rules of core/integrators.h.
     const DirkTableau& T = TableauOf(bdf3Startup ? IntegrationMethod::DIRK33 : method);
-    std::vector<std::vector<RigidBodyState>> VK(T.stages, std::vector<RigidBodyState>(n));
-    std::vector<std::vector<Eigen::Vector3d>> torque(T.stages, std::vector<Eigen::Vector3d>(n));
-    std::vector<std::vector<RigidPose>> Q(T.stages);
+    // Every entry is written at its stage before it is read.
+    std::vector<std::vector<RigidBodyState>>& VK = buffers_.stageSlopes;
+    std::vector<std::vector<Eigen::Vector3d>>& torque = buffers_.stageTorques;
+    std::vector<std::vector<RigidPose>>& Q = buffers_.stagePoses;
+    if (VK.size() < static_cast<size_t>(T.stages)) {
+      VK.resize(T.stages);
+      torque.resize(T.stages);
+      Q.resize(T.stages);
+    }
+    for (int st = 0; st < T.stages; ++st) {
+      VK[st].resize(n);
+      torque[st].resize(n);
+    }
     // Soft nodes: stage slopes (position, velocity) per stage and actor, as for p and v.
-    std::vector<std::vector<SoftBodyState>> softVK(T.stages, std::vector<SoftBodyState>(ns));
+    std::vector<std::vector<SoftBodyState>> softVK(ns ? T.stages : 0,
+                                                   std::vector<SoftBodyState>(ns));
     std::vector<Eigen::VectorXd> softLast = softStepStart;
     for (int st = 0; st < T.stages; ++st) {
-      std::vector<RigidBodyState> start = states_;
+      std::vector<RigidBodyState>& start = buffers_.start;
+      start = states_;
       for (size_t i = 0; i < n; ++i)
         for (int j = 0; j < st; ++j) {
           const double c = h * T.a[st][j];
@@ -658,7 +681,7 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
         }
       const double dt = h * T.a[st][st];
       // Dissipation geometry: the last configuration the bodies occupied (x_n, then Q_{i−1}).
-      const std::vector<RigidPose> last = st == 0 ? stepStart : Q[st - 1];
+      const std::vector<RigidPose>& last = st == 0 ? stepStart : Q[st - 1];
       ApplyConstraints(time_ + cStage * h, &softX);
       const SoftStage soft = MakeSoftStage(dt, softStart, softLast);
       account(SolveStage(dt, start, last, &poses, &stageContact, &soft, &softX, cStage * h));
@@ -725,15 +748,19 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
     for (size_t s = 0; s < ns; ++s) softNext[s].x = endX[s];
   }
   // History for the multistep methods: x_{n}, x_{n−1} with their times.
-  history_.insert(history_.begin(), states_);
-  softHistory_.insert(softHistory_.begin(), softStates_);
-  historyTimes_.insert(historyTimes_.begin(), time_);
-  if (history_.size() > 2) {
-    history_.resize(2);
-    softHistory_.resize(2);
-    historyTimes_.resize(2);
+  if (history_.size() < 2) {
+    history_.insert(history_.begin(), states_);
+    softHistory_.insert(softHistory_.begin(), softStates_);
+    historyTimes_.insert(historyTimes_.begin(), time_);
+  } else {  // the oldest entry's storage takes the current state
+    std::swap(history_[0], history_[1]);
+    std::swap(softHistory_[0], softHistory_[1]);
+    std::swap(historyTimes_[0], historyTimes_[1]);
+    history_[0] = states_;
+    softHistory_[0] = softStates_;
+    historyTimes_[0] = time_;
   }
-  states_ = std::move(next);
+  states_.swap(next);  // next keeps the former state's storage for the next step
   softStates_ = std::move(softNext);
   time_ += h;
   rep.time = time_;
@@ -756,7 +783,8 @@ ContactStats Scene::ContactState() {
   SoftView view;
   view.x = &x;
   view.dofOffset = &softDofOffset_;
-  pipeline_.Evaluate(CurrentPoses(), dofOffset_, 0, PsdProjection::None, nullptr, nullptr, &st,
+  CurrentPoses(&buffers_.reportPoses);
+  pipeline_.Evaluate(buffers_.reportPoses, dofOffset_, 0, PsdProjection::None, nullptr, nullptr, &st,
                      nullptr, nullptr, nullptr, &view);
   return st;
 }

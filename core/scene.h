@@ -291,6 +291,7 @@ class Scene {
   }
   void Prepare();
   std::vector<RigidPose> CurrentPoses() const;
+  void CurrentPoses(std::vector<RigidPose>* poses) const;
   std::vector<Eigen::VectorXd> CurrentSoftPositions() const;
   struct ActorRef {
     bool soft = false;
@@ -317,6 +318,19 @@ class Scene {
   std::vector<std::vector<RigidBodyState>> history_;
   std::vector<double> historyTimes_;
   double time_ = 0.0;
+  // Storage of Step and SolveStage kept from step to step, so that a rigid step does not allocate
+  // once it has run (scratch: every use overwrites it first).
+  struct StepBuffers {
+    std::vector<RigidPose> poses, stepStart, predicted, guess, reportPoses;
+    std::vector<RigidBodyState> next, start;
+    std::vector<std::vector<RigidBodyState>> stageSlopes;  // a DIRK step's V_i, K_i per body
+    std::vector<std::vector<Eigen::Vector3d>> stageTorques;
+    std::vector<std::vector<RigidPose>> stagePoses;       // Q_i
+    std::vector<double> bdfTimes, bdfWeights;
+    StageTargets targets;
+    Eigen::VectorXd warmStep;
+  };
+  StepBuffers buffers_;
   // Whether the pipeline is configured for the current actors; a copied scene configures its own
   // (the pipeline holds pointers to the scene's models).
   struct ResetOnCopy {

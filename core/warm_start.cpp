@@ -7,13 +7,13 @@ namespace superdex {
 namespace {
 
 // PredictPoses, and with `stageStart` PredictStagePoses: the position through the stage's slope.
-std::vector<RigidPose> Predict(const std::vector<RigidBodyModel>& models,
-                               const std::vector<RigidBodyState>& current,
-                               const std::vector<RigidBodyState>* previous, double hPrevious,
-                               double tau, const std::vector<RigidBodyState>* stageStart,
-                               double stageDt) {
+void Predict(const std::vector<RigidBodyModel>& models, const std::vector<RigidBodyState>& current,
+             const std::vector<RigidBodyState>* previous, double hPrevious, double tau,
+             const std::vector<RigidBodyState>* stageStart, double stageDt,
+             std::vector<RigidPose>* poses) {
   const bool history = previous && previous->size() == current.size() && hPrevious > 0.0;
-  std::vector<RigidPose> out(current.size());
+  std::vector<RigidPose>& out = *poses;
+  out.resize(current.size());
   for (size_t i = 0; i < current.size(); ++i) {
     const RigidBodyState& s = current[i];
     out[i].p = s.p;
@@ -35,7 +35,6 @@ std::vector<RigidPose> Predict(const std::vector<RigidBodyModel>& models,
     }
     out[i].R = ExpSo3(tau * omega + 0.5 * tau * tau * alpha) * s.R;
   }
-  return out;
 }
 
 }  // namespace
@@ -44,7 +43,9 @@ std::vector<RigidPose> PredictPoses(const std::vector<RigidBodyModel>& models,
                                     const std::vector<RigidBodyState>& current,
                                     const std::vector<RigidBodyState>* previous, double hPrevious,
                                     double tau) {
-  return Predict(models, current, previous, hPrevious, tau, nullptr, 0.0);
+  std::vector<RigidPose> out;
+  Predict(models, current, previous, hPrevious, tau, nullptr, 0.0, &out);
+  return out;
 }
 
 std::vector<RigidPose> PredictStagePoses(const std::vector<RigidBodyModel>& models,
@@ -53,22 +54,45 @@ std::vector<RigidPose> PredictStagePoses(const std::vector<RigidBodyModel>& mode
                                          double hPrevious, double tau,
                                          const std::vector<RigidBodyState>& stageStart,
                                          double stageDt) {
-  return Predict(models, current, previous, hPrevious, tau, &stageStart, stageDt);
+  std::vector<RigidPose> out;
+  PredictStagePoses(models, current, previous, hPrevious, tau, stageStart, stageDt, &out);
+  return out;
+}
+
+void PredictStagePoses(const std::vector<RigidBodyModel>& models,
+                       const std::vector<RigidBodyState>& current,
+                       const std::vector<RigidBodyState>* previous, double hPrevious, double tau,
+                       const std::vector<RigidBodyState>& stageStart, double stageDt,
+                       std::vector<RigidPose>* poses) {
+  Predict(models, current, previous, hPrevious, tau, &stageStart, stageDt, poses);
 }
 
 Eigen::VectorXd TangentStep(const std::vector<int>& dofOffset, int numDofs,
                             const std::vector<RigidPose>& from, const std::vector<RigidPose>& to) {
-  Eigen::VectorXd d = Eigen::VectorXd::Zero(numDofs);
+  Eigen::VectorXd d;
+  TangentStep(dofOffset, numDofs, from, to, &d);
+  return d;
+}
+
+void TangentStep(const std::vector<int>& dofOffset, int numDofs,
+                 const std::vector<RigidPose>& from, const std::vector<RigidPose>& to,
+                 Eigen::VectorXd* step) {
+  Eigen::VectorXd& d = *step;
+  d.setZero(numDofs);
   for (size_t i = 0; i < dofOffset.size() && i < from.size() && i < to.size(); ++i) {
     const int o = dofOffset[i];
     if (o < 0) continue;
     d.segment<3>(o) = to[i].p - from[i].p;
     d.segment<3>(o + 3) = LogSo3(to[i].R * from[i].R.transpose());
   }
-  return d;
 }
 
 bool WarmStart(StageProblem& problem, Eigen::VectorXd d, double negligibleStep) {
+  return WarmStart(problem, &d, negligibleStep);
+}
+
+bool WarmStart(StageProblem& problem, Eigen::VectorXd* step, double negligibleStep) {
+  Eigen::VectorXd& d = *step;
   const int n = problem.NumDofs();
   if (n == 0 || d.size() != n || !d.allFinite() || problem.StepNorm(d) <= negligibleStep)
     return false;

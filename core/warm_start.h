@@ -57,16 +57,28 @@ std::vector<RigidPose> PredictStagePoses(const std::vector<RigidBodyModel>& mode
                                          double hPrevious, double tau,
                                          const std::vector<RigidBodyState>& stageStart,
                                          double stageDt);
+/// As above, into *poses (resized; no allocation once it has the capacity).
+void PredictStagePoses(const std::vector<RigidBodyModel>& models,
+                       const std::vector<RigidBodyState>& current,
+                       const std::vector<RigidBodyState>* previous, double hPrevious, double tau,
+                       const std::vector<RigidBodyState>& stageStart, double stageDt,
+                       std::vector<RigidPose>* poses);
 
 /// The tangent step d with from ⊕ d = to for the rigid blocks of a stage problem (dofOffset[i] < 0:
 /// not a degree of freedom); soft blocks and the rest of d are zero. d has numDofs entries.
 Eigen::VectorXd TangentStep(const std::vector<int>& dofOffset, int numDofs,
                             const std::vector<RigidPose>& from, const std::vector<RigidPose>& to);
+/// As above, into *step.
+void TangentStep(const std::vector<int>& dofOffset, int numDofs,
+                 const std::vector<RigidPose>& from, const std::vector<RigidPose>& to,
+                 Eigen::VectorXd* step);
 
 /// Moves `problem` from its current (cold) state by the predicted step d, shortened blockwise by
 /// the problem's step limit (StageProblem::LimitStep: no contact sample's depth more than doubles).
 /// A step with StepNorm(d) <= negligibleStep [m] (e.g. step_tolerance × Δt: a body at rest) is not
 /// taken. Returns whether the problem moved. Costs one step-limit sweep, no evaluation.
 bool WarmStart(StageProblem& problem, Eigen::VectorXd d, double negligibleStep = 0.0);
+/// As above, shortening *step in place.
+bool WarmStart(StageProblem& problem, Eigen::VectorXd* step, double negligibleStep = 0.0);
 
 }  // namespace superdex

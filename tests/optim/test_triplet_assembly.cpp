@@ -1,6 +1,8 @@
 // TripletAssembly against Eigen's setFromTriplets: bitwise the same matrices, whether the pattern
-// is reused (same (row, col) sequence, new values) or rebuilt (a changed sequence).
+// is reused (the same (row, col) sequence with new values, or another sequence over the same
+// entries) or rebuilt (a changed structure).
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cstring>
 #include <random>
 
@@ -48,11 +50,35 @@ TEST_CASE("triplet assembly: reused and rebuilt patterns equal setFromTriplets b
   }
   CHECK(assembly.rebuilt() == 1);
   CHECK(assembly.reused() == 3);
-  // A changed sequence (one more entry, then one moved) is rebuilt, and is still exact.
-  t.emplace_back(3, 7, value(rng));
+  // A different sequence over the same entries (reordered; one entry's triplet repeated) is
+  // scattered into the stored pattern, and is still exact.
+  std::shuffle(t.begin(), t.end(), rng);
   assembly.Assemble(t, n, &out);
   CHECK(BitwiseEqual(out, Reference(t, n)));
-  t[5] = Eigen::Triplet<double>(t[5].row(), (t[5].col() + 1) % n, t[5].value());
+  t.push_back(Eigen::Triplet<double>(t[17].row(), t[17].col(), value(rng)));
+  assembly.Assemble(t, n, &out);
+  CHECK(BitwiseEqual(out, Reference(t, n)));
+  CHECK(assembly.rebuilt() == 1);
+  CHECK(assembly.reused() == 5);
+  // A new entry is rebuilt, and is still exact.
+  auto present = [&](int r, int c) {
+    for (const auto& e : t)
+      if (e.row() == r && e.col() == c) return true;
+    return false;
+  };
+  int r = 0, c = 0;
+  while (present(r, c)) c == n - 1 ? (++r, c = 0) : ++c;
+  t.emplace_back(r, c, value(rng));
+  assembly.Assemble(t, n, &out);
+  CHECK(BitwiseEqual(out, Reference(t, n)));
+  CHECK(assembly.rebuilt() == 2);
+  // An entry none of whose triplets is left: rebuilt (setFromTriplets leaves the entry out).
+  const int dropRow = t[0].row(), dropCol = t[0].col();
+  t.erase(std::remove_if(t.begin(), t.end(),
+                         [&](const Eigen::Triplet<double>& e) {
+                           return e.row() == dropRow && e.col() == dropCol;
+                         }),
+          t.end());
   assembly.Assemble(t, n, &out);
   CHECK(BitwiseEqual(out, Reference(t, n)));
   CHECK(assembly.rebuilt() == 3);

@@ -1,0 +1,133 @@
+// Scene::Step allocates nothing once a step has run: its buffers, the stage problem's workspace
+// and the Newton solvers' workspaces are kept from step to step (core/scene.h StepBuffers,
+// core/scene_stage.h StageWorkspace, optim/newton_solver.h NewtonWorkspace).
+//
+// Counted by interposing glibc's allocation functions in this test executable (operator new and
+// Eigen both end in malloc); elsewhere the test is skipped.
+#include <catch2/catch.hpp>
+
+#include <atomic>
+#include <cstddef>
+
+#include "core/scene.h"
+#include "scene_builders.h"
+
+#if defined(__GLIBC__)
+#include <cerrno>
+
+extern "C" {
+void* __libc_malloc(size_t size);
+void* __libc_calloc(size_t count, size_t size);
+void* __libc_realloc(void* p, size_t size);
+void* __libc_memalign(size_t alignment, size_t size);
+}
+
+namespace {
+std::atomic<bool> counting{false};
+std::atomic<long> allocations{0};
+void Count() {
+  if (counting.load(std::memory_order_relaxed)) allocations.fetch_add(1, std::memory_order_relaxed);
+}
+}  // namespace
+
+extern "C" {
+void* malloc(size_t size) {
+  Count();
+  return __libc_malloc(size);
+}
+void* calloc(size_t count, size_t size) {
+  Count();
+  return __libc_calloc(count, size);
+}
+void* realloc(void* p, size_t size) {
+  Count();
+  return __libc_realloc(p, size);
+}
+void* memalign(size_t alignment, size_t size) {
+  Count();
+  return __libc_memalign(alignment, size);
+}
+void* aligned_alloc(size_t alignment, size_t size) {
+  Count();
+  return __libc_memalign(alignment, size);
+}
+int posix_memalign(void** out, size_t alignment, size_t size) {
+  Count();
+  void* p = __libc_memalign(alignment, size);
+  if (!p) return ENOMEM;
+  *out = p;
+  return 0;
+}
+}
+#endif
+
+using namespace superdex;
+
+namespace {
+
+// Allocations during `steps` steps of dt, after `warmup` steps that size every buffer.
+long AllocationsPerRun(Scene& scene, double dt, int warmup, int steps) {
+  Error e;
+  StepReport report;
+  for (int k = 0; k < warmup; ++k) REQUIRE(scene.Step(dt, &report, &e));
+#if defined(__GLIBC__)
+  allocations = 0;
+  counting = true;
+  bool ok = true;
+  for (int k = 0; k < steps && ok; ++k) ok = scene.Step(dt, &report, &e);
+  counting = false;
+  REQUIRE(ok);
+  CHECK(report.status == StageStatus::Converged);
+  return allocations.load();
+#else
+  return 0;
+#endif
+}
+
+// A μ = 0.5 cube over the ground at `position`, moving at `velocity`.
+Scene CubeOverGround(const SceneSettings& settings, const Eigen::Vector3d& position,
+                     const Eigen::Vector3d& velocity) {
+  Scene scene(settings);
+  Error e;
+  const RigidActorDesc ground = test::Ground(Eigen::Vector3d::UnitZ(), 1e9, 0.5, 1.0);
+  REQUIRE(scene.AddRigidActor(ground, &e).IsValid());
+  RigidActorDesc box = test::Cube(1e9, 0.5, 1.0);
+  box.position = position;
+  box.linearVelocity = velocity;
+  REQUIRE(scene.AddRigidActor(box, &e).IsValid());
+  return scene;
+}
+
+}  // namespace
+
+TEST_CASE("A rigid step allocates nothing once its buffers are sized", "[core][performance]") {
+#if !defined(__GLIBC__)
+  SKIP("allocation counting needs glibc");
+#endif
+  for (IntegrationMethod method :
+       {IntegrationMethod::BackwardEuler, IntegrationMethod::BDF2, IntegrationMethod::DIRK33,
+        IntegrationMethod::SymplecticDIRK22}) {
+    DYNAMIC_SECTION(ToString(method) << ", a box in free flight above the ground") {
+      SceneSettings settings;
+      settings.integrator = method;
+      Scene scene = CubeOverGround(settings, {0, 0, 100}, {1.0, -0.5, 2.0});
+      CHECK(AllocationsPerRun(scene, 1e-3, 3, 20) == 0);
+    }
+  }
+}
+
+TEST_CASE("A step of a box sliding on the ground allocates nothing", "[core][performance]") {
+#if !defined(__GLIBC__)
+  SKIP("allocation counting needs glibc");
+#endif
+  for (bool explicitNormals : {false, true}) {
+    DYNAMIC_SECTION((explicitNormals ? "explicit normals" : "reconstructed load")) {
+      SceneSettings settings;
+      settings.eval.explicitNormals = explicitNormals;
+      Scene scene = CubeOverGround(settings, {0, 0, 0.1}, {0.3, 0, 0});  // lands and slides
+      // The warm-up sizes the buffers; the contact's stencils then keep the matrices' structure
+      // (optim/triplet_assembly.h), and the solver workspaces their sizes.
+      CHECK(AllocationsPerRun(scene, 1e-3, 10, 20) == 0);
+    }
+  }
+}
