@@ -28,18 +28,17 @@ Eigen::Matrix3d SkewTransposeTimes(const Eigen::Matrix3d& K, const Eigen::Matrix
   return out;
 }
 
-}  // namespace
-
-void AddFunctionOfPullback(const Eigen::Vector3d& r, const Eigen::Vector3d& d,
-                           const Eigen::Matrix3d& RB, const Eigen::Vector3d& gY,
-                           const Eigen::Matrix3d* HY, bool bDynamic, double w,
-                           StencilVector* grad, StencilMatrix* hess) {
+template <typename Vector, typename Matrix>
+void AddFunctionOfPullbackTo(const Eigen::Vector3d& r, const Eigen::Vector3d& d,
+                             const Eigen::Matrix3d& RB, const Eigen::Vector3d& gY,
+                             const Eigen::Matrix3d* HY, bool bDynamic, double w, Vector* grad,
+                             Matrix* hess) {
   const Eigen::Vector3d n = RB * gY;
-  grad->segment<3>(0) += w * n;
-  grad->segment<3>(3) += w * r.cross(n);
+  grad->template segment<3>(0) += w * n;
+  grad->template segment<3>(3) += w * r.cross(n);
   if (bDynamic) {
-    grad->segment<3>(6) -= w * n;
-    grad->segment<3>(9) -= w * d.cross(n);
+    grad->template segment<3>(6) -= w * n;
+    grad->template segment<3>(9) -= w * d.cross(n);
   }
   if (!hess) return;
   // Jx = ∂x_w/∂δ = [I, K_r, −I, K_d] with the skew blocks K_r = −[r]×, K_d = [d]×, so that
@@ -50,45 +49,61 @@ void AddFunctionOfPullback(const Eigen::Vector3d& r, const Eigen::Vector3d& d,
   const Eigen::Matrix3d Hw = w * (RB * (*HY) * RB.transpose());
   const Eigen::Matrix3d Kr = -Skew(r);
   const Eigen::Matrix3d HK = TimesSkew(Hw, Kr);
-  hess->block<3, 3>(0, 0) += Hw;
-  hess->block<3, 3>(0, 3) += HK;
-  hess->block<3, 3>(3, 0) += SkewTransposeTimes(Kr, Hw);
-  hess->block<3, 3>(3, 3) += SkewTransposeTimes(Kr, HK);
+  hess->template block<3, 3>(0, 0) += Hw;
+  hess->template block<3, 3>(0, 3) += HK;
+  hess->template block<3, 3>(3, 0) += SkewTransposeTimes(Kr, Hw);
+  hess->template block<3, 3>(3, 3) += SkewTransposeTimes(Kr, HK);
   if (bDynamic) {
     const Eigen::Matrix3d Kd = Skew(d);
     const Eigen::Matrix3d HKd = TimesSkew(Hw, Kd);
     const Eigen::Matrix3d KrH = SkewTransposeTimes(Kr, Hw);
     const Eigen::Matrix3d KdH = SkewTransposeTimes(Kd, Hw);
-    hess->block<3, 3>(0, 6) -= Hw;
-    hess->block<3, 3>(0, 9) += HKd;
-    hess->block<3, 3>(3, 6) -= KrH;
-    hess->block<3, 3>(3, 9) += SkewTransposeTimes(Kr, HKd);
-    hess->block<3, 3>(6, 0) -= Hw;
-    hess->block<3, 3>(6, 3) -= HK;
-    hess->block<3, 3>(6, 6) += Hw;
-    hess->block<3, 3>(6, 9) -= HKd;
-    hess->block<3, 3>(9, 0) += KdH;
-    hess->block<3, 3>(9, 3) += SkewTransposeTimes(Kd, HK);
-    hess->block<3, 3>(9, 6) -= KdH;
-    hess->block<3, 3>(9, 9) += SkewTransposeTimes(Kd, HKd);
+    hess->template block<3, 3>(0, 6) -= Hw;
+    hess->template block<3, 3>(0, 9) += HKd;
+    hess->template block<3, 3>(3, 6) -= KrH;
+    hess->template block<3, 3>(3, 9) += SkewTransposeTimes(Kr, HKd);
+    hess->template block<3, 3>(6, 0) -= Hw;
+    hess->template block<3, 3>(6, 3) -= HK;
+    hess->template block<3, 3>(6, 6) += Hw;
+    hess->template block<3, 3>(6, 9) -= HKd;
+    hess->template block<3, 3>(9, 0) += KdH;
+    hess->template block<3, 3>(9, 3) += SkewTransposeTimes(Kd, HK);
+    hess->template block<3, 3>(9, 6) -= KdH;
+    hess->template block<3, 3>(9, 9) += SkewTransposeTimes(Kd, HKd);
   }
   const Eigen::Vector3d nw = w * n;
   const double nr = nw.dot(r);
-  hess->block<3, 3>(3, 3) +=
+  hess->template block<3, 3>(3, 3) +=
       0.5 * (nw * r.transpose() + r * nw.transpose()) - nr * Eigen::Matrix3d::Identity();
   if (bDynamic) {
     const double nd = nw.dot(d);
     const Eigen::Matrix3d Nx = Skew(nw);
-    hess->block<3, 3>(9, 9) +=
+    hess->template block<3, 3>(9, 9) +=
         0.5 * (nw * d.transpose() + d * nw.transpose()) - nd * Eigen::Matrix3d::Identity();
-    hess->block<3, 3>(9, 0) += Nx;
-    hess->block<3, 3>(0, 9) += Nx.transpose();
-    hess->block<3, 3>(9, 6) -= Nx;
-    hess->block<3, 3>(6, 9) -= Nx.transpose();
+    hess->template block<3, 3>(9, 0) += Nx;
+    hess->template block<3, 3>(0, 9) += Nx.transpose();
+    hess->template block<3, 3>(9, 6) -= Nx;
+    hess->template block<3, 3>(6, 9) -= Nx.transpose();
     const Eigen::Matrix3d C = nr * Eigen::Matrix3d::Identity() - r * nw.transpose();
-    hess->block<3, 3>(9, 3) += C;
-    hess->block<3, 3>(3, 9) += C.transpose();
+    hess->template block<3, 3>(9, 3) += C;
+    hess->template block<3, 3>(3, 9) += C.transpose();
   }
+}
+
+}  // namespace
+
+void AddFunctionOfPullback(const Eigen::Vector3d& r, const Eigen::Vector3d& d,
+                           const Eigen::Matrix3d& RB, const Eigen::Vector3d& gY,
+                           const Eigen::Matrix3d* HY, bool bDynamic, double w,
+                           StencilVector* grad, StencilMatrix* hess) {
+  AddFunctionOfPullbackTo(r, d, RB, gY, HY, bDynamic, w, grad, hess);
+}
+
+void AddFunctionOfPullback(const Eigen::Vector3d& r, const Eigen::Vector3d& d,
+                           const Eigen::Matrix3d& RB, const Eigen::Vector3d& gY,
+                           const Eigen::Matrix3d* HY, bool bDynamic, double w, PairVector* grad,
+                           PairMatrix* hess) {
+  AddFunctionOfPullbackTo(r, d, RB, gY, HY, bDynamic, w, grad, hess);
 }
 
 void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& a, const RigidBodyModel& B,
@@ -100,8 +115,10 @@ void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& a, const
   out->value = 0.0;
   out->activeSamples = 0;
   out->minPhi = INFINITY;
-  out->gradient.setZero(n);
-  if (order >= 2) out->hessian.setZero(n, n);
+  // Accumulated in fixed-size stencils, copied out at the end.
+  PairVector gradient = PairVector::Zero();
+  PairMatrix hessian;
+  if (order >= 2) hessian.setZero();
   const double delta = params.delta;
   const double reach = B.collider.boundingRadius + delta;  // |Y| beyond this: φ >= δ
   const Eigen::Matrix3d RBt = b.R.transpose();
@@ -156,9 +173,11 @@ void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& a, const
       Eigen::Matrix3d HY;
       if (order >= 2) HY = W.d2W * f.gradient * f.gradient.transpose() + W.dW * f.hessian;
       AddFunctionOfPullback(r, d, b.R, gY, order >= 2 ? &HY : nullptr, bDynamic, s.weight,
-                            &out->gradient, order >= 2 ? &out->hessian : nullptr);
+                            &gradient, order >= 2 ? &hessian : nullptr);
     }
   });
+  out->gradient = gradient.head(n);
+  if (order >= 2) out->hessian = hessian.topLeftCorner(n, n);
 }
 
 double RigidPairStepLimit(const RigidBodyModel& A, const RigidPose& a0, const RigidPose& a1,

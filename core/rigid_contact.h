@@ -93,5 +93,14 @@ void AddFunctionOfPullback(const Eigen::Vector3d& r, const Eigen::Vector3d& d,
                            const Eigen::Matrix3d& RB, const Eigen::Vector3d& gY,
                            const Eigen::Matrix3d* HY, bool bDynamic, double w,
                            StencilVector* grad, StencilMatrix* hess);
+/// A rigid pair's stencil with fixed sizes (12 entries; the first 6 with a static B): the pair
+/// sweeps accumulate into these, whose 3 × 3 blocks have compile-time strides.
+using PairVector = Eigen::Matrix<double, 12, 1>;
+using PairMatrix = Eigen::Matrix<double, 12, 12>;
+/// As above, into a pair's fixed-size stencil (the same sums in the same order).
+void AddFunctionOfPullback(const Eigen::Vector3d& r, const Eigen::Vector3d& d,
+                           const Eigen::Matrix3d& RB, const Eigen::Vector3d& gY,
+                           const Eigen::Matrix3d* HY, bool bDynamic, double w, PairVector* grad,
+                           PairMatrix* hess);
 
 }  // namespace superdex

@@ -41,7 +41,7 @@ struct CurrentModeSample {
   ///   dY = R_Bᵀ (δp_A − [r]× δθ_A − δp_B + [d]× δθ_B),   dN_A = R_Bᵀ [n_w]× (δθ_B − δθ_A),
   ///   df = R_B (G_Y dY + G_N dN_A) − [f]× δθ_B,   dr = −[r]× δθ_A,   dd = δp_A − [r]× δθ_A − δp_B,
   ///   d(r × f) = [r]× df − [f]× dr,   d(−d × f) = [f]× dd − [d]× df        (n_w = R_A n_A).
-  void AddJacobian(double w, StencilMatrix* J) const {
+  void AddJacobian(double w, PairMatrix* J) const {
     const Eigen::Matrix3d& RB = b->R;
     const Eigen::Vector3d r = a->R * X;
     const Eigen::Vector3d d = a->p + r - b->p;
@@ -67,7 +67,7 @@ struct CurrentModeSample {
 
 void AddForceJacobian(const Eigen::Vector3d& r, const Eigen::Vector3d& d, const Eigen::Vector3d& f,
                       const Eigen::Matrix<double, 3, 12>& df, bool bDynamic, double w,
-                      StencilMatrix* J) {
+                      PairMatrix* J) {
   // Skew products with only their nonzero terms: sums of the same products as the full
   // Eigen products (dr, dd are [0, −[r]×, 0, 0] and [I, −[r]×, −I, 0]), equal to the bit.
   const Eigen::Matrix3d Sr = Skew(r), Sd = Skew(d), Sf = Skew(f);
@@ -151,6 +151,10 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
       return B.collider.Value(YnA + RnBtRA * center) - L * radius < delta;
     return B.collider.Value(YA + RBtRA * center) - L * radius - slack < delta;
   };
+  // Accumulated in fixed-size stencils, copied out at the end.
+  PairVector residual = PairVector::Zero();
+  PairMatrix jacobian;
+  if (order >= 2) jacobian.setZero();
   ForEachSampleRange(A, near, [&](int begin, int end) {
     for (int k = begin; k < end; ++k) {
       const SurfaceSample& q = A.samples[k];
@@ -212,16 +216,16 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
         // ∂(Δt R)/∂Y = ∂R/∂V;  ∂²(Δt R)/∂Y² = ∂²R/∂V² / Δt.
         const Eigen::Matrix3d HY = D.hessian / dt;
         AddFunctionOfPullback(r, d, b.R, D.gradient, order >= 2 ? &HY : nullptr, bDynamic,
-                              q.weight, &out->residual, order >= 2 ? &out->jacobian : nullptr);
+                              q.weight, &residual, order >= 2 ? &jacobian : nullptr);
       } else {
-        AddFunctionOfPullback(r, d, b.R, D.gradient, nullptr, bDynamic, q.weight, &out->residual,
+        AddFunctionOfPullback(r, d, b.R, D.gradient, nullptr, bDynamic, q.weight, &residual,
                               nullptr);
-        if (order >= 2) {
-          sample.AddJacobian(q.weight, &out->jacobian);
-        }
+        if (order >= 2) sample.AddJacobian(q.weight, &jacobian);
       }
     }
   });
+  out->residual = residual.head(n);
+  if (order >= 2) out->jacobian = jacobian.topLeftCorner(n, n);
 }
 
 }  // namespace superdex

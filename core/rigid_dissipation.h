@@ -79,7 +79,7 @@ struct RigidPairDissipation {
 /// static B only the first 6 columns are read), dr = −[r]× δθ_A, dd = δp_A − [r]× δθ_A − δp_B.
 void AddForceJacobian(const Eigen::Vector3d& r, const Eigen::Vector3d& d, const Eigen::Vector3d& f,
                       const Eigen::Matrix<double, 3, 12>& df, bool bDynamic, double w,
-                      StencilMatrix* J);
+                      PairMatrix* J);
 
 /// order: 0 value only, 1 with the residual, 2 with the residual and its Jacobian.
 void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,

@@ -166,6 +166,12 @@ TEST_CASE("AddFunctionOfPullback: the block assembly equals the full stencil pro
           REQUIRE(H(i, j) == reference(i, j) + curvature(i, j));
         }
       CHECK(grad == g0);
+      // The fixed-size pair stencil's overload adds the same sums.
+      PairVector pairGrad = PairVector::Zero();
+      PairMatrix pairH = PairMatrix::Zero();
+      AddFunctionOfPullback(r, d, RB, gY, &HY, bDynamic, w, &pairGrad, &pairH);
+      CHECK(pairGrad.head(n) == grad);
+      CHECK(pairH.topLeftCorner(n, n) == H);
     }
   }
 }

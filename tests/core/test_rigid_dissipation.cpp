@@ -113,7 +113,7 @@ TEST_CASE("AddForceJacobian equals the full stencil products bit for bit", "[cor
     const Eigen::Matrix3d Sr = Skew(r), Sd = Skew(d), Sf = Skew(f);
     for (bool bDynamic : {false, true}) {
       const int n = bDynamic ? 12 : 6;
-      StencilMatrix J = StencilMatrix::Zero(n, n);
+      PairMatrix J = PairMatrix::Zero();
       AddForceJacobian(r, d, f, df, bDynamic, w, &J);
       StencilMatrix reference = StencilMatrix::Zero(n, n);
       if (bDynamic) {
