@@ -11,9 +11,10 @@ namespace {
 /// X K for a skew K (zero diagonal): each entry sums the two products with K's nonzero entries.
 Eigen::Matrix3d TimesSkew(const Eigen::Matrix3d& X, const Eigen::Matrix3d& K) {
   Eigen::Matrix3d out;
-  for (int m = 0; m < 3; ++m) {
-    const int k1 = (m + 1) % 3, k2 = (m + 2) % 3;
-    for (int i = 0; i < 3; ++i) out(i, m) = X(i, k1) * K(k1, m) + X(i, k2) * K(k2, m);
+  for (int i = 0; i < 3; ++i) {
+    out(i, 0) = X(i, 1) * K(1, 0) + X(i, 2) * K(2, 0);
+    out(i, 1) = X(i, 2) * K(2, 1) + X(i, 0) * K(0, 1);
+    out(i, 2) = X(i, 0) * K(0, 2) + X(i, 1) * K(1, 2);
   }
   return out;
 }
@@ -21,9 +22,10 @@ Eigen::Matrix3d TimesSkew(const Eigen::Matrix3d& X, const Eigen::Matrix3d& K) {
 /// Kᵀ X for a skew K: (Kᵀ X)(m, b) = Σ_{k ≠ m} K(k, m) X(k, b).
 Eigen::Matrix3d SkewTransposeTimes(const Eigen::Matrix3d& K, const Eigen::Matrix3d& X) {
   Eigen::Matrix3d out;
-  for (int m = 0; m < 3; ++m) {
-    const int k1 = (m + 1) % 3, k2 = (m + 2) % 3;
-    for (int b = 0; b < 3; ++b) out(m, b) = K(k1, m) * X(k1, b) + K(k2, m) * X(k2, b);
+  for (int b = 0; b < 3; ++b) {
+    out(0, b) = K(1, 0) * X(1, b) + K(2, 0) * X(2, b);
+    out(1, b) = K(2, 1) * X(2, b) + K(0, 1) * X(0, b);
+    out(2, b) = K(0, 2) * X(0, b) + K(1, 2) * X(1, b);
   }
   return out;
 }

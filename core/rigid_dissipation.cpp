@@ -13,13 +13,14 @@ using namespace dissipation_kernels;
 ///   [f_A, r × f_A, −f_A, −d × f_A],   f_A = R_B g(Y, N_A),   g = ∂R/∂V (dissipation_kernels.h),
 /// with r = R_A X, d = p_A + r − p_B, Y = R_Bᵀ d and N_A = R_Bᵀ R_A n_A (6 or 12 entries).
 /// S M for a skew S (zero diagonal) and a 3×N block M: each entry sums the two products with
-/// S's nonzero entries, in the order of a full product (the third term is a product with 0).
+/// S's nonzero entries (the third term of a full product is a product with 0).
 template <int N>
 Eigen::Matrix<double, 3, N> SkewTimes(const Eigen::Matrix3d& S, const Eigen::Matrix<double, 3, N>& M) {
   Eigen::Matrix<double, 3, N> out;
-  for (int i = 0; i < 3; ++i) {
-    const int k1 = (i + 1) % 3, k2 = (i + 2) % 3;
-    out.row(i) = S(i, k1) * M.row(k1) + S(i, k2) * M.row(k2);
+  for (int j = 0; j < N; ++j) {
+    out(0, j) = S(0, 1) * M(1, j) + S(0, 2) * M(2, j);
+    out(1, j) = S(1, 2) * M(2, j) + S(1, 0) * M(0, j);
+    out(2, j) = S(2, 0) * M(0, j) + S(2, 1) * M(1, j);
   }
   return out;
 }
