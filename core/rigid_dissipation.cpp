@@ -37,7 +37,8 @@ struct CurrentModeSample {
   bool bDynamic = false;
 
   /// Adds w ∂residual/∂δ (δ = [δp_A, δθ_A, δp_B, δθ_B], retractions p + δp, (1 + [δθ]×) R).
-  /// The kernel g is differentiated in its six arguments (Y, N_A) by forward-mode AD; the chain
+  /// The kernel g is differentiated in its six arguments (Y, N_A) in closed form
+  /// (LinearizeCurrentModeGradient, tested against forward-mode AD); the chain
   /// to the stencil is analytic:
   ///   dY = R_Bᵀ (δp_A − [r]× δθ_A − δp_B + [d]× δθ_B),   dN_A = R_Bᵀ [n_w]× (δθ_B − δθ_A),
   ///   df = R_B (G_Y dY + G_N dN_A) − [f]× δθ_B,   dr = −[r]× δθ_A,   dd = δp_A − [r]× δθ_A − δp_B,

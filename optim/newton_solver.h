@@ -76,7 +76,6 @@ struct NonlinearSolverParams {
   LinearSolverSettings linear{LinearSolverKind::Auto};
 };
 
-/// Statistics of one stage solve. Times are wall seconds.
 /// The convergence test a solve passed, formatted only on demand (SolverStats::Message): once per
 /// stage, formatting it cost 9 % of a free-flight step of the drop.
 struct ConvergenceTest {
@@ -91,6 +90,7 @@ struct ConvergenceTest {
 /// formatted without streams).
 std::string Format(const ConvergenceTest& test);
 
+/// Statistics of one stage solve. Times are wall seconds.
 struct SolverStats {
   StageStatus status = StageStatus::Stopped;
   int iterations = 0;
