@@ -370,8 +370,9 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
   // friction kinks the derivatives move with that point (up to 1.2e-3 relative in the four-box ω_z
   // sensitivity, tests/core/test_adjoint.cpp); the cold start keeps that point where the
   // sensitivity tests measured it.
-  if (settings_.stageSolver == StageSolverKind::Newton && predictTime > 0.0 &&
-      settings_.warmStart && softModels_.empty() && tapeMode_ == TapeMode::Off) {
+  const bool warm = settings_.stageSolver == StageSolverKind::Newton && predictTime > 0.0 &&
+                    settings_.warmStart && softModels_.empty() && tapeMode_ == TapeMode::Off;
+  if (warm) {
     const bool history = !history_.empty() && !historyTimes_.empty();
     PredictStagePoses(models_, states_, history ? &history_[0] : nullptr,
                       history ? time_ - historyTimes_[0] : 0.0, predictTime, start, dt,
@@ -382,8 +383,12 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
   switch (settings_.stageSolver) {
     case StageSolverKind::Newton:
       if (problem.IsPotential()) {
+        NewtonStart hint;
+        hint.exactHessian = warm && lastPotentialIterations_ <= kLocalStageIterations;
         st = MinimizeNewton(problem, settings_.solver, dt, solvers_.symmetric.get(),
-                            &solvers_.newton);
+                            &solvers_.newton, hint);
+        lastPotentialIterations_ =
+            warm && st.status == StageStatus::Converged ? st.iterations : kNoLocalStage;
         break;
       }
       {

@@ -261,10 +261,11 @@ class Scene {
     double time = 0.0;
     int explicitFirstStages = 0;
     int explicitFirstRun = kExplicitFirstStages;
+    int lastPotentialIterations = kNoLocalStage;
   };
   Snapshot Save() const {
     return {states_, softStates_, history_, softHistory_, historyTimes_, time_,
-            explicitFirstStages_, explicitFirstRun_};
+            explicitFirstStages_, explicitFirstRun_, lastPotentialIterations_};
   }
   void Restore(const Snapshot& s) {
     states_ = s.states;
@@ -275,6 +276,7 @@ class Scene {
     time_ = s.time;
     explicitFirstStages_ = s.explicitFirstStages;
     explicitFirstRun_ = s.explicitFirstRun;
+    lastPotentialIterations_ = s.lastPotentialIterations;
   }
   int HistoryBlocks() const;
   // The packed-state layout: calls visit(block, offset, actor ref, actor index) for every dynamic
@@ -354,6 +356,14 @@ class Scene {
   static constexpr int kExplicitFirstStages = 20;
   int explicitFirstStages_ = 0;
   int explicitFirstRun_ = kExplicitFirstStages;
+  // Potential modes: Newton iterations of the last warm-started stage that converged (else
+  // kNoLocalStage). A warm start after a stage of at most kLocalStageIterations (a step, a step,
+  // the passing test) is taken to lie in the local regime: its first iteration tries the exact
+  // Hessian (NewtonStart). The stage after a slower one keeps the projected first iteration: on
+  // the incline's settling steps the exact one cost iterations (8 instead of 6).
+  static constexpr int kLocalStageIterations = 3;
+  static constexpr int kNoLocalStage = 1 << 30;
+  int lastPotentialIterations_ = kNoLocalStage;
   std::vector<int> dofOffset_;
   int numDofs_ = 0;
   ContactPipeline pipeline_;

@@ -142,7 +142,7 @@ std::string ValidateSolverInput(const NonlinearSolverParams& params, double time
 
 SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& params,
                            double timeScale, SymmetricSolver* solverCache,
-                           NewtonWorkspace* work) {
+                           NewtonWorkspace* work, NewtonStart start) {
   SolverStats st;
   auto diverge = [&st](const std::string& message) {
     st.status = StageStatus::Diverged;
@@ -182,8 +182,9 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
   }
 
   // Adaptive projection: after a full step (α = 1: the local regime) the next iteration tries the
-  // exact Hessian; if it is not positive definite the iteration is re-assembled projected.
-  bool tryExact = false;
+  // exact Hessian; if it is not positive definite the iteration is re-assembled projected. The
+  // caller may ask for it at the first iteration (NewtonStart).
+  bool tryExact = start.exactHessian;
   for (int it = 0; it < params.maxIterations; ++it) {
     // --- Assembly: f, g, H at the current state s.
     Clock::time_point t0 = Clock::now();

@@ -141,16 +141,29 @@ struct NewtonWorkspace {
   std::vector<Eigen::Index> diagonal;
 };
 
+/// What a caller knows about a solve's start: a hint, not a setting (the iterates may change, the
+/// convergence tests do not).
+struct NewtonStart {
+  /// Assemble the exact Hessian at the first iteration, as the adaptive projection does after a
+  /// full step (step 1 above; projected again if it is not positive definite or gives no descent
+  /// direction). For a start the caller expects in the local regime, e.g. a warm start after a
+  /// stage that converged in a few full steps: there the projected first iteration only reduced
+  /// the Newton decrement about 5× (the sliding incline's friction, whose projected model raises
+  /// the curvature along the slip), and the stage took one iteration more.
+  bool exactHessian = false;
+};
+
 /// Minimizes the problem from its current state. The problem is left at the last accepted iterate.
 /// `timeScale` > 0 is the stage time step Δt_i [s] used by the step test. Invalid `params` (see
 /// Validate) or `timeScale` give Diverged with the reason, without touching the problem.
 /// `iterations` counts the Newton directions computed: a quadratic takes 2 (the step, then the
 /// iteration whose decrement test passes).
 /// `solver` (may be null) is a linear solver kept across calls (its symbolic analysis survives
-/// from stage to stage while the Hessian's pattern holds); `work` (may be null) its buffers.
+/// from stage to stage while the Hessian's pattern holds); `work` (may be null) its buffers;
+/// `start` the caller's hint about the start.
 SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& params,
                            double timeScale, SymmetricSolver* solver = nullptr,
-                           NewtonWorkspace* work = nullptr);
+                           NewtonWorkspace* work = nullptr, NewtonStart start = {});
 
 /// Validates the parameters; returns an empty string if valid, else a message for the first
 /// invalid field in declaration order, named as in the scene file:

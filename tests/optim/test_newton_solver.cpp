@@ -152,6 +152,34 @@ class QuarticSaddle : public EuclideanProblem {
   }
 };
 
+/// f = ½ (a + b) x² − c x as the sum of two "elements" ½ a x² (a > 0) and ½ b x² (b < 0), whose
+/// Hessians are projected one by one, as a stage's local Hessians are: the projected Hessian is
+/// a (the element b clamped to 0, Clamp) or a + |b| (Abs), the exact one a + b > 0. Records the
+/// projection each evaluation asked for.
+class ElementwiseQuadratic : public StageProblem {
+ public:
+  ElementwiseQuadratic(double a, double b, double c) : a(a), b(b), c(c) {}
+  int NumDofs() const override { return 1; }
+  double F(double z) const { return 0.5 * (a + b) * z * z - c * z; }
+  double Value(const Eigen::VectorXd& d) override { return F(x + d[0]); }
+  double Evaluate(Eigen::VectorXd* g, Eigen::SparseMatrix<double>* H,
+                  PsdProjection projection) override {
+    projections.push_back(projection);
+    *g = Eigen::VectorXd::Constant(1, (a + b) * x - c);
+    if (H) {
+      const double hb = projection == PsdProjection::None  ? b
+                        : projection == PsdProjection::Abs ? std::abs(b)
+                                                           : std::max(b, 0.0);
+      *H = ToSparse(Eigen::MatrixXd::Constant(1, 1, a + hb));
+    }
+    return F(x);
+  }
+  void Commit(const Eigen::VectorXd& d) override { x += d[0]; }
+
+  double a, b, c, x = 0.0;
+  std::vector<PsdProjection> projections;
+};
+
 /// A quadratic whose value is NaN everywhere except at the current state.
 class NanOffStart : public SeparableQuadratic {
  public:
@@ -245,6 +273,40 @@ TEST_CASE("a separable quadratic converges after one Newton step", "[optim]") {
   CHECK(st1.status == StageStatus::Stopped);
   CHECK(st1.iterations == 1);
   CHECK((once.x - c).lpNorm<Eigen::Infinity>() <= 1e-14);
+}
+
+TEST_CASE("a start hinted to be local tries the exact Hessian at the first iteration", "[optim]") {
+  // Exact curvature 3, projected 4: the projected first step leaves x at 3/4 of the way, and the
+  // next iteration (exact after a full step) finishes: 3 iterations. With the hint the first step
+  // is exact: 2 (the step, then the passing decrement test).
+  const double c = 3.0;
+  ElementwiseQuadratic plain(4.0, -1.0, c), hinted(4.0, -1.0, c);
+  const SolverStats st0 = MinimizeNewton(plain, NonlinearSolverParams(), 1.0);
+  NewtonStart start;
+  start.exactHessian = true;
+  const SolverStats st1 = MinimizeNewton(hinted, NonlinearSolverParams(), 1.0, nullptr, nullptr,
+                                         start);
+  INFO(Describe(st0) << " / " << Describe(st1));
+  REQUIRE(st0.status == StageStatus::Converged);
+  REQUIRE(st1.status == StageStatus::Converged);
+  CHECK(st0.iterations == 3);
+  CHECK(st1.iterations == 2);
+  REQUIRE(!plain.projections.empty());
+  REQUIRE(!hinted.projections.empty());
+  CHECK(plain.projections[0] == PsdProjection::Clamp);
+  CHECK(hinted.projections[0] == PsdProjection::None);
+  CHECK(hinted.x == Approx(c / 3.0).epsilon(1e-14));
+  CHECK(plain.x == Approx(c / 3.0).epsilon(1e-14));
+
+  // Where the exact Hessian is indefinite (curvature 4 − 5 < 0) the hinted first iteration is
+  // re-assembled projected: None, then Clamp. (This f is unbounded below; one iteration is run.)
+  ElementwiseQuadratic indefinite(4.0, -5.0, c);
+  NonlinearSolverParams once;
+  once.maxIterations = 1;
+  MinimizeNewton(indefinite, once, 1.0, nullptr, nullptr, start);
+  REQUIRE(indefinite.projections.size() >= 2);
+  CHECK(indefinite.projections[0] == PsdProjection::None);
+  CHECK(indefinite.projections[1] == PsdProjection::Clamp);
 }
 
 TEST_CASE("a convex non-quadratic problem converges quadratically", "[optim]") {
