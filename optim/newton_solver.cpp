@@ -314,9 +314,14 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
                    params.stepTolerance};
     }
     if (converged.what) {
-      // Take the last Newton correction as well, unless it would raise f.
+      // Take the last Newton correction as well, unless it would raise f. When the decrease it
+      // promises, |g·d|, is itself inside the round-off band, f cannot tell its value there from
+      // f(s) (the band test below would accept any trial value f could resolve as equal): the
+      // correction is committed without evaluating f there (finalValue stays f(s)). Measured:
+      // 11 % of a free-flight step of the drop, 8 % of the explicit-normals incline at Δt = 0.2.
       t0 = Clock::now();
-      const double trialValue = problem.Value(d);
+      const bool unresolvable = std::abs(slope) <= band;
+      const double trialValue = unresolvable ? f : problem.Value(d);
       const bool commit = std::isfinite(trialValue) &&
                           (trialValue <= f || withinRoundoff(trialValue, 1.0));
       if (commit) {

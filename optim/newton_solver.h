@@ -22,7 +22,9 @@
 //        c. step              StepNorm(d) / timeScale <= stepTolerance               [m/s]
 //      When one passes, the full step d is still committed if f(s ⊕ d) <= f(s) (or lies in the
 //      round-off band below), so the returned state includes the last Newton correction; status
-//      Converged.
+//      Converged. A correction whose promised decrease |g·d| is itself inside the round-off band
+//      (<= 1e-14 |f(s)|: f cannot resolve it) is committed without evaluating f(s ⊕ d), and
+//      SolverStats::finalValue stays f(s).
 //   4. Step limit: d' = d shortened blockwise by problem.LimitStep (contact: no sample's depth more
 //      than doubles in one step, core/rigid_contact.h), used in place of d if g·d' < 0; an
 //      iteration on a limited step is not a full step for the adaptive projection. Skipped with

@@ -309,6 +309,35 @@ TEST_CASE("a start hinted to be local tries the exact Hessian at the first itera
   CHECK(indefinite.projections[1] == PsdProjection::Clamp);
 }
 
+TEST_CASE("a last correction below f's round-off is committed without evaluating f", "[optim]") {
+  // f = F0 + Σ ½ a_i (x_i − c_i)² with F0 = 1e6: after the exact step the second direction
+  // promises a decrease far below 1e-14 |f| = 1e-8, which f cannot resolve. The last correction
+  // is committed without a value evaluation: one Value call in all (the first step's trial).
+  const Eigen::VectorXd a = (Eigen::VectorXd(3) << 2, 30, 0.7).finished();
+  const Eigen::VectorXd c = (Eigen::VectorXd(3) << 1, -2, 0.5).finished();
+  class Offset : public SeparableQuadratic {
+   public:
+    using SeparableQuadratic::SeparableQuadratic;
+    double F(const Eigen::VectorXd& z) const override { return 1e6 + SeparableQuadratic::F(z); }
+  };
+  Offset p(a, c);
+  const SolverStats st = MinimizeNewton(p, NonlinearSolverParams(), 1.0);
+  INFO(Describe(st));
+  REQUIRE(st.status == StageStatus::Converged);
+  CHECK(st.iterations == 2);
+  CHECK(p.valueCalls == 1);
+  CHECK(p.commits == 2);
+  CHECK(st.finalValue == 1e6);
+  CHECK((p.x - c).lpNorm<Eigen::Infinity>() <= 1e-14);
+
+  // Without the offset the same decrease is resolvable (|f| is tiny): the value is checked.
+  SeparableQuadratic q(a, c);
+  const SolverStats sq = MinimizeNewton(q, NonlinearSolverParams(), 1.0);
+  REQUIRE(sq.status == StageStatus::Converged);
+  CHECK(q.valueCalls == 2);
+  CHECK(q.commits == 2);
+}
+
 TEST_CASE("a convex non-quadratic problem converges quadratically", "[optim]") {
   std::mt19937 rng(1);
   std::uniform_real_distribution<double> u(-3.0, 3.0);
