@@ -31,7 +31,7 @@ namespace {
 
 using SparseMatrix = Eigen::SparseMatrix<double>;
 
-enum class BackendKind { None, Dense, Cholmod, Ldlt, Pcg };
+enum class BackendKind { None, Dense, Dense6, Cholmod, Ldlt, Pcg };
 
 bool UseIterative(const LinearSolverSettings& s, Eigen::Index n) {
   return s.kind == LinearSolverKind::Iterative ||
@@ -48,6 +48,11 @@ struct SymmetricSolver::Impl {
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower> ldlt;
   Eigen::LLT<Eigen::MatrixXd, Eigen::Lower> dense;
   Eigen::MatrixXd denseMatrix;   // the dense backend's copy of H (kept: no allocation per call)
+  // One rigid body (6 unknowns: the drop, the incline, a tumbling body): the same Cholesky with
+  // compile-time sizes, about a quarter of the dynamic-size factorization's instructions.
+  using Matrix6 = Eigen::Matrix<double, 6, 6>;
+  Eigen::LLT<Matrix6, Eigen::Lower> dense6;
+  Matrix6 dense6Matrix;
   // Pattern (rows, outer and inner index arrays) of the last symbolic analysis.
   Eigen::Index rows = -1;
   std::vector<SparseMatrix::StorageIndex> outer, inner;
@@ -128,7 +133,14 @@ bool SymmetricSolver::Factorize(const Eigen::SparseMatrix<double>& H) {
     s.backend = BackendKind::Pcg;
     return true;
   }
-  if (A->rows() <= kDenseLimit) {
+  if (A->rows() == 6) {
+    s.dense6Matrix = *A;
+    s.dense6.compute(s.dense6Matrix);
+    if (s.dense6.info() == Eigen::Success) {
+      s.backend = BackendKind::Dense6;
+      return true;
+    }
+  } else if (A->rows() <= kDenseLimit) {
     s.denseMatrix = *A;
     s.dense.compute(s.denseMatrix);
     if (s.dense.info() == Eigen::Success) {
@@ -210,6 +222,7 @@ void SymmetricSolver::Solve(const Eigen::VectorXd& b, Eigen::VectorXd* out) cons
   }
   switch (impl_->backend) {
     case BackendKind::Dense: x = impl_->dense.solve(b); return;
+    case BackendKind::Dense6: x = impl_->dense6.solve(b); return;
     case BackendKind::Cholmod: x = impl_->cholmod.solve(b); return;
     case BackendKind::Ldlt: x = impl_->ldlt.solve(b); return;
     case BackendKind::Pcg:
@@ -221,7 +234,8 @@ void SymmetricSolver::Solve(const Eigen::VectorXd& b, Eigen::VectorXd* out) cons
 
 const char* SymmetricSolver::Backend() const {
   switch (impl_->backend) {
-    case BackendKind::Dense: return "dense";
+    case BackendKind::Dense:
+    case BackendKind::Dense6: return "dense";
     case BackendKind::Cholmod: return "cholmod";
     case BackendKind::Ldlt: return "ldlt";
     case BackendKind::Pcg: return "pcg";

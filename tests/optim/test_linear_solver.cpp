@@ -1,4 +1,5 @@
 #include <catch2/catch.hpp>
+#include <Eigen/Cholesky>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -114,6 +115,32 @@ TEST_CASE("a different pattern triggers a new analysis", "[optim]") {
     const Eigen::VectorXd b = Eigen::VectorXd::Random(n);
     REQUIRE(solver.Factorize(H));
     CHECK(RelativeResidual(H, solver.Solve(b), b) <= 1e-10);
+  }
+}
+
+TEST_CASE("small systems: the dense Cholesky, with fixed sizes for one rigid body", "[optim]") {
+  // n = 6 (one rigid body) takes the compile-time-size factorization, n = 5 and 12 the dynamic
+  // one; all solve to round-off, and a 6 × 6 indefinite matrix is rejected as before.
+  std::mt19937 rng(11);
+  for (int n : {5, 6, 12}) {
+    DYNAMIC_SECTION("n = " << n) {
+      const SparseMatrix H = RandomSpd(n, 2 * n, rng);
+      const Eigen::VectorXd b = Eigen::VectorXd::Random(n);
+      SymmetricSolver solver;
+      REQUIRE(solver.Factorize(H));
+      CHECK(std::string(solver.Backend()) == "dense");
+      const Eigen::VectorXd x = solver.Solve(b);
+      CHECK(RelativeResidual(H, x, b) <= 1e-13);
+      const Eigen::VectorXd reference = Eigen::MatrixXd(H).llt().solve(b);
+      CHECK((x - reference).norm() <= 1e-12 * reference.norm());
+      SparseMatrix indefinite = H;
+      indefinite.coeffRef(n / 2, n / 2) = -1.0;
+      CHECK_FALSE(solver.Factorize(indefinite));
+      CHECK(std::string(solver.Backend()) == "none");
+      CHECK_FALSE(solver.Solve(b).allFinite());
+      REQUIRE(solver.Factorize(H));
+      CHECK(RelativeResidual(H, solver.Solve(b), b) <= 1e-13);
+    }
   }
 }
 
