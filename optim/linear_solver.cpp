@@ -41,6 +41,14 @@ bool UseIterative(const LinearSolverSettings& s, Eigen::Index n) {
 // Below this size a dense Cholesky is cheaper than CHOLMOD's setup (a single rigid body: 6 dofs).
 constexpr Eigen::Index kDenseLimit = 48;
 
+// The dense backends' factorization of H into their kept copy: true if positive definite.
+template <typename Matrix, typename Llt>
+bool FactorizeDense(const SparseMatrix& H, Matrix* copy, Llt* llt) {
+  *copy = H;
+  llt->compute(*copy);
+  return llt->info() == Eigen::Success;
+}
+
 }  // namespace
 
 struct SymmetricSolver::Impl {
@@ -133,18 +141,11 @@ bool SymmetricSolver::Factorize(const Eigen::SparseMatrix<double>& H) {
     s.backend = BackendKind::Pcg;
     return true;
   }
-  if (A->rows() == 6) {
-    s.dense6Matrix = *A;
-    s.dense6.compute(s.dense6Matrix);
-    if (s.dense6.info() == Eigen::Success) {
-      s.backend = BackendKind::Dense6;
-      return true;
-    }
-  } else if (A->rows() <= kDenseLimit) {
-    s.denseMatrix = *A;
-    s.dense.compute(s.denseMatrix);
-    if (s.dense.info() == Eigen::Success) {
-      s.backend = BackendKind::Dense;
+  if (A->rows() <= kDenseLimit) {
+    const bool six = A->rows() == 6;
+    if (six ? FactorizeDense(*A, &s.dense6Matrix, &s.dense6)
+            : FactorizeDense(*A, &s.denseMatrix, &s.dense)) {
+      s.backend = six ? BackendKind::Dense6 : BackendKind::Dense;
       return true;
     }
     // Not positive definite: fall through to the sparse backends, which report the same.
