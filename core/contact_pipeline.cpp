@@ -244,6 +244,35 @@ void ContactPipeline::SoftColliderInputs(const SoftColliderPair& sp,
   b->locatorLast = soft.xLast ? &locatorsLast_[sp.collider] : &locators_[sp.collider];
 }
 
+template <typename Id>
+void ContactPipeline::BeginSlips(const DissipationContext* dissipation, SlipPairKind kind,
+                                 size_t n, Id id) {
+  SlipLists& lists = slipLists_[static_cast<int>(kind)];
+  lists.use.assign(n, PairSlipUse());
+  if (!dissipation || !dissipation->slips) return;
+  if (dissipation->recordSlips) {
+    lists.record.assign(n, PairSlips());
+    for (size_t k = 0; k < n; ++k) lists.use[k] = {&lists.record[k], true};
+    return;
+  }
+  for (size_t k = 0; k < n; ++k) {
+    const std::pair<int, int> p = id(k);
+    lists.use[k].slips = dissipation->slips->Find(kind, p.first, p.second);
+  }
+}
+
+template <typename Id>
+void ContactPipeline::EndSlips(const DissipationContext* dissipation, SlipPairKind kind, size_t n,
+                               Id id) {
+  if (!dissipation || !dissipation->slips || !dissipation->recordSlips) return;
+  SlipLists& lists = slipLists_[static_cast<int>(kind)];
+  for (size_t k = 0; k < n; ++k) {
+    if (lists.record[k].samples.empty()) continue;
+    const std::pair<int, int> p = id(k);
+    dissipation->slips->Add(kind, p.first, p.second, std::move(lists.record[k]));
+  }
+}
+
 DissipationSetup ContactPipeline::MakeSetup(const PairContactParams& params,
                                             const DissipationContext& dissipation,
                                             bool isotropicFriction) const {
@@ -307,6 +336,14 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
   // Projected Hessians are the globalization model: the Coulomb term's isotropic majorizer.
   const bool isotropic = potential && projection != PsdProjection::None;
   const std::vector<RigidStageStart>* reference = stageStart;
+  if (dissipation && dissipation->slips && dissipation->recordSlips) dissipation->slips->Clear();
+  const auto rigidId = [&](size_t k) { return std::make_pair(pairs_[k].colliding, pairs_[k].collider); };
+  const auto softId = [&](size_t k) { return std::make_pair(softPairs_[k].soft, softPairs_[k].collider); };
+  const auto onSoftId = [&](size_t k) {
+    const SoftColliderPair& p = softColliderPairs_[k];
+    return std::make_pair(p.collidingSoft ? -1 - p.colliding : p.colliding, p.collider);
+  };
+  BeginSlips(dissipation, SlipPairKind::Rigid, pairs_.size(), rigidId);
 
   auto evaluate = [&](size_t k) {
     const ContactPair& cp = pairs_[k];
@@ -319,7 +356,8 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
     EvaluateRigidPairPenalty(A, poses[cp.colliding], B, poses[cp.collider], B.dynamic, pp, order,
                              &r, cp.params.maxAlignmentNormals, aRef, bRef);
     if (dissipation) {
-      const DissipationSetup setup = MakeSetup(cp.params, *dissipation, isotropic);
+      DissipationSetup setup = MakeSetup(cp.params, *dissipation, isotropic);
+      setup.slips = slipLists_[0].use[k];
       RigidPairDissipation& d = dissipationResults_[k];
       const std::vector<RigidStageStart>& start = *stageStart;
       EvaluateRigidPairDissipation(A, poses[cp.colliding], start[cp.colliding], B,
@@ -335,6 +373,7 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
       ProjectToPsd(&r.hessian, projection == PsdProjection::Abs);
   };
   ForEachPair(pairs_.size(), RigidPairWork() >= kParallelSampleWork, evaluate);
+  EndSlips(dissipation, SlipPairKind::Rigid, pairs_.size(), rigidId);
 
   // Fixed-order reduction.
   double energy = 0.0;
@@ -368,6 +407,7 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
   }
   // Soft colliding actors against rigid colliders, face by face.
   softResults_.resize(softPairs_.size());
+  BeginSlips(dissipation, SlipPairKind::SoftOnRigid, softPairs_.size(), softId);
   auto evaluateSoft = [&](size_t k) {
     const SoftContactPair& sp = softPairs_[k];
     const PenaltyParams pp = PenaltyOf(sp.params);
@@ -379,6 +419,7 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
     const RigidBodyModel& B = models[sp.collider];
     DissipationSetup setup;
     if (dissipation) setup = MakeSetup(sp.params, *dissipation, isotropic);
+    setup.slips = slipLists_[1].use[k];
     const RigidStageStart* b0 = stageStart ? &(*stageStart)[sp.collider] : nullptr;
     SoftPairContact& r = softResults_[k];
     EvaluateSoftRigidPair(in, B, poses[sp.collider], b0, B.dynamic, pp,
@@ -393,6 +434,7 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
     }
   };
   ForEachPair(softPairs_.size(), true, evaluateSoft);
+  EndSlips(dissipation, SlipPairKind::SoftOnRigid, softPairs_.size(), softId);
   st.candidatePairs += static_cast<int>(softPairs_.size());
   for (size_t k = 0; k < softPairs_.size(); ++k) {
     const SoftContactPair& sp = softPairs_[k];
@@ -441,6 +483,7 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
     }
   }
   softColliderResults_.resize(softColliderPairs_.size());
+  BeginSlips(dissipation, SlipPairKind::OnSoft, softColliderPairs_.size(), onSoftId);
   auto evaluateOnSoft = [&](size_t k) {
     const SoftColliderPair& sp = softColliderPairs_[k];
     const PenaltyParams pp = PenaltyOf(sp.params);
@@ -449,6 +492,7 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
     SoftColliderInputs(sp, poses, stageStart, *soft, &a, &b);
     DissipationSetup setup;
     if (dissipation) setup = MakeSetup(sp.params, *dissipation, isotropic);
+    setup.slips = slipLists_[2].use[k];
     SoftColliderPairContact& r = softColliderResults_[k];
     EvaluatePairOnSoftCollider(a, b, pp, sp.params.maxAlignmentNormals,
                                dissipation ? &setup : nullptr, order, &r);
@@ -459,6 +503,8 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
     }
   };
   ForEachPair(softColliderPairs_.size(), true, evaluateOnSoft);
+  EndSlips(dissipation, SlipPairKind::OnSoft, softColliderPairs_.size(), onSoftId);
+  if (dissipation && dissipation->slips && dissipation->recordSlips) dissipation->slips->Seal();
   st.candidatePairs += static_cast<int>(softColliderPairs_.size());
   for (size_t k = 0; k < softColliderPairs_.size(); ++k) {
     const SoftColliderPair& sp = softColliderPairs_[k];

@@ -35,6 +35,10 @@ struct DissipationContext {
   double dt = 0.0;                                      ///< Δt_i [s]
   DissipationMode mode = DissipationMode::ReconstructedLoad;
   bool fadeFriction = true;
+  /// Sensitivities (core/slip_tape.h): record every dissipative sample's slip into *slips
+  /// (`recordSlips`), or evaluate the force about the slips recorded there; null: neither.
+  StageSlips* slips = nullptr;
+  bool recordSlips = false;
 };
 
 /// Ordered pair (A colliding, B collider) with its combined parameters.
@@ -145,6 +149,20 @@ class ContactPipeline {
   std::vector<TetLocator> locators_, locatorsLast_;  // per soft actor
   std::vector<double> softInflation_;
   std::vector<int> dofs_;  // scratch: a face stencil's global dofs
+  // Per pair kind (SlipPairKind): the pairs' slip use in the evaluation under way and, when
+  // recording, their buffers.
+  struct SlipLists {
+    std::vector<PairSlipUse> use;
+    std::vector<PairSlips> record;
+  };
+  SlipLists slipLists_[3];
+  /// Sets slipLists_[kind].use for n pairs named by id(k) = (colliding, collider): buffers to
+  /// record into, the records to read, or none (no dissipation or no slips in the context).
+  template <typename Id>
+  void BeginSlips(const DissipationContext* dissipation, SlipPairKind kind, size_t n, Id id);
+  /// Recording: hands the buffers to the context's record.
+  template <typename Id>
+  void EndSlips(const DissipationContext* dissipation, SlipPairKind kind, size_t n, Id id);
 };
 
 }  // namespace superdex

@@ -204,9 +204,9 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
       const Eigen::Vector3d Y0 = Y0A + R0BinvRA * q.X;
       sample.Y0 = Y0;
       const Eigen::Vector3d V = (Y - Y0) / dt;
-      const DissipationDensity D =
-          EvaluateDissipation(lambdaHat, N, V, setup.coefficients,
-                              setup.HessianKind(explicitNormals && order >= 2));
+      const DissipationDensity D = EvaluateSampleDissipation(
+          lambdaHat, N, V, setup.coefficients, setup.HessianKind(explicitNormals && order >= 2),
+          setup.slips, k);
       out->value += q.weight * dt * D.R;
       if (setup.coefficients.mu > 0.0 && lambdaHat > 0.0)
         out->maxCoulombRatio = std::max(

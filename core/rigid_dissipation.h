@@ -28,6 +28,7 @@
 
 #include "core/rigid_body.h"
 #include "core/rigid_contact.h"
+#include "core/slip_tape.h"
 #include "energies/contact_dissipation.h"
 #include "energies/normal_penalty.h"
 #include "energies/stencil.h"
@@ -58,6 +59,8 @@ struct DissipationSetup {
   /// (DissipationHessian::Isotropic) instead of the exact curvature: the contact pipeline sets
   /// it when the caller asks for projected Hessians (the globalization phase of projected Newton).
   bool isotropicFrictionHessian = false;
+  /// Sensitivities: the samples' recorded slips, recorded or linearized about (core/slip_tape.h).
+  PairSlipUse slips;
   /// The kind of EvaluateDissipation Hessian a sample needs (`wanted`: a Hessian at all).
   DissipationHessian HessianKind(bool wanted) const {
     if (!wanted) return DissipationHessian::None;

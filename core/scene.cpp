@@ -517,8 +517,12 @@ void Scene::RecordStage(const StageTargets& targets, const StageDissipation& dis
   // problem commits into the vectors it is given).
   std::vector<RigidPose> at = poses;
   std::vector<Eigen::VectorXd> softAt = e.softX;
+  StageDissipation recording = dissipation;
+  e.slips.Clear();
+  recording.slips = &e.slips;
+  recording.recordSlips = true;
   SceneStageProblem problem(models_, dofOffset_, numDofs_, targets, settings_.gravity, &pipeline_,
-                            &at, dissipation, soft, softX ? &softAt : nullptr, &workspace_);
+                            &at, recording, soft, softX ? &softAt : nullptr, &workspace_);
   Eigen::VectorXd r;
   Eigen::SparseMatrix<double> J;
   problem.EvaluateResidual(&r, &J);
@@ -538,6 +542,7 @@ void Scene::TapedStage(const StageTargets& targets, const StageDissipation& diss
   }
   StageDissipation d = dissipation;
   d.mode = e.mode;
+  d.slips = &e.slips;
   SceneStageProblem problem(models_, dofOffset_, numDofs_, targets, settings_.gravity, &pipeline_,
                             poses, d, soft, softX, &workspace_);
   if (tapeMode_ == TapeMode::Replay) {  // one Newton step with the recorded factors

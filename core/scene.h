@@ -98,6 +98,9 @@ struct StageTapeEntry {
   /// (the stage's chart, δ = [δp, δθ] per dynamic body, δx per free soft node; empty = 0), and
   /// the stage residual there, with the inputs of the perturbed step, is kept in `residual`.
   Eigen::VectorXd inject, residual;
+  /// The dissipative samples' slips at the solution (core/slip_tape.h): the replays and injected
+  /// runs evaluate the friction force about them.
+  StageSlips slips;
 };
 struct StepTape {
   std::vector<StageTapeEntry> stages;  ///< kept from step to step (symbolic analyses reused)

@@ -24,6 +24,7 @@ struct SceneReplica {
       to.poses = from.poses;
       to.softX = from.softX;
       to.mode = from.mode;
+      to.slips = from.slips;
       to.factored = factor && from.factored && to.lu->Factorize(from.jacobian);
     }
   }

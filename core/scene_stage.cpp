@@ -41,6 +41,8 @@ SceneStageProblem::SceneStageProblem(const std::vector<RigidBodyModel>& models,
   context_.dt = targets_.dt;
   context_.mode = dissipation_.mode;
   context_.fadeFriction = dissipation_.fadeFriction;
+  context_.slips = dissipation_.slips;
+  context_.recordSlips = dissipation_.recordSlips;
 }
 
 bool SceneStageProblem::IsPotential() const {

@@ -33,6 +33,8 @@ struct StageDissipation {
   bool enabled = false;
   DissipationMode mode = DissipationMode::ReconstructedLoad;
   bool fadeFriction = true;
+  StageSlips* slips = nullptr;  ///< DissipationContext::slips (sensitivities)
+  bool recordSlips = false;
 };
 
 /// The soft actors of a stage: models, their first dof, and per actor the stage data.

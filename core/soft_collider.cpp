@@ -179,6 +179,7 @@ struct CurrentModeSample {
 struct SamplePoint {
   SampleKinematics kin;
   int face = -1;
+  int key = 0;  // the sample's index in A's sample list (core/slip_tape.h)
   double weight = 0.0;
   Eigen::Vector3d y, yn, y0;  // current, last, stage start [m]
   Eigen::Vector3d n, nn;      // A's outward normal now and at x_n (unit)
@@ -302,8 +303,8 @@ void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput
         return;
       const Eigen::Vector3d N = SplitDirection(f0.gradient, NA0, ds);
       const Eigen::Vector3d V = (pbc.X - pb0.X) / ds.dt;
-      const DissipationDensity D = EvaluateDissipation(lambdaHat, N, V, ds.coefficients,
-                                                       ds.HessianKind(order >= 2));
+      const DissipationDensity D = EvaluateSampleDissipation(
+          lambdaHat, N, V, ds.coefficients, ds.HessianKind(order >= 2), ds.slips, sp.key);
       ++out->dissipativeSamples;
       out->dissipationValue += w * ds.dt * D.R;
       if (ds.coefficients.mu > 0.0)
@@ -333,7 +334,8 @@ void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput
     if (lambdaHat == 0.0) return;
     const Eigen::Vector3d N = SplitDirection(field.gradient, NA, ds);
     const Eigen::Vector3d V = (pb.X - pb0.X) / ds.dt;
-    const DissipationDensity D = EvaluateDissipation(lambdaHat, N, V, ds.coefficients, DissipationHessian::None);
+    const DissipationDensity D = EvaluateSampleDissipation(
+        lambdaHat, N, V, ds.coefficients, DissipationHessian::None, ds.slips, sp.key);
     ++out->dissipativeSamples;
     out->dissipationValue += w * ds.dt * D.R;
     if (ds.coefficients.mu > 0.0)
@@ -375,7 +377,9 @@ void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput
     const RigidPose& a = *A.pose;
     const RigidPose& an = A.start ? A.start->last : a;
     sp.kin.rigid = true;
-    for (const SurfaceSample& s : M.samples) {
+    for (size_t k = 0; k < M.samples.size(); ++k) {
+      const SurfaceSample& s = M.samples[k];
+      sp.key = static_cast<int>(k);
       sp.kin.r = a.R * s.X;
       sp.y = a.p + sp.kin.r;
       sp.yn = an.p + an.R * s.X;
@@ -406,6 +410,7 @@ void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput
       sp.face = static_cast<int>(f);
       for (int q = M.faceSampleBegin[f]; q < M.faceSampleBegin[f + 1]; ++q) {
         const SoftSurfaceSample& s = M.samples[q];
+        sp.key = q;
         sp.kin.bary = s.bary;
         sp.y.setZero();
         sp.yn.setZero();

@@ -239,9 +239,9 @@ void EvaluateSoftRigidPair(const SoftPairInput& in, const RigidBodyModel& B, con
       const Eigen::Vector3d y0 = w3[0] * x0s[0] + w3[1] * x0s[1] + w3[2] * x0s[2];
       const Eigen::Vector3d Y0 = b0->Rinv * (y0 - b0->p);
       const Eigen::Vector3d V = (Y - Y0) / ds.dt;
-      const DissipationDensity D =
-          EvaluateDissipation(lambdaHat, N, V, ds.coefficients,
-                              ds.HessianKind(explicitNormals && order >= 2));
+      const DissipationDensity D = EvaluateSampleDissipation(
+          lambdaHat, N, V, ds.coefficients, ds.HessianKind(explicitNormals && order >= 2),
+          ds.slips, q);
       ++out->dissipativeSamples;
       fc.dissipationActive = true;
       out->dissipationValue += s.weight * ds.dt * D.R;

@@ -25,14 +25,24 @@ FrictionRamp EvaluateFrictionRamp(double V, double vf) {
 
 DissipationDensity EvaluateDissipation(double lambdaHat, const Eigen::Vector3d& N,
                                        const Eigen::Vector3d& V, const DissipationCoefficients& c,
-                                       DissipationHessian hessian) {
+                                       DissipationHessian hessian,
+                                       const SlipReference* slip) {
   DissipationDensity d;
   const double Vn = V.dot(N);
   const Eigen::Vector3d Vt = V - Vn * N;
   const double speed = Vt.norm();
   const FrictionRamp f = EvaluateFrictionRamp(speed, c.vf);
   d.R = lambdaHat * (c.mu * f.rho + 0.5 * c.ct * speed * speed + 0.5 * c.cn * Vn * Vn);
-  d.coulomb = -lambdaHat * c.mu * f.slope * Vt;
+  double slope = f.slope;
+  if (slip) {
+    // The reference's branch, V_t → t*·V_t: 1/V_t sliding (smooth away from V_t = 0, which a
+    // sliding reference is far from), 2/V_f − t*·V_t/V_f² in the stick band.
+    if (slip->sliding)
+      slope = speed > 0.0 ? 1.0 / speed : 0.0;
+    else
+      slope = (2.0 - slip->direction.dot(Vt) / c.vf) / c.vf;
+  }
+  d.coulomb = -lambdaHat * c.mu * slope * Vt;
   d.viscousTangential = -lambdaHat * c.ct * Vt;
   d.viscousNormal = -lambdaHat * c.cn * Vn * N;
   d.gradient = -(d.coulomb + d.viscousTangential + d.viscousNormal);
@@ -46,6 +56,15 @@ DissipationDensity EvaluateDissipation(double lambdaHat, const Eigen::Vector3d& 
     }
   }
   return d;
+}
+
+SlipReference SlipAt(const Eigen::Vector3d& N, const Eigen::Vector3d& V, double vf) {
+  const Eigen::Vector3d Vt = V - V.dot(N) * N;
+  const double speed = Vt.norm();
+  SlipReference s;
+  if (speed > 0.0) s.direction = Vt / speed;
+  s.sliding = speed >= vf;
+  return s;
 }
 
 double HuntCrossleyDampingFromRestitution(double e, double v) {

@@ -52,6 +52,20 @@ enum class DissipationHessian {
   Isotropic,
 };
 
+/// A recorded slip of one sample (sensitivities, core/slip_tape.h): the direction t* = V_t/V_t of
+/// its tangential velocity at a reference point (0 where V_t = 0) and whether V_t >= V_f there.
+///
+/// ∂R/∂V_rel is only C¹ in V_rel: the Coulomb slope ρ'(V_t)/V_t = 2/V_f − V_t/V_f² (V_t < V_f)
+/// has a kink at V_t = 0 (and ρ'' one at V_f), so central differences of the dissipative force
+/// across V_t ≈ 0 carry an O(η/V_f) error that no extrapolation removes. With a reference, the
+/// slope is evaluated on the reference's branch with V_t replaced by its linearization about
+/// the reference, t*·V_t (= V_t there): the force keeps its value and first derivatives in every
+/// argument at the reference and is smooth (a quadratic in V_t on the stick branch) about it.
+struct SlipReference {
+  Eigen::Vector3d direction = Eigen::Vector3d::Zero();  ///< t* [-]
+  bool sliding = false;                                 ///< V_t >= V_f at the reference
+};
+
 /// R, ∂R/∂V_rel = −T_diss and ∂²R/∂V_rel² (symmetric positive semi-definite) at fixed λ̂_n, N.
 struct DissipationDensity {
   double R = 0.0;                                  ///< [Pa·m/s]
@@ -61,9 +75,15 @@ struct DissipationDensity {
   Eigen::Vector3d viscousTangential = Eigen::Vector3d::Zero();///< T_v,t [Pa]
   Eigen::Vector3d viscousNormal = Eigen::Vector3d::Zero();    ///< T_v,n [Pa]
 };
+/// With `slip` (a recorded reference, SlipReference) the Coulomb traction, and with it the
+/// gradient, use the linearized slope about the reference; R and the Hessian stay exact (only
+/// the force is differenced).
 DissipationDensity EvaluateDissipation(double lambdaHat, const Eigen::Vector3d& N,
                                        const Eigen::Vector3d& V, const DissipationCoefficients& c,
-                                       DissipationHessian hessian);
+                                       DissipationHessian hessian,
+                                       const SlipReference* slip = nullptr);
+/// The slip reference of a sample at (N, V): its tangential direction and branch.
+SlipReference SlipAt(const Eigen::Vector3d& N, const Eigen::Vector3d& V, double vf);
 
 /// ∂R/∂V_rel for any scalar type (double or an automatic-differentiation jet), for callers that
 /// differentiate through λ̂_n and N as well. `value` extracts the double value of a T.
