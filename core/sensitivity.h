@@ -19,11 +19,15 @@
 // tests/core/test_sensitivity.cpp). The partials ∂r/∂inputs are therefore not formed
 // symbolically: the method is exact in the IFT and second-order accurate in those partials.
 //
+// The friction force is only C¹ in the slip velocity (kinks of its Jacobian at V_t = 0, where
+// resting and sticking samples sit, and at V_t = V_f): differences across them would be O(η/V_f)
+// off, so every replay evaluates the force about the slips recorded at the solution (the same
+// value and first derivatives there, smooth around it; core/slip_tape.h).
 // Non-smooth points of the discrete map, handled as they fall: the contact set (samples within
 // δ) changes smoothly through the C² penalty ramp; the alignment and contact-set decisions taken
-// at the stage start (explicit normals), the ρ join at |V_t| = V_f (C¹), and the fallback of a
-// failed residual solve to explicit normals are not differentiable — a step that crosses one
-// gives the derivative of the branch it took. The pair value of μ, c_t and c_n is √(c_A c_B),
+// at the stage start (explicit normals) and the fallback of a failed residual solve to explicit
+// normals are not differentiable — a step that crosses one gives the derivative of the branch it
+// took. The pair value of μ, c_t and c_n is √(c_A c_B),
 // not differentiable at 0: those parameters are differentiated at positive values only.
 #pragma once
 
