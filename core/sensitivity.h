@@ -85,7 +85,7 @@ Eigen::VectorXd InitialStateDirection(Scene& scene, const SceneParameter& p);
 /// masses' weights; all zero for a static actor).
 Eigen::SparseMatrix<double> CenterOfMassMap(Scene& scene, ActorHandle a);
 /// The state step η of the central differences of the step map [m] (velocities: η/dt [m/s]):
-/// 0.012 V_f min Δt_i, smallest V_f over the actors, smallest stage step of the method.
+/// 0.024 V_f min Δt_i, smallest V_f over the actors, smallest stage step of the method.
 double DifferenceStateStep(const Scene& scene, double dt);
 
 /// Forward sensitivities for a few parameters, carried along a simulation. With 4 or more
