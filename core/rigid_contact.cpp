@@ -108,6 +108,67 @@ void AddFunctionOfPullback(const Eigen::Vector3d& r, const Eigen::Vector3d& d,
   AddFunctionOfPullbackTo(r, d, RB, gY, HY, bDynamic, w, grad, hess);
 }
 
+void PairHessianSums::Add(const Eigen::Vector3d& rB, const Eigen::Vector3d& gY,
+                          const Eigen::Matrix3d& HY, double w) {
+  const Eigen::Matrix3d K = -Skew(rB);
+  const Eigen::Matrix3d H = w * HY;
+  const Eigen::Matrix3d HK = TimesSkew(H, K);
+  H0_ += H;
+  H1_ += HK;
+  H2_ += SkewTransposeTimes(K, HK);
+  const Eigen::Vector3d g = w * gY;
+  P_ += g * rB.transpose();
+  N_ += g;
+  empty_ = false;
+}
+
+void PairHessianSums::AddTo(const Eigen::Matrix3d& RB, const Eigen::Vector3d& c, bool bDynamic,
+                            PairMatrix* hess) const {
+  if (empty_) return;
+  const Eigen::Matrix3d RBt = RB.transpose();
+  const Eigen::Matrix3d A0 = RB * H0_ * RBt, A1 = RB * H1_ * RBt, A2 = RB * H2_ * RBt;
+  const Eigen::Matrix3d P = RB * P_ * RBt;  // Σ w n rᵀ (world)
+  const Eigen::Vector3d N = RB * N_;         // Σ w n
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  // The retraction curvature Σ (sym(n rᵀ) − (n·r) I) of the rotation block.
+  const double pr = P.trace();
+  hess->block<3, 3>(0, 0) += A0;
+  hess->block<3, 3>(0, 3) += A1;
+  hess->block<3, 3>(3, 0) += A1.transpose();
+  hess->block<3, 3>(3, 3) += A2 + 0.5 * (P + P.transpose()) - pr * I;
+  if (!bDynamic) return;
+  const Eigen::Matrix3d Kc = Skew(c);
+  const Eigen::Matrix3d A0Kc = A0 * Kc;                 // Σ Hw [c]×
+  const Eigen::Matrix3d HKd = A0Kc - A1;               // Σ Hw K_d, K_d = [d]× = [c]× − K_r
+  const Eigen::Matrix3d KrHKd = A1.transpose() * Kc - A2;  // Σ K_rᵀ Hw K_d
+  const Eigen::Matrix3d KdHKd =
+      Kc.transpose() * A0Kc - Kc.transpose() * A1 - A1.transpose() * Kc + A2;
+  hess->block<3, 3>(0, 6) -= A0;
+  hess->block<3, 3>(0, 9) += HKd;
+  hess->block<3, 3>(3, 6) -= A1.transpose();
+  hess->block<3, 3>(3, 9) += KrHKd;
+  hess->block<3, 3>(6, 0) -= A0;
+  hess->block<3, 3>(6, 3) -= A1;
+  hess->block<3, 3>(6, 6) += A0;
+  hess->block<3, 3>(6, 9) -= HKd;
+  hess->block<3, 3>(9, 0) += HKd.transpose();
+  hess->block<3, 3>(9, 3) += KrHKd.transpose();
+  hess->block<3, 3>(9, 6) -= HKd.transpose();
+  hess->block<3, 3>(9, 9) += KdHKd;
+  // Retraction curvature: Σ n dᵀ = N cᵀ + P; the [n]× couplings of B's rotation with the
+  // translations; C = Σ ((n·r) I − r nᵀ) = tr(P) I − Pᵀ.
+  const Eigen::Matrix3d Pd = N * c.transpose() + P;
+  hess->block<3, 3>(9, 9) += 0.5 * (Pd + Pd.transpose()) - Pd.trace() * I;
+  const Eigen::Matrix3d Nx = Skew(N);
+  hess->block<3, 3>(9, 0) += Nx;
+  hess->block<3, 3>(0, 9) += Nx.transpose();
+  hess->block<3, 3>(9, 6) -= Nx;
+  hess->block<3, 3>(6, 9) -= Nx.transpose();
+  const Eigen::Matrix3d C = pr * I - P.transpose();
+  hess->block<3, 3>(9, 3) += C;
+  hess->block<3, 3>(3, 9) += C.transpose();
+}
+
 void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& a, const RigidBodyModel& B,
                               const RigidPose& b, bool bDynamic, const PenaltyParams& params,
                               int order, RigidPairPenalty* out, double maxAlignment,
@@ -139,6 +200,7 @@ void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& a, const
   auto near = [&](const Eigen::Vector3d& center, double radius) {
     return B.collider.Value(YA + RBtRA * center) - L * radius < delta;
   };
+  PairHessianSums sums;
   ForEachSampleRange(A, near, [&](int begin, int end) {
     for (int k = begin; k < end; ++k) {
       const SurfaceSample& s = A.samples[k];
@@ -174,12 +236,15 @@ void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& a, const
       const Eigen::Vector3d gY = W.dW * f.gradient;
       Eigen::Matrix3d HY;
       if (order >= 2) HY = W.d2W * f.gradient * f.gradient.transpose() + W.dW * f.hessian;
-      AddFunctionOfPullback(r, d, b.R, gY, order >= 2 ? &HY : nullptr, bDynamic, s.weight,
-                            &gradient, order >= 2 ? &hessian : nullptr);
+      AddFunctionOfPullback(r, d, b.R, gY, nullptr, bDynamic, s.weight, &gradient, nullptr);
+      if (order >= 2) sums.Add(Y - YA, gY, HY, s.weight);
     }
   });
   out->gradient = gradient.head(n);
-  if (order >= 2) out->hessian = hessian.topLeftCorner(n, n);
+  if (order >= 2) {
+    sums.AddTo(b.R, a.p - b.p, bDynamic, &hessian);
+    out->hessian = hessian.topLeftCorner(n, n);
+  }
 }
 
 double RigidPairStepLimit(const RigidBodyModel& A, const RigidPose& a0, const RigidPose& a1,

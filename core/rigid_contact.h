@@ -103,4 +103,29 @@ void AddFunctionOfPullback(const Eigen::Vector3d& r, const Eigen::Vector3d& d,
                            const Eigen::Matrix3d* HY, bool bDynamic, double w, PairVector* grad,
                            PairMatrix* hess);
 
+/// The Hessian part of AddFunctionOfPullback summed over a pair's samples as moments in B's
+/// frame, mapped to the stencil once per pair. With r_B = R_Bᵀ r (= Y − Y_A, Y_A = R_Bᵀ(p_A − p_B)),
+/// K = −[r_B]× and c = p_A − p_B (world, so that d = c + r):
+///   H₀ = Σ w H_Y,  H₁ = Σ w H_Y K,  H₂ = Σ w Kᵀ H_Y K,  P = Σ w g_Y r_Bᵀ,  N = Σ w g_Y,
+/// and with A_k = R_B H_k R_Bᵀ, the stencil blocks are the per-sample sums of AddFunctionOfPullback
+/// regrouped: e.g. Σ Hw [d]× = A₀ [c]× − A₁, Σ [d]×ᵀ Hw [d]× = [c]×ᵀA₀[c]× − [c]×ᵀA₁ − A₁ᵀ[c]× + A₂,
+/// and the retraction curvature from R_B P R_Bᵀ and R_B N. Per sample 2 skew products and two
+/// outer products instead of the 12 × 12 stencil's 16 blocks; the same Hessian up to rounding
+/// (tests/core/test_rigid_contact.cpp). H_Y must be symmetric.
+class PairHessianSums {
+ public:
+  void Add(const Eigen::Vector3d& rB, const Eigen::Vector3d& gY, const Eigen::Matrix3d& HY,
+           double w);
+  /// Adds the summed Hessian to *hess (the first 6 × 6 block with a static B).
+  void AddTo(const Eigen::Matrix3d& RB, const Eigen::Vector3d& c, bool bDynamic,
+             PairMatrix* hess) const;
+  bool Empty() const { return empty_; }
+
+ private:
+  Eigen::Matrix3d H0_ = Eigen::Matrix3d::Zero(), H1_ = Eigen::Matrix3d::Zero(),
+                  H2_ = Eigen::Matrix3d::Zero(), P_ = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d N_ = Eigen::Vector3d::Zero();
+  bool empty_ = true;
+};
+
 }  // namespace superdex

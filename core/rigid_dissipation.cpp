@@ -157,6 +157,7 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
   PairVector residual = PairVector::Zero();
   PairMatrix jacobian;
   if (order >= 2) jacobian.setZero();
+  PairHessianSums sums;  // explicit normals: the Hessian of the potential
   ForEachSampleRange(A, near, [&](int begin, int end) {
     for (int k = begin; k < end; ++k) {
       const SurfaceSample& q = A.samples[k];
@@ -216,9 +217,9 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
       const Eigen::Vector3d d = a.p + r - b.p;
       if (explicitNormals) {
         // ∂(Δt R)/∂Y = ∂R/∂V;  ∂²(Δt R)/∂Y² = ∂²R/∂V² / Δt.
-        const Eigen::Matrix3d HY = D.hessian / dt;
-        AddFunctionOfPullback(r, d, b.R, D.gradient, order >= 2 ? &HY : nullptr, bDynamic,
-                              q.weight, &residual, order >= 2 ? &jacobian : nullptr);
+        AddFunctionOfPullback(r, d, b.R, D.gradient, nullptr, bDynamic, q.weight, &residual,
+                              nullptr);
+        if (order >= 2) sums.Add(Y - YA, D.gradient, D.hessian / dt, q.weight);
       } else {
         AddFunctionOfPullback(r, d, b.R, D.gradient, nullptr, bDynamic, q.weight, &residual,
                               nullptr);
@@ -227,7 +228,10 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
     }
   });
   out->residual = residual.head(n);
-  if (order >= 2) out->jacobian = jacobian.topLeftCorner(n, n);
+  if (order >= 2) {
+    sums.AddTo(b.R, a.p - b.p, bDynamic, &jacobian);
+    out->jacobian = jacobian.topLeftCorner(n, n);
+  }
 }
 
 }  // namespace superdex

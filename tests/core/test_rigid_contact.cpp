@@ -176,6 +176,46 @@ TEST_CASE("AddFunctionOfPullback: the block assembly equals the full stencil pro
   }
 }
 
+TEST_CASE("PairHessianSums: a pair's summed Hessian equals the per-sample pullback Hessians",
+          "[core][contact]") {
+  // 40 samples of one pair (symmetric H_Y, as the penalty and the explicit-normals dissipation
+  // give) against Σ AddFunctionOfPullback: the same sums regrouped, equal to rounding.
+  std::mt19937 rng(13);
+  std::normal_distribution<double> n01;
+  auto vec = [&]() { return Eigen::Vector3d(n01(rng), n01(rng), n01(rng)); };
+  for (int trial = 0; trial < 10; ++trial) {
+    const Eigen::Matrix3d RB = ExpSo3(vec());
+    const Eigen::Vector3d c = 2.0 * vec();  // p_A − p_B
+    for (bool bDynamic : {false, true}) {
+      const int n = bDynamic ? 12 : 6;
+      PairVector grad = PairVector::Zero();
+      PairMatrix reference = PairMatrix::Zero(), summed = PairMatrix::Zero();
+      PairHessianSums sums;
+      CHECK(sums.Empty());
+      for (int k = 0; k < 40; ++k) {
+        const Eigen::Vector3d rB = 0.3 * vec(), gY = 1e3 * vec();
+        Eigen::Matrix3d M;
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) M(i, j) = n01(rng);
+        const Eigen::Matrix3d HY = 1e6 * (M + M.transpose());
+        const double w = std::abs(n01(rng)) * 1e-3;
+        const Eigen::Vector3d r = RB * rB;
+        AddFunctionOfPullback(r, c + r, RB, gY, &HY, bDynamic, w, &grad, &reference);
+        sums.Add(rB, gY, HY, w);
+      }
+      sums.AddTo(RB, c, bDynamic, &summed);
+      INFO("trial " << trial << (bDynamic ? ", dynamic B" : ", static B"));
+      const double scale = reference.topLeftCorner(n, n).norm();
+      CHECK((summed - reference).topLeftCorner(n, n).norm() <= 1e-13 * scale);
+      if (!bDynamic) CHECK(summed.bottomRows(6).norm() == 0.0);
+      // Mutation check: a wrong lever arm (c off by 1 mm) is visible at this tolerance.
+      PairMatrix shifted = PairMatrix::Zero();
+      sums.AddTo(RB, c + Eigen::Vector3d(1e-3, 0, 0), bDynamic, &shifted);
+      if (bDynamic) CHECK((shifted - reference).topLeftCorner(n, n).norm() > 1e-8 * scale);
+    }
+  }
+}
+
 TEST_CASE("Step limit: a sample's penetration depth may at most double (or reach eps/2) per step",
           "[core][contact]") {
   PairCase c{Build(Sphere(0.05, 2), true), Build(Box({1, 1, 0.1}, 2), false), {}, {}, false};
