@@ -43,6 +43,15 @@ struct CurrentModeSample {
   ///   dY = R_Bᵀ (δp_A − [r]× δθ_A − δp_B + [d]× δθ_B),   dN_A = R_Bᵀ [n_w]× (δθ_B − δθ_A),
   ///   df = R_B (G_Y dY + G_N dN_A) − [f]× δθ_B,   dr = −[r]× δθ_A,   dd = δp_A − [r]× δθ_A − δp_B,
   ///   d(r × f) = [r]× df − [f]× dr,   d(−d × f) = [f]× dd − [d]× df        (n_w = R_A n_A).
+  /// The same Jacobian summed per pair (PairForceJacobianSums; rB = R_Bᵀ R_A X).
+  void AddTo(double w, const Eigen::Vector3d& rB, PairForceJacobianSums* sums) const {
+    const Eigen::Matrix3d RBt = b->R.transpose();
+    const Eigen::Vector3d nB = RBt * (a->R * normal);
+    const CurrentModeLinearization lin =
+        LinearizeCurrentModeGradient(Y, nB, field, Yn, Y0, *setup);
+    sums->Add(rB, nB, lin.g, lin.GY, lin.GN, w);
+  }
+
   void AddJacobian(double w, PairMatrix* J) const {
     const Eigen::Matrix3d& RB = b->R;
     const Eigen::Vector3d r = a->R * X;
@@ -94,6 +103,61 @@ void AddForceJacobian(const Eigen::Vector3d& r, const Eigen::Vector3d& d, const 
   row.middleCols<3>(6) = -Sf - SdDf.middleCols<3>(6);
   row.rightCols<3>() = -SdDf.rightCols<3>();
   J->block<3, 12>(9, 0) += w * row;
+}
+
+void PairForceJacobianSums::Add(const Eigen::Vector3d& rB, const Eigen::Vector3d& nB,
+                                const Eigen::Vector3d& g, const Eigen::Matrix3d& GY,
+                                const Eigen::Matrix3d& GN, double w) {
+  const Eigen::Matrix3d S = Skew(rB);
+  const Eigen::Matrix3d M = w * GY;
+  const Eigen::Matrix3d Q = SkewTimes<3>(Skew(nB).transpose(), (w * GN).transpose()).transpose();
+  const Eigen::Vector3d wg = w * g;
+  const Eigen::Matrix3d MS = SkewTimes<3>(S.transpose(), M.transpose()).transpose();  // M S
+  M_ += M;
+  MS_ += MS;
+  SM_ += SkewTimes<3>(S, M);
+  SMS_ += SkewTimes<3>(S, MS);
+  Q_ += Q;
+  SQ_ += SkewTimes<3>(S, Q);
+  F_ += Skew(wg);
+  // [a]×[b]× = b aᵀ − (a·b) I.
+  const double ab = wg.dot(rB);
+  FS_ += rB * wg.transpose() - ab * Eigen::Matrix3d::Identity();
+  SF_ += wg * rB.transpose() - ab * Eigen::Matrix3d::Identity();
+  empty_ = false;
+}
+
+void PairForceJacobianSums::AddTo(const Eigen::Matrix3d& RB, const Eigen::Vector3d& c,
+                                  bool bDynamic, PairMatrix* J) const {
+  if (empty_) return;
+  const Eigen::Matrix3d RBt = RB.transpose();
+  auto world = [&](const Eigen::Matrix3d& X) -> Eigen::Matrix3d { return RB * X * RBt; };
+  const Eigen::Matrix3d M = world(M_), MS = world(MS_), SM = world(SM_), SMS = world(SMS_),
+                        Q = world(Q_), SQ = world(SQ_), FS = world(FS_);
+  J->block<3, 3>(0, 0) += M;
+  J->block<3, 3>(0, 3) -= MS + Q;
+  J->block<3, 3>(3, 0) += SM;
+  J->block<3, 3>(3, 3) += FS - SMS - SQ;
+  if (!bDynamic) return;
+  const Eigen::Matrix3d F = world(F_), SF = world(SF_);
+  const Eigen::Matrix3d Sc = Skew(c);
+  // The rows [df; [r]× df − [f]× dr; −df; [f]× dd − [d]× df] summed over the samples, with df's
+  // last block M [d]× + Q − F = M [c]× + MS + Q − F and [d]× X summed as [c]× ΣX + Σ S X.
+  const Eigen::Matrix3d D9 = M * Sc + MS + Q - F;   // Σ w df₉
+  const Eigen::Matrix3d SD9 = SM * Sc + SMS + SQ - SF;  // Σ [r]× w df₉
+  J->block<3, 3>(0, 6) -= M;
+  J->block<3, 3>(0, 9) += D9;
+  J->block<3, 3>(3, 6) -= SM;
+  J->block<3, 3>(3, 9) += SD9;
+  J->block<3, 3>(6, 0) -= M;
+  J->block<3, 3>(6, 3) += MS + Q;
+  J->block<3, 3>(6, 6) += M;
+  J->block<3, 3>(6, 9) -= D9;
+  const Eigen::Matrix3d dM = Sc * M + SM;  // Σ [d]× M
+  J->block<3, 3>(9, 0) += F - dM;
+  J->block<3, 3>(9, 3) += Sc * (MS + Q) + SMS + SQ - FS;
+  J->block<3, 3>(9, 6) += dM - F;
+  J->block<3, 3>(9, 9) -= Sc * D9 + SD9;
 }
 
 const char* ToString(DissipationMode mode) {
@@ -158,6 +222,7 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
   PairMatrix jacobian;
   if (order >= 2) jacobian.setZero();
   PairHessianSums sums;  // explicit normals: the Hessian of the potential
+  PairForceJacobianSums forceSums;  // current modes: the residual's Jacobian
   ForEachSampleRange(A, near, [&](int begin, int end) {
     for (int k = begin; k < end; ++k) {
       const SurfaceSample& q = A.samples[k];
@@ -223,13 +288,14 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
       } else {
         AddFunctionOfPullback(r, d, b.R, D.gradient, nullptr, bDynamic, q.weight, &residual,
                               nullptr);
-        if (order >= 2) sample.AddJacobian(q.weight, &jacobian);
+        if (order >= 2) sample.AddTo(q.weight, Y - YA, &forceSums);
       }
     }
   });
   out->residual = residual.head(n);
   if (order >= 2) {
     sums.AddTo(b.R, a.p - b.p, bDynamic, &jacobian);
+    forceSums.AddTo(b.R, a.p - b.p, bDynamic, &jacobian);
     out->jacobian = jacobian.topLeftCorner(n, n);
   }
 }

@@ -84,6 +84,31 @@ void AddForceJacobian(const Eigen::Vector3d& r, const Eigen::Vector3d& d, const 
                       const Eigen::Matrix<double, 3, 12>& df, bool bDynamic, double w,
                       PairMatrix* J);
 
+/// Σ over a pair's samples of AddForceJacobian for a current-geometry mode's force
+/// f = R_B g(Y, N_A), whose differential is df = [R_B G_Y R_Bᵀ, −R_B G_Y R_Bᵀ[r]× − R_B G_N R_Bᵀ[n]×,
+/// −R_B G_Y R_Bᵀ, R_B G_Y R_Bᵀ[d]× + R_B G_N R_Bᵀ[n]× − [f]×] (CurrentModeLinearization's g, G_Y, G_N),
+/// accumulated as moments in B's frame and mapped to the stencil once per pair. With S = [r_B]×,
+/// M = w G_Y, Q = w G_N [n_B]×, F = w [g]× per sample: Σ M, Σ MS, Σ SM, Σ SMS, Σ Q, Σ SQ, Σ F,
+/// Σ FS, Σ SF, rotated by R_B, and [d]× = [c]× + [r]× (c = p_A − p_B) regrouped. Equal to the
+/// per-sample AddForceJacobian up to rounding (tests/core/test_rigid_dissipation.cpp).
+class PairForceJacobianSums {
+ public:
+  /// One sample: r_B = R_Bᵀ r, n_B = R_Bᵀ n_w (the kernel's N_A), the kernel's g, G_Y, G_N.
+  void Add(const Eigen::Vector3d& rB, const Eigen::Vector3d& nB, const Eigen::Vector3d& g,
+           const Eigen::Matrix3d& GY, const Eigen::Matrix3d& GN, double w);
+  /// Adds the summed Jacobian to *J (the first 6 × 6 block with a static B).
+  void AddTo(const Eigen::Matrix3d& RB, const Eigen::Vector3d& c, bool bDynamic,
+             PairMatrix* J) const;
+
+ private:
+  Eigen::Matrix3d M_ = Eigen::Matrix3d::Zero(), MS_ = Eigen::Matrix3d::Zero(),
+                  SM_ = Eigen::Matrix3d::Zero(), SMS_ = Eigen::Matrix3d::Zero(),
+                  Q_ = Eigen::Matrix3d::Zero(), SQ_ = Eigen::Matrix3d::Zero(),
+                  F_ = Eigen::Matrix3d::Zero(), FS_ = Eigen::Matrix3d::Zero(),
+                  SF_ = Eigen::Matrix3d::Zero();
+  bool empty_ = true;
+};
+
 /// order: 0 value only, 1 with the residual, 2 with the residual and its Jacobian.
 void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
                                   const RigidStageStart& a0, const RigidBodyModel& B,

@@ -97,6 +97,51 @@ void CheckCase(const Case& c) {
 
 }  // namespace
 
+TEST_CASE("PairForceJacobianSums: a pair's summed force Jacobian equals the per-sample one",
+          "[core][dissipation]") {
+  // 40 samples of one pair with the current-mode kernel's df (rigid_dissipation.h) built per
+  // sample in world coordinates and assembled by AddForceJacobian, against the moments summed in
+  // B's frame: the same sums regrouped, equal to rounding.
+  std::mt19937 rng(17);
+  std::normal_distribution<double> n01;
+  auto vec = [&]() { return Eigen::Vector3d(n01(rng), n01(rng), n01(rng)); };
+  auto mat = [&]() {
+    Eigen::Matrix3d M;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) M(i, j) = n01(rng);
+    return M;
+  };
+  for (int trial = 0; trial < 10; ++trial) {
+    const Eigen::Matrix3d RB = ExpSo3(vec());
+    const Eigen::Vector3d c = 2.0 * vec();  // p_A − p_B
+    for (bool bDynamic : {false, true}) {
+      const int n = bDynamic ? 12 : 6;
+      PairMatrix reference = PairMatrix::Zero(), summed = PairMatrix::Zero();
+      PairForceJacobianSums sums;
+      for (int k = 0; k < 40; ++k) {
+        const Eigen::Vector3d rB = 0.3 * vec(), nB = vec().normalized(), g = 1e3 * vec();
+        const Eigen::Matrix3d GY = 1e6 * mat(), GN = 1e3 * mat();  // not symmetric
+        const double w = std::abs(n01(rng)) * 1e-3;
+        const Eigen::Vector3d r = RB * rB, d = c + r, f = RB * g;
+        const Eigen::Matrix3d RBGY = RB * GY * RB.transpose();
+        const Eigen::Matrix3d RBGN = RB * GN * RB.transpose() * Skew(RB * nB);
+        Eigen::Matrix<double, 3, 12> df;
+        df << RBGY, -RBGY * Skew(r) - RBGN, -RBGY, RBGY * Skew(d) + RBGN - Skew(f);
+        AddForceJacobian(r, d, f, df, bDynamic, w, &reference);
+        sums.Add(rB, nB, g, GY, GN, w);
+      }
+      sums.AddTo(RB, c, bDynamic, &summed);
+      INFO("trial " << trial << (bDynamic ? ", dynamic B" : ", static B"));
+      const double scale = reference.topLeftCorner(n, n).norm();
+      CHECK((summed - reference).topLeftCorner(n, n).norm() <= 1e-13 * scale);
+      if (!bDynamic) CHECK(summed.bottomRows(6).norm() == 0.0);
+      PairMatrix shifted = PairMatrix::Zero();  // a wrong lever arm is visible
+      sums.AddTo(RB, c + Eigen::Vector3d(0, 1e-3, 0), bDynamic, &shifted);
+      if (bDynamic) CHECK((shifted - reference).topLeftCorner(n, n).norm() > 1e-8 * scale);
+    }
+  }
+}
+
 TEST_CASE("AddForceJacobian equals the full stencil products bit for bit", "[core][dissipation]") {
   // Reference: the rows [df; [r]× df − [f]× dr; −df; [f]× dd − [d]× df] with the full 3×12 dr, dd
   // and plain matrix products. The skew-aware products drop only terms with factors 0, so every
