@@ -36,41 +36,19 @@ struct CurrentModeSample {
   const DissipationSetup* setup = nullptr;
   bool bDynamic = false;
 
-  /// Adds w ∂residual/∂δ (δ = [δp_A, δθ_A, δp_B, δθ_B], retractions p + δp, (1 + [δθ]×) R).
-  /// The kernel g is differentiated in its six arguments (Y, N_A) in closed form
-  /// (LinearizeCurrentModeGradient, tested against forward-mode AD); the chain
-  /// to the stencil is analytic:
+  /// Adds w ∂residual/∂δ (δ = [δp_A, δθ_A, δp_B, δθ_B], retractions p + δp, (1 + [δθ]×) R) into
+  /// the pair's sums (PairForceJacobianSums; rB = R_Bᵀ R_A X). The kernel g is differentiated in
+  /// its six arguments (Y, N_A) in closed form (LinearizeCurrentModeGradient, tested against
+  /// forward-mode AD); the chain to the stencil is analytic:
   ///   dY = R_Bᵀ (δp_A − [r]× δθ_A − δp_B + [d]× δθ_B),   dN_A = R_Bᵀ [n_w]× (δθ_B − δθ_A),
   ///   df = R_B (G_Y dY + G_N dN_A) − [f]× δθ_B,   dr = −[r]× δθ_A,   dd = δp_A − [r]× δθ_A − δp_B,
   ///   d(r × f) = [r]× df − [f]× dr,   d(−d × f) = [f]× dd − [d]× df        (n_w = R_A n_A).
-  /// The same Jacobian summed per pair (PairForceJacobianSums; rB = R_Bᵀ R_A X).
   void AddTo(double w, const Eigen::Vector3d& rB, PairForceJacobianSums* sums) const {
     const Eigen::Matrix3d RBt = b->R.transpose();
     const Eigen::Vector3d nB = RBt * (a->R * normal);
     const CurrentModeLinearization lin =
         LinearizeCurrentModeGradient(Y, nB, field, Yn, Y0, *setup);
     sums->Add(rB, nB, lin.g, lin.GY, lin.GN, w);
-  }
-
-  void AddJacobian(double w, PairMatrix* J) const {
-    const Eigen::Matrix3d& RB = b->R;
-    const Eigen::Vector3d r = a->R * X;
-    const Eigen::Vector3d d = a->p + r - b->p;
-    const Eigen::Vector3d nw = a->R * normal;
-    const CurrentModeLinearization lin =
-        LinearizeCurrentModeGradient(Y, RB.transpose() * nw, field, Yn, Y0, *setup);
-    const Eigen::Vector3d f = RB * lin.g;
-    const Eigen::Matrix3d Sr = Skew(r), Sd = Skew(d), Sn = Skew(nw);
-    const Eigen::Matrix3d RBGY = RB * lin.GY * RB.transpose();  // df per world dY-direction
-    const Eigen::Matrix3d RBGN = RB * lin.GN * RB.transpose() * Sn;
-    Eigen::Matrix<double, 3, 12> df;
-    if (bDynamic) {
-      df << RBGY, -RBGY * Sr - RBGN, -RBGY, RBGY * Sd + RBGN - Skew(f);
-    } else {
-      df.leftCols<6>() << RBGY, -RBGY * Sr - RBGN;
-      df.rightCols<6>().setZero();  // not read
-    }
-    AddForceJacobian(r, d, f, df, bDynamic, w, J);
   }
 };
 
