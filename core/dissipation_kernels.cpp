@@ -15,11 +15,15 @@ CurrentModeLinearization LinearizeCurrentModeGradient(const Eigen::Vector3d& Y,
   const Eigen::Matrix3d& HPhi = field.hessian;
   const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
   const DissipationCoefficients& c = s.coefficients;
+  // Planes and the flat regions of boxes have ∇²Φ = 0: the terms it multiplies are skipped (exact
+  // zeros, so the result is the same to the bit), and so is ∂D/∂N when N does not move either.
+  const bool flat = HPhi.isZero(0.0);
 
   // Normal load λ_n = −W'(φ_load) [Pa] and its derivative in Y.
   const bool implicitLoad = s.mode == DissipationMode::ImplicitLoad;
   const double phiLoad = implicitLoad ? field.value : field.value + G.dot(Yn - Y);
-  const Eigen::Vector3d dPhiLoad = implicitLoad ? G : Eigen::Vector3d(HPhi * (Yn - Y));
+  const Eigen::Vector3d dPhiLoad =
+      implicitLoad ? G : (flat ? Eigen::Vector3d::Zero() : Eigen::Vector3d(HPhi * (Yn - Y)));
   const PenaltyDensity pd = NormalPenaltyDensity(phiLoad, s.penalty);
   const double lambda = -pd.dW;
   const Eigen::Vector3d dLambda = -pd.d2W * dPhiLoad;
@@ -28,7 +32,7 @@ CurrentModeLinearization LinearizeCurrentModeGradient(const Eigen::Vector3d& Y,
   const double factor = AlignmentFactor(G.dot(NA), s);
   Eigen::Vector3d dFactorY = Eigen::Vector3d::Zero(), dFactorN = Eigen::Vector3d::Zero();
   if (s.fadeFriction && s.maxAlignment > -1.0) {
-    dFactorY = -(HPhi * NA) / (s.maxAlignment + 1.0);
+    if (!flat) dFactorY = -(HPhi * NA) / (s.maxAlignment + 1.0);
     dFactorN = -G / (s.maxAlignment + 1.0);
   }
   const double L = factor * lambda;
@@ -39,10 +43,11 @@ CurrentModeLinearization LinearizeCurrentModeGradient(const Eigen::Vector3d& Y,
   const Eigen::Vector3d N = SplitDirection(G, NA, s);
   const Eigen::Matrix3d P = I - N * N.transpose();
   Eigen::Matrix3d dNY = Eigen::Matrix3d::Zero(), dNN = Eigen::Matrix3d::Zero();
-  if (s.frictionWithColliderNormal)
-    dNY = P * HPhi / G.norm();
-  else
+  const bool normalMoves = !s.frictionWithColliderNormal || !flat;
+  if (!s.frictionWithColliderNormal)
     dNN = -P / NA.norm();
+  else if (!flat)
+    dNY = P * HPhi / G.norm();
 
   // D = ∂R/∂V at unit load, and its derivatives in V and N.
   const Eigen::Vector3d V = (Y - Y0) / s.dt;
@@ -58,10 +63,15 @@ CurrentModeLinearization LinearizeCurrentModeGradient(const Eigen::Vector3d& Y,
     At += c.mu * f.curvature * t * t.transpose();
   }
   const Eigen::Matrix3d DV = At * P + c.cn * N * N.transpose();  // P At P = At P here
-  const Eigen::Matrix3d DN = (c.cn * I - At) * (N * V.transpose() + Vn * I);
 
   CurrentModeLinearization out;
   out.g = L * D;
+  if (!normalMoves) {  // dNY = dNN = 0
+    out.GY = D * dLY.transpose() + L * (DV / s.dt);
+    out.GN = D * dLN.transpose();
+    return out;
+  }
+  const Eigen::Matrix3d DN = (c.cn * I - At) * (N * V.transpose() + Vn * I);
   out.GY = D * dLY.transpose() + L * (DV / s.dt + DN * dNY);
   out.GN = D * dLN.transpose() + L * DN * dNN;
   return out;
