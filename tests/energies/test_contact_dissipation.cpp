@@ -35,15 +35,23 @@ TEST_CASE("friction ramp: values, C2 join at V_f, slope and curvature", "[energi
   CHECK(EvaluateFrictionRamp(0.0, vf).slope == Approx(2.0 / vf));
 }
 
-TEST_CASE("dissipation potential: gradient, Hessian and tractions against the spec",
-          "[energies][dissipation][gradient]") {
-  std::mt19937 rng(3);
-  std::normal_distribution<double> n01;
+namespace {
+// μ = 0.6, c_t = 0.3 s/m, c_n = 2 s/m, V_f = 1 cm/s.
+DissipationCoefficients TestCoefficients() {
   DissipationCoefficients c;
   c.mu = 0.6;
   c.ct = 0.3;
   c.cn = 2.0;
   c.vf = 0.01;
+  return c;
+}
+}  // namespace
+
+TEST_CASE("dissipation potential: gradient, Hessian and tractions against the spec",
+          "[energies][dissipation][gradient]") {
+  std::mt19937 rng(3);
+  std::normal_distribution<double> n01;
+  const DissipationCoefficients c = TestCoefficients();
   const double lambda = 1.7e4;
   for (int trial = 0; trial < 40; ++trial) {
     const Eigen::Vector3d N = Eigen::Vector3d(n01(rng), n01(rng), n01(rng)).normalized();
@@ -102,11 +110,7 @@ TEST_CASE("dissipation force about a recorded slip: exact value and Jacobian at 
           "smooth about it", "[energies][dissipation][gradient]") {
   std::mt19937 rng(5);
   std::normal_distribution<double> n01;
-  DissipationCoefficients c;
-  c.mu = 0.6;
-  c.ct = 0.3;
-  c.cn = 2.0;
-  c.vf = 0.01;
+  const DissipationCoefficients c = TestCoefficients();
   const double lambda = 1.7e4;
   // Central differences of the force with step e = 1e-4 m/s (a hundredth of V_f) about references
   // at tangential speeds from 0 to beyond V_f: the exact force's are O(e/V_f) off near V_t = 0
