@@ -9,7 +9,9 @@
 // split direction. The dissipative traction is T_diss = −∂R/∂V_rel [Pa]:
 //   T_v,n = −c_n λ̂_n V_n N,   T_v,t = −c_t λ̂_n V_t,   T_C = −μ λ̂_n ρ'(V_t) V_t/V_t (0 at V_t = 0).
 // λ̂_n and N are parameters here: which time level they come from is the caller's choice
-// (ExperimentalEvalParams). All functions are smooth in V_rel: ρ is C² and ρ'(V)/V is bounded.
+// (ExperimentalEvalParams). R is C² in V_rel (ρ is C², and ρ(‖V_t‖) keeps a continuous Hessian
+// at V_t = 0 because ρ'(V)/V is bounded), so the traction −∂R/∂V_rel is C¹: its Jacobian has kinks
+// at V_t = 0 and V_t = V_f, which differences across must avoid (SlipReference below).
 #pragma once
 
 #include <Eigen/Core>
