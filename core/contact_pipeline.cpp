@@ -248,8 +248,9 @@ template <typename Id>
 void ContactPipeline::BeginSlips(const DissipationContext* dissipation, SlipPairKind kind,
                                  size_t n, Id id) {
   SlipLists& lists = slipLists_[static_cast<int>(kind)];
-  lists.use.assign(n, PairSlipUse());
+  lists.use.clear();  // no slips in use: SlipUse gives every pair none
   if (!dissipation || !dissipation->slips) return;
+  lists.use.resize(n);
   if (dissipation->recordSlips) {
     lists.record.assign(n, PairSlips());
     for (size_t k = 0; k < n; ++k) lists.use[k] = {&lists.record[k], true};
@@ -357,7 +358,7 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
                              &r, cp.params.maxAlignmentNormals, aRef, bRef);
     if (dissipation) {
       DissipationSetup setup = MakeSetup(cp.params, *dissipation, isotropic);
-      setup.slips = slipLists_[0].use[k];
+      setup.slips = SlipUse(SlipPairKind::Rigid, k);
       RigidPairDissipation& d = dissipationResults_[k];
       const std::vector<RigidStageStart>& start = *stageStart;
       EvaluateRigidPairDissipation(A, poses[cp.colliding], start[cp.colliding], B,
@@ -419,7 +420,7 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
     const RigidBodyModel& B = models[sp.collider];
     DissipationSetup setup;
     if (dissipation) setup = MakeSetup(sp.params, *dissipation, isotropic);
-    setup.slips = slipLists_[1].use[k];
+    setup.slips = SlipUse(SlipPairKind::SoftOnRigid, k);
     const RigidStageStart* b0 = stageStart ? &(*stageStart)[sp.collider] : nullptr;
     SoftPairContact& r = softResults_[k];
     EvaluateSoftRigidPair(in, B, poses[sp.collider], b0, B.dynamic, pp,
@@ -492,7 +493,7 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
     SoftColliderInputs(sp, poses, stageStart, *soft, &a, &b);
     DissipationSetup setup;
     if (dissipation) setup = MakeSetup(sp.params, *dissipation, isotropic);
-    setup.slips = slipLists_[2].use[k];
+    setup.slips = SlipUse(SlipPairKind::OnSoft, k);
     SoftColliderPairContact& r = softColliderResults_[k];
     EvaluatePairOnSoftCollider(a, b, pp, sp.params.maxAlignmentNormals,
                                dissipation ? &setup : nullptr, order, &r);

@@ -157,9 +157,15 @@ class ContactPipeline {
   };
   SlipLists slipLists_[3];
   /// Sets slipLists_[kind].use for n pairs named by id(k) = (colliding, collider): buffers to
-  /// record into, the records to read, or none (no dissipation or no slips in the context).
+  /// record into or the records to read; left empty without slips in the context (plain
+  /// simulation pays no per-pair work for them).
   template <typename Id>
   void BeginSlips(const DissipationContext* dissipation, SlipPairKind kind, size_t n, Id id);
+  /// Pair k's slip use in the evaluation under way (none when the list is empty).
+  PairSlipUse SlipUse(SlipPairKind kind, size_t k) const {
+    const std::vector<PairSlipUse>& use = slipLists_[static_cast<int>(kind)].use;
+    return use.empty() ? PairSlipUse() : use[k];
+  }
   /// Recording: hands the buffers to the context's record.
   template <typename Id>
   void EndSlips(const DissipationContext* dissipation, SlipPairKind kind, size_t n, Id id);

@@ -26,15 +26,12 @@ Eigen::Matrix<double, 3, N> SkewTimes(const Eigen::Matrix3d& S, const Eigen::Mat
 }
 
 struct CurrentModeSample {
-  const RigidPose* a = nullptr;
-  const RigidPose* b = nullptr;
-  Eigen::Vector3d X, normal;  // body frame of A
+  Eigen::Vector3d NA;         // A's normal in B's frame, R_Bᵀ R_A n_A (the kernel's N_A)
   Eigen::Vector3d Y;          // current pullback at δ = 0
   Eigen::Vector3d Y0;         // stage-start pullback (velocity reference)
   Eigen::Vector3d Yn;         // pullback at the last actual configuration (geometry reference)
   SdfSample field;            // Φ_B, G, ∇²Φ_B at Y
   const DissipationSetup* setup = nullptr;
-  bool bDynamic = false;
 
   /// Adds w ∂residual/∂δ (δ = [δp_A, δθ_A, δp_B, δθ_B], retractions p + δp, (1 + [δθ]×) R) into
   /// the pair's sums (PairForceJacobianSums; rB = R_Bᵀ R_A X). The kernel g is differentiated in
@@ -44,11 +41,9 @@ struct CurrentModeSample {
   ///   df = R_B (G_Y dY + G_N dN_A) − [f]× δθ_B,   dr = −[r]× δθ_A,   dd = δp_A − [r]× δθ_A − δp_B,
   ///   d(r × f) = [r]× df − [f]× dr,   d(−d × f) = [f]× dd − [d]× df        (n_w = R_A n_A).
   void AddTo(double w, const Eigen::Vector3d& rB, PairForceJacobianSums* sums) const {
-    const Eigen::Matrix3d RBt = b->R.transpose();
-    const Eigen::Vector3d nB = RBt * (a->R * normal);
     const CurrentModeLinearization lin =
-        LinearizeCurrentModeGradient(Y, nB, field, Yn, Y0, *setup);
-    sums->Add(rB, nB, lin.g, lin.GY, lin.GN, w);
+        LinearizeCurrentModeGradient(Y, NA, field, Yn, Y0, *setup);
+    sums->Add(rB, NA, lin.g, lin.GY, lin.GN, w);
   }
 };
 
@@ -181,10 +176,7 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
   if (explicitNormals ? !nearThen : !(nearNow || nearThen)) return;
 
   CurrentModeSample sample;
-  sample.a = &a;
-  sample.b = &b;
   sample.setup = &setup;
-  sample.bDynamic = bDynamic;
 
   // Cluster culling bounds (1-Lipschitz fields): the reconstructed distance φ + G·(Y_n − Y) is at
   // least φ − |Y_n − Y|, and |Y_n − Y| <= |Y_n,A − Y_A| + ‖R_n,BᵀR_n,A − R_BᵀR_A‖_F |X|.
@@ -237,8 +229,7 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
         lambdaHat =
             AlignmentFactor(s, setup) * NormalPenaltyDensity(phiLoad, setup.penalty).lambdaN;
         N = SplitDirection(f.gradient, NA, setup);
-        sample.X = q.X;
-        sample.normal = q.normal;
+        sample.NA = NA;
         sample.Y = Y;
         sample.Yn = Yn;
         sample.field = f;
