@@ -4,7 +4,8 @@
     python3 bench/peers/sweep_peers.py --build BUILD [--quick] [--scenes drop,stack] [--out out/peers]
 
 Sweeps the time step of every engine (superdex: BDF2 and BackwardEuler, each with the default
-reconstructed-load dissipation and with explicit normals), computes each scene's error metric,
+reconstructed-load dissipation, with explicit normals and with the current load), computes each
+scene's error metric,
 and writes per scene a Markdown table (printed, and saved to OUT/SCENE.md), the raw results
 (OUT/SCENE.json) and a log-log plot of error against wall time per simulated second
 (OUT/SCENE.png). Each table ends with superdex's wall time over each peer's at equal error,
@@ -27,18 +28,22 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 SOURCE = os.path.dirname(os.path.dirname(HERE))
 
-SUPERDEX_CURVES = [("BDF2", False), ("BDF2", True), ("BackwardEuler", False), ("BackwardEuler", True)]
+# Dissipation modes (README, "Dissipation modes"): the scene file's experimental_eval_params.
+MODES = {"reconstructed": ("reconstructed load", None),
+         "explicit": ("explicit normals", {"explicit_normals": True}),
+         "current": ("current load", {"implicit_normal_force_for_dissipation": True})}
+SUPERDEX_CURVES = [(i, m) for i in ("BDF2", "BackwardEuler") for m in MODES]
 
 # Per scene: the error plotted, durations (full, quick), dt sweeps (full, quick) for superdex
-# and the peers, and the superdex curves run (all four unless limited).
+# and the peers, and the superdex curves run (all six unless limited).
 SCENES = {
     "drop": dict(label="|1 - e| (restitution of the first bounce)", duration=(0.6, 0.6),
                  sdx=([1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5], [1e-2, 3e-3, 1e-3, 3e-4, 1e-4]),
                  # The drop has no damping: the energy-conserving symplectic methods, and BDF2.
-                 sdx_curves=([("SymplecticDIRK12", False), ("SymplecticDIRK22", False),
-                              ("SymplecticDIRK22", True), ("BDF2", False)],
-                             [("SymplecticDIRK12", False), ("SymplecticDIRK22", False),
-                              ("BDF2", False)]),
+                 sdx_curves=([("SymplecticDIRK12", "reconstructed"), ("SymplecticDIRK22", "reconstructed"),
+                              ("SymplecticDIRK22", "explicit"), ("BDF2", "reconstructed")],
+                             [("SymplecticDIRK12", "reconstructed"), ("SymplecticDIRK22", "reconstructed"),
+                              ("BDF2", "reconstructed")]),
                  peer=([1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5], [1e-2, 3e-3, 1e-3, 3e-4, 1e-4])),
     "incline": dict(label="relative error of the sliding acceleration", duration=(2.0, 1.5),
                     sdx=([2e-1, 1e-1, 5e-2, 2e-2, 1e-2, 3e-3, 1e-3, 3e-4], [5e-2, 1e-2, 3e-3, 1e-3]),
@@ -51,15 +56,17 @@ SCENES = {
                   peer=([2e-2, 1e-2, 3e-3, 1e-3, 3e-4], [2e-2, 1e-2, 3e-3, 1e-3])),
     "pile": dict(label="max penetration [m]", duration=(0.5, 0.3),
                  sdx=([1e-2], [1e-2]), peer=([1e-2, 5e-3, 2e-3], [1e-2, 5e-3]),
-                 sdx_curves=([("BDF2", False), ("BDF2", True)], [("BDF2", False)])),
+                 sdx_curves=([("BDF2", "reconstructed"), ("BDF2", "explicit")], [("BDF2", "reconstructed")])),
     "tumble": dict(label="relative energy drift after 5 s", duration=(5.0, 5.0),
                    sdx=([4e-2, 2e-2, 1e-2, 5e-3, 2e-3], [4e-2, 1e-2, 2e-3]),
-                   peer=([4e-2, 1e-2, 3e-3, 1e-3, 3e-4, 1e-4], [1e-2, 1e-3, 1e-4])),
+                   peer=([4e-2, 1e-2, 3e-3, 1e-3, 3e-4, 1e-4], [1e-2, 1e-3, 1e-4]),
+                   # No contact: the dissipation mode does not apply.
+                   sdx_curves=([("BDF2", "reconstructed"), ("BackwardEuler", "reconstructed")],) * 2),
 }
 
 
-def curve_name(integrator, explicit):
-    return f"superdex {integrator} {'explicit normals' if explicit else 'reconstructed load'}"
+def curve_name(integrator, mode):
+    return f"superdex {integrator} {MODES[mode][0]}"
 
 
 def peers_for(scene):
@@ -193,24 +200,24 @@ def solve3(a, b):
 # ---------------------------------------------------------------------------------------------
 # Runs
 
-def run_superdex(build, scene, integrator, explicit, dt, duration, tmp, timeout):
+def run_superdex(build, scene, integrator, mode, dt, duration, tmp, timeout):
     src = os.path.join(SOURCE, "scenes", "data", scene + ".json")
     with open(src) as f:
         sj = json.load(f)
     settings = sj.setdefault("settings", {})
-    if explicit:
-        settings["experimental_eval_params"] = {"explicit_normals": True}
-    traj = os.path.join(tmp, f"{scene}_{integrator}_{int(explicit)}_{dt:g}.jsonl")
+    if MODES[mode][1]:
+        settings["experimental_eval_params"] = MODES[mode][1]
+    traj = os.path.join(tmp, f"{scene}_{integrator}_{mode}_{dt:g}.jsonl")
     # The drop's restitution needs every step; elsewhere about 100 samples per second suffice.
     every = 1 if scene == "drop" else max(1, int(round(0.01 / dt)))
     sj["output"] = {"path": traj, "every": every}
     sj.pop("expect", None)
-    variant = os.path.join(tmp, f"{scene}_{int(explicit)}.json")
+    variant = os.path.join(tmp, f"{scene}_{mode}.json")
     with open(variant, "w") as f:
         json.dump(sj, f)
     cmd = [os.path.join(build, "scenes", "superdex"), "run", variant, "--dt", repr(dt), "--duration",
            repr(duration), "--integrator", integrator, "--out", traj, "--quiet"]
-    res = dict(engine=curve_name(integrator, explicit), scene=scene, dt=dt)
+    res = dict(engine=curve_name(integrator, mode), scene=scene, dt=dt)
     try:
         p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
     except subprocess.TimeoutExpired:
@@ -354,14 +361,17 @@ def plot(scene, cfg, curves, path):
         return
     fig, ax = plt.subplots(figsize=(8, 5.5))
     styles = {"MuJoCo": dict(color="tab:red", marker="s"), "Bullet": dict(color="tab:green", marker="^")}
-    sdx_colors = iter(["tab:blue", "tab:cyan", "tab:purple", "tab:pink"])
+    sdx_colors = iter(["tab:blue", "tab:cyan", "tab:purple", "tab:pink", "tab:olive", "tab:brown",
+                       "tab:gray", "black"])
+    dashes = {"explicit normals": "--", "current load": ":"}
     for name, pts in curves.items():
         if not pts:
             continue
         pts = sorted(pts)
         st = next((v for k, v in styles.items() if name.startswith(k)), None)
         if st is None:
-            st = dict(color=next(sdx_colors), marker="o", linestyle="--" if "explicit" in name else "-")
+            st = dict(color=next(sdx_colors), marker="o",
+                      linestyle=next((d for k, d in dashes.items() if k in name), "-"))
         ax.plot([w for w, _ in pts], [max(e, FLOOR) for _, e in pts], label=name, **st)
     ax.set_xscale("log")
     ax.set_yscale("log")
@@ -413,11 +423,11 @@ def main():
             cfg = SCENES[scene]
             duration = cfg["duration"][k]
             runs = []
-            for integrator, explicit in cfg["sdx_curves"][k] if "sdx_curves" in cfg else SUPERDEX_CURVES:
+            for integrator, mode in cfg["sdx_curves"][k] if "sdx_curves" in cfg else SUPERDEX_CURVES:
                 for dt in cfg["sdx"][k]:
-                    r = timed(lambda: run_superdex(build, scene, integrator, explicit, dt, duration,
+                    r = timed(lambda: run_superdex(build, scene, integrator, mode, dt, duration,
                                                    tmp, timeout))
-                    r["curve"] = curve_name(integrator, explicit)
+                    r["curve"] = curve_name(integrator, mode)
                     runs.append(r)
                     print(f"  {scene} {r['curve']} dt={dt:g}: {fmt(r.get('metrics', {}).get('error'))}"
                           f" in {fmt(r.get('wall_per_simulated_second'))} s/s", file=sys.stderr)
