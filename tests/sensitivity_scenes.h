@@ -64,17 +64,20 @@ inline Scene BouncingBox(IntegrationMethod method, DissipationMode mode) {
 }
 
 // A soft cube (2 × 2 × 2 cells, 0.1 m, E = 1e5 Pa) dropped 1 cm onto the ground, moving sideways.
-inline Scene SoftCube(IntegrationMethod method) {
-  Scene scene(TightSettings(method, DissipationMode::ReconstructedLoad));
+// The same cube with its centre at height z [m], moving sideways at vx [m/s], the ground's
+// friction coefficient mu (the cube's 0.5; combined √(0.5 mu)).
+inline Scene SoftCubeOnGround(IntegrationMethod method, DissipationMode mode, double z, double vx,
+                              double mu) {
+  Scene scene(TightSettings(method, mode));
   Error error;
-  REQUIRE(scene.AddRigidActor(Ground(Eigen::Vector3d::UnitZ(), 1e7, 0.5, 1.0), &error)
+  REQUIRE(scene.AddRigidActor(Ground(Eigen::Vector3d::UnitZ(), 1e7, mu, 1.0), &error)
               .IsValid());
   SoftActorDesc d;
   d.name = "soft";
   d.mesh = std::make_shared<TetMesh>(
       MakeTetBox(Eigen::Vector3d::Constant(0.05), Eigen::Vector3i::Constant(2)));
-  d.position = Eigen::Vector3d(0, 0, 0.06);
-  d.linearVelocity = Eigen::Vector3d(0.3, 0, 0);
+  d.position = Eigen::Vector3d(0, 0, z);
+  d.linearVelocity = Eigen::Vector3d(vx, 0, 0);
   d.material.youngsModulus = 1e5;
   d.material.poissonRatio = 0.3;
   d.material.density = 1000.0;
@@ -82,6 +85,10 @@ inline Scene SoftCube(IntegrationMethod method) {
   d.contact.normalViscousDampingCoefficient = 1.0;
   REQUIRE(scene.AddSoftActor(d, &error).IsValid());
   return scene;
+}
+
+inline Scene SoftCube(IntegrationMethod method) {
+  return SoftCubeOnGround(method, DissipationMode::ReconstructedLoad, 0.06, 0.3, 0.5);
 }
 
 }  // namespace superdex::test
