@@ -87,6 +87,40 @@ inline Scene SoftCubeOnGround(IntegrationMethod method, DissipationMode mode, do
   return scene;
 }
 
+// A 0.1 × 0.1 × 0.05 m, 0.5 kg rigid box set down on a soft slab (0.3 × 0.3 × 0.05 m, 3 × 3 × 1
+// cells, E = 1e5 Pa, its bottom nodes pinned), sliding along x at vx [m/s]; μ = √(0.5 mu) between
+// them, penalty 1e7 Pa/m, c_n = 1 s/m. The slab's surface samples meet the box's SDF; with
+// `slabCollider` the box's samples also meet the slab's own grid SDF (core/soft_collider.h).
+inline Scene BoxOnSoftSlab(IntegrationMethod method, DissipationMode mode, double vx, double mu,
+                           bool slabCollider = false) {
+  Scene scene(TightSettings(method, mode));
+  Error error;
+  SoftActorDesc slab;
+  slab.name = "slab";
+  slab.mesh = std::make_shared<TetMesh>(
+      MakeTetBox(Eigen::Vector3d(0.15, 0.15, 0.025), Eigen::Vector3i(3, 3, 1)));
+  std::vector<int> bottom;
+  for (int i = 0; i < slab.mesh->NumVertices(); ++i)
+    if (slab.mesh->vertices[i].z() < -0.0249) bottom.push_back(i);
+  slab.constraints.push_back({bottom, {}});
+  slab.material.youngsModulus = 1e5;
+  slab.material.poissonRatio = 0.3;
+  slab.material.density = 1000.0;
+  slab.contact.penaltyCoefficient = 1e7;
+  slab.contact.coulombFrictionCoefficient = mu;
+  slab.contact.normalViscousDampingCoefficient = 1.0;
+  if (slabCollider) slab.colliderType = ColliderType::Sdf;
+  REQUIRE(scene.AddSoftActor(slab, &error).IsValid());
+  RigidActorDesc box = Cube(1e7, 0.5, 1.0);
+  box.name = "box";
+  box.shape.halfExtents = Eigen::Vector3d(0.05, 0.05, 0.025);
+  box.mass = 0.5;
+  box.position = Eigen::Vector3d(0, 0, 0.025 + 0.025 - 1e-4);
+  box.linearVelocity = Eigen::Vector3d(vx, 0, 0);
+  REQUIRE(scene.AddRigidActor(box, &error).IsValid());
+  return scene;
+}
+
 inline Scene SoftCube(IntegrationMethod method) {
   return SoftCubeOnGround(method, DissipationMode::ReconstructedLoad, 0.06, 0.3, 0.5);
 }

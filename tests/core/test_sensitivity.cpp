@@ -165,6 +165,53 @@ TEST_CASE("Sensitivities of a soft cube sliding to rest match trajectory differe
   }
 }
 
+TEST_CASE("Sensitivities of a rigid box set down sliding on a soft slab match trajectory "
+          "differences",
+          "[sensitivity]") {
+  // The box, set down at 5 cm/s with μ = √(0.5 · 1.2), sinks into the slab and rocks on it (pitch
+  // rates up to 1.6 rad/s), its sideways velocity reversing twice in 0.1 s: the loaded samples
+  // cross V_t = 0 and V_f repeatedly. The friction of both pair kinds with a soft actor (the
+  // slab's samples on the box, and with the slab a collider the box's samples on the slab) is
+  // evaluated about the recorded slips. Measured: at most 2.8e-6; without the recorded slips of the slab's samples
+  // 1.1e-4 (implicit load, velocity.x), without those of the box's samples on the slab 8.6e-5
+  // (position.x).
+  const std::vector<Probe> probes = {{"slab.youngs_modulus", 1e-5},
+                                     {"box.coulomb_friction_coefficient", 1e-5},
+                                     {"box.friction_falloff_vel", 1e-5},
+                                     {"box.velocity.x", 1e-6},
+                                     {"box.position.x", 1e-7}};
+  SECTION("BDF2, reconstructed load") {
+    CheckAgainstTrajectoryDifferences(
+        [] {
+          return BoxOnSoftSlab(IntegrationMethod::BDF2, DissipationMode::ReconstructedLoad, 0.05,
+                               1.2);
+        },
+        probes, "box", 100, 1e-3);
+  }
+  SECTION("BackwardEuler, implicit load") {
+    CheckAgainstTrajectoryDifferences(
+        [] {
+          return BoxOnSoftSlab(IntegrationMethod::BackwardEuler, DissipationMode::ImplicitLoad,
+                               0.05, 1.2);
+        },
+        probes, "box", 100, 1e-3);
+  }
+  SECTION("BDF2, reconstructed load, the slab also a collider") {
+    CheckAgainstTrajectoryDifferences(
+        [] {
+          return BoxOnSoftSlab(IntegrationMethod::BDF2, DissipationMode::ReconstructedLoad, 0.05,
+                               1.2, true);
+        },
+        probes, "box", 100, 1e-3);
+  }
+  // Not with explicit normals: their contact set and alignment decisions are taken at the stage
+  // start (piecewise constant in the state), and here the trajectory differences themselves jump.
+  // Measured under DIRK22, relative disagreement of the μ and V_f derivatives at difference steps
+  // 1e-4, 1e-5, 3e-6, 1e-6: 5.3e-5, 7.4e-5, 8.6e-4, 5.0e-4 and 1.8e-5, 3.8e-5, 1.3e-3, 5.5e-3,
+  // growing as the step shrinks (a jump between θ ± h), where the three sections above stay
+  // below 3e-6 at every step tried.
+}
+
 TEST_CASE("Sensitivity parameters: parsing and refusals", "[sensitivity]") {
   Scene scene = SlidingBox(IntegrationMethod::BDF2, DissipationMode::ReconstructedLoad);
   SceneParameter p;
