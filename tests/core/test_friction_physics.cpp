@@ -180,7 +180,8 @@ TEST_CASE("incline, mu = 0.5, current load: a cube sliding for 12 s neither rock
 // and it rolls on at v = 5/7 v0. On the penalty model it then rolls with a little resistance: the
 // samples of the penetrated cap above the lowest point slip at ω z (z their height above it), so
 // friction dissipates about μ m g ω ⟨z⟩, a deceleration of (5/7) μ g ⟨z⟩ / r — measured 4.4e-3
-// m/s² (⟨z⟩ ≈ 0.2 mm, the cap's depth), with the contact point slipping back at about 5 mm/s.
+// m/s² (⟨z⟩ ≈ 0.2 mm, a load-weighted height in the 2.4 mm deep cap), with the contact point
+// slipping back at about 5 mm/s.
 // Measured at Δt = 1e-3 (BackwardEuler, BDF2): rolling from t = 0.198, 0.189 s (t* = 0.194) at
 // 1.4293, 1.4264 m/s (5/7 v0 = 1.4286), then decelerating at 4.3e-3, 4.7e-3 m/s².
 TEST_CASE("a ball thrown without spin rolls at 5/7 of its speed after 2 v0 / (7 mu g)",
