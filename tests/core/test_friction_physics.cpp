@@ -97,7 +97,9 @@ const char* kModeNames[3] = {"explicit normals", "reconstructed load (default)",
 // there. In the two stage-start-load modes the load lags the current one by a step; correlated
 // with the rocking's normal damping it biases the mean friction by O(Δt): measured a = 0.6484
 // (−1.3%) at Δt = 2e-3, 0.6536 (−0.54%) at 1e-3, 0.6565 (−0.09%) at 5e-4; without normal damping
-// the three modes agree within 0.22% at 2e-3. The implicit-load mode: −0.02% at 2e-3.
+// the three modes agree within 0.22% at 2e-3. The implicit-load mode: −0.02% at 2e-3. That the
+// rocking persists at all is the lag's doing too (the 12 s test below: with the current load it
+// decays, as in the converged reference).
 TEST_CASE("incline, mu = 0.5: sliding acceleration g (sin30 - mu cos30) within 1%",
           "[core][physics][friction]") {
   const double expected = kG * (std::sin(kTheta) - 0.5 * std::cos(kTheta));
