@@ -91,7 +91,8 @@ const char* kModeNames[3] = {"explicit normals", "reconstructed load (default)",
 
 // What the cube does: released face down, it pitches forward onto its downhill edge region (the
 // friction torque μ N h exceeds what a linear pressure profile over the face can balance, N L/6)
-// and rocks at about 4 Hz with up to ~7 mrad, because at the default smoothing ε = 5 mm the
+// and rocks at about 17 Hz (period 0.059 s measured under BDF2 at Δt = 1e-3, pitch rates up to
+// 0.36 rad/s), because at the default smoothing ε = 5 mm the
 // contact is soft at the rest load (rotational stiffness ~1.6e2 N·m/rad); c_n = 1 s/m damps it
 // only weakly. The bottom-face centre barely moves with the rocking, so distances are measured
 // there. In the two stage-start-load modes the load lags the current one by a step; correlated
