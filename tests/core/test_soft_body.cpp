@@ -31,6 +31,17 @@ SoftActorDesc SoftCube(double half, int cells, const Eigen::Vector3d& position) 
   return d;
 }
 
+// The sliding tests' cube: 0.1 m, 3 × 3 × 3 cells, E = 1e6 Pa, β = 0.01 s, penalty 1e8 Pa/m,
+// Coulomb coefficient mu.
+SoftActorDesc SlidingSoftCube(const Eigen::Vector3d& position, double mu) {
+  SoftActorDesc d = SoftCube(0.05, 3, position);
+  d.material.youngsModulus = 1e6;
+  d.material.stiffnessDamping = 0.01;
+  d.contact.penaltyCoefficient = 1e8;
+  d.contact.coulombFrictionCoefficient = mu;
+  return d;
+}
+
 // A soft cube (2 × 2 × 2 cells, one node pinned) pressed 2 mm into a static plane with a dynamic
 // rigid box pressed 2 mm into its top; everything sliding; stiffness damping on.
 struct SoftStageFixture {
@@ -294,11 +305,7 @@ TEST_CASE("soft: a cube thrown along a plane slides v0^2 / (2 mu g)", "[core][so
       Scene scene(settings);
       Error e;
       REQUIRE(scene.AddRigidActor(test::StaticGround(1e8, mu), &e).IsValid());
-      SoftActorDesc d = SoftCube(0.05, 3, Eigen::Vector3d(0, 0, 0.05));
-      d.material.youngsModulus = 1e6;
-      d.material.stiffnessDamping = 0.01;
-      d.contact.penaltyCoefficient = 1e8;
-      d.contact.coulombFrictionCoefficient = mu;
+      SoftActorDesc d = SlidingSoftCube(Eigen::Vector3d(0, 0, 0.05), mu);
       d.linearVelocity = Eigen::Vector3d(v0, 0, 0);
       const ActorHandle h = scene.AddSoftActor(d, &e);
       REQUIRE(e.ok());
@@ -335,12 +342,8 @@ TEST_CASE("soft: a cube slides down a 30 degree incline at g (sin - mu cos)", "[
       Scene scene(settings);
       Error e;
       REQUIRE(scene.AddRigidActor(test::Ground(n, 1e8, mu, 0.0), &e).IsValid());
-      SoftActorDesc d = SoftCube(0.05, 3, 0.05 * n);
+      SoftActorDesc d = SlidingSoftCube(0.05 * n, mu);
       d.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitY()));
-      d.material.youngsModulus = 1e6;
-      d.material.stiffnessDamping = 0.01;
-      d.contact.penaltyCoefficient = 1e8;
-      d.contact.coulombFrictionCoefficient = mu;
       const ActorHandle h = scene.AddSoftActor(d, &e);
       REQUIRE(e.ok());
       const Eigen::Vector3d c0 = scene.CenterOfMass(h);
