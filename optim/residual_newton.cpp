@@ -187,11 +187,19 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
       alpha *= params.backtrackFactor;
     }
     st.lineSearchSeconds += SecondsSince(t0);
+    if (!accepted) {
+      std::ostringstream s;
+      s << "merit line search rejected " << trials << " trials at iteration " << it + 1
+        << " (|r|_inf = " << st.finalGradientNorm << ", last trial 0.5|r|^2 = " << trialTheta
+        << ")";
+      return diverge(s.str());
+    }
+    problem.Commit(step);
     // Stagnation: accepted steps cut back to α <= β^10 that lower ½‖r‖² by less than 1e-6 of it,
     // three iterations in a row, mean the Newton direction is no longer a useful descent
-    // direction of the merit (a non-smooth residual); the solve is reported as failed at once
-    // rather than after the iteration cap.
-    if (accepted && alpha <= stagnantStep && theta - trialTheta <= kStagnantDecrease * theta) {
+    // direction of the merit (a non-smooth residual, or no root nearby); the solve is reported
+    // as failed at once, at the last accepted iterate, rather than after many more trials.
+    if (alpha <= stagnantStep && theta - trialTheta <= kStagnantDecrease * theta) {
       if (++stagnant >= kStagnantIterations) {
         std::ostringstream s;
         s << "merit stagnation: " << kStagnantIterations << " iterations in a row with steps cut to "
@@ -202,14 +210,6 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
     } else {
       stagnant = 0;
     }
-    if (!accepted) {
-      std::ostringstream s;
-      s << "merit line search rejected " << trials << " trials at iteration " << it + 1
-        << " (|r|_inf = " << st.finalGradientNorm << ", last trial 0.5|r|^2 = " << trialTheta
-        << ")";
-      return diverge(s.str());
-    }
-    problem.Commit(step);
   }
   st.status = StageStatus::Stopped;
   std::ostringstream s;
