@@ -49,35 +49,6 @@ struct CurrentModeSample {
 
 }  // namespace
 
-void AddForceJacobian(const Eigen::Vector3d& r, const Eigen::Vector3d& d, const Eigen::Vector3d& f,
-                      const Eigen::Matrix<double, 3, 12>& df, bool bDynamic, double w,
-                      PairMatrix* J) {
-  // Skew products with only their nonzero terms: sums of the same products as the full
-  // Eigen products (dr, dd are [0, −[r]×, 0, 0] and [I, −[r]×, −I, 0]), equal to the bit.
-  const Eigen::Matrix3d Sr = Skew(r), Sd = Skew(d), Sf = Skew(f);
-  if (!bDynamic) {
-    const Eigen::Matrix<double, 3, 6> dfA = df.leftCols<6>();
-    J->block<3, 6>(0, 0) += w * dfA;
-    J->block<3, 6>(3, 0) += SkewTimes<6>(w * Sr, dfA);
-    J->block<3, 3>(3, 3) += SkewTimes<3>(w * Sf, Sr);  // −[f]× dr with dr = −[r]× δθ_A
-    return;
-  }
-  const Eigen::Matrix<double, 3, 12> SrDf = SkewTimes<12>(Sr, df);
-  const Eigen::Matrix<double, 3, 12> SdDf = SkewTimes<12>(Sd, df);
-  const Eigen::Matrix3d SfSr = SkewTimes<3>(Sf, Eigen::Matrix3d(-Sr));  // [f]× (−[r]×)
-  J->block<3, 12>(0, 0) += w * df;
-  Eigen::Matrix<double, 3, 12> row = SrDf;  // [r]× df − [f]× dr
-  row.middleCols<3>(3) -= SfSr;
-  J->block<3, 12>(3, 0) += w * row;
-  J->block<3, 12>(6, 0) -= w * df;
-  // [f]× dd − [d]× df,  [f]× dd = [[f]×, [f]× (−[r]×), −[f]×, 0]
-  row.leftCols<3>() = Sf - SdDf.leftCols<3>();
-  row.middleCols<3>(3) = SfSr - SdDf.middleCols<3>(3);
-  row.middleCols<3>(6) = -Sf - SdDf.middleCols<3>(6);
-  row.rightCols<3>() = -SdDf.rightCols<3>();
-  J->block<3, 12>(9, 0) += w * row;
-}
-
 void PairForceJacobianSums::Add(const Eigen::Vector3d& rB, const Eigen::Vector3d& nB,
                                 const Eigen::Vector3d& g, const Eigen::Matrix3d& GY,
                                 const Eigen::Matrix3d& GN, double w) {
@@ -249,16 +220,13 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
       if (order == 0) continue;
       const Eigen::Vector3d r = a.R * q.X;
       const Eigen::Vector3d d = a.p + r - b.p;
-      if (explicitNormals) {
-        // ∂(Δt R)/∂Y = ∂R/∂V;  ∂²(Δt R)/∂Y² = ∂²R/∂V² / Δt.
-        AddFunctionOfPullback(r, d, b.R, D.gradient, nullptr, bDynamic, q.weight, &residual,
-                              nullptr);
-        if (order >= 2) sums.Add(Y - YA, D.gradient, D.hessian / dt, q.weight);
-      } else {
-        AddFunctionOfPullback(r, d, b.R, D.gradient, nullptr, bDynamic, q.weight, &residual,
-                              nullptr);
-        if (order >= 2) sample.AddTo(q.weight, Y - YA, &forceSums);
-      }
+      // ∂(Δt R)/∂Y = ∂R/∂V;  with explicit normals ∂²(Δt R)/∂Y² = ∂²R/∂V² / Δt.
+      AddFunctionOfPullback(r, d, b.R, D.gradient, nullptr, bDynamic, q.weight, &residual, nullptr);
+      if (order < 2) continue;
+      if (explicitNormals)
+        sums.Add(Y - YA, D.gradient, D.hessian / dt, q.weight);
+      else
+        sample.AddTo(q.weight, Y - YA, &forceSums);
     }
   });
   out->residual = residual.head(n);

@@ -77,20 +77,15 @@ struct RigidPairDissipation {
   double maxCoulombRatio = 0.0;  ///< max over samples of ‖T_C‖ / (μ λ̂_n) (<= 1 by construction)
 };
 
-/// Adds w ∂(J_Yᵀ f)/∂δ, the stencil rows [df; [r]× df − [f]× dr; −df; [f]× dd − [d]× df] of a
-/// sample force f (world) whose differential is df (3×12: δ = [δp_A, δθ_A, δp_B, δθ_B]; with a
-/// static B only the first 6 columns are read), dr = −[r]× δθ_A, dd = δp_A − [r]× δθ_A − δp_B.
-void AddForceJacobian(const Eigen::Vector3d& r, const Eigen::Vector3d& d, const Eigen::Vector3d& f,
-                      const Eigen::Matrix<double, 3, 12>& df, bool bDynamic, double w,
-                      PairMatrix* J);
-
-/// Σ over a pair's samples of AddForceJacobian for a current-geometry mode's force
+/// Σ over a pair's samples of w ∂(J_Yᵀ f)/∂δ — the stencil rows [df; [r]× df − [f]× dr; −df;
+/// [f]× dd − [d]× df] of a sample force f (world) with differential df (δ = [δp_A, δθ_A, δp_B,
+/// δθ_B]), dr = −[r]× δθ_A, dd = δp_A − [r]× δθ_A − δp_B — for a current-geometry mode's force
 /// f = R_B g(Y, N_A), whose differential is df = [R_B G_Y R_Bᵀ, −R_B G_Y R_Bᵀ[r]× − R_B G_N R_Bᵀ[n]×,
 /// −R_B G_Y R_Bᵀ, R_B G_Y R_Bᵀ[d]× + R_B G_N R_Bᵀ[n]× − [f]×] (CurrentModeLinearization's g, G_Y, G_N),
 /// accumulated as moments in B's frame and mapped to the stencil once per pair. With S = [r_B]×,
 /// M = w G_Y, Q = w G_N [n_B]×, F = w [g]× per sample: Σ M, Σ MS, Σ SM, Σ SMS, Σ Q, Σ SQ, Σ F,
 /// Σ FS, Σ SF, rotated by R_B, and [d]× = [c]× + [r]× (c = p_A − p_B) regrouped. Equal to the
-/// per-sample AddForceJacobian up to rounding (tests/core/test_rigid_dissipation.cpp).
+/// per-sample stencil rows up to rounding (tests/core/test_rigid_dissipation.cpp).
 class PairForceJacobianSums {
  public:
   /// One sample: r_B = R_Bᵀ r, n_B = R_Bᵀ n_w (the kernel's N_A), the kernel's g, G_Y, G_N.

@@ -95,13 +95,36 @@ void CheckCase(const Case& c) {
   }
 }
 
+/// w ∂(J_Yᵀ f)/∂δ of one sample with plain matrix products: the stencil rows
+/// [df; [r]× df − [f]× dr; −df; [f]× dd − [d]× df], dr = [0, −[r]×, 0, 0],
+/// dd = [I, −[r]×, −I, 0] (δ = [δp_A, δθ_A, δp_B, δθ_B]; with a static B the first 6 × 6 block).
+void AddForceJacobianRows(const Eigen::Vector3d& r, const Eigen::Vector3d& d,
+                          const Eigen::Vector3d& f, const Eigen::Matrix<double, 3, 12>& df,
+                          bool bDynamic, double w, PairMatrix* J) {
+  const Eigen::Matrix3d Sr = Skew(r), Sd = Skew(d), Sf = Skew(f);
+  if (!bDynamic) {
+    const Eigen::Matrix<double, 3, 6> dfA = df.leftCols<6>();
+    J->block<3, 6>(0, 0) += w * dfA;
+    J->block<3, 6>(3, 0) += w * Sr * dfA;
+    J->block<3, 3>(3, 3) += w * Sf * Sr;
+    return;
+  }
+  Eigen::Matrix<double, 3, 12> dr, dd;
+  dr << Eigen::Matrix3d::Zero(), -Sr, Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero();
+  dd << Eigen::Matrix3d::Identity(), -Sr, -Eigen::Matrix3d::Identity(), Eigen::Matrix3d::Zero();
+  J->block<3, 12>(0, 0) += w * df;
+  J->block<3, 12>(3, 0) += w * (Sr * df - Sf * dr);
+  J->block<3, 12>(6, 0) -= w * df;
+  J->block<3, 12>(9, 0) += w * (Sf * dd - Sd * df);
+}
+
 }  // namespace
 
 TEST_CASE("PairForceJacobianSums: a pair's summed force Jacobian equals the per-sample one",
           "[core][dissipation]") {
   // 40 samples of one pair with the current-mode kernel's df (rigid_dissipation.h) built per
-  // sample in world coordinates and assembled by AddForceJacobian, against the moments summed in
-  // B's frame: the same sums regrouped, equal to rounding.
+  // sample in world coordinates and assembled row by row with plain products, against the moments
+  // summed in B's frame: the same sums regrouped, equal to rounding.
   std::mt19937 rng(17);
   std::normal_distribution<double> n01;
   auto vec = [&]() { return Eigen::Vector3d(n01(rng), n01(rng), n01(rng)); };
@@ -127,7 +150,7 @@ TEST_CASE("PairForceJacobianSums: a pair's summed force Jacobian equals the per-
         const Eigen::Matrix3d RBGN = RB * GN * RB.transpose() * Skew(RB * nB);
         Eigen::Matrix<double, 3, 12> df;
         df << RBGY, -RBGY * Skew(r) - RBGN, -RBGY, RBGY * Skew(d) + RBGN - Skew(f);
-        AddForceJacobian(r, d, f, df, bDynamic, w, &reference);
+        AddForceJacobianRows(r, d, f, df, bDynamic, w, &reference);
         sums.Add(rB, nB, g, GY, GN, w);
       }
       sums.AddTo(RB, c, bDynamic, &summed);
@@ -138,50 +161,6 @@ TEST_CASE("PairForceJacobianSums: a pair's summed force Jacobian equals the per-
       PairMatrix shifted = PairMatrix::Zero();  // a wrong lever arm is visible
       sums.AddTo(RB, c + Eigen::Vector3d(0, 1e-3, 0), bDynamic, &shifted);
       if (bDynamic) CHECK((shifted - reference).topLeftCorner(n, n).norm() > 1e-8 * scale);
-    }
-  }
-}
-
-TEST_CASE("AddForceJacobian equals the full stencil products bit for bit", "[core][dissipation]") {
-  // Reference: the rows [df; [r]× df − [f]× dr; −df; [f]× dd − [d]× df] with the full 3×12 dr, dd
-  // and plain matrix products. The skew-aware products drop only terms with factors 0, so every
-  // entry must be equal, not just close.
-  std::mt19937 rng(13);
-  std::normal_distribution<double> n01;
-  auto vec = [&]() { return Eigen::Vector3d(n01(rng), n01(rng), n01(rng)); };
-  for (int trial = 0; trial < 20; ++trial) {
-    const Eigen::Vector3d r = vec(), d = vec(), f = vec();
-    Eigen::Matrix<double, 3, 12> df;
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 12; ++j) df(i, j) = n01(rng);
-    const double w = std::abs(n01(rng)) + 0.1;
-    const Eigen::Matrix3d Sr = Skew(r), Sd = Skew(d), Sf = Skew(f);
-    for (bool bDynamic : {false, true}) {
-      const int n = bDynamic ? 12 : 6;
-      PairMatrix J = PairMatrix::Zero();
-      AddForceJacobian(r, d, f, df, bDynamic, w, &J);
-      StencilMatrix reference = StencilMatrix::Zero(n, n);
-      if (bDynamic) {
-        Eigen::Matrix<double, 3, 12> dr, dd;
-        dr << Eigen::Matrix3d::Zero(), -Sr, Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero();
-        dd << Eigen::Matrix3d::Identity(), -Sr, -Eigen::Matrix3d::Identity(),
-            Eigen::Matrix3d::Zero();
-        reference.block<3, 12>(0, 0) += w * df;
-        reference.block<3, 12>(3, 0) += w * (Sr * df - Sf * dr);
-        reference.block<3, 12>(6, 0) -= w * df;
-        reference.block<3, 12>(9, 0) += w * (Sf * dd - Sd * df);
-      } else {
-        const Eigen::Matrix<double, 3, 6> dfA = df.leftCols<6>();
-        reference.block<3, 6>(0, 0) += w * dfA;
-        reference.block<3, 6>(3, 0) += w * Sr * dfA;
-        reference.block<3, 3>(3, 3) += w * Sf * Sr;
-      }
-      INFO("trial " << trial << (bDynamic ? ", dynamic B" : ", static B"));
-      for (int i = 0; i < n; ++i)
-        for (int j = 0; j < n; ++j) {
-          INFO("entry (" << i << ", " << j << ")");
-          REQUIRE(J(i, j) == reference(i, j));
-        }
     }
   }
 }
