@@ -23,6 +23,7 @@ constexpr double kInitialShift = 1e-8;
 constexpr double kRoundoffBand = 1e-14;
 constexpr double kStagnantDecrease = 1e-6;
 constexpr int kStagnantIterations = 3;
+constexpr double kQuadraticContraction = 1e-4;  // θ ratio of a full step in the quadratic regime
 
 /// Adds explicit zeros on the diagonal so that J and J + τI share one pattern (Eigen keeps the
 /// explicit zeros of a sum's union pattern).
@@ -75,6 +76,7 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
   }
 
   int stagnant = 0;  // consecutive stagnant iterations (below)
+  bool quadratic = false;  // the last accepted step was full and cut θ by kQuadraticContraction
   const double stagnantStep = std::pow(params.backtrackFactor, 10);
   for (int it = 0; it < params.maxIterations; ++it) {
     Clock::time_point t0 = Clock::now();
@@ -142,14 +144,20 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
                    params.stepTolerance};
     }
     if (converged.what) {
+      // The last correction: in the quadratic regime (the previous iteration's full step cut θ
+      // by kQuadraticContraction or more) it is committed unchecked, as Newton's local theory
+      // says it lowers θ further; otherwise only if r(s ⊕ d) shows it does not raise θ.
       t0 = Clock::now();
-      problem.Residual(d, &rTrial);
-      const bool commit = rTrial.allFinite() && 0.5 * rTrial.squaredNorm() <= theta;
-      if (commit) {
-        problem.Commit(d);
-        st.finalValue = 0.5 * rTrial.squaredNorm();
-        st.finalGradientNorm = rTrial.lpNorm<Eigen::Infinity>();
+      bool commit = quadratic;
+      if (!commit) {
+        problem.Residual(d, &rTrial);
+        commit = rTrial.allFinite() && 0.5 * rTrial.squaredNorm() <= theta;
+        if (commit) {
+          st.finalValue = 0.5 * rTrial.squaredNorm();
+          st.finalGradientNorm = rTrial.lpNorm<Eigen::Infinity>();
+        }
       }
+      if (commit) problem.Commit(d);
       st.lineSearchSeconds += SecondsSince(t0);
       st.status = StageStatus::Converged;
       st.passed = converged;
@@ -195,6 +203,7 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
       return diverge(s.str());
     }
     problem.Commit(step);
+    quadratic = alpha == 1.0 && trialTheta <= kQuadraticContraction * theta;
     // Stagnation: accepted steps cut back to α <= β^10 that lower ½‖r‖² by less than 1e-6 of it,
     // three iterations in a row, mean the Newton direction is no longer a useful descent
     // direction of the merit (a non-smooth residual, or no root nearby); the solve is reported

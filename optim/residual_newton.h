@@ -10,7 +10,11 @@
 //        a. ½ |r·d| <= absoluteTolerance  [J]  (the Newton decrement's analogue)
 //        b. ‖r‖∞ <= relativeTolerance ‖r_0‖∞
 //        c. StepNorm(d)/timeScale <= stepTolerance [m/s]
-//      On success the step d is still taken when it does not raise the merit θ.
+//      On success the step d is still taken: unchecked when the previous iteration's full step
+//      (α = 1) cut θ by 1e-4 or more (‖r‖ by 100×: the quadratic regime, where Newton's step
+//      lowers θ further), otherwise only if θ(s ⊕ d) <= θ(s), which costs one residual
+//      evaluation (SolverStats then reports ‖r‖ at s ⊕ d; unchecked, at s). Measured on the
+//      sliding incline (default mode, BDF2, Δt = 0.1): that check was 13 % of the stage solve.
 //   4. Line search on the merit θ(s) = ½‖r(s)‖²: α = 1, β, β², ... until
 //        θ(s ⊕ αd) <= (1 − 2cα) θ(s)   (c = armijoConstant; d is a descent direction of θ with
 //      slope −2θ because J d = −r), or |θ(s ⊕ αd) − θ(s)| within round-off of θ(s) while
