@@ -1,6 +1,7 @@
 // The residual Newton solver (optim/residual_newton.h) on small synthetic problems: a smooth root
-// is found, and a residual without a root (a kink at the merit's minimum) is reported as failed
-// by its stagnation rule, early, instead of after the iteration cap.
+// is found (its last correction unchecked only in the quadratic regime), and a residual without a
+// root (a kink at the merit's minimum) is reported as failed by its stagnation rule, early,
+// instead of after the iteration cap.
 #include <catch2/catch.hpp>
 #include <cmath>
 
@@ -51,7 +52,61 @@ class KinkedResidual : public StageProblem {
   double x_, c_, offset_;
 };
 
+/// r(x) = x³ + x − 2 (root x = 1, J = 3x² + 1 > 0): Newton converges quadratically; counts the
+/// residual-only evaluations.
+class SmoothCubic : public StageProblem {
+ public:
+  explicit SmoothCubic(double x0) : x_(x0) {}
+  int NumDofs() const override { return 1; }
+  double Value(const Eigen::VectorXd& d) override { return 0.5 * R(x_ + d[0]) * R(x_ + d[0]); }
+  double Evaluate(Eigen::VectorXd* g, Eigen::SparseMatrix<double>*, PsdProjection) override {
+    g->setConstant(1, R(x_) * (3 * x_ * x_ + 1));
+    return Value(Eigen::VectorXd::Zero(1));
+  }
+  void Commit(const Eigen::VectorXd& d) override { x_ += d[0]; }
+  bool IsPotential() const override { return false; }
+  void Residual(const Eigen::VectorXd& d, Eigen::VectorXd* r) override {
+    ++residualCalls;
+    r->setConstant(1, R(x_ + d[0]));
+  }
+  void EvaluateResidual(Eigen::VectorXd* r, Eigen::SparseMatrix<double>* J) override {
+    r->setConstant(1, R(x_));
+    J->resize(1, 1);
+    J->insert(0, 0) = 3 * x_ * x_ + 1;
+    J->makeCompressed();
+  }
+  double x() const { return x_; }
+  int residualCalls = 0;
+
+ private:
+  static double R(double x) { return x * x * x + x - 2.0; }
+  double x_;
+};
+
 }  // namespace
+
+TEST_CASE("residual Newton: the last correction is taken unchecked only in the quadratic regime",
+          "[optim]") {
+  NonlinearSolverParams params;
+  SECTION("from x = 3: full steps, the last one after a quadratic contraction") {
+    SmoothCubic p(3.0);
+    const SolverStats st = SolveResidualNewton(p, params, 1.0, nullptr);
+    INFO(st.Message() << " after " << st.iterations << " iterations");
+    CHECK(st.status == StageStatus::Converged);
+    CHECK(st.lineSearchSteps == 0);
+    CHECK(std::abs(p.x() - 1.0) < 1e-15);
+    // One line-search trial per iteration but the last: the final correction costs no residual.
+    CHECK(p.residualCalls == st.iterations - 1);
+  }
+  SECTION("converged at the start: the correction is checked") {
+    SmoothCubic p(1.0 + 1e-14);
+    const SolverStats st = SolveResidualNewton(p, params, 1.0, nullptr);
+    CHECK(st.status == StageStatus::Converged);
+    CHECK(st.iterations == 1);
+    CHECK(p.residualCalls == 1);
+    CHECK(std::abs(p.x() - 1.0) < 1e-15);
+  }
+}
 
 TEST_CASE("residual Newton: a kinked residual without a root stagnates and is reported early",
           "[optim]") {
