@@ -1,4 +1,4 @@
-// Actor descriptions shared by the physics tests.
+// Actor descriptions and dissipation-mode settings shared by the physics tests.
 #pragma once
 
 #include <cmath>
@@ -6,9 +6,21 @@
 
 #include <Eigen/Geometry>
 
+#include "core/eval_params.h"
 #include "core/rigid_body.h"
 
 namespace superdex::test {
+
+/// The three dissipation modes by index (README "Dissipation modes"): 0 explicit normals,
+/// 1 reconstructed stage-start load (the default), 2 current load.
+inline ExperimentalEvalParams EvalParamsForMode(int m) {
+  ExperimentalEvalParams e;
+  e.explicitNormals = m == 0;
+  e.implicitNormalForceForDissipation = m == 2;
+  return e;
+}
+inline const char* const kModeNames[3] = {
+    "explicit normals", "reconstructed load (default)", "current load"};
 
 /// A static ground plane z <= 0 with penalty coefficient k [Pa/m] and Coulomb coefficient mu.
 inline RigidActorDesc StaticGround(double k = 1e9, double mu = 0.5) {

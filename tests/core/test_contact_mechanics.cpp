@@ -13,13 +13,6 @@ namespace {
 
 constexpr double kG = 9.81;
 
-ExperimentalEvalParams Mode(int m) {
-  ExperimentalEvalParams p;
-  p.explicitNormals = m == 0;
-  p.implicitNormalForceForDissipation = m == 2;
-  return p;
-}
-const char* const kModeNames[] = {"explicit normals", "reconstructed load", "current load"};
 
 RigidActorDesc Box(const std::string& name, const Eigen::Vector3d& half, double mass, double mu) {
   RigidActorDesc d;
@@ -62,10 +55,10 @@ TEST_CASE("friction between two dynamic boxes: a cube thrown on a box over frict
     double dt;
   };
   for (const Case& c : {Case{0, 1e-3}, Case{1, 1e-3}, Case{2, 1e-3}, Case{0, 1e-2}, Case{2, 1e-2}}) {
-    DYNAMIC_SECTION(kModeNames[c.mode] << ", dt = " << c.dt) {
+    DYNAMIC_SECTION(test::kModeNames[c.mode] << ", dt = " << c.dt) {
       SceneSettings settings;
       settings.integrator = IntegrationMethod::BDF2;
-      settings.eval = Mode(c.mode);
+      settings.eval = test::EvalParamsForMode(c.mode);
       Scene scene(settings);
       Error e;
       REQUIRE(scene.AddRigidActor(test::StaticGround(1e9, 0.0), &e).IsValid());
@@ -206,14 +199,14 @@ TEST_CASE("a tall box on an incline tips at the angle the compliant contact's st
   REQUIRE(critical < 14.0 * M_PI / 180);
   for (int m = 0; m < 3; ++m) {
     for (double offset : {-0.5, 0.5}) {
-      DYNAMIC_SECTION(kModeNames[m] << ", " << offset << " degree from the critical angle") {
+      DYNAMIC_SECTION(test::kModeNames[m] << ", " << offset << " degree from the critical angle") {
         const double theta = critical + offset * M_PI / 180;
         // The static pose there (below the critical angle), or the critical pose (above).
         const double lean = statics.EquilibriumTilt(std::min(theta, critical));
         REQUIRE(lean > 0.0);
         SceneSettings settings;
         settings.integrator = IntegrationMethod::BDF2;
-        settings.eval = Mode(m);
+        settings.eval = test::EvalParamsForMode(m);
         Scene scene(settings);
         Error e;
         const Eigen::Vector3d n(std::sin(theta), 0, std::cos(theta));

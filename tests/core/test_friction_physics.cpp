@@ -78,14 +78,6 @@ Eigen::Vector3d QuadraticFit(const InclineRun& run, double t0, double t1) {
   return A.colPivHouseholderQr().solve(y);
 }
 
-ExperimentalEvalParams Mode(int m) {
-  ExperimentalEvalParams e;
-  e.explicitNormals = m == 0;
-  e.implicitNormalForceForDissipation = m == 2;
-  return e;
-}
-const char* kModeNames[3] = {"explicit normals", "reconstructed load (default)",
-                             "implicit load"};
 
 // A solid 1 kg ball of radius r [m] (surface resolution 3: 642 samples), Coulomb coefficient mu.
 RigidActorDesc Ball(double r, double mu) {
@@ -117,8 +109,8 @@ TEST_CASE("incline, mu = 0.5: sliding acceleration g (sin30 - mu cos30) within 1
           "[core][physics][friction]") {
   const double expected = kG * (std::sin(kTheta) - 0.5 * std::cos(kTheta));
   for (int m = 0; m < 3; ++m) {
-    DYNAMIC_SECTION(kModeNames[m]) {
-      const InclineRun run = RunIncline(Mode(m), 0.5, 0.01, 1.0, 1.0, 1e-3);
+    DYNAMIC_SECTION(test::kModeNames[m]) {
+      const InclineRun run = RunIncline(test::EvalParamsForMode(m), 0.5, 0.01, 1.0, 1.0, 1e-3);
       const Eigen::Vector3d c = QuadraticFit(run, 0.3, 1.0);
       const double a = 2 * c[2];
       INFO("measured a = " << a << " m/s^2, expected " << expected << ", max rocking "
@@ -136,8 +128,8 @@ TEST_CASE("incline, mu = 0.7: regularized friction creeps at the speed where "
   const double u = 1 - std::sqrt(1 - std::tan(kTheta) / mu);
   const double expected = u * vf;
   for (int m = 0; m < 3; ++m) {
-    DYNAMIC_SECTION(kModeNames[m]) {
-      const InclineRun run = RunIncline(Mode(m), mu, vf, 1.0, 1.0, 2e-3);
+    DYNAMIC_SECTION(test::kModeNames[m]) {
+      const InclineRun run = RunIncline(test::EvalParamsForMode(m), mu, vf, 1.0, 1.0, 2e-3);
       const Eigen::Vector3d c = QuadraticFit(run, 0.5, 1.0);
       const double v = c[1] + 2 * c[2] * 1.0;  // speed at t = 1 s
       INFO("creep speed " << v << " m/s, expected " << expected << "; acceleration " << 2 * c[2]);
@@ -149,7 +141,7 @@ TEST_CASE("incline, mu = 0.7: regularized friction creeps at the speed where "
     // regularized speed (5.8e-5 m/s). Under BDF2 (not asserted here; see the closing notes) the
     // release pitch lets the face slip about 0.5 mm within 0.05 s and the undamped rocking that
     // follows unloads the face periodically, so it creeps at about 1.2e-4 m/s.
-    const InclineRun run = RunIncline(Mode(1), mu, 1e-4, 1.0, 1.0, 2e-3,
+    const InclineRun run = RunIncline(test::EvalParamsForMode(1), mu, 1e-4, 1.0, 1.0, 2e-3,
                                       IntegrationMethod::BackwardEuler);
     INFO("moved " << run.s.back() * 1e3 << " mm in 1 s");
     CHECK(std::abs(run.s.back()) < 1e-4);
@@ -179,7 +171,8 @@ TEST_CASE("incline, mu = 0.5, current load: a cube sliding for 12 s neither rock
   for (const Case& c : {Case{IntegrationMethod::BackwardEuler, 0.1, "BackwardEuler, dt = 0.1"},
                         Case{IntegrationMethod::BDF2, 0.01, "BDF2, dt = 0.01"}}) {
     DYNAMIC_SECTION(c.name) {
-      const InclineRun run = RunIncline(Mode(2), 0.5, 0.01, 1.0, 12.0, c.dt, c.method);
+      const InclineRun run =
+          RunIncline(test::EvalParamsForMode(2), 0.5, 0.01, 1.0, 12.0, c.dt, c.method);
       const Eigen::Vector3d fit = QuadraticFit(run, 2.0, 12.0);
       const double a = 2 * fit[2];
       INFO("largest |w| after 2 s " << run.maxSpinLate << " rad/s; a = " << a << " m/s^2 (expected "
@@ -328,10 +321,10 @@ TEST_CASE("current load: a box thrown at 2 m/s slides v0^2 / (2 mu g) at dt = 1e
 TEST_CASE("viscous friction: a box slides to rest as v0 exp(-c_t g t)", "[core][physics][friction]") {
   const double ct = 0.2, expected = ct * kG;
   for (int m = 0; m < 3; ++m) {
-    DYNAMIC_SECTION(kModeNames[m]) {
+    DYNAMIC_SECTION(test::kModeNames[m]) {
       SceneSettings settings;
       settings.integrator = IntegrationMethod::BDF2;
-      settings.eval = Mode(m);
+      settings.eval = test::EvalParamsForMode(m);
       Scene scene(settings);
       Error e;
       RigidActorDesc ground = test::StaticGround(1e9, 0.0);
@@ -380,7 +373,7 @@ TEST_CASE("incline, mu = 0.3: thrown uphill, friction reverses when the cube tur
     DYNAMIC_SECTION(c.name) {
       SceneSettings settings;
       settings.integrator = c.method;
-      settings.eval = Mode(c.mode);
+      settings.eval = test::EvalParamsForMode(c.mode);
       Scene scene(settings);
       Error e;
       const Eigen::Vector3d n(std::sin(kTheta), 0, std::cos(kTheta));

@@ -86,9 +86,7 @@ TEST_CASE("restitution converges as the step shrinks, in every dissipation mode"
   // ∫_{−e}^{1} u/(1 + u) du = 0), which the spec's rational formula approximates by 0.58668.
   const double exact = 0.59362426004004;
   for (int m = 0; m < 3; ++m) {
-    ExperimentalEvalParams eval;
-    eval.explicitNormals = m == 0;
-    eval.implicitNormalForceForDissipation = m == 2;
+    const ExperimentalEvalParams eval = test::EvalParamsForMode(m);
     double previousError = INFINITY;
     for (double dt : {4e-4, 2e-4, 1e-4}) {
       const Bounce b = Launch(4.0, 0.25, dt, eval);
