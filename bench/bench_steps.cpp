@@ -1,9 +1,12 @@
 // Newton iterations per step of one scene file, step by step and per time window.
 //   superdex_bench_steps SCENE.json [--dt S] [--duration S] [--window S] [--every-step]
+//                        [--one-step-length]
 // Prints, per window of simulated time: steps, the median / mean / max Newton iterations per
 // step, rejected line-search trials, explicit-normals fallbacks, non-converged stages, max
 // penetration and wall seconds; then the same over the whole run. --every-step also prints one
 // line per step (time, iterations, line-search trials, status, active samples, wall ms).
+// --one-step-length turns the solvers' line search by independent parts off
+// (NonlinearSolverParams::partLineSearch), for comparison.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -61,7 +64,7 @@ int main(int argc, char** argv) {
   if (argc < 2) {
     std::fprintf(stderr,
                  "usage: superdex_bench_steps SCENE.json [--dt S] [--duration S] [--window S] "
-                 "[--every-step]\n");
+                 "[--every-step] [--one-step-length]\n");
     return 2;
   }
   const std::string path = argv[1];
@@ -70,12 +73,14 @@ int main(int argc, char** argv) {
   o.vtk = "";
   double window = 0.5;
   bool everyStep = false;
+  bool oneStepLength = false;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--dt" && i + 1 < argc) o.dt = std::atof(argv[++i]);
     else if (a == "--duration" && i + 1 < argc) o.duration = std::atof(argv[++i]);
     else if (a == "--window" && i + 1 < argc) window = std::atof(argv[++i]);
     else if (a == "--every-step") everyStep = true;
+    else if (a == "--one-step-length") oneStepLength = true;
     else {
       std::fprintf(stderr, "superdex_bench_steps: unknown option %s\n", a.c_str());
       return 2;
@@ -90,6 +95,14 @@ int main(int argc, char** argv) {
   if (!LoadSceneFile(path, &f, &e)) {
     std::fprintf(stderr, "error: %s\n", e.message.c_str());
     return 1;
+  }
+  if (oneStepLength) {
+    NonlinearSolverParams p = f.scene->Settings().solver;
+    p.partLineSearch = false;
+    if (!f.scene->SetSolverParams(p, &e)) {
+      std::fprintf(stderr, "error: %s\n", e.message.c_str());
+      return 1;
+    }
   }
   std::vector<StepRow> rows;
   o.progress = [&](const StepReport& r, double) {

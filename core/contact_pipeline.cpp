@@ -298,6 +298,29 @@ size_t ContactPipeline::RigidPairWork() const {
   return work;
 }
 
+bool ContactPipeline::SplitLastEvaluation(const std::vector<int>& dofOffset,
+                                          std::vector<double>* share,
+                                          std::vector<std::pair<int, int>>* joins) const {
+  const bool withDissipation = !dissipationResults_.empty();
+  if (!softPairs_.empty() || !softColliderPairs_.empty() || results_.size() != pairs_.size() ||
+      (withDissipation && dissipationResults_.size() != pairs_.size()))
+    return false;
+  for (size_t k = 0; k < pairs_.size(); ++k) {
+    const RigidPairPenalty& r = results_[k];
+    const RigidPairDissipation* d =
+        withDissipation && dissipationResults_[k].activeSamples > 0 ? &dissipationResults_[k]
+                                                                    : nullptr;
+    if (r.activeSamples == 0 && !d) continue;
+    const int a = pairs_[k].colliding, b = pairs_[k].collider;
+    const int owner = dofOffset[a] >= 0 ? a : b;
+    if (dofOffset[owner] < 0) continue;
+    if (r.activeSamples > 0) (*share)[owner] += r.value;
+    if (d) (*share)[owner] += d->value;
+    if (dofOffset[a] >= 0 && dofOffset[b] >= 0) joins->emplace_back(a, b);
+  }
+  return true;
+}
+
 void ContactPipeline::StepLimits(const std::vector<RigidPose>& poses,
                                  const std::vector<RigidPose>& trial,
                                  std::vector<double>* alpha) {

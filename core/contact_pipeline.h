@@ -113,6 +113,14 @@ class ContactPipeline {
   void CollectSamples(const std::vector<RigidPose>& poses,
                       std::vector<ContactSampleRecord>* records, const SoftView* soft = nullptr);
 
+  /// The last Evaluate's rigid pairs by body (StageProblem::LastSplit): each pair's penalty and
+  /// dissipation values, as Evaluate summed them, added to (*share)[i] of its first dynamic actor
+  /// i (dofOffset[i] >= 0), and each pair of two dynamic actors with an active sample (penalty or
+  /// dissipation) appended to *joins as (colliding, collider). False, with nothing added, if that
+  /// evaluation had pairs with soft actors (not split) or the pairs changed since (StepLimits).
+  bool SplitLastEvaluation(const std::vector<int>& dofOffset, std::vector<double>* share,
+                           std::vector<std::pair<int, int>>* joins) const;
+
   /// The ordered pairs found by the last evaluation.
   const std::vector<ContactPair>& Pairs() const { return pairs_; }
 

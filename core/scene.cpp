@@ -238,6 +238,15 @@ bool Scene::SetIntegrator(IntegrationMethod method, Error* error) {
   return true;
 }
 
+bool Scene::SetSolverParams(const NonlinearSolverParams& params, Error* error) {
+  SceneSettings s = settings_;
+  s.solver = params;
+  if (std::string m = Validate(s); !m.empty()) return Fail(error, m);
+  settings_ = s;
+  settingsError_.clear();
+  return true;
+}
+
 bool Scene::SetState(ActorHandle a, const RigidBodyState& state, Error* error) {
   if (a.index < 0 || a.index >= NumActors()) return Fail(error, "actor: invalid handle");
   if (actors_[a.index].soft) return Fail(error, "actor: a soft actor has no rigid state");

@@ -178,6 +178,8 @@ class Scene {
   bool SetStageSolver(StageSolverKind kind, Error* error);
   /// Changes the integrator (validated); the next step starts without BDF history.
   bool SetIntegrator(IntegrationMethod method, Error* error);
+  /// Replaces the nonlinear stage solver's settings (validated, field names with "solver.").
+  bool SetSolverParams(const NonlinearSolverParams& params, Error* error);
   /// Replaces the state of an actor (e.g. to restart from a recorded state); clears BDF history.
   bool SetState(ActorHandle a, const RigidBodyState& state, Error* error);
   /// Replaces a soft actor's state (x, v: 3 entries per node); clears BDF history.

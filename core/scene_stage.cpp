@@ -90,13 +90,16 @@ double SceneStageProblem::EvaluateAt(const std::vector<RigidPose>& poses,
     if (rDiss != gPot) rDiss->setZero(numDofs_);
   }
   triplets_.clear();
+  std::vector<double>& bodyValue = ws_->bodyValue;
+  bodyValue.assign(models_.size(), 0.0);
   for (size_t i = 0; i < models_.size(); ++i) {
     const int o = dofOffset_[i];
     if (o < 0) continue;
     const RigidBodyModel& m = models_[i];
     const RigidInertiaTerm t = RigidInertia(m.mass, m.secondMoment, poses[i].p, poses[i].R,
                                             targets_.pHat[i], targets_.RHat[i], order >= 1);
-    value += w * t.value + GravityPotential(m.mass, gravity_, poses[i].p);
+    bodyValue[i] = w * t.value + GravityPotential(m.mass, gravity_, poses[i].p);
+    value += bodyValue[i];
     if (order == 0) continue;
     gPot->segment<6>(o) += w * t.gradient;
     gPot->segment<3>(o) -= m.mass * gravity_;
@@ -257,6 +260,27 @@ void SceneStageProblem::Commit(const Eigen::VectorXd& d) {
     lastMinDetF_ = pendingMinDetF_;
   }
   hasPending_ = false;
+}
+
+bool SceneStageProblem::LastSplit(StageSplit* split) {
+  if (soft_) return false;
+  const int units = numDofs_ / 6;
+  if (static_cast<int>(split->unitOfDof.size()) != numDofs_ || split->units != units) {
+    split->unitOfDof.resize(numDofs_);
+    for (int k = 0; k < numDofs_; ++k) split->unitOfDof[k] = k / 6;
+    split->units = units;
+  }
+  if (ws_->bodyValue.size() != models_.size()) return false;
+  std::vector<double>& value = ws_->splitValue;
+  value = ws_->bodyValue;
+  split->joins.clear();
+  if (contact_ && !contact_->SplitLastEvaluation(dofOffset_, &value, &split->joins)) return false;
+  split->share.assign(units, 0.0);
+  for (size_t i = 0; i < models_.size(); ++i)
+    if (dofOffset_[i] >= 0) split->share[dofOffset_[i] / 6] += value[i];
+  for (std::pair<int, int>& j : split->joins)
+    j = {dofOffset_[j.first] / 6, dofOffset_[j.second] / 6};
+  return true;
 }
 
 bool SceneStageProblem::LimitStep(Eigen::VectorXd* d) {

@@ -52,6 +52,8 @@ struct StageWorkspace {
   std::vector<RigidPose> trial;            ///< the configuration s ⊕ d under evaluation
   std::vector<Eigen::VectorXd> softTrial;  ///< its soft positions
   std::vector<double> limits;              ///< LimitStep's fractions per body
+  std::vector<double> bodyValue;           ///< the last evaluation's inertia + gravity per body
+  std::vector<double> splitValue;          ///< LastSplit's per-body shares
   Eigen::VectorXd scratch;                 ///< the dissipative residual's part
   Eigen::VectorXd pendingStep;             ///< the step of the last EvaluateAtStep-like call
   std::vector<Eigen::Triplet<double>> triplets;
@@ -78,6 +80,10 @@ class SceneStageProblem : public StageProblem {
                   PsdProjection projection) override;
   void Commit(const Eigen::VectorXd& d) override;
   bool IsPotential() const override;
+  /// Units are the dynamic rigid bodies (unit = dofOffset / 6); shares their inertia and gravity
+  /// terms plus the contact pairs' values (ContactPipeline::SplitLastEvaluation). False with soft
+  /// actors.
+  bool LastSplit(StageSplit* split) override;
   void Residual(const Eigen::VectorXd& d, Eigen::VectorXd* r) override;
   /// J = ∂r/∂δ: the (unprojected) Hessian of the potential terms with the rotation blocks'
   /// trivialization term −½[τ]× (τ: that body's potential torque), plus the dissipation Jacobian.

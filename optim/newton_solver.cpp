@@ -185,10 +185,14 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
   // exact Hessian; if it is not positive definite the iteration is re-assembled projected. The
   // caller may ask for it at the first iteration (NewtonStart).
   bool tryExact = start.exactHessian;
+  PartLineSearch& parts = w.parts;
+  const bool usePartSearch = params.partLineSearch && params.lineSearch != LineSearchKind::None;
+  bool split = false;  // the parts of s are known (parts.Begin): one step length per part
   for (int it = 0; it < params.maxIterations; ++it) {
     // --- Assembly: f, g, H at the current state s.
     Clock::time_point t0 = Clock::now();
     const bool exact = tryExact && params.psdProjection != PsdProjection::None;
+    const bool reused = evaluated;
     double f = evaluated ? evaluatedValue
                          : problem.Evaluate(&g, &H, exact ? PsdProjection::None : params.psdProjection);
     evaluated = false;
@@ -211,6 +215,8 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
       }
       tryExact = good;
     }
+    // The split of the evaluation at s (an accepted trial's was adopted with it).
+    if (!reused) split = usePartSearch && parts.Begin(problem);
     st.finalValue = f;
     if (g.size() != n || H.rows() != n || H.cols() != n) {
       std::ostringstream s;
@@ -353,6 +359,31 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
       trialValue = problem.Value(dir);
       accepted = std::isfinite(trialValue);
       step = dir;
+    } else if (split) {
+      parts.StartMinimization(g, dir);
+      for (int trial = 0; trial < params.maxLineSearchSteps; ++trial) {
+        parts.Step(dir, &step);
+        const bool withDerivatives =
+            trial == 0 && !isLimited &&
+            problem.EvaluateAtStep(step, &trialValue, &gTrial, &HTrial, PsdProjection::None);
+        if (!withDerivatives) trialValue = problem.Value(step);
+        if (std::isfinite(trialValue) &&
+            parts.Test(problem, trialValue, nullptr, params.armijoConstant,
+                       params.backtrackFactor, kRoundoffBand)) {
+          accepted = true;
+          if (withDerivatives) {
+            g.swap(gTrial);
+            H.swap(HTrial);
+            evaluatedValue = trialValue;
+            evaluated = true;
+            split = parts.AdoptTrial();
+          }
+          break;
+        }
+        if (!std::isfinite(trialValue)) parts.CutAll(params.backtrackFactor);
+        ++st.lineSearchSteps;
+      }
+      alpha = accepted && parts.AllFull() ? 1.0 : parts.MinAlpha();
     } else {
       for (int trial = 0; trial < params.maxLineSearchSteps; ++trial) {
         step.noalias() = alpha * dir;
@@ -373,6 +404,7 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
             H.swap(HTrial);
             evaluatedValue = trialValue;
             evaluated = true;
+            split = usePartSearch && parts.Begin(problem);  // the trial's split: the next s's
           }
           break;
         }

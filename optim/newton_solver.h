@@ -38,6 +38,10 @@
 //      f(s ⊕ d) is not finite). s ← s ⊕ αd. The unshortened full step's trial is evaluated with
 //      its gradient and exact Hessian where the problem offers EvaluateAtStep (equal bit for bit
 //      to step 1 after the commit): when it is accepted, step 1 of the next iteration is skipped.
+//      Where the problem splits into independent parts (StageProblem::LastSplit, e.g. bodies
+//      that no contact joins) and partLineSearch is set, each part gets its own α, tested on its
+//      own share of f (optim/part_line_search.h); a part whose direction is no descent for its
+//      share stays put. The next iteration tries the exact Hessian only if every part took α = 1.
 //   After maxIterations iterations without convergence → Stopped (the last step is committed but
 //   not tested: Stopped is reported even if it happened to reach the minimum).
 #pragma once
@@ -45,6 +49,7 @@
 #include <string>
 
 #include "optim/linear_solver.h"
+#include "optim/part_line_search.h"
 #include "optim/stage_problem.h"
 
 namespace superdex {
@@ -74,6 +79,9 @@ struct NonlinearSolverParams {
   double armijoConstant = 1e-4;       ///< c in the Armijo condition
   double backtrackFactor = 0.5;       ///< α ← factor α on each rejected trial
   int maxLineSearchSteps = 40;        ///< trials before the stage is declared Diverged
+  /// Line search by independent parts where the problem splits (optim/part_line_search.h): each
+  /// part of the stage gets its own step length. False: one step length for all dofs.
+  bool partLineSearch = true;
   /// The linear solves (optim/linear_solver.h); Auto: Krylov from 3000 unknowns up.
   LinearSolverSettings linear{LinearSolverKind::Auto};
 };
@@ -141,6 +149,7 @@ struct NewtonWorkspace {
   Eigen::VectorXd gradient, direction, step, limited, trialGradient;
   Eigen::SparseMatrix<double> matrix, shifted, trialMatrix;
   std::vector<Eigen::Index> diagonal;
+  PartLineSearch parts;
 };
 
 /// What a caller knows about a solve's start: a hint, not a setting (the iterates may change, the

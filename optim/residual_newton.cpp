@@ -78,9 +78,15 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
   int stagnant = 0;  // consecutive stagnant iterations (below)
   bool quadratic = false;  // the last accepted step was full and cut θ by kQuadraticContraction
   const double stagnantStep = std::pow(params.backtrackFactor, 10);
+  PartLineSearch& parts = w.parts;
+  const bool usePartSearch = params.partLineSearch && params.lineSearch != LineSearchKind::None;
+  bool split = false;  // the parts of s are known (parts.Begin): one step length per part
   for (int it = 0; it < params.maxIterations; ++it) {
     Clock::time_point t0 = Clock::now();
-    if (!evaluated) problem.EvaluateResidual(&r, &J);
+    if (!evaluated) {
+      problem.EvaluateResidual(&r, &J);
+      split = usePartSearch && parts.Begin(problem);
+    }
     evaluated = false;
     st.assemblySeconds += SecondsSince(t0);
     if (r.size() != n || J.rows() != n || J.cols() != n)
@@ -170,8 +176,14 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
     bool accepted = false;
     double trialTheta = NAN;
     const int trials = params.lineSearch == LineSearchKind::None ? 1 : params.maxLineSearchSteps;
+    const bool partSearch = split;
+    if (partSearch) parts.StartResidual(r, d);
     for (int trial = 0; trial < trials; ++trial) {
-      step.noalias() = alpha * d;
+      if (partSearch) {
+        parts.Step(d, &step);
+      } else {
+        step.noalias() = alpha * d;
+      }
       // The full step is usually taken: its Jacobian is formed with its residual, to serve the
       // next iteration (wasted only when the step is cut back).
       const bool withJacobian =
@@ -179,6 +191,22 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
       if (!withJacobian) problem.Residual(step, &rTrial);
       trialTheta = 0.5 * rTrial.squaredNorm();
       const bool finite = std::isfinite(trialTheta);
+      if (partSearch) {
+        if (finite && parts.Test(problem, trialTheta, &rTrial, params.armijoConstant,
+                                 params.backtrackFactor, kRoundoffBand)) {
+          accepted = true;
+          if (withJacobian) {
+            r.swap(rTrial);
+            J.swap(JTrial);
+            evaluated = true;
+            split = parts.AdoptTrial();
+          }
+          break;
+        }
+        if (!finite) parts.CutAll(params.backtrackFactor);
+        ++st.lineSearchSteps;
+        continue;
+      }
       if (finite && (params.lineSearch == LineSearchKind::None ||
                      trialTheta <= (1.0 - 2.0 * params.armijoConstant * alpha) * theta ||
                      (std::abs(trialTheta - theta) <= kRoundoffBand * theta &&
@@ -188,12 +216,14 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
           r.swap(rTrial);
           J.swap(JTrial);
           evaluated = true;
+          split = usePartSearch && parts.Begin(problem);  // the trial's split: the next s's
         }
         break;
       }
       ++st.lineSearchSteps;
       alpha *= params.backtrackFactor;
     }
+    if (partSearch) alpha = accepted && parts.AllFull() ? 1.0 : parts.MinAlpha();
     st.lineSearchSeconds += SecondsSince(t0);
     if (!accepted) {
       std::ostringstream s;

@@ -21,6 +21,8 @@
 //      α‖d‖ is negligible. maxLineSearchSteps rejections → Diverged. The full step's trial is
 //      evaluated with its Jacobian where the problem offers EvaluateResidualAtStep (equal bit for bit
 //      to step 1 after the commit): when it is accepted, step 1 of the next iteration is skipped.
+//      With partLineSearch, independent parts (StageProblem::LastSplit) get their own α, tested
+//      on their own θ_P (optim/part_line_search.h); steps 3 and 5 then read the smallest α.
 //   5. Stagnation: three iterations in a row whose accepted step was cut to α <= β^10 and lowered
 //      θ by less than 1e-6 θ → Diverged at once (a residual without a nearby root or with a kink
 //      where Newton's direction stops helping; the caller's fallback then takes over). Measured

@@ -2,6 +2,9 @@
 // stepped by tangent vectors. optim/ knows nothing of physics.
 #pragma once
 
+#include <utility>
+#include <vector>
+
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
@@ -15,6 +18,18 @@ enum class PsdProjection {
   None,   ///< exact Hessian (may be indefinite)
   Clamp,  ///< negative eigenvalues set to zero
   Abs,    ///< negative eigenvalues replaced by their absolute value
+};
+
+/// How the objective of one evaluation splits into independent parts (StageProblem::LastSplit).
+/// The dofs are grouped into units (a rigid body's six); f is the sum of the units' shares, and
+/// the only terms that couple units are those listed in `joins`: every term that was nonzero at
+/// that state and involves two units. Units not linked through `joins` were independent there:
+/// f's Hessian (the residual's Jacobian) has no entry between them.
+struct StageSplit {
+  std::vector<int> unitOfDof;                ///< per dof: its unit, 0 … units − 1
+  int units = 0;
+  std::vector<double> share;                 ///< per unit: its share of f at that state [J]
+  std::vector<std::pair<int, int>> joins;    ///< units coupled by a term nonzero there
 };
 
 /// An objective f over states s of a manifold. The problem keeps a current state s; a tangent step
@@ -87,6 +102,11 @@ class StageProblem {
   /// sees). Returns true if d was changed. The solvers use the shortened step only when it is
   /// still a descent direction, and test convergence on the unshortened one. Default: no change.
   virtual bool LimitStep(Eigen::VectorXd* /*d*/) { return false; }
+
+  /// The split (above) of the evaluation just made — Value, Evaluate, EvaluateAtStep, Residual,
+  /// EvaluateResidual or EvaluateResidualAtStep — read before any other call. False (the
+  /// default): the problem does not split, and the solvers treat it as one part.
+  virtual bool LastSplit(StageSplit* /*split*/) { return false; }
 
   /// A norm of a step in length units [m], used for the step convergence test. Default: max-norm.
   virtual double StepNorm(const Eigen::VectorXd& d) const { return d.lpNorm<Eigen::Infinity>(); }

@@ -265,6 +265,9 @@ void BindScene(py::module_& m) {
                      "gradient reduction tolerance [-]. Default 1e-10.")
       .def_readwrite("step_tolerance", &NonlinearSolverParams::stepTolerance,
                      "step velocity tolerance [m/s]. Default 1e-9.")
+      .def_readwrite("part_line_search", &NonlinearSolverParams::partLineSearch,
+                     "one line-search step length per independent part of a stage (bodies no "
+                     "contact joins). Default True.")
       .def_property(
           "linear_solver",
           [](const NonlinearSolverParams& p) { return std::string(ToString(p.linear.kind)); },

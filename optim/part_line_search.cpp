@@ -1,0 +1,175 @@
+#include "optim/part_line_search.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace superdex {
+
+int PartLineSearch::Find(int u) {
+  while (parent_[u] != u) {
+    parent_[u] = parent_[parent_[u]];
+    u = parent_[u];
+  }
+  return u;
+}
+
+bool PartLineSearch::Label() {
+  parts_ = 0;
+  const int units = base_.units;
+  if (units < 2 || static_cast<int>(base_.share.size()) != units) return false;
+  parent_.resize(units);
+  for (int u = 0; u < units; ++u) parent_[u] = u;
+  for (const std::pair<int, int>& j : base_.joins) {
+    const int a = Find(j.first), b = Find(j.second);
+    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+  }
+  // Parts numbered in the order of their smallest unit (deterministic).
+  partOfUnit_.assign(units, -1);
+  for (int u = 0; u < units; ++u) {
+    const int root = Find(u);
+    if (partOfUnit_[root] < 0) partOfUnit_[root] = parts_++;
+    partOfUnit_[u] = partOfUnit_[root];
+  }
+  return parts_ > 1;
+}
+
+bool PartLineSearch::Begin(StageProblem& problem) {
+  parts_ = 0;
+  return problem.LastSplit(&base_) && Label();
+}
+
+bool PartLineSearch::AdoptTrial() {
+  std::swap(base_, trial_);
+  return Label();
+}
+
+void PartLineSearch::StartMinimization(const Eigen::VectorXd& g, const Eigen::VectorXd& dir) {
+  residual_ = false;
+  alpha_.assign(parts_, 1.0);
+  value_.assign(parts_, 0.0);
+  slope_.assign(parts_, 0.0);
+  double f = 0.0;
+  for (int u = 0; u < base_.units; ++u) {
+    value_[partOfUnit_[u]] += base_.share[u];
+    f += base_.share[u];
+  }
+  for (Eigen::Index k = 0; k < dir.size(); ++k)
+    slope_[partOfUnit_[base_.unitOfDof[k]]] += g[k] * dir[k];
+  // g·d < 0 overall does not make every part's g_P·d_P negative (an indefinite exact Hessian, or
+  // a step the problem shortened body by body): such a part stays where it is this iteration.
+  for (int p = 0; p < parts_; ++p)
+    if (!(slope_[p] < 0.0)) {
+      alpha_[p] = 0.0;
+      slope_[p] = 0.0;
+    }
+  scale_ = std::abs(f);
+}
+
+void PartLineSearch::StartResidual(const Eigen::VectorXd& r, const Eigen::VectorXd& dir) {
+  residual_ = true;
+  alpha_.assign(parts_, 1.0);
+  value_.assign(parts_, 0.0);
+  slope_.assign(parts_, 0.0);
+  for (Eigen::Index k = 0; k < dir.size(); ++k) {
+    const int p = partOfUnit_[base_.unitOfDof[k]];
+    value_[p] += 0.5 * r[k] * r[k];
+    slope_[p] += r[k] * dir[k];
+  }
+  scale_ = 0.0;
+  for (int p = 0; p < parts_; ++p) {
+    slope_[p] = 0.5 * std::abs(slope_[p]);
+    scale_ += value_[p];
+  }
+}
+
+void PartLineSearch::Step(const Eigen::VectorXd& dir, Eigen::VectorXd* step) const {
+  step->resize(dir.size());
+  for (Eigen::Index k = 0; k < dir.size(); ++k)
+    (*step)[k] = alpha_[partOfUnit_[base_.unitOfDof[k]]] * dir[k];
+}
+
+void PartLineSearch::CutAll(double beta) {
+  for (double& a : alpha_) a *= beta;
+}
+
+bool PartLineSearch::Test(StageProblem& problem, double trialValue, const Eigen::VectorXd* rTrial,
+                          double c, double beta, double roundoff) {
+  // Groups: the base parts joined by the trial's coupling terms (all one group when the trial
+  // does not split).
+  parent_.resize(parts_);
+  for (int p = 0; p < parts_; ++p) parent_[p] = p;
+  const bool split = problem.LastSplit(&trial_) && trial_.units == base_.units &&
+                     static_cast<int>(trial_.share.size()) == base_.units;
+  if (split) {
+    for (const std::pair<int, int>& j : trial_.joins) {
+      const int a = Find(partOfUnit_[j.first]), b = Find(partOfUnit_[j.second]);
+      if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+    }
+  } else {
+    for (int p = 1; p < parts_; ++p) parent_[p] = 0;
+  }
+  groupOf_.resize(parts_);
+  for (int p = 0; p < parts_; ++p) groupOf_[p] = Find(p);
+  groupTrial_.assign(parts_, 0.0);
+  groupBase_.assign(parts_, 0.0);
+  groupSlope_.assign(parts_, 0.0);
+  // Per group: the trial's merit, the base merit, the predicted change Σ α_P slope_P and
+  // (residual) the required decrease 2c Σ α_P θ_P(s).
+  std::vector<double>& required = groupRequired_;
+  required.assign(parts_, 0.0);
+  if (residual_) {
+    for (Eigen::Index k = 0; k < rTrial->size(); ++k) {
+      const double rk = (*rTrial)[k];
+      groupTrial_[groupOf_[partOfUnit_[base_.unitOfDof[k]]]] += 0.5 * rk * rk;
+    }
+  } else if (split) {
+    for (int u = 0; u < base_.units; ++u)
+      groupTrial_[groupOf_[partOfUnit_[u]]] += trial_.share[u];
+  } else {
+    groupTrial_[0] = trialValue;
+  }
+  for (int p = 0; p < parts_; ++p) {
+    const int g = groupOf_[p];
+    groupBase_[g] += value_[p];
+    groupSlope_[g] += alpha_[p] * slope_[p];
+    if (residual_) required[g] += 2.0 * c * alpha_[p] * value_[p];
+  }
+  const double band = roundoff * scale_;
+  groupFails_.assign(parts_, 0);
+  bool all = true;
+  for (int p = 0; p < parts_; ++p) {
+    if (groupOf_[p] != p) continue;  // not a group's root
+    bool pass;
+    if (residual_) {
+      pass = std::isfinite(groupTrial_[p]) &&
+             (groupTrial_[p] <= groupBase_[p] - required[p] ||
+              (std::abs(groupTrial_[p] - groupBase_[p]) <= band && groupSlope_[p] <= band));
+    } else {
+      pass = std::isfinite(groupTrial_[p]) &&
+             (groupTrial_[p] <= groupBase_[p] + c * groupSlope_[p] ||
+              (std::abs(groupTrial_[p] - groupBase_[p]) <= band &&
+               std::abs(groupSlope_[p]) <= band));
+    }
+    if (!pass) {
+      groupFails_[p] = 1;
+      all = false;
+    }
+  }
+  if (all) return true;
+  for (int p = 0; p < parts_; ++p)
+    if (groupFails_[groupOf_[p]]) alpha_[p] *= beta;
+  return false;
+}
+
+bool PartLineSearch::AllFull() const {
+  return std::all_of(alpha_.begin(), alpha_.end(), [](double a) { return a == 1.0; });
+}
+
+double PartLineSearch::MinAlpha() const {
+  double m = 1.0;
+  for (double a : alpha_) m = std::min(m, a);
+  return m;
+}
+
+}  // namespace superdex

@@ -1,0 +1,81 @@
+// A line search by the independent parts of a stage (StageProblem::LastSplit).
+//
+// Where no term couples two groups of dofs, the objective splits, f = Σ_P f_P, and so does
+// Newton's direction (the Hessian, or the residual's Jacobian, is block diagonal over the parts).
+// One step length for all parts lets a single part that needs a short step (a body landing on a
+// pile) cut every other part's step as well, and the whole stage then converges only linearly.
+// Here each part P of the base state s — a connected component of the units joined by terms
+// nonzero at s — gets its own step length α_P. The trial s ⊕ Σ_P α_P d_P is evaluated once for
+// all parts; parts joined by a term nonzero at the trial form one group G, tested on its share:
+//   minimization:  f_G(trial) <= f_G(s) + c Σ_{P∈G} α_P g_P·d_P
+//   residual:      θ_G(trial) <= θ_G(s) − 2c Σ_{P∈G} α_P θ_P(s),   θ = ½‖r‖² over G's dofs
+// (f_G(s) = Σ_{P∈G} f_P(s): the parts were uncoupled at s), or the round-off band: the group's
+// change and its predicted change both within the band. Every part of a failing group has α_P
+// cut by β, and the trial is evaluated again until every group passes; an accepted trial lowers
+// f (θ) by the sum of its groups' decreases, as a single Armijo step would.
+// Measured (Newton iterations per step, mean, one step length → by parts; BDF2, Δt = 1e-2, default
+// mode unless named): four separate 75-sphere piles 11.99 → 10.86 (explicit normals 9.87 → 8.91);
+// one 75-sphere pile 9.64 → 9.19 (7.88 → 7.59); the 1000-sphere pile's first 0.6 s 19.18 → 18.07
+// (rejected trials 1135 → 899, fallbacks 2 → 1); stack, pyramid, drop and incline unchanged (one
+// part, or parts that never need a cut).
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "optim/stage_problem.h"
+
+namespace superdex {
+
+class PartLineSearch {
+ public:
+  /// Reads the split of the evaluation just made at the base state s. False when the problem
+  /// does not split or has a single part there (then use one step length).
+  bool Begin(StageProblem& problem);
+  /// Makes the split read by the last Test (a trial evaluated with derivatives and accepted) the
+  /// base state's. False as Begin.
+  bool AdoptTrial();
+  int Parts() const { return parts_; }
+
+  /// Base merits along the direction `dir`: f_P(s) and g_P·d_P (minimization), or θ_P(s) and
+  /// ½|r_P·d_P| (residual). Every α_P is set to 1.
+  void StartMinimization(const Eigen::VectorXd& g, const Eigen::VectorXd& dir);
+  void StartResidual(const Eigen::VectorXd& r, const Eigen::VectorXd& dir);
+
+  /// step = Σ_P α_P dir_P.
+  void Step(const Eigen::VectorXd& dir, Eigen::VectorXd* step) const;
+
+  /// Tests the trial just evaluated at Step(dir) (minimization: its value f, rTrial null;
+  /// residual: its r). True if every group passes; otherwise cuts the failing groups' α_P by
+  /// `beta` and returns false. `c` is the Armijo constant, `roundoff` the relative round-off band
+  /// (applied to |f(s)| or θ(s)). A trial that does not split is tested as one group.
+  bool Test(StageProblem& problem, double trialValue, const Eigen::VectorXd* rTrial, double c,
+            double beta, double roundoff);
+  /// Cuts every α_P by beta (a non-finite trial value).
+  void CutAll(double beta);
+
+  /// Whether every α_P is 1; the smallest α_P.
+  bool AllFull() const;
+  double MinAlpha() const;
+
+ private:
+  int Find(int u);
+  /// Labels the units' parts from base_.joins.
+  bool Label();
+
+  StageSplit base_, trial_;
+  int parts_ = 0;
+  std::vector<int> partOfUnit_;     // per unit: its part at s
+  std::vector<double> alpha_;       // per part
+  std::vector<double> value_;       // per part: f_P(s) or θ_P(s)
+  std::vector<double> slope_;       // per part: g_P·d_P, or ½|r_P·d_P|
+  bool residual_ = false;
+  double scale_ = 0.0;              // |f(s)| or θ(s): the round-off band's scale
+  // Scratch of Label and Test (no allocation once sized).
+  std::vector<int> parent_, groupOf_;
+  std::vector<double> groupTrial_, groupBase_, groupSlope_, groupRequired_;
+  std::vector<char> groupFails_;
+};
+
+}  // namespace superdex

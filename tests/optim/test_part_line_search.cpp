@@ -1,0 +1,174 @@
+// The line search by independent parts (optim/part_line_search.h) in both Newton solvers, on a
+// two-unit problem whose first unit needs a cut step and whose second is a quadratic (root): with
+// one step length the quadratic unit takes the first unit's cut; by parts it takes its full Newton
+// step, unless a term joins the units at the base state or at the trial.
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "optim/newton_solver.h"
+#include "optim/part_line_search.h"
+#include "optim/residual_newton.h"
+
+using namespace superdex;
+
+namespace {
+
+/// When the problem reports a coupling term between its two units.
+enum class Join { Never, Always, WhenFirstNegative };
+
+/// Units x₁, x₂ (one dof each).
+///   potential:  f = √(1 + x₁²) + ½ (x₂ − 1)²  — Newton's step on √(1 + x²) is −x(1 + x²): from
+///               x₁ = 3 the full step (to −27) raises f; Armijo on f₁ accepts α = 1/8 (x₁ = −0.75),
+///               and so does Armijo on f from x₂ = 0.5;
+///   residual:   r = (atan x₁, x₂ − 1)          — from x₁ = 3 the full step overshoots to −9.49
+///               (θ₁ rises); the merit test on θ₁ accepts α = 1/4 (x₁ = −0.12), the one on θ from
+///               x₂ = 0.5 already α = 1/2 (x₂'s fall outweighs x₁'s rise there).
+/// The joins are reported only (the objective has no coupling term), which LastSplit allows: a
+/// join says the units may be coupled.
+class TwoUnits : public StageProblem {
+ public:
+  TwoUnits(bool potential, Join join) : potential_(potential), join_(join) {}
+  int NumDofs() const override { return 2; }
+  double Value(const Eigen::VectorXd& d) override { return At(x_ + d, nullptr, nullptr); }
+  double Evaluate(Eigen::VectorXd* g, Eigen::SparseMatrix<double>* H, PsdProjection) override {
+    return At(x_, g, H);
+  }
+  bool EvaluateAtStep(const Eigen::VectorXd& d, double* value, Eigen::VectorXd* g,
+                      Eigen::SparseMatrix<double>* H, PsdProjection) override {
+    *value = At(x_ + d, g, H);
+    return true;
+  }
+  void Commit(const Eigen::VectorXd& d) override { x_ += d; }
+  bool IsPotential() const override { return potential_; }
+  void Residual(const Eigen::VectorXd& d, Eigen::VectorXd* r) override {
+    Eigen::SparseMatrix<double> J;
+    ResidualAt(x_ + d, r, &J);
+  }
+  void EvaluateResidual(Eigen::VectorXd* r, Eigen::SparseMatrix<double>* J) override {
+    ResidualAt(x_, r, J);
+  }
+  bool LastSplit(StageSplit* split) override {
+    split->unitOfDof = {0, 1};
+    split->units = 2;
+    split->share = share_;
+    split->joins.clear();
+    if (join_ == Join::Always || (join_ == Join::WhenFirstNegative && last_[0] < 0.0))
+      split->joins.emplace_back(0, 1);
+    return true;
+  }
+  const Eigen::Vector2d& x() const { return x_; }
+
+ private:
+  static void Diagonal(double a, double b, Eigen::SparseMatrix<double>* M) {
+    M->resize(2, 2);
+    M->setZero();
+    M->insert(0, 0) = a;
+    M->insert(1, 1) = b;
+    M->makeCompressed();
+  }
+  double At(const Eigen::Vector2d& x, Eigen::VectorXd* g, Eigen::SparseMatrix<double>* H) {
+    last_ = x;
+    const double s = std::sqrt(1.0 + x[0] * x[0]);
+    share_ = {s, 0.5 * (x[1] - 1.0) * (x[1] - 1.0)};
+    if (g) *g = Eigen::Vector2d(x[0] / s, x[1] - 1.0);
+    if (H) Diagonal(1.0 / (s * s * s), 1.0, H);
+    return share_[0] + share_[1];
+  }
+  void ResidualAt(const Eigen::Vector2d& x, Eigen::VectorXd* r, Eigen::SparseMatrix<double>* J) {
+    last_ = x;
+    share_ = {0.0, 0.0};
+    *r = Eigen::Vector2d(std::atan(x[0]), x[1] - 1.0);
+    Diagonal(1.0 / (1.0 + x[0] * x[0]), 1.0, J);
+  }
+
+  bool potential_;
+  Join join_;
+  Eigen::Vector2d x_{3.0, 0.5}, last_{3.0, 0.5};
+  std::vector<double> share_{0.0, 0.0};
+};
+
+NonlinearSolverParams Params(bool parts, int maxIterations) {
+  NonlinearSolverParams p;
+  p.partLineSearch = parts;
+  p.maxIterations = maxIterations;
+  return p;
+}
+
+SolverStats Solve(TwoUnits& problem, const NonlinearSolverParams& p) {
+  return problem.IsPotential() ? MinimizeNewton(problem, p, 1.0)
+                               : SolveResidualNewton(problem, p, 1.0);
+}
+
+}  // namespace
+
+TEST_CASE("Part line search: an independent quadratic unit takes its full step", "[optim][parts]") {
+  for (bool potential : {true, false}) {
+    INFO((potential ? "minimization" : "residual"));
+    // The accepted step length with one step length and the first part's own.
+    const double shared = potential ? 0.125 : 0.5;
+    const double own = potential ? 0.125 : 0.25;
+    {
+      TwoUnits one(potential, Join::Never);
+      const SolverStats st = Solve(one, Params(false, 1));
+      CHECK(st.status == StageStatus::Stopped);
+      CHECK(st.lineSearchSteps == (potential ? 3 : 1));
+      CHECK(one.x()[1] == Approx(0.5 + 0.5 * shared).epsilon(1e-15));  // the shared cut
+    }
+    {
+      TwoUnits parts(potential, Join::Never);
+      const SolverStats st = Solve(parts, Params(true, 1));
+      CHECK(st.status == StageStatus::Stopped);
+      CHECK(parts.x()[1] == 1.0);  // the quadratic's Newton step, whole
+      const double x1 = potential ? 3.0 - own * 30.0 : 3.0 - own * std::atan(3.0) * 10.0;
+      CHECK(parts.x()[0] == Approx(x1).epsilon(1e-14));
+    }
+    // Both solve to the same point.
+    TwoUnits a(potential, Join::Never), b(potential, Join::Never);
+    const SolverStats sa = Solve(a, Params(false, 50));
+    const SolverStats sb = Solve(b, Params(true, 50));
+    REQUIRE(sa.status == StageStatus::Converged);
+    REQUIRE(sb.status == StageStatus::Converged);
+    CHECK(std::abs(a.x()[0]) < 1e-6);
+    CHECK(std::abs(b.x()[0]) < 1e-6);
+    CHECK(a.x()[1] == Approx(1.0).margin(1e-12));
+    CHECK(b.x()[1] == Approx(1.0).margin(1e-12));
+    CHECK(sb.iterations <= sa.iterations);
+  }
+}
+
+TEST_CASE("Part line search: units joined at the base state or at the trial share the cut",
+          "[optim][parts]") {
+  for (bool potential : {true, false}) {
+    INFO((potential ? "minimization" : "residual"));
+    const double shared = potential ? 0.125 : 0.5;
+    // Joined at the start: one part, one step length.
+    TwoUnits joined(potential, Join::Always);
+    Solve(joined, Params(true, 1));
+    CHECK(joined.x()[1] == Approx(0.5 + 0.5 * shared).epsilon(1e-15));
+    // Joined only where x₁ < 0, i.e. at every trial of this first step: the two parts are tested
+    // as one group on the sum of their merits, whose first unit's rise outweighs the second's
+    // fall at the same step length as with one step length.
+    TwoUnits atTrial(potential, Join::WhenFirstNegative);
+    Solve(atTrial, Params(true, 1));
+    CHECK(atTrial.x()[1] == Approx(0.5 + 0.5 * shared).epsilon(1e-15));
+  }
+}
+
+TEST_CASE("Part line search: a part whose step is no descent stays", "[optim][parts]") {
+  TwoUnits problem(true, Join::Never);
+  Eigen::VectorXd g, step;
+  Eigen::SparseMatrix<double> H;
+  problem.Evaluate(&g, &H, PsdProjection::None);
+  PartLineSearch parts;
+  REQUIRE(parts.Begin(problem));
+  CHECK(parts.Parts() == 2);
+  // g = (3/√10, −0.5): the direction (−1, −1) descends along the first unit only (g·d < 0
+  // overall).
+  const Eigen::Vector2d dir(-1.0, -1.0);
+  parts.StartMinimization(g, dir);
+  parts.Step(dir, &step);
+  CHECK(step[0] == -1.0);
+  CHECK(step[1] == 0.0);
+  CHECK_FALSE(parts.AllFull());
+  CHECK(parts.MinAlpha() == 0.0);
+}
