@@ -359,34 +359,15 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
       trialValue = problem.Value(dir);
       accepted = std::isfinite(trialValue);
       step = dir;
-    } else if (split) {
-      parts.StartMinimization(g, dir);
-      for (int trial = 0; trial < params.maxLineSearchSteps; ++trial) {
-        parts.Step(dir, &step);
-        const bool withDerivatives =
-            trial == 0 && !isLimited &&
-            problem.EvaluateAtStep(step, &trialValue, &gTrial, &HTrial, PsdProjection::None);
-        if (!withDerivatives) trialValue = problem.Value(step);
-        if (std::isfinite(trialValue) &&
-            parts.Test(problem, trialValue, nullptr, params.armijoConstant,
-                       params.backtrackFactor, kRoundoffBand)) {
-          accepted = true;
-          if (withDerivatives) {
-            g.swap(gTrial);
-            H.swap(HTrial);
-            evaluatedValue = trialValue;
-            evaluated = true;
-            split = parts.AdoptTrial();
-          }
-          break;
-        }
-        if (!std::isfinite(trialValue)) parts.CutAll(params.backtrackFactor);
-        ++st.lineSearchSteps;
-      }
-      alpha = accepted && parts.AllFull() ? 1.0 : parts.MinAlpha();
     } else {
+      const bool partSearch = split;
+      if (partSearch) parts.StartMinimization(g, dir);
       for (int trial = 0; trial < params.maxLineSearchSteps; ++trial) {
-        step.noalias() = alpha * dir;
+        if (partSearch) {
+          parts.Step(dir, &step);
+        } else {
+          step.noalias() = alpha * dir;
+        }
         // The full, unshortened step is usually taken: its gradient and Hessian (the exact one,
         // as the next iteration tries first) are formed with its value, to serve the next
         // iteration (wasted only when the step is cut back).
@@ -395,22 +376,34 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
             problem.EvaluateAtStep(step, &trialValue, &gTrial, &HTrial, PsdProjection::None);
         if (!withDerivatives) trialValue = problem.Value(step);
         // Non-finite values (e.g. inverted elements) are rejections; comparisons with NaN fail.
-        if (std::isfinite(trialValue) &&
-            (trialValue <= f + params.armijoConstant * alpha * dirSlope ||
-             withinRoundoff(trialValue, alpha * dirSlope / slope))) {
+        // By parts, Test cuts the failing groups' step lengths itself.
+        const bool finite = std::isfinite(trialValue);
+        const bool pass =
+            finite && (partSearch ? parts.Test(problem, trialValue, nullptr,
+                                               params.armijoConstant, params.backtrackFactor,
+                                               kRoundoffBand)
+                                  : trialValue <= f + params.armijoConstant * alpha * dirSlope ||
+                                        withinRoundoff(trialValue, alpha * dirSlope / slope));
+        if (pass) {
           accepted = true;
           if (withDerivatives) {
             g.swap(gTrial);
             H.swap(HTrial);
             evaluatedValue = trialValue;
             evaluated = true;
-            split = usePartSearch && parts.Begin(problem);  // the trial's split: the next s's
+            // The trial's split is the next state's.
+            split = partSearch ? parts.AdoptTrial() : usePartSearch && parts.Begin(problem);
           }
           break;
         }
         ++st.lineSearchSteps;
-        alpha *= params.backtrackFactor;
+        if (!partSearch) {
+          alpha *= params.backtrackFactor;
+        } else if (!finite) {
+          parts.CutAll(params.backtrackFactor);
+        }
       }
+      if (partSearch) alpha = accepted && parts.AllFull() ? 1.0 : parts.MinAlpha();
     }
     if (accepted) {
       problem.Commit(step);
