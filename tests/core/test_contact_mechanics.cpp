@@ -1,5 +1,6 @@
 // Contact mechanics against analytic or independently computed expectations: friction between
-// two dynamic bodies; the tipping angle of a tall box on the compliant contact.
+// two dynamic bodies; the tipping angle of a tall box on the compliant contact; a ball sliding
+// and rolling on a sphere.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <vector>
