@@ -93,3 +93,20 @@ TEST_CASE("Newton, Ipopt and Ceres solve the same stages to the same end positio
     }
   }
 }
+
+TEST_CASE("Scene::SetSolverParams validates and replaces the stage solver's settings",
+          "[core][solver]") {
+  Scene scene;
+  Error e;
+  NonlinearSolverParams p = scene.Settings().solver;
+  CHECK(p.partLineSearch);
+  p.partLineSearch = false;
+  p.maxIterations = 7;
+  REQUIRE(scene.SetSolverParams(p, &e));
+  CHECK_FALSE(scene.Settings().solver.partLineSearch);
+  CHECK(scene.Settings().solver.maxIterations == 7);
+  p.maxLineSearchSteps = 0;
+  CHECK_FALSE(scene.SetSolverParams(p, &e));
+  CHECK(e.message.find("solver.max_line_search_steps: must be >= 1") != std::string::npos);
+  CHECK(scene.Settings().solver.maxLineSearchSteps == NonlinearSolverParams().maxLineSearchSteps);
+}
