@@ -14,16 +14,19 @@ int PartLineSearch::Find(int u) {
   return u;
 }
 
+void PartLineSearch::Unite(int a, int b) {
+  a = Find(a);
+  b = Find(b);
+  if (a != b) parent_[std::max(a, b)] = std::min(a, b);  // the root is the smallest index
+}
+
 bool PartLineSearch::Label() {
   parts_ = 0;
   const int units = base_.units;
   if (units < 2 || static_cast<int>(base_.share.size()) != units) return false;
   parent_.resize(units);
   for (int u = 0; u < units; ++u) parent_[u] = u;
-  for (const std::pair<int, int>& j : base_.joins) {
-    const int a = Find(j.first), b = Find(j.second);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
+  for (const std::pair<int, int>& j : base_.joins) Unite(j.first, j.second);
   // Parts numbered in the order of their smallest unit (deterministic).
   partOfUnit_.assign(units, -1);
   for (int u = 0; u < units; ++u) {
@@ -102,10 +105,8 @@ bool PartLineSearch::Test(StageProblem& problem, double trialValue, const Eigen:
   const bool split = problem.LastSplit(&trial_) && trial_.units == base_.units &&
                      static_cast<int>(trial_.share.size()) == base_.units;
   if (split) {
-    for (const std::pair<int, int>& j : trial_.joins) {
-      const int a = Find(partOfUnit_[j.first]), b = Find(partOfUnit_[j.second]);
-      if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-    }
+    for (const std::pair<int, int>& j : trial_.joins)
+      Unite(partOfUnit_[j.first], partOfUnit_[j.second]);
   } else {
     for (int p = 1; p < parts_; ++p) parent_[p] = 0;
   }

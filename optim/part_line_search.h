@@ -60,7 +60,9 @@ class PartLineSearch {
   double MinAlpha() const;
 
  private:
+  /// Union-find over parent_ (units in Label, parts in Test).
   int Find(int u);
+  void Unite(int a, int b);
   /// Labels the units' parts from base_.joins.
   bool Label();
 

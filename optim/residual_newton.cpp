@@ -191,37 +191,32 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
       if (!withJacobian) problem.Residual(step, &rTrial);
       trialTheta = 0.5 * rTrial.squaredNorm();
       const bool finite = std::isfinite(trialTheta);
-      if (partSearch) {
-        if (finite && parts.Test(problem, trialTheta, &rTrial, params.armijoConstant,
-                                 params.backtrackFactor, kRoundoffBand)) {
-          accepted = true;
-          if (withJacobian) {
-            r.swap(rTrial);
-            J.swap(JTrial);
-            evaluated = true;
-            split = parts.AdoptTrial();
-          }
-          break;
-        }
-        if (!finite) parts.CutAll(params.backtrackFactor);
-        ++st.lineSearchSteps;
-        continue;
-      }
-      if (finite && (params.lineSearch == LineSearchKind::None ||
-                     trialTheta <= (1.0 - 2.0 * params.armijoConstant * alpha) * theta ||
-                     (std::abs(trialTheta - theta) <= kRoundoffBand * theta &&
-                      alpha * decrement <= kRoundoffBand * theta))) {
+      // By parts, Test cuts the failing groups' step lengths itself.
+      const bool pass =
+          finite &&
+          (partSearch ? parts.Test(problem, trialTheta, &rTrial, params.armijoConstant,
+                                   params.backtrackFactor, kRoundoffBand)
+                      : params.lineSearch == LineSearchKind::None ||
+                            trialTheta <= (1.0 - 2.0 * params.armijoConstant * alpha) * theta ||
+                            (std::abs(trialTheta - theta) <= kRoundoffBand * theta &&
+                             alpha * decrement <= kRoundoffBand * theta));
+      if (pass) {
         accepted = true;
         if (withJacobian) {
           r.swap(rTrial);
           J.swap(JTrial);
           evaluated = true;
-          split = usePartSearch && parts.Begin(problem);  // the trial's split: the next s's
+          // The trial's split is the next state's.
+          split = partSearch ? parts.AdoptTrial() : usePartSearch && parts.Begin(problem);
         }
         break;
       }
       ++st.lineSearchSteps;
-      alpha *= params.backtrackFactor;
+      if (!partSearch) {
+        alpha *= params.backtrackFactor;
+      } else if (!finite) {
+        parts.CutAll(params.backtrackFactor);
+      }
     }
     if (partSearch) alpha = accepted && parts.AllFull() ? 1.0 : parts.MinAlpha();
     st.lineSearchSeconds += SecondsSince(t0);
