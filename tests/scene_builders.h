@@ -58,6 +58,18 @@ inline RigidActorDesc HeapSphere(int k) {
   return d;
 }
 
+/// A dynamic 1 kg ball "ball" of radius r [m] (surface resolution 3) with Coulomb coefficient mu.
+inline RigidActorDesc Ball(double r, double mu) {
+  RigidActorDesc ball;
+  ball.name = "ball";
+  ball.shape.kind = RigidShapeKind::Sphere;
+  ball.shape.radius = r;
+  ball.shape.surfaceResolution = 3;
+  ball.mass = 1.0;
+  ball.contact.coulombFrictionCoefficient = mu;
+  return ball;
+}
+
 /// A dynamic cube "cube" of edge 0.2 m and 1 kg, 2 × 2 quadrature cells per face.
 inline RigidActorDesc Cube(double k, double mu, double cn) {
   RigidActorDesc d;

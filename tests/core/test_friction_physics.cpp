@@ -80,16 +80,6 @@ Eigen::Vector3d QuadraticFit(const InclineRun& run, double t0, double t1) {
 
 
 // A solid 1 kg ball of radius r [m] (surface resolution 3: 642 samples), Coulomb coefficient mu.
-RigidActorDesc Ball(double r, double mu) {
-  RigidActorDesc ball;
-  ball.name = "ball";
-  ball.shape.kind = RigidShapeKind::Sphere;
-  ball.shape.radius = r;
-  ball.shape.surfaceResolution = 3;
-  ball.mass = 1.0;
-  ball.contact.coulombFrictionCoefficient = mu;
-  return ball;
-}
 
 }  // namespace
 
@@ -203,7 +193,7 @@ TEST_CASE("a ball thrown without spin rolls at 5/7 of its speed after 2 v0 / (7 
       Scene scene(settings);
       Error e;
       REQUIRE(scene.AddRigidActor(test::StaticGround(1e9, mu), &e).IsValid());
-      RigidActorDesc ball = Ball(r, mu);
+      RigidActorDesc ball = test::Ball(r, mu);
       ball.position = Eigen::Vector3d(0, 0, r - 2e-4);
       ball.linearVelocity = Eigen::Vector3d(v0, 0, 0);
       const ActorHandle h = scene.AddRigidActor(ball, &e);
@@ -255,7 +245,7 @@ TEST_CASE("a ball rolls down a 20 degree incline at 5/7 g sin(theta)", "[core][p
       Scene scene(settings);
       Error e;
       REQUIRE(scene.AddRigidActor(test::Ground(n, 1e9, mu, 0.0), &e).IsValid());
-      RigidActorDesc ball = Ball(r, mu);
+      RigidActorDesc ball = test::Ball(r, mu);
       ball.position = n * (r - 2e-3);
       const ActorHandle h = scene.AddRigidActor(ball, &e);
       REQUIRE(h.IsValid());
@@ -424,7 +414,7 @@ TEST_CASE("oblique impact: the friction impulse is mu times the normal impulse",
       Scene scene(settings);
       Error e;
       REQUIRE(scene.AddRigidActor(test::StaticGround(1e9, mu), &e).IsValid());
-      RigidActorDesc ball = Ball(r, mu);
+      RigidActorDesc ball = test::Ball(r, mu);
       ball.position = Eigen::Vector3d(0, 0, r + 0.02);
       ball.linearVelocity = Eigen::Vector3d(2.0, 0, -2.0);
       const ActorHandle h = scene.AddRigidActor(ball, &e);

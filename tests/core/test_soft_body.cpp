@@ -297,11 +297,11 @@ TEST_CASE("soft: a cube at rest on a plane carries its weight", "[core][soft][ph
 TEST_CASE("soft: a cube thrown along a plane slides v0^2 / (2 mu g)", "[core][soft][physics]") {
   const double mu = 0.3, v0 = 1.0;
   const double expected = v0 * v0 / (2 * mu * 9.81);
-  for (int mode = 0; mode < 2; ++mode) {
-    DYNAMIC_SECTION((mode == 0 ? "reconstructed load" : "current load")) {
+  for (int mode : {1, 2}) {
+    DYNAMIC_SECTION(test::kModeNames[mode]) {
       SceneSettings settings;
       settings.integrator = IntegrationMethod::BDF2;
-      settings.eval.implicitNormalForceForDissipation = mode == 1;
+      settings.eval = test::EvalParamsForMode(mode);
       Scene scene(settings);
       Error e;
       REQUIRE(scene.AddRigidActor(test::StaticGround(1e8, mu), &e).IsValid());
@@ -334,11 +334,11 @@ TEST_CASE("soft: a cube slides down a 30 degree incline at g (sin - mu cos)", "[
   const Eigen::Vector3d n(std::sin(theta), 0, std::cos(theta));
   const Eigen::Vector3d down(std::cos(theta), 0, -std::sin(theta));
   const double expected = 9.81 * (std::sin(theta) - mu * std::cos(theta));
-  for (int mode = 0; mode < 2; ++mode) {
-    DYNAMIC_SECTION((mode == 0 ? "reconstructed load" : "current load")) {
+  for (int mode : {1, 2}) {
+    DYNAMIC_SECTION(test::kModeNames[mode]) {
       SceneSettings settings;
       settings.integrator = IntegrationMethod::BDF2;
-      settings.eval.implicitNormalForceForDissipation = mode == 1;
+      settings.eval = test::EvalParamsForMode(mode);
       Scene scene(settings);
       Error e;
       REQUIRE(scene.AddRigidActor(test::Ground(n, 1e8, mu, 0.0), &e).IsValid());
