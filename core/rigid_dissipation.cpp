@@ -63,16 +63,17 @@ void PairForceJacobianSums::Add(const Eigen::Vector3d& rB, const Eigen::Vector3d
   SMS_ += SkewTimes<3>(S, MS);
   Q_ += Q;
   SQ_ += SkewTimes<3>(S, Q);
-  F_ += Skew(wg);
   // [a]×[b]× = b aᵀ − (a·b) I.
   const double ab = wg.dot(rB);
   FS_ += rB * wg.transpose() - ab * Eigen::Matrix3d::Identity();
-  SF_ += wg * rB.transpose() - ab * Eigen::Matrix3d::Identity();
   empty_ = false;
+  if (!bDynamic_) return;
+  F_ += Skew(wg);
+  SF_ += wg * rB.transpose() - ab * Eigen::Matrix3d::Identity();
 }
 
 void PairForceJacobianSums::AddTo(const Eigen::Matrix3d& RB, const Eigen::Vector3d& c,
-                                  bool bDynamic, PairMatrix* J) const {
+                                  PairMatrix* J) const {
   if (empty_) return;
   const Eigen::Matrix3d RBt = RB.transpose();
   auto world = [&](const Eigen::Matrix3d& X) -> Eigen::Matrix3d { return RB * X * RBt; };
@@ -82,7 +83,7 @@ void PairForceJacobianSums::AddTo(const Eigen::Matrix3d& RB, const Eigen::Vector
   J->block<3, 3>(0, 3) -= MS + Q;
   J->block<3, 3>(3, 0) += SM;
   J->block<3, 3>(3, 3) += FS - SMS - SQ;
-  if (!bDynamic) return;
+  if (!bDynamic_) return;
   const Eigen::Matrix3d F = world(F_), SF = world(SF_);
   const Eigen::Matrix3d Sc = Skew(c);
   // The rows [df; [r]× df − [f]× dr; −df; [f]× dd − [d]× df] summed over the samples, with df's
@@ -138,13 +139,21 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
   const Eigen::Matrix3d RnBtRA = b0.last.R.transpose() * a0.last.R;
   const Eigen::Vector3d YnA = b0.last.R.transpose() * (a0.last.p - b0.last.p);
   const bool explicitNormals = setup.mode == DissipationMode::ExplicitNormals;
+  // The load is read at the last actual pullback Y_n: explicit normals by definition, and the
+  // reconstructed load φ + G·(Y_n − Y) of an affine field (a plane), which is Φ(Y_n) exactly.
+  // Culling by Φ(Y_n) is then exact, where the general bound φ − L|Y_n − Y| lets through every
+  // sample within the stage's motion of the collider.
+  const bool loadAtLast =
+      explicitNormals || (setup.mode == DissipationMode::ReconstructedLoad &&
+                          B.collider.type == ColliderType::Plane);
 
   // Whole-pair rejection (exact SDFs are 1-Lipschitz): no sample of A can carry a load when both
   // A's current and last actual sample clouds stay farther than δ from B.
   const double L = B.collider.lipschitz;
-  const bool nearNow = B.collider.Value(YA) - L * A.samplesRadius < delta;
   const bool nearThen = B.collider.Value(YnA) - L * A.samplesRadius < delta;
-  if (explicitNormals ? !nearThen : !(nearNow || nearThen)) return;
+  if (loadAtLast ? !nearThen
+                 : !(nearThen || B.collider.Value(YA) - L * A.samplesRadius < delta))
+    return;
 
   CurrentModeSample sample;
   sample.setup = &setup;
@@ -154,7 +163,7 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
   const double shift = (YnA - YA).norm() + (RnBtRA - RBtRA).norm() * A.samplesRadius;
   const double slack = setup.mode == DissipationMode::ImplicitLoad ? 0.0 : L * shift;
   auto near = [&](const Eigen::Vector3d& center, double radius) {
-    if (explicitNormals)
+    if (loadAtLast)
       return B.collider.Value(YnA + RnBtRA * center) - L * radius < delta;
     return B.collider.Value(YA + RBtRA * center) - L * radius - slack < delta;
   };
@@ -163,7 +172,7 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
   PairMatrix jacobian;
   if (order >= 2) jacobian.setZero();
   PairHessianSums sums;  // explicit normals: the Hessian of the potential
-  PairForceJacobianSums forceSums;  // current modes: the residual's Jacobian
+  PairForceJacobianSums forceSums(bDynamic);  // current modes: the residual's Jacobian
   ForEachSampleRange(A, near, [&](int begin, int end) {
     for (int k = begin; k < end; ++k) {
       const SurfaceSample& q = A.samples[k];
@@ -184,6 +193,7 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
       } else {
         if (finiteReach && Y.squaredNorm() >= reach * reach && Yn.squaredNorm() >= reach * reach)
           continue;
+        if (loadAtLast && B.collider.Value(Yn) >= delta) continue;  // φ_load = Φ(Y_n) >= δ
         // φ_load >= φ − L |Y_n − Y| (ReconstructedLoad): no load where that bound reaches δ.
         SdfSample f;
         const double reachLoad = setup.mode == DissipationMode::ImplicitLoad
@@ -232,7 +242,7 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
   out->residual = residual.head(n);
   if (order >= 2) {
     sums.AddTo(b.R, a.p - b.p, bDynamic, &jacobian);
-    forceSums.AddTo(b.R, a.p - b.p, bDynamic, &jacobian);
+    forceSums.AddTo(b.R, a.p - b.p, &jacobian);
     out->jacobian = jacobian.topLeftCorner(n, n);
   }
 }

@@ -88,12 +88,13 @@ struct RigidPairDissipation {
 /// per-sample stencil rows up to rounding (tests/core/test_rigid_dissipation.cpp).
 class PairForceJacobianSums {
  public:
+  /// With a static B only the first 6 × 6 block is formed, and Σ F, Σ SF (its columns) are skipped.
+  explicit PairForceJacobianSums(bool bDynamic) : bDynamic_(bDynamic) {}
   /// One sample: r_B = R_Bᵀ r, n_B = R_Bᵀ n_w (the kernel's N_A), the kernel's g, G_Y, G_N.
   void Add(const Eigen::Vector3d& rB, const Eigen::Vector3d& nB, const Eigen::Vector3d& g,
            const Eigen::Matrix3d& GY, const Eigen::Matrix3d& GN, double w);
   /// Adds the summed Jacobian to *J (the first 6 × 6 block with a static B).
-  void AddTo(const Eigen::Matrix3d& RB, const Eigen::Vector3d& c, bool bDynamic,
-             PairMatrix* J) const;
+  void AddTo(const Eigen::Matrix3d& RB, const Eigen::Vector3d& c, PairMatrix* J) const;
 
  private:
   Eigen::Matrix3d M_ = Eigen::Matrix3d::Zero(), MS_ = Eigen::Matrix3d::Zero(),
@@ -101,6 +102,7 @@ class PairForceJacobianSums {
                   Q_ = Eigen::Matrix3d::Zero(), SQ_ = Eigen::Matrix3d::Zero(),
                   F_ = Eigen::Matrix3d::Zero(), FS_ = Eigen::Matrix3d::Zero(),
                   SF_ = Eigen::Matrix3d::Zero();
+  bool bDynamic_;
   bool empty_ = true;
 };
 

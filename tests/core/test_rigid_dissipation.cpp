@@ -140,7 +140,7 @@ TEST_CASE("PairForceJacobianSums: a pair's summed force Jacobian equals the per-
     for (bool bDynamic : {false, true}) {
       const int n = bDynamic ? 12 : 6;
       PairMatrix reference = PairMatrix::Zero(), summed = PairMatrix::Zero();
-      PairForceJacobianSums sums;
+      PairForceJacobianSums sums(bDynamic);
       for (int k = 0; k < 40; ++k) {
         const Eigen::Vector3d rB = 0.3 * vec(), nB = vec().normalized(), g = 1e3 * vec();
         const Eigen::Matrix3d GY = 1e6 * mat(), GN = 1e3 * mat();  // not symmetric
@@ -153,13 +153,13 @@ TEST_CASE("PairForceJacobianSums: a pair's summed force Jacobian equals the per-
         AddForceJacobianRows(r, d, f, df, bDynamic, w, &reference);
         sums.Add(rB, nB, g, GY, GN, w);
       }
-      sums.AddTo(RB, c, bDynamic, &summed);
+      sums.AddTo(RB, c, &summed);
       INFO("trial " << trial << (bDynamic ? ", dynamic B" : ", static B"));
       const double scale = reference.topLeftCorner(n, n).norm();
       CHECK((summed - reference).topLeftCorner(n, n).norm() <= 1e-13 * scale);
       if (!bDynamic) CHECK(summed.bottomRows(6).norm() == 0.0);
       PairMatrix shifted = PairMatrix::Zero();  // a wrong lever arm is visible
-      sums.AddTo(RB, c + Eigen::Vector3d(0, 1e-3, 0), bDynamic, &shifted);
+      sums.AddTo(RB, c + Eigen::Vector3d(0, 1e-3, 0), &shifted);
       if (bDynamic) CHECK((shifted - reference).topLeftCorner(n, n).norm() > 1e-8 * scale);
     }
   }
@@ -293,4 +293,48 @@ TEST_CASE("rigid pair dissipation: alignment rejection and fading", "[core][diss
   const double faded = Eval(c, zero, 1).residual.norm();
   CHECK(faded < unfaded);
   CHECK(faded > 0.0);
+}
+
+TEST_CASE("rigid pair dissipation: a plane's reconstructed-load culling keeps every loaded sample",
+          "[core][dissipation]") {
+  // The reconstructed load φ + G·(Y_n − Y) of a plane is Φ(Y_n), so its samples are culled by the
+  // last actual pose alone; a box collider's flat top face gives the same φ, G and ∇²Φ = 0 there
+  // but is culled by the general bound φ − L|Y_n − Y|. A tilted box that slid 6 cm and turned
+  // 0.3 rad during the stage (most of its samples inside that bound, few loaded), resting in the
+  // plane or lifted 2 mm off it since the last pose, must get the same residual and Jacobian from
+  // both (to the rounding of the box field's z + 5 − 5 against the plane's z).
+  RigidShape plane;
+  plane.kind = RigidShapeKind::Plane;
+  for (DissipationMode mode : {DissipationMode::ReconstructedLoad, DissipationMode::ImplicitLoad}) {
+    for (double lift : {0.0, 0.002}) {
+      Case c;
+      c.A = Build(Box({0.1, 0.1, 0.1}, 3), true);
+      c.B = Build(plane, false);
+      c.a.R = ExpSo3(Eigen::Vector3d(0.0, 0.15, 0.1));
+      c.a.p = Eigen::Vector3d(0.1, 0.05, 0.1 * (std::cos(0.15) + std::sin(0.15)) - 0.003 + lift);
+      c.setup.dt = 0.01;
+      c.setup.mode = mode;
+      c.setup.penalty.k = 1e5;
+      c.setup.coefficients = {0.5, 0.2, 1.5, 0.01};
+      c.setup.maxAlignment = 0.0;
+      RigidPose last = c.a;
+      last.R = ExpSo3(Eigen::Vector3d(0.0, 0.3, 0.0)) * c.a.R;
+      last.p += Eigen::Vector3d(-0.06, 0.02, -lift);
+      c.a0 = StartOf(last);
+      c.b0 = StartOf(c.b);
+      Case boxCase = c;
+      boxCase.B = Build(Box({5.0, 5.0, 5.0}, 1), false);
+      boxCase.b.p = Eigen::Vector3d(0, 0, -5.0);  // top face at z = 0
+      boxCase.b0 = StartOf(boxCase.b);
+      const Eigen::VectorXd zero = Eigen::VectorXd::Zero(6);
+      const RigidPairDissipation onPlane = Eval(c, zero, 2), onBox = Eval(boxCase, zero, 2);
+      DYNAMIC_SECTION(ToString(mode) << " lifted " << lift) {
+        REQUIRE(onBox.activeSamples > 0);
+        CHECK(onPlane.activeSamples == onBox.activeSamples);
+        CHECK(onPlane.value == Approx(onBox.value).epsilon(1e-9));
+        CHECK((onPlane.residual - onBox.residual).norm() <= 1e-9 * onBox.residual.norm());
+        CHECK((onPlane.jacobian - onBox.jacobian).norm() <= 1e-9 * onBox.jacobian.norm());
+      }
+    }
+  }
 }
