@@ -36,7 +36,10 @@ CurrentModeLinearization LinearizeCurrentModeGradient(const Eigen::Vector3d& Y,
     dFactorN = -G / (s.maxAlignment + 1.0);
   }
   const double L = factor * lambda;
-  const Eigen::Vector3d dLY = factor * dLambda + lambda * dFactorY;
+  // Zero on a flat field in the reconstructed mode (dλ and ∂a/∂Y both vanish with ∇²Φ).
+  const bool loadMoves = implicitLoad || !flat;
+  const Eigen::Vector3d dLY =
+      loadMoves ? Eigen::Vector3d(factor * dLambda + lambda * dFactorY) : Eigen::Vector3d::Zero();
   const Eigen::Vector3d dLN = lambda * dFactorN;
 
   // Split direction N and its derivatives.
@@ -58,19 +61,21 @@ CurrentModeLinearization LinearizeCurrentModeGradient(const Eigen::Vector3d& Y,
   const double inPlane = c.mu * f.slope + c.ct;
   const Eigen::Vector3d D = inPlane * Vt + c.cn * Vn * N;
   Eigen::Matrix3d At = inPlane * I;
-  if (speed > 0.0) {
-    const Eigen::Vector3d t = Vt / speed;
-    At += c.mu * f.curvature * t * t.transpose();
-  }
-  const Eigen::Matrix3d DV = At * P + c.cn * N * N.transpose();  // P At P = At P here
+  Eigen::Vector3d t = Eigen::Vector3d::Zero();
+  if (speed > 0.0) t = Vt / speed;
+  // At P = inPlane P + μ ρ-curvature t tᵀ, as t ⊥ N (P At P = At P).
+  const Eigen::Matrix3d DV =
+      inPlane * P + (c.mu * f.curvature) * t * t.transpose() + c.cn * N * N.transpose();
 
   CurrentModeLinearization out;
   out.g = L * D;
   if (!normalMoves) {  // dNY = dNN = 0
-    out.GY = D * dLY.transpose() + L * (DV / s.dt);
+    out.GY = (L / s.dt) * DV;
+    if (loadMoves) out.GY.noalias() += D * dLY.transpose();
     out.GN = D * dLN.transpose();
     return out;
   }
+  At += (c.mu * f.curvature) * t * t.transpose();
   const Eigen::Matrix3d DN = (c.cn * I - At) * (N * V.transpose() + Vn * I);
   out.GY = D * dLY.transpose() + L * (DV / s.dt + DN * dNY);
   out.GN = D * dLN.transpose() + L * DN * dNN;
