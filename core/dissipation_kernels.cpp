@@ -60,12 +60,12 @@ CurrentModeLinearization LinearizeCurrentModeGradient(const Eigen::Vector3d& Y,
   const FrictionRamp f = EvaluateFrictionRamp(speed, c.vf);
   const double inPlane = c.mu * f.slope + c.ct;
   const Eigen::Vector3d D = inPlane * Vt + c.cn * Vn * N;
-  Eigen::Matrix3d At = inPlane * I;
+  // At = inPlane I + μ (ρ'' − ρ'/V_t) t tᵀ (t = V_t/|V_t|), and At P = inPlane P + μ (ρ'' − ρ'/V_t)
+  // t tᵀ as t ⊥ N (P At P = At P).
   Eigen::Vector3d t = Eigen::Vector3d::Zero();
   if (speed > 0.0) t = Vt / speed;
-  // At P = inPlane P + μ ρ-curvature t tᵀ, as t ⊥ N (P At P = At P).
-  const Eigen::Matrix3d DV =
-      inPlane * P + (c.mu * f.curvature) * t * t.transpose() + c.cn * N * N.transpose();
+  const Eigen::Matrix3d slipCurvature = (c.mu * f.curvature) * t * t.transpose();
+  const Eigen::Matrix3d DV = inPlane * P + slipCurvature + c.cn * N * N.transpose();
 
   CurrentModeLinearization out;
   out.g = L * D;
@@ -75,7 +75,7 @@ CurrentModeLinearization LinearizeCurrentModeGradient(const Eigen::Vector3d& Y,
     out.GN = D * dLN.transpose();
     return out;
   }
-  At += (c.mu * f.curvature) * t * t.transpose();
+  const Eigen::Matrix3d At = inPlane * I + slipCurvature;
   const Eigen::Matrix3d DN = (c.cn * I - At) * (N * V.transpose() + Vn * I);
   out.GY = D * dLY.transpose() + L * (DV / s.dt + DN * dNY);
   out.GN = D * dLN.transpose() + L * DN * dNN;
