@@ -1,6 +1,6 @@
-// Sparse linear solves of the stage solvers: direct (CHOLMOD supernodal Cholesky with Eigen's
-// SimplicialLDLT as fallback; UMFPACK LU) or Krylov (block-Jacobi-preconditioned conjugate gradients;
-// BiCGSTAB) with the direct solve as fallback.
+// Sparse linear solves of the stage solvers: direct (CHOLMOD Cholesky, supernodal or simplicial by
+// CHOLMOD's rule, with Eigen's SimplicialLDLT as fallback; UMFPACK LU) or Krylov (block-Jacobi-
+// preconditioned conjugate gradients; BiCGSTAB) with the direct solve as fallback.
 #pragma once
 
 #include <Eigen/Core>
