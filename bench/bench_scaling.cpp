@@ -5,7 +5,8 @@
 //               pressed 0.5 mm into its neighbours and the lowest layer into the ground
 //   tori 200    200 non-convex tori (R = 0.1 m, r = 0.03 m, mesh shapes, Sdf colliders) in
 //               stacks of two, each resting 0.5 mm into the one below or the ground
-// SUPERDEX_EXPLICIT_NORMALS=1 runs the explicit-normals mode (exact potential, Cholesky).
+// SUPERDEX_EXPLICIT_NORMALS=1 runs the explicit-normals mode (exact potential, Cholesky);
+// SUPERDEX_LINEAR_SOLVER=direct|iterative|auto sets the linear solver (default auto).
 // Columns: steps timed (after one warm-up step), wall seconds per step, Newton iterations per
 // step, active samples (penalty) at the end, and microseconds per active sample per Newton
 // iteration: the figure that should stay flat if the cost is linear in the active samples; and
@@ -71,6 +72,13 @@ void Measure(const char* name, Scene& scene, int steps) {
 SceneSettings Settings() {
   SceneSettings s;
   if (std::getenv("SUPERDEX_EXPLICIT_NORMALS")) s.eval.explicitNormals = true;
+  if (const char* kind = std::getenv("SUPERDEX_LINEAR_SOLVER")) {
+    if (!ParseLinearSolverKind(kind, &s.solver.linear.kind)) {
+      std::fprintf(stderr, "SUPERDEX_LINEAR_SOLVER: must be auto, direct or iterative, got %s\n",
+                   kind);
+      std::exit(2);
+    }
+  }
   return s;
 }
 

@@ -1,4 +1,4 @@
-# SuiteSparse 5.12 on Debian ships no CMake config: find CHOLMOD and UMFPACK by hand (targets in
+# SuiteSparse 5.12 on Debian ships no CMake config: find CHOLMOD, UMFPACK and KLU by hand (targets in
 # our own namespace, so that packages with their own SuiteSparse finder do not collide).
 find_path(CHOLMOD_INCLUDE_DIR cholmod.h PATH_SUFFIXES suitesparse REQUIRED)
 find_library(CHOLMOD_LIBRARY cholmod REQUIRED)
@@ -14,3 +14,14 @@ set_target_properties(superdex::UMFPACK PROPERTIES
   INTERFACE_INCLUDE_DIRECTORIES "${CHOLMOD_INCLUDE_DIR}"
   INTERFACE_LINK_LIBRARIES "${UMFPACK_LIBRARY};${CHOLMOD_LIBRARY};${SUITESPARSECONFIG_LIBRARY}")
 
+
+# KLU (with its orderings BTF, AMD, COLAMD): the LU of sparse systems with little fill.
+find_library(KLU_LIBRARY klu REQUIRED)
+find_library(BTF_LIBRARY btf REQUIRED)
+find_library(AMD_LIBRARY amd REQUIRED)
+find_library(COLAMD_LIBRARY colamd REQUIRED)
+add_library(superdex::KLU INTERFACE IMPORTED)
+set_target_properties(superdex::KLU PROPERTIES
+  INTERFACE_INCLUDE_DIRECTORIES "${CHOLMOD_INCLUDE_DIR}"
+  INTERFACE_LINK_LIBRARIES
+    "${KLU_LIBRARY};${BTF_LIBRARY};${AMD_LIBRARY};${COLAMD_LIBRARY};${SUITESPARSECONFIG_LIBRARY}")

@@ -108,6 +108,10 @@ class UnsymmetricSolver {
   /// Solves Jᵀ x = b with the LU factors of the last factorization (made now if the last
   /// Factorize prepared the iterative solver); all NaN if J is singular.
   Eigen::VectorXd SolveTransposed(const Eigen::VectorXd& b);
+  /// "dense" (<= 48 unknowns), "klu" or "umfpack" (KLU where its analysis estimates fewer than
+  /// 40 flops per factor entry: contact graphs; UMFPACK where the factors fill in: tet meshes),
+  /// "bicgstab" (iterative, not fallen back): the backend of the last factorization or solve.
+  const char* Backend() const;
   const LinearSolveInfo& LastSolve() const;
 
  private:

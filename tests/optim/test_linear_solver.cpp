@@ -312,10 +312,10 @@ TEST_CASE("block-Jacobi preconditioner: exact on a 3x3-block-diagonal matrix", "
   CHECK(!s.Factorize(H));
 }
 
-TEST_CASE("transposed solves with the LU factors: UMFPACK, dense and after an iterative "
+TEST_CASE("transposed solves with the LU factors: sparse LU, dense and after an iterative "
           "factorization", "[optim]") {
   std::mt19937 rng(21);
-  for (int n : {30, 400}) {  // dense LU below 48 unknowns, UMFPACK above
+  for (int n : {30, 400}) {  // dense LU below 48 unknowns, the sparse LU above
     SparseMatrix J = RandomSpd(n, 3 * n, rng);
     for (Eigen::Index k = 0; k < J.outerSize(); ++k)
       for (SparseMatrix::InnerIterator e(J, k); e; ++e)
@@ -333,5 +333,72 @@ TEST_CASE("transposed solves with the LU factors: UMFPACK, dense and after an it
     bicg.SetSettings(iterative);
     REQUIRE(bicg.Factorize(J));
     CHECK(RelativeResidual(Jt, bicg.SolveTransposed(b), b) <= 1e-12);
+  }
+}
+
+TEST_CASE("unsymmetric LU: KLU on a sparse contact graph, UMFPACK on a filling mesh; solves, "
+          "transposed solves and singular matrices on both", "[optim]") {
+  std::mt19937 rng(31);
+  // A contact graph: 300 bodies, each touching a few near neighbours (a geometric graph: its
+  // factors stay sparse, where a random graph's fill in like a mesh's).
+  std::vector<Eigen::Triplet<double>> g;
+  std::uniform_int_distribution<int> near(1, 6);
+  for (int a = 0; a < 300; ++a) {
+    g.emplace_back(a, a, 10.0);
+    for (int e = 0; e < 2; ++e) {
+      const int b = a + near(rng);
+      if (b >= 300) continue;
+      g.emplace_back(a, b, -1.0);
+      g.emplace_back(b, a, -1.0);
+    }
+  }
+  SparseMatrix graph(300, 300);
+  graph.setFromTriplets(g.begin(), g.end());
+  graph.makeCompressed();
+  // A mesh: a 3D grid of 9³ nodes with three unknowns each and every unknown of a node coupled
+  // to those of its six neighbours (the block pattern of a tet mesh's stiffness; its factors
+  // fill in).
+  const int m = 9, nodes = m * m * m;
+  std::vector<Eigen::Triplet<double>> t;
+  auto id = [m](int i, int j, int k) { return (i * m + j) * m + k; };
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j)
+      for (int k = 0; k < m; ++k) {
+        const int a = id(i, j, k);
+        for (int c = 0; c < 3; ++c) t.emplace_back(3 * a + c, 3 * a + c, 30.0);
+        const int next[3][3] = {{i + 1, j, k}, {i, j + 1, k}, {i, j, k + 1}};
+        for (const auto& q : next) {
+          if (q[0] >= m || q[1] >= m || q[2] >= m) continue;
+          const int b = id(q[0], q[1], q[2]);
+          for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) {
+              t.emplace_back(3 * a + r, 3 * b + c, -0.5 - 0.1 * r);
+              t.emplace_back(3 * b + c, 3 * a + r, -0.5 - 0.1 * r);
+            }
+        }
+      }
+  SparseMatrix mesh(3 * nodes, 3 * nodes);
+  mesh.setFromTriplets(t.begin(), t.end());
+  mesh.makeCompressed();
+  for (const auto& [H, backend] : {std::pair<SparseMatrix, std::string>{graph, "klu"},
+                                   std::pair<SparseMatrix, std::string>{mesh, "umfpack"}}) {
+    SparseMatrix J = H;
+    for (Eigen::Index k = 0; k < J.outerSize(); ++k)
+      for (SparseMatrix::InnerIterator e(J, k); e; ++e)
+        if (e.row() > e.col()) e.valueRef() *= 1.4;  // unsymmetric
+    const SparseMatrix Jt = J.transpose();
+    const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(J.rows(), -1.0, 2.0);
+    UnsymmetricSolver lu;
+    INFO(backend << ", " << J.rows() << " unknowns");
+    REQUIRE(lu.Factorize(J));
+    CHECK(std::string(lu.Backend()) == backend);
+    CHECK(RelativeResidual(J, lu.Solve(b), b) <= 1e-12);
+    CHECK(RelativeResidual(Jt, lu.SolveTransposed(b), b) <= 1e-12);
+    // Singular (a zero column, same pattern): reported, and the next matrix factorizes again.
+    SparseMatrix singular = J;
+    for (SparseMatrix::InnerIterator e(singular, 7); e; ++e) e.valueRef() = 0.0;
+    CHECK_FALSE(lu.Factorize(singular));
+    REQUIRE(lu.Factorize(J));
+    CHECK(RelativeResidual(J, lu.Solve(b), b) <= 1e-12);
   }
 }
