@@ -12,7 +12,6 @@
 
 #include "optim/block_jacobi.h"
 
-#include <amd.h>
 #include <klu.h>
 #include <malloc.h>
 
@@ -40,27 +39,6 @@ bool UseIterative(const LinearSolverSettings& s, Eigen::Index n) {
   return s.kind == LinearSolverKind::Iterative ||
          (s.kind == LinearSolverKind::Auto && n >= kAutoIterativeUnknowns);
 }
-
-/// AMD's estimate of the flops of a Cholesky (LDLᵀ) factorization of H's pattern, 2 × its
-/// multiply-subtract pairs plus its divisions; infinite if AMD fails. An ordering only, about
-/// KLU's analysis cost (3 ms on a 10k-tet soft body, where CHOLMOD's full analysis takes 20).
-double CholeskyFlopEstimate(const SparseMatrix& H, std::vector<int>* permutation) {
-  double info[AMD_INFO];
-  permutation->resize(H.rows());
-  const int status = amd_order(static_cast<int>(H.rows()), H.outerIndexPtr(), H.innerIndexPtr(),
-                               permutation->data(), nullptr, info);
-  if (status != AMD_OK && status != AMD_OK_BUT_JUMBLED)
-    return std::numeric_limits<double>::infinity();
-  return 2.0 * info[AMD_NMULTSUBS_LDL] + info[AMD_NDIV];
-}
-
-/// Auto from kAutoIterativeUnknowns up: the direct solve where its analysis estimates a
-/// factorization of fewer than this many flops per nonzero of the matrix, the Krylov solve
-/// otherwise. Measured with 6000 unknowns: the 1000-sphere pile while it lands estimates 0–300
-/// (its spheres touch a few neighbours; direct 71.5 against Krylov's 82 wall s per simulated
-/// second over the first 0.35 s, Krylov taking about 120 iterations per solve), a resting heap
-/// of 1000 spheres 4300 (direct 0.53 against Krylov's 0.21 s per step).
-constexpr double kDirectFlopsPerNonzero = 1000.0;
 
 // Below this size a dense Cholesky is cheaper than CHOLMOD's setup (a single rigid body: 6 dofs).
 constexpr Eigen::Index kDenseLimit = 48;
@@ -130,9 +108,6 @@ struct SymmetricSolver::Impl {
   Eigen::Index rows = -1;
   std::vector<SparseMatrix::StorageIndex> outer, inner;
   bool cholmodAnalyzed = false;  // cholmod holds a valid analysis of the stored pattern
-  bool autoDecided = false;      // autoDirect holds the decision for the stored pattern
-  bool autoDirect = false;       // Auto, large system: the stored pattern is solved directly
-  std::vector<int> amdPermutation;  // AMD's ordering (scratch of CholeskyFlopEstimate)
   bool ldltAnalyzed = false;     // ldlt holds a valid analysis of the stored pattern
   BackendKind backend = BackendKind::None;
   SparseMatrix compressed;       // scratch copy when the caller passes an uncompressed matrix
@@ -155,23 +130,16 @@ struct SymmetricSolver::Impl {
     rows = H.rows();
     outer.assign(H.outerIndexPtr(), H.outerIndexPtr() + H.outerSize() + 1);
     inner.assign(H.innerIndexPtr(), H.innerIndexPtr() + H.nonZeros());
-    cholmodAnalyzed = ldltAnalyzed = autoDecided = false;
-  }
-
-  /// CHOLMOD's symbolic analysis of H's pattern, once per pattern (its flop estimate in
-  /// cholmod.cholmod().fl); false if it failed (e.g. out of memory).
-  bool AnalyzeCholmod(const SparseMatrix& H) {
-    if (!cholmodAnalyzed) {
-      cholmod.analyzePattern(H);
-      if (cholmod.cholmod().status < CHOLMOD_OK) return false;
-      cholmodAnalyzed = true;
-    }
-    return true;
+    cholmodAnalyzed = ldltAnalyzed = false;
   }
 
   bool FactorizeCholmod(const SparseMatrix& H) {
-    // A failed analysis leaves no symbolic factor to factorize into.
-    if (!AnalyzeCholmod(H)) return false;
+    if (!cholmodAnalyzed) {
+      cholmod.analyzePattern(H);
+      // A failed analysis (e.g. out of memory) leaves no symbolic factor to factorize into.
+      if (cholmod.cholmod().status < CHOLMOD_OK) return false;
+      cholmodAnalyzed = true;
+    }
     // CHOLMOD stops at the first non-positive pivot and reports it through L->minor < n, which
     // Eigen maps to NumericalIssue. The symbolic factor stays valid for the next call.
     cholmod.factorize(H);
@@ -220,18 +188,7 @@ bool SymmetricSolver::Factorize(const Eigen::SparseMatrix<double>& H) {
   }
   // A non-finite entry cannot be factorized meaningfully by either backend.
   if (!Eigen::Map<const Eigen::VectorXd>(A->valuePtr(), A->nonZeros()).allFinite()) return false;
-  bool iterative = UseIterative(s.settings, A->rows()) && A->rows() > kDenseLimit;
-  if (iterative && s.settings.kind == LinearSolverKind::Auto) {
-    // Auto on a large system: AMD's estimate of the direct solve's flops, once per pattern.
-    if (!s.SamePattern(*A)) s.StorePattern(*A);
-    if (!s.autoDecided) {
-      s.autoDirect = CholeskyFlopEstimate(*A, &s.amdPermutation) <
-                     kDirectFlopsPerNonzero * double(A->nonZeros());
-      s.autoDecided = true;
-    }
-    iterative = !s.autoDirect;
-  }
-  if (iterative) {
+  if (UseIterative(s.settings, A->rows()) && A->rows() > kDenseLimit) {
     s.matrix = *A;
     s.preconditioner.compute(s.matrix);
     if (!s.preconditioner.PositiveDefinite()) return false;  // neither is the matrix
@@ -373,8 +330,6 @@ class KluLu {
                             &common_);
     return symbolic_ != nullptr;
   }
-  /// KLU's estimate of the factorization's flops.
-  double EstimatedFlops() const { return symbolic_->est_flops; }
   /// KLU's estimate of the factorization's flops per entry of the factors (its fill measure).
   double FlopsPerFactorEntry() const {
     return symbolic_->est_flops / std::max(1.0, symbolic_->lnz + symbolic_->unz);
@@ -411,9 +366,7 @@ struct UnsymmetricSolver::Impl {
   static constexpr double kKluFlopsPerEntry = 40.0;
   UmfPackLUWithTranspose lu;
   KluLu klu;
-  bool useKlu = false;           // the analyzed pattern is KLU's (else UMFPACK's)
-  bool umfpackAnalyzed = false;  // UMFPACK holds the analysis of the stored pattern
-  double estFlops = 0.0;         // KLU's estimate of the pattern's factorization flops
+  bool useKlu = false;  // the analyzed pattern is KLU's (else UMFPACK's)
   Eigen::PartialPivLU<Eigen::MatrixXd> denseLu;
   Eigen::MatrixXd denseMatrix;  // the dense backend's copy of J (kept: no allocation per call)
   bool dense = false;
@@ -427,27 +380,18 @@ struct UnsymmetricSolver::Impl {
   bool luValid = false;    // lu holds the factors of `matrix`
   Eigen::BiCGSTAB<SparseMatrix, BlockJacobi3> krylov;
 
-  /// KLU's analysis of a new pattern (the cheaper of the two): KLU where the factors stay
-  /// sparse, UMFPACK (analyzed when first factorized) otherwise; its flop estimate in estFlops.
-  void AnalyzeIfNew() {
-    if (SamePattern(matrix)) return;
-    const bool analyzed = klu.Analyze(matrix);
-    useKlu = analyzed && klu.FlopsPerFactorEntry() < kKluFlopsPerEntry;
-    estFlops = analyzed ? klu.EstimatedFlops() : std::numeric_limits<double>::infinity();
-    umfpackAnalyzed = false;
-    outer.assign(matrix.outerIndexPtr(), matrix.outerIndexPtr() + matrix.outerSize() + 1);
-    inner.assign(matrix.innerIndexPtr(), matrix.innerIndexPtr() + matrix.nonZeros());
-  }
-
   bool FactorizeLu() {
-    AnalyzeIfNew();
+    const bool same = SamePattern(matrix);
+    if (!same) {
+      // KLU's analysis decides (it is the cheaper one): KLU where the factors stay sparse.
+      useKlu = klu.Analyze(matrix) && klu.FlopsPerFactorEntry() < kKluFlopsPerEntry;
+      if (!useKlu) lu.analyzePattern(matrix);
+      outer.assign(matrix.outerIndexPtr(), matrix.outerIndexPtr() + matrix.outerSize() + 1);
+      inner.assign(matrix.innerIndexPtr(), matrix.innerIndexPtr() + matrix.nonZeros());
+    }
     if (useKlu) {
       luValid = klu.Factorize(matrix);
     } else {
-      if (!umfpackAnalyzed) {
-        lu.analyzePattern(matrix);
-        umfpackAnalyzed = true;
-      }
       lu.factorize(matrix);
       luValid = lu.info() == Eigen::Success;
     }
@@ -520,11 +464,6 @@ bool UnsymmetricSolver::Factorize(const Eigen::SparseMatrix<double>& J) {
   s.matrix.makeCompressed();
   s.luValid = false;
   s.iterative = UseIterative(s.settings, J.rows());
-  if (s.iterative && s.settings.kind == LinearSolverKind::Auto) {
-    // Auto on a large system: KLU's analysis of the pattern estimates the direct solve's flops.
-    s.AnalyzeIfNew();
-    s.iterative = s.estFlops >= kDirectFlopsPerNonzero * double(s.matrix.nonZeros());
-  }
   if (s.iterative) {
     if (!Eigen::Map<const Eigen::VectorXd>(s.matrix.valuePtr(), s.matrix.nonZeros()).allFinite())
       return false;

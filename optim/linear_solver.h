@@ -12,13 +12,10 @@ namespace superdex {
 
 /// How a stage's linear systems are solved.
 enum class LinearSolverKind {
-  /// Direct below kAutoIterativeUnknowns unknowns; from there Iterative unless the direct
-  /// analysis of the pattern estimates fewer than 1000 flops per matrix nonzero for the
-  /// factorization. Measured on resting heaps of spheres (bench/bench_scaling.cpp): the direct
-  /// factors of a dense 3D contact graph fill in superlinearly (1000 → 4000 spheres: 2× the time
-  /// per active sample; estimate 4300 flops per nonzero), while the Krylov solves take 10–60
-  /// iterations there (the mass term M/Δt² keeps the stage well conditioned); a landing pile's
-  /// sparser contact graph (estimates 0–300) factorizes faster than its ~120 Krylov iterations.
+  /// Iterative from kAutoIterativeUnknowns unknowns up, Direct below. Measured on resting heaps of
+  /// spheres (bench/bench_scaling.cpp): the direct factors of a 3D contact graph fill in
+  /// superlinearly (1000 → 4000 spheres: 2× the time per active sample), while the Krylov solves
+  /// take 10–60 iterations there (the mass term M/Δt² keeps the stage well conditioned).
   Auto,
   Direct,     ///< sparse Cholesky (symmetric) / LU (unsymmetric) on every system
   /// Block-Jacobi-preconditioned (optim/block_jacobi.h) conjugate gradients (symmetric) / BiCGSTAB
@@ -30,7 +27,7 @@ const char* ToString(LinearSolverKind kind);
 /// "auto", "direct" or "iterative"; false for anything else.
 bool ParseLinearSolverKind(const std::string& name, LinearSolverKind* kind);
 
-/// Auto considers the iterative solvers from this many unknowns up (1000 rigid bodies = 6000).
+/// Auto uses the iterative solvers from this many unknowns up (1000 rigid bodies = 6000).
 constexpr Eigen::Index kAutoIterativeUnknowns = 3000;
 
 struct LinearSolverSettings {

@@ -336,56 +336,6 @@ TEST_CASE("transposed solves with the LU factors: sparse LU, dense and after an 
   }
 }
 
-namespace {
-
-/// A 3D grid of m³ nodes, three unknowns each, every unknown of a node coupled to those of its six
-/// neighbours (a tet mesh's block pattern: its factors fill in), diagonally dominant.
-SparseMatrix GridMatrix(int m) {
-  std::vector<Eigen::Triplet<double>> t;
-  auto id = [m](int i, int j, int k) { return (i * m + j) * m + k; };
-  for (int i = 0; i < m; ++i)
-    for (int j = 0; j < m; ++j)
-      for (int k = 0; k < m; ++k) {
-        const int a = id(i, j, k);
-        for (int c = 0; c < 3; ++c) t.emplace_back(3 * a + c, 3 * a + c, 30.0);
-        const int next[3][3] = {{i + 1, j, k}, {i, j + 1, k}, {i, j, k + 1}};
-        for (const auto& q : next) {
-          if (q[0] >= m || q[1] >= m || q[2] >= m) continue;
-          const int b = id(q[0], q[1], q[2]);
-          for (int r = 0; r < 3; ++r)
-            for (int c = 0; c < 3; ++c) {
-              t.emplace_back(3 * a + r, 3 * b + c, -0.5);
-              t.emplace_back(3 * b + c, 3 * a + r, -0.5);
-            }
-        }
-      }
-  SparseMatrix H(3 * m * m * m, 3 * m * m * m);
-  H.setFromTriplets(t.begin(), t.end());
-  H.makeCompressed();
-  return H;
-}
-
-/// A chain of 6-unknown blocks, each coupled to the next (a sparse contact
-/// graph: its factors hardly fill in), diagonally dominant.
-SparseMatrix ChainMatrix(int blocks) {
-  std::vector<Eigen::Triplet<double>> t;
-  for (int b = 0; b < blocks; ++b)
-    for (int r = 0; r < 6; ++r) {
-      t.emplace_back(6 * b + r, 6 * b + r, 20.0);
-      if (b + 1 < blocks)
-        for (int c = 0; c < 6; ++c) {
-          t.emplace_back(6 * b + r, 6 * (b + 1) + c, -0.3);
-          t.emplace_back(6 * (b + 1) + c, 6 * b + r, -0.3);
-        }
-    }
-  SparseMatrix H(6 * blocks, 6 * blocks);
-  H.setFromTriplets(t.begin(), t.end());
-  H.makeCompressed();
-  return H;
-}
-
-}  // namespace
-
 TEST_CASE("unsymmetric LU: KLU on a sparse contact graph, UMFPACK on a filling mesh; solves, "
           "transposed solves and singular matrices on both", "[optim]") {
   std::mt19937 rng(31);
@@ -405,8 +355,31 @@ TEST_CASE("unsymmetric LU: KLU on a sparse contact graph, UMFPACK on a filling m
   SparseMatrix graph(300, 300);
   graph.setFromTriplets(g.begin(), g.end());
   graph.makeCompressed();
-  // A mesh: a 3D grid of 9³ nodes with three unknowns each (its factors fill in).
-  const SparseMatrix mesh = GridMatrix(9);
+  // A mesh: a 3D grid of 9³ nodes with three unknowns each and every unknown of a node coupled
+  // to those of its six neighbours (the block pattern of a tet mesh's stiffness; its factors
+  // fill in).
+  const int m = 9, nodes = m * m * m;
+  std::vector<Eigen::Triplet<double>> t;
+  auto id = [m](int i, int j, int k) { return (i * m + j) * m + k; };
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j)
+      for (int k = 0; k < m; ++k) {
+        const int a = id(i, j, k);
+        for (int c = 0; c < 3; ++c) t.emplace_back(3 * a + c, 3 * a + c, 30.0);
+        const int next[3][3] = {{i + 1, j, k}, {i, j + 1, k}, {i, j, k + 1}};
+        for (const auto& q : next) {
+          if (q[0] >= m || q[1] >= m || q[2] >= m) continue;
+          const int b = id(q[0], q[1], q[2]);
+          for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) {
+              t.emplace_back(3 * a + r, 3 * b + c, -0.5 - 0.1 * r);
+              t.emplace_back(3 * b + c, 3 * a + r, -0.5 - 0.1 * r);
+            }
+        }
+      }
+  SparseMatrix mesh(3 * nodes, 3 * nodes);
+  mesh.setFromTriplets(t.begin(), t.end());
+  mesh.makeCompressed();
   for (const auto& [H, backend] : {std::pair<SparseMatrix, std::string>{graph, "klu"},
                                    std::pair<SparseMatrix, std::string>{mesh, "umfpack"}}) {
     SparseMatrix J = H;
@@ -427,35 +400,5 @@ TEST_CASE("unsymmetric LU: KLU on a sparse contact graph, UMFPACK on a filling m
     CHECK_FALSE(lu.Factorize(singular));
     REQUIRE(lu.Factorize(J));
     CHECK(RelativeResidual(J, lu.Solve(b), b) <= 1e-12);
-  }
-}
-
-TEST_CASE("auto linear solves on large systems: direct where the factors stay sparse, Krylov "
-          "where they fill in", "[optim]") {
-  LinearSolverSettings automatic;
-  automatic.kind = LinearSolverKind::Auto;
-  const SparseMatrix sparse = ChainMatrix(1000);  // 6000 unknowns
-  const SparseMatrix filling = GridMatrix(16);    // 12288 unknowns
-  REQUIRE(sparse.rows() >= kAutoIterativeUnknowns);
-  REQUIRE(filling.rows() >= kAutoIterativeUnknowns);
-  for (const auto& [H, direct] : {std::pair<SparseMatrix, bool>{sparse, true},
-                                  std::pair<SparseMatrix, bool>{filling, false}}) {
-    INFO(H.rows() << " unknowns, expected " << (direct ? "direct" : "Krylov"));
-    const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(H.rows(), -1.0, 1.0);
-    SymmetricSolver sym;
-    sym.SetSettings(automatic);
-    REQUIRE(sym.Factorize(H));
-    CHECK(std::string(sym.Backend()) == (direct ? "cholmod" : "pcg"));
-    CHECK(RelativeResidual(H, sym.Solve(b), b) <= 1e-8);
-    SparseMatrix J = H;
-    for (Eigen::Index k = 0; k < J.outerSize(); ++k)
-      for (SparseMatrix::InnerIterator e(J, k); e; ++e)
-        if (e.row() > e.col()) e.valueRef() *= 1.2;
-    UnsymmetricSolver uns;
-    uns.SetSettings(automatic);
-    REQUIRE(uns.Factorize(J));
-    const Eigen::VectorXd x = uns.Solve(b);
-    CHECK(std::string(uns.Backend()) == (direct ? "klu" : "bicgstab"));
-    CHECK(RelativeResidual(J, x, b) <= 1e-8);
   }
 }
