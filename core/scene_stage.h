@@ -113,6 +113,8 @@ class SceneStageProblem : public StageProblem {
   /// max over bodies of ‖δp‖∞ and ‖δθ‖ times the body's RMS radius √(tr J / m), and over soft
   /// nodes of ‖δx‖∞ [m].
   double StepNorm(const Eigen::VectorXd& d) const override;
+  /// The dynamic rigid bodies: their six dofs lead the dof vector (dofOffset 0, 6, 12, …).
+  int LeadingSixDofBlocks() const override;
 
  private:
   double BodyEnergy(size_t i, const RigidPose& pose) const;

@@ -115,7 +115,7 @@ struct SymmetricSolver::Impl {
   LinearSolveInfo info;
   // Conjugate gradients: the matrix, its block-Jacobi preconditioner, the iteration's vectors.
   SparseMatrix matrix;
-  BlockJacobi3 preconditioner;
+  BlockJacobi preconditioner;
   Eigen::VectorXd r, z, p, q;
 
   bool SamePattern(const SparseMatrix& H) const {
@@ -220,6 +220,8 @@ void SymmetricSolver::SetSettings(const LinearSolverSettings& settings) {
   impl_->settings = settings;
 }
 
+void SymmetricSolver::SetLeadingSixBlocks(int k) { impl_->preconditioner.SetLeadingSixBlocks(k); }
+
 const LinearSolveInfo& SymmetricSolver::LastSolve() const { return impl_->info; }
 
 Eigen::VectorXd SymmetricSolver::Solve(const Eigen::VectorXd& b) const {
@@ -233,7 +235,7 @@ void SymmetricSolver::Solve(const Eigen::VectorXd& b, Eigen::VectorXd* out) cons
   s.info = LinearSolveInfo();
   Eigen::VectorXd& x = *out;
   if (s.backend == BackendKind::Pcg) {
-    // Preconditioned conjugate gradients (M: the 3×3 diagonal blocks of H), x₀ = 0.
+    // Preconditioned conjugate gradients (M: the block-Jacobi blocks of H), x₀ = 0.
     const Eigen::Index n = b.size();
     const double nan = std::numeric_limits<double>::quiet_NaN();
     s.info.iterative = true;
@@ -378,7 +380,7 @@ struct UnsymmetricSolver::Impl {
   LinearSolveInfo info;
   bool iterative = false;  // the last Factorize prepared BiCGSTAB, not the LU
   bool luValid = false;    // lu holds the factors of `matrix`
-  Eigen::BiCGSTAB<SparseMatrix, BlockJacobi3> krylov;
+  Eigen::BiCGSTAB<SparseMatrix, BlockJacobi> krylov;
 
   bool FactorizeLu() {
     const bool same = SamePattern(matrix);
@@ -477,6 +479,10 @@ bool UnsymmetricSolver::Factorize(const Eigen::SparseMatrix<double>& J) {
 
 void UnsymmetricSolver::SetSettings(const LinearSolverSettings& settings) {
   impl_->settings = settings;
+}
+
+void UnsymmetricSolver::SetLeadingSixBlocks(int k) {
+  impl_->krylov.preconditioner().SetLeadingSixBlocks(k);
 }
 
 const LinearSolveInfo& UnsymmetricSolver::LastSolve() const { return impl_->info; }

@@ -60,6 +60,9 @@ class SymmetricSolver {
 
   /// Direct by default.
   void SetSettings(const LinearSolverSettings& settings);
+  /// The Krylov solves' block-Jacobi layout (optim/block_jacobi.h): unknowns [0, 6k) form k
+  /// blocks of 6 (rigid bodies), the rest blocks of 3. 0 by default.
+  void SetLeadingSixBlocks(int k);
 
   /// Factorizes H (only its lower triangle is read). Returns false if H is not positive definite
   /// for both backends, is empty or non-square, or has non-finite entries. Iterative: keeps a copy
@@ -96,6 +99,8 @@ class UnsymmetricSolver {
 
   /// Direct by default.
   void SetSettings(const LinearSolverSettings& settings);
+  /// As SymmetricSolver::SetLeadingSixBlocks.
+  void SetLeadingSixBlocks(int k);
 
   /// Factorizes J. Returns false if J is (numerically) singular. Iterative: keeps a copy of J and
   /// the block-Jacobi preconditioner; false only for non-finite entries.

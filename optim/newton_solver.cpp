@@ -170,6 +170,7 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
   if (!solverCache) ownSolver = std::make_unique<SymmetricSolver>();
   SymmetricSolver& solver = solverCache ? *solverCache : *ownSolver;
   solver.SetSettings(params.linear);
+  solver.SetLeadingSixBlocks(problem.LeadingSixDofBlocks());
 
   if (n == 0) {
     Clock::time_point t0 = Clock::now();
