@@ -32,7 +32,10 @@ constexpr Eigen::Index kAutoIterativeUnknowns = 3000;
 
 struct LinearSolverSettings {
   LinearSolverKind kind = LinearSolverKind::Direct;
-  double tolerance = 1e-8;  ///< Krylov: stop at ‖b − A x‖₂ <= tolerance ‖b‖₂ [-], in (0, 1)
+  /// Krylov: stop at ‖b − A x‖₂ <= tolerance ‖b‖₂ [-], in (0, 1). The Newton solvers loosen it
+  /// per iteration to their forcing term η_k >= tolerance (optim/forcing_term.h): the iterations
+  /// in Newton's quadratic phase are solved to `tolerance` itself.
+  double tolerance = 1e-8;
   int maxIterations = 500;  ///< Krylov iterations before the direct fallback, >= 1
   bool operator==(const LinearSolverSettings& o) const {
     return kind == o.kind && tolerance == o.tolerance && maxIterations == o.maxIterations;

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <vector>
 
+#include "optim/forcing_term.h"
 #include "optim/linear_solver.h"
 
 namespace superdex {
@@ -189,6 +190,11 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
   PartLineSearch& parts = w.parts;
   const bool usePartSearch = params.partLineSearch && params.lineSearch != LineSearchKind::None;
   bool split = false;  // the parts of s are known (parts.Begin): one step length per part
+  // Krylov solves to the Eisenstat–Walker forcing term (optim/forcing_term.h); direct solves are
+  // exact either way.
+  ForcingTerm forcing(params.linear.tolerance);
+  LinearSolverSettings linear = params.linear;
+  const bool inexact = params.linear.kind != LinearSolverKind::Direct;
   for (int it = 0; it < params.maxIterations; ++it) {
     // --- Assembly: f, g, H at the current state s.
     Clock::time_point t0 = Clock::now();
@@ -198,6 +204,10 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
                          : problem.Evaluate(&g, &H, exact ? PsdProjection::None : params.psdProjection);
     evaluated = false;
     st.assemblySeconds += SecondsSince(t0);
+    if (inexact) {
+      linear.tolerance = forcing.Next(g.norm());
+      solver.SetSettings(linear);
+    }
     if (exact) {
       // Accept the exact Hessian only if it factorizes as is and gives a descent direction.
       t0 = Clock::now();

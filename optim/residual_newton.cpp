@@ -1,5 +1,6 @@
 #include "optim/residual_newton.h"
 
+#include "optim/forcing_term.h"
 #include "optim/linear_solver.h"
 
 #include <algorithm>
@@ -82,6 +83,10 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
   PartLineSearch& parts = w.parts;
   const bool usePartSearch = params.partLineSearch && params.lineSearch != LineSearchKind::None;
   bool split = false;  // the parts of s are known (parts.Begin): one step length per part
+  // Krylov solves to the Eisenstat–Walker forcing term (optim/forcing_term.h).
+  ForcingTerm forcing(params.linear.tolerance);
+  LinearSolverSettings linear = params.linear;
+  const bool inexact = params.linear.kind != LinearSolverKind::Direct;
   for (int it = 0; it < params.maxIterations; ++it) {
     Clock::time_point t0 = Clock::now();
     if (!evaluated) {
@@ -103,6 +108,10 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
       return st;
     }
 
+    if (inexact) {
+      linear.tolerance = forcing.Next(r.norm());
+      lu.SetSettings(linear);
+    }
     t0 = Clock::now();
     J.makeCompressed();
     if (!Eigen::Map<const Eigen::VectorXd>(J.valuePtr(), J.nonZeros()).allFinite())

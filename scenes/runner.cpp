@@ -1,3 +1,5 @@
+#include <cstdio>
+#include <cstdlib>
 #include "scenes/runner.h"
 
 #include <chrono>
@@ -46,6 +48,7 @@ bool RunScene(SceneFile* file, const RunOptions& options, RunSummary* summary, E
     const Clock::time_point t1 = Clock::now();
     s.wallSeconds += seconds(t0, t1);
     ++s.steps;
+    if (std::getenv("SDX_KRY")) std::fprintf(stderr, "kry %d %d\n", rep.newtonIterations, rep.krylovIterations);
     s.newtonIterations += rep.newtonIterations;
     s.fallbacks += rep.fallbacks;
     s.assemblySeconds += rep.assemblySeconds;

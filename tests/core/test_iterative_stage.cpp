@@ -1,6 +1,6 @@
-// Stages solved with Krylov linear solves (LinearSolverKind::Iterative) reach the same solutions
-// as with direct factorizations, in the explicit-normals (conjugate gradients) and the default
-// residual mode (BiCGSTAB).
+// Stages solved with Krylov linear solves (LinearSolverKind::Iterative, to Newton's forcing terms)
+// reach the same solutions as with direct factorizations, in the explicit-normals (conjugate
+// gradients) and the default residual mode (BiCGSTAB).
 #include <catch2/catch.hpp>
 
 #include "core/scene.h"
@@ -50,8 +50,12 @@ TEST_CASE("Krylov linear solves give the stage solutions of the direct ones",
     CHECK(direct.krylovIterations == 0);
     CHECK(krylov.krylovIterations > 0);
     CHECK(krylov.krylovFallbacks == 0);
-    // Same Newton path up to the Krylov tolerance (1e-8 relative per solve).
-    CHECK(std::abs(krylov.newtonIterations - direct.newtonIterations) <= 2);
+    // The Krylov solves stop at the Newton forcing terms (optim/forcing_term.h): an inexact
+    // Newton path, measured 28 against 25 iterations (explicit normals) and 39 against 33.
+    INFO("Newton iterations: direct " << direct.newtonIterations << ", Krylov "
+                                      << krylov.newtonIterations);
+    CHECK(krylov.newtonIterations >= direct.newtonIterations);
+    CHECK(krylov.newtonIterations <= 1.25 * direct.newtonIterations);
     double dp = 0.0, dv = 0.0;
     for (size_t i = 0; i < direct.states.size(); ++i) {
       dp = std::max(dp, (direct.states[i].p - krylov.states[i].p).lpNorm<Eigen::Infinity>());
