@@ -6,7 +6,7 @@
 namespace superdex {
 
 double ForcingTerm::Next(double norm) {
-  double eta = kEtaMax;
+  double eta = lastNorm_ < 0.0 && tightStart_ ? floor_ : kEtaMax;
   if (lastNorm_ > 0.0 && std::isfinite(lastNorm_) && std::isfinite(norm)) {
     const double ratio = norm / lastNorm_;
     eta = std::min(kEtaMax, kGamma * ratio * ratio);

@@ -4,9 +4,12 @@
 // Iteration k solves J d = −F only to ‖J d + F‖₂ <= η_k ‖F‖₂, F the gradient (minimization) or
 // the residual, with Eisenstat and Walker's choice 2 (S. C. Eisenstat, H. F. Walker, "Choosing the
 // forcing terms in an inexact Newton method", SIAM J. Sci. Comput. 17 (1996) 16–32):
-//   η_0 = η_max,   η_k = max(floor, min(η_max, γ (‖F_k‖ / ‖F_{k−1}‖)²)),   γ = 0.9,   η_max = 0.1,
+//   η_k = max(floor, min(η_max, γ (‖F_k‖ / ‖F_{k−1}‖)²)),   γ = 0.9,   η_max = 0.1,
 // `floor` the user's linear_tolerance. (Their safeguard η_k >= γ η_{k−1}², applied where
-// γ η_{k−1}² > 0.1, never applies with η_max = 0.1.) Far from the solution a
+// γ η_{k−1}² > 0.1, never applies with η_max = 0.1.) The first iteration has no ratio: η_0 = η_max,
+// or η_0 = floor where the caller expects a stage close to linear from its start (the last solve
+// converged within kTightStartIterations Newton iterations), since there an inexact first step
+// costs one more assembly than its Krylov iterations save. Far from the solution a
 // loose solve gives as good a step as an exact one; where Newton converges quadratically the ratio
 // ‖F_k‖/‖F_{k−1}‖ collapses and η_k falls to the floor, so the last iterations are solved as
 // accurately as before. A direction solved this loosely is still a descent direction: conjugate
@@ -16,7 +19,13 @@
 // Measured (1000-sphere pile, BDF2 default mode, Δt = 1e-2, 6000 unknowns, Krylov solves): Krylov
 // iterations per Newton solve 94 → 16 over the full 2 s, Newton iterations per step 11.85 → 12.69,
 // wall time 84.6 → 69.5 s per simulated second. η_max = 0.01 / 0.3 / 0.5 over the first 0.3 s: 50.0
-// / 47.2 / 54.3 s/s against 40.9 with 0.1 (56.3 with exact solves).
+// / 47.2 / 54.3 s/s against 40.9 with 0.1 (56.3 with exact solves); η_0 = floor at every stage:
+// 49.3 against 41.2 s/s. The 10k-tet soft ball (6303 unknowns, through its impact), wall s per
+// simulated second with exact Krylov solves → η_0 = η_max always → the rule here: default mode at
+// Δt = 1e-3 (stages of about 3 Newton iterations) 67.8 → 77.0 → 63.5, at Δt = 1e-2 19.1 → 14.4 →
+// 17.3; explicit normals at 1e-3 66.0 → 62.1 (the rule), at 1e-2 15.2 → 12.9 (the rule). A
+// threshold of 3 iterations kept the Δt = 1e-3 stages loose (their inexact first step makes them
+// take 4) and slow (85.6).
 #pragma once
 
 namespace superdex {
@@ -25,13 +34,19 @@ class ForcingTerm {
  public:
   static constexpr double kGamma = 0.9;
   static constexpr double kEtaMax = 0.1;
-  /// `floor`: the smallest η returned (the linear solver's own tolerance).
-  explicit ForcingTerm(double floor) : floor_(floor) {}
+  static constexpr int kTightStartIterations = 4;
+  /// `floor`: the smallest η returned (the linear solver's own tolerance). `lastIterations`: the
+  /// Newton iterations of the last solve of the same kind of stage that converged (negative:
+  /// none), which decide η_0.
+  ForcingTerm(double floor, int lastIterations)
+      : floor_(floor),
+        tightStart_(lastIterations >= 0 && lastIterations <= kTightStartIterations) {}
   /// η_k for this iteration's ‖F_k‖₂ (call once per Newton iteration, in order).
   double Next(double norm);
 
  private:
   double floor_;
+  bool tightStart_;
   double lastNorm_ = -1.0;  // ‖F_{k−1}‖; negative before the first iteration
 };
 

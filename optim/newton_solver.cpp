@@ -192,7 +192,8 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
   bool split = false;  // the parts of s are known (parts.Begin): one step length per part
   // Krylov solves to the Eisenstat–Walker forcing term (optim/forcing_term.h); direct solves are
   // exact either way.
-  ForcingTerm forcing(params.linear.tolerance);
+  ForcingTerm forcing(params.linear.tolerance, w.lastConvergedIterations);
+  w.lastConvergedIterations = -1;  // until this solve converges
   LinearSolverSettings linear = params.linear;
   const bool inexact = params.linear.kind != LinearSolverKind::Direct;
   for (int it = 0; it < params.maxIterations; ++it) {
@@ -348,6 +349,7 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
       st.lineSearchSeconds += SecondsSince(t0);
       st.status = StageStatus::Converged;
       st.passed = converged;
+      w.lastConvergedIterations = st.iterations;
       if (!commit) st.passed.note = " (last step not taken: it would raise f)";
       return st;
     }

@@ -150,6 +150,9 @@ struct NewtonWorkspace {
   Eigen::SparseMatrix<double> matrix, shifted, trialMatrix;
   std::vector<Eigen::Index> diagonal;
   PartLineSearch parts;
+  /// Newton iterations of the last solve on this workspace that converged in its main loop;
+  /// -1 when the last solve ended otherwise (its Krylov forcing term's start: optim/forcing_term.h).
+  int lastConvergedIterations = -1;
 };
 
 /// What a caller knows about a solve's start: a hint, not a setting (the iterates may change, the

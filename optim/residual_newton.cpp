@@ -84,7 +84,8 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
   const bool usePartSearch = params.partLineSearch && params.lineSearch != LineSearchKind::None;
   bool split = false;  // the parts of s are known (parts.Begin): one step length per part
   // Krylov solves to the Eisenstat–Walker forcing term (optim/forcing_term.h).
-  ForcingTerm forcing(params.linear.tolerance);
+  ForcingTerm forcing(params.linear.tolerance, w.lastConvergedIterations);
+  w.lastConvergedIterations = -1;  // until this solve converges
   LinearSolverSettings linear = params.linear;
   const bool inexact = params.linear.kind != LinearSolverKind::Direct;
   for (int it = 0; it < params.maxIterations; ++it) {
@@ -177,6 +178,7 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
       st.lineSearchSeconds += SecondsSince(t0);
       st.status = StageStatus::Converged;
       st.passed = converged;
+      w.lastConvergedIterations = st.iterations;
       if (!commit) st.passed.note = " (last step not taken: it would raise |r|)";
       return st;
     }

@@ -51,6 +51,8 @@ bool RunScene(SceneFile* file, const RunOptions& options, RunSummary* summary, E
     if (std::getenv("SDX_KRY")) std::fprintf(stderr, "kry %d %d\n", rep.newtonIterations, rep.krylovIterations);
     s.newtonIterations += rep.newtonIterations;
     s.fallbacks += rep.fallbacks;
+    s.krylovIterations += rep.krylovIterations;
+    s.krylovFallbacks += rep.krylovFallbacks;
     s.assemblySeconds += rep.assemblySeconds;
     s.factorizationSeconds += rep.factorizationSeconds;
     s.lineSearchSeconds += rep.lineSearchSeconds;
@@ -125,6 +127,9 @@ void PrintSummary(const SceneFile& file, const RunSummary& s, std::ostream& os) 
   os << "output            " << s.outputSeconds << " s (trajectory, VTK frames, progress)\n";
   os << "Newton iterations " << double(s.newtonIterations) / std::max(1, s.steps)
      << " per step (max " << s.maxNewtonIterations << ")\n";
+  if (s.krylovIterations > 0)
+    os << "Krylov iterations " << double(s.krylovIterations) / std::max(1L, s.newtonIterations)
+       << " per Newton iteration (" << s.krylovFallbacks << " solves fell back to direct)\n";
   if (s.fallbacks > 0)
     os << "fallbacks         " << s.fallbacks
        << " stages: residual solve failed, re-solved with explicit normals\n";

@@ -9,7 +9,7 @@ using namespace superdex;
 
 TEST_CASE("forcing terms: loose far from the solution, the floor in the quadratic phase",
           "[optim]") {
-  ForcingTerm forcing(1e-8);
+  ForcingTerm forcing(1e-8, -1);  // no converged solve before: η_0 = η_max
   CHECK(forcing.Next(10.0) == ForcingTerm::kEtaMax);  // no history: η_max
   CHECK(forcing.Next(9.0) == ForcingTerm::kEtaMax);   // slow decrease: capped at η_max
   // ‖F‖ 9 → 0.9: η = 0.9 · 0.1² = 9e-3.
@@ -27,6 +27,13 @@ TEST_CASE("forcing terms: loose far from the solution, the floor in the quadrati
   CHECK(forcing.Next(1.0) == ForcingTerm::kEtaMax);
   CHECK(forcing.Next(0.1) == Approx(0.9 * 0.01).epsilon(1e-15));
   // The floor wins over a looser η_max.
-  ForcingTerm tight(0.5);
+  ForcingTerm tight(0.5, -1);
   CHECK(tight.Next(1.0) == 0.5);
+  // After a solve that converged within kTightStartIterations iterations the first solve is
+  // exact (η_0 = floor), the later ones follow the ratio; after a longer one, η_0 = η_max.
+  ForcingTerm quick(1e-8, ForcingTerm::kTightStartIterations);
+  CHECK(quick.Next(1.0) == 1e-8);
+  CHECK(quick.Next(0.5) == ForcingTerm::kEtaMax);
+  ForcingTerm slow(1e-8, ForcingTerm::kTightStartIterations + 1);
+  CHECK(slow.Next(1.0) == ForcingTerm::kEtaMax);
 }
