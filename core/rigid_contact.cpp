@@ -178,15 +178,26 @@ void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& a, const
   out->value = 0.0;
   out->activeSamples = 0;
   out->minPhi = INFINITY;
-  // Accumulated in fixed-size stencils, copied out at the end.
-  PairVector gradient = PairVector::Zero();
-  PairMatrix hessian;
-  if (order >= 2) hessian.setZero();
   const double delta = params.delta;
   const double reach = B.collider.boundingRadius + delta;  // |Y| beyond this: φ >= δ
   const Eigen::Matrix3d RBt = b.R.transpose();
   const Eigen::Matrix3d RBtRA = RBt * a.R;
   const Eigen::Vector3d YA = RBt * (a.p - b.p);  // A's centre in B's frame
+  const double L = B.collider.lipschitz;
+  // The whole pair first (the tree's root, as the culling below would test it): a candidate pair
+  // out of reach (a ball in flight over the ground) returns zeros without forming its stencils.
+  if (!A.sampleTree.empty()) {
+    const SampleNode& root = A.sampleTree.front();
+    if (!(B.collider.Value(YA + RBtRA * root.center) - L * root.radius < delta)) {
+      if (order >= 1) out->gradient.setZero(n);
+      if (order >= 2) out->hessian.setZero(n, n);
+      return;
+    }
+  }
+  // Accumulated in fixed-size stencils, copied out at the end.
+  PairVector gradient = PairVector::Zero();
+  PairMatrix hessian;
+  if (order >= 2) hessian.setZero();
   const bool alignmentTest = std::isfinite(maxAlignment);
   const RigidPose& ar = aRef ? *aRef : a;
   const RigidPose& br = bRef ? *bRef : b;
@@ -196,7 +207,6 @@ void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& a, const
 
   // Tree culling (the root first: the whole pair): with a field of Lipschitz constant L every
   // sample of a node has φ >= φ(centre) − L radius.
-  const double L = B.collider.lipschitz;
   auto near = [&](const Eigen::Vector3d& center, double radius) {
     return B.collider.Value(YA + RBtRA * center) - L * radius < delta;
   };
