@@ -183,16 +183,18 @@ void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& a, const
   const Eigen::Matrix3d RBt = b.R.transpose();
   const Eigen::Matrix3d RBtRA = RBt * a.R;
   const Eigen::Vector3d YA = RBt * (a.p - b.p);  // A's centre in B's frame
+  // Tree culling (the root first: the whole pair): with a field of Lipschitz constant L every
+  // sample of a node has φ >= φ(centre) − L radius.
   const double L = B.collider.lipschitz;
-  // The whole pair first (the tree's root, as the culling below would test it): a candidate pair
-  // out of reach (a ball in flight over the ground) returns zeros without forming its stencils.
-  if (!A.sampleTree.empty()) {
-    const SampleNode& root = A.sampleTree.front();
-    if (!(B.collider.Value(YA + RBtRA * root.center) - L * root.radius < delta)) {
-      if (order >= 1) out->gradient.setZero(n);
-      if (order >= 2) out->hessian.setZero(n, n);
-      return;
-    }
+  auto near = [&](const Eigen::Vector3d& center, double radius) {
+    return B.collider.Value(YA + RBtRA * center) - L * radius < delta;
+  };
+  // A candidate pair whose root is out of reach (a ball in flight over the ground) returns zeros
+  // before its stencils are formed.
+  if (!A.sampleTree.empty() && !near(A.sampleTree.front().center, A.sampleTree.front().radius)) {
+    if (order >= 1) out->gradient.setZero(n);
+    if (order >= 2) out->hessian.setZero(n, n);
+    return;
   }
   // Accumulated in fixed-size stencils, copied out at the end.
   PairVector gradient = PairVector::Zero();
@@ -205,11 +207,6 @@ void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& a, const
   const Eigen::Vector3d YAref = br.R.transpose() * (ar.p - br.p);
   const bool sameReference = !aRef && !bRef;
 
-  // Tree culling (the root first: the whole pair): with a field of Lipschitz constant L every
-  // sample of a node has φ >= φ(centre) − L radius.
-  auto near = [&](const Eigen::Vector3d& center, double radius) {
-    return B.collider.Value(YA + RBtRA * center) - L * radius < delta;
-  };
   PairHessianSums sums;
   ForEachSampleRange(A, near, [&](int begin, int end) {
     for (int k = begin; k < end; ++k) {

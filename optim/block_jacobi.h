@@ -29,7 +29,6 @@ class BlockJacobi {
   BlockJacobi() = default;
   /// The layout of the next factorizations (see the file comment); k >= 0.
   void SetLeadingSixBlocks(int k) { leadingSix_ = k > 0 ? k : 0; }
-  int LeadingSixBlocks() const { return leadingSix_; }
 
   template <typename MatrixType>
   BlockJacobi& analyzePattern(const MatrixType&) {

@@ -1,5 +1,3 @@
-#include <cstdio>
-#include <cstdlib>
 #include "scenes/runner.h"
 
 #include <chrono>
@@ -48,7 +46,6 @@ bool RunScene(SceneFile* file, const RunOptions& options, RunSummary* summary, E
     const Clock::time_point t1 = Clock::now();
     s.wallSeconds += seconds(t0, t1);
     ++s.steps;
-    if (std::getenv("SDX_KRY")) std::fprintf(stderr, "kry %d %d\n", rep.newtonIterations, rep.krylovIterations);
     s.newtonIterations += rep.newtonIterations;
     s.fallbacks += rep.fallbacks;
     s.krylovIterations += rep.krylovIterations;
