@@ -3,6 +3,8 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <functional>
 #include <map>
 #include <tuple>
@@ -70,52 +72,63 @@ void MeshSamples(const TriangleMesh& mesh, const Eigen::Vector3d& offset,
   }
 }
 
-// Builds m->sampleTree: median splits of the sample range along the longest side of its box
-// (ties by original index, so the tree is deterministic), leaves of at most kSamplesPerLeaf;
-// samples reordered into leaf order. Each node's sphere is centred on its box.
-void BuildSampleTree(RigidBodyModel* m) {
-  m->sampleTree.clear();
-  const int n = static_cast<int>(m->samples.size());
-  if (n == 0) return;
+// Builds the sample tree of `samples`: median splits of the sample range along the longest side
+// of its box (ties by original index, so the tree is deterministic), leaves of at most
+// kSamplesPerLeaf; samples reordered into leaf order. Each node's sphere is centred on its box.
+std::vector<SampleNode> BuildSampleTree(std::vector<SurfaceSample>* samples) {
+  std::vector<SampleNode> tree;
+  const int n = static_cast<int>(samples->size());
+  if (n == 0) return tree;
+  const std::vector<SurfaceSample>& s = *samples;
   std::vector<int> order(n);
   for (int i = 0; i < n; ++i) order[i] = i;
   auto bound = [&](SampleNode* node) {
     Aabb box;
-    for (int k = node->begin; k < node->end; ++k) box.Extend(m->samples[order[k]].X);
+    for (int k = node->begin; k < node->end; ++k) box.Extend(s[order[k]].X);
     node->center = 0.5 * (box.min + box.max);
     node->radius = 0.0;
     for (int k = node->begin; k < node->end; ++k)
-      node->radius = std::max(node->radius, (m->samples[order[k]].X - node->center).norm());
+      node->radius = std::max(node->radius, (s[order[k]].X - node->center).norm());
     return box;
   };
-  m->sampleTree.reserve(2 * (n / kSamplesPerLeaf + 1));
+  tree.reserve(2 * (n / kSamplesPerLeaf + 1));
   std::vector<int> pending = {0};
-  m->sampleTree.push_back({0, n});
+  tree.push_back({0, n});
   while (!pending.empty()) {
     const int index = pending.back();
     pending.pop_back();
-    const Aabb box = bound(&m->sampleTree[index]);
-    const SampleNode node = m->sampleTree[index];
+    const Aabb box = bound(&tree[index]);
+    const SampleNode node = tree[index];
     if (node.end - node.begin <= kSamplesPerLeaf) continue;
     int axis = 0;
     (box.max - box.min).maxCoeff(&axis);
     const int mid = (node.begin + node.end) / 2;
     std::nth_element(order.begin() + node.begin, order.begin() + mid, order.begin() + node.end,
                      [&](int a, int b) {
-                       const double xa = m->samples[a].X[axis], xb = m->samples[b].X[axis];
+                       const double xa = s[a].X[axis], xb = s[b].X[axis];
                        return xa < xb || (xa == xb && a < b);
                      });
-    const int left = static_cast<int>(m->sampleTree.size());
-    m->sampleTree.push_back({node.begin, mid});
-    m->sampleTree.push_back({mid, node.end});
-    m->sampleTree[index].left = left;
-    m->sampleTree[index].right = left + 1;
+    const int left = static_cast<int>(tree.size());
+    tree.push_back({node.begin, mid});
+    tree.push_back({mid, node.end});
+    tree[index].left = left;
+    tree[index].right = left + 1;
     pending.push_back(left + 1);
     pending.push_back(left);
   }
   std::vector<SurfaceSample> sorted(n);
-  for (int k = 0; k < n; ++k) sorted[k] = m->samples[order[k]];
-  m->samples = std::move(sorted);
+  for (int k = 0; k < n; ++k) sorted[k] = s[order[k]];
+  *samples = std::move(sorted);
+  return tree;
+}
+
+bool SameSample(const SurfaceSample& a, const SurfaceSample& b) {
+  return a.X == b.X && a.normal == b.normal && a.weight == b.weight;
+}
+
+bool SameNode(const SampleNode& a, const SampleNode& b) {
+  return a.begin == b.begin && a.end == b.end && a.left == b.left && a.right == b.right &&
+         a.center == b.center && a.radius == b.radius;
 }
 
 }  // namespace
@@ -338,23 +351,26 @@ bool BuildRigidBody(const RigidActorDesc& d, const std::string& prefix, RigidBod
   }
 
   // Colliding role: dynamic rigid actors only (spec: "Default Roles by Actor Type").
+  std::vector<SurfaceSample> samples;
   if (d.dynamic) {
     const TriangleQuadratureRule& rule = GetTriangleQuadratureRule(d.boundaryElementType);
     switch (shape.kind) {
       case RigidShapeKind::Sphere:
-        SphereSamples(shape.radius, shape.surfaceResolution, rule, &m->samples);
+        SphereSamples(shape.radius, shape.surfaceResolution, rule, &samples);
         break;
       case RigidShapeKind::Box:
         MeshSamples(MakeBoxMesh(shape.halfExtents, shape.surfaceResolution),
-                    Eigen::Vector3d::Zero(), rule, &m->samples);
+                    Eigen::Vector3d::Zero(), rule, &samples);
         break;
-      case RigidShapeKind::Mesh: MeshSamples(*shape.mesh, com, rule, &m->samples); break;
+      case RigidShapeKind::Mesh: MeshSamples(*shape.mesh, com, rule, &samples); break;
       case RigidShapeKind::Plane: break;
     }
   }
 
-  for (const SurfaceSample& s : m->samples) m->samplesRadius = std::max(m->samplesRadius, s.X.norm());
-  BuildSampleTree(m);
+  for (const SurfaceSample& s : samples) m->samplesRadius = std::max(m->samplesRadius, s.X.norm());
+  std::vector<SampleNode> tree = BuildSampleTree(&samples);
+  m->samples = SharedArray<SurfaceSample>(std::move(samples));
+  m->sampleTree = SharedArray<SampleNode>(std::move(tree));
 
   // Initial state.
   *st = RigidBodyState();
@@ -365,6 +381,35 @@ bool BuildRigidBody(const RigidActorDesc& d, const std::string& prefix, RigidBod
     st->Rdot = Skew(d.angularVelocity) * st->R;
   }
   return true;
+}
+
+bool ShareSamples(const RigidBodyModel& other, RigidBodyModel* m) {
+  if (!SameElements(other.samples, m->samples, SameSample) ||
+      !SameElements(other.sampleTree, m->sampleTree, SameNode))
+    return false;
+  m->samples = other.samples;
+  m->sampleTree = other.sampleTree;
+  return true;
+}
+
+std::size_t SamplesHash(const RigidBodyModel& m) {
+  // FNV-1a over the samples' coordinates, normals and weights (their bit patterns).
+  std::uint64_t h = 1469598103934665603ull;
+  auto mix = [&h](double x) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    for (int i = 0; i < 8; ++i) {
+      h ^= (bits >> (8 * i)) & 0xffu;
+      h *= 1099511628211ull;
+    }
+  };
+  mix(static_cast<double>(m.samples.size()));
+  for (const SurfaceSample& s : m.samples) {
+    for (int i = 0; i < 3; ++i) mix(s.X[i]);
+    for (int i = 0; i < 3; ++i) mix(s.normal[i]);
+    mix(s.weight);
+  }
+  return static_cast<std::size_t>(h);
 }
 
 double KineticEnergy(const RigidBodyModel& m, const RigidBodyState& s) {

@@ -11,6 +11,7 @@
 #include "core/contact_params.h"
 #include "core/enums.h"
 #include "core/error.h"
+#include "core/shared_array.h"
 #include "geometry/aabb.h"
 #include "core/collider_params.h"
 #include "geometry/analytic_sdf.h"
@@ -108,11 +109,12 @@ struct RigidBodyModel {
   double mass = 0.0;                                        ///< [kg] (0 for static actors)
   Eigen::Matrix3d secondMoment = Eigen::Matrix3d::Zero();   ///< J = ∫ X Xᵀ dm [kg·m²]
   Eigen::Vector3d shapeOffset = Eigen::Vector3d::Zero();    ///< [m]
-  std::vector<SurfaceSample> samples;                       ///< colliding role (empty if none)
+  /// Colliding role (empty if none); shared with the models of identical shapes (ShareSamples).
+  SharedArray<SurfaceSample> samples;
   double samplesRadius = 0.0;                               ///< max |X| over the samples [m]
   /// Bounding-sphere tree over the samples (node 0 the root; samples stored in leaf order), built
   /// by median splits along the longest side of each node's box.
-  std::vector<SampleNode> sampleTree;
+  SharedArray<SampleNode> sampleTree;
   Aabb localBounds;                                         ///< body-frame bounds of the shape
   RigidCollider collider;                                   ///< collider role
   ColliderType requestedCollider = ColliderType::Auto;
@@ -121,6 +123,13 @@ struct RigidBodyModel {
   std::string contactLayer;
   std::string notice;  ///< a one-time note for the run log (e.g. a collider not supported yet)
 };
+
+/// Makes `m` share `other`'s samples and sample tree (one buffer for both models) when they are
+/// equal element for element; returns whether they were. Models from the same description
+/// (a grid of identical spheres) then read one copy in the contact sweeps.
+bool ShareSamples(const RigidBodyModel& other, RigidBodyModel* m);
+/// A hash of a model's samples (equal samples, equal hash), to find candidates for ShareSamples.
+std::size_t SamplesHash(const RigidBodyModel& m);
 
 /// Pose and velocity. Velocities are kept in material-point form: the velocity of body point X
 /// is v + Ṙ X, so that BDF combinations of states are plain affine combinations.

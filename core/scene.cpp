@@ -108,6 +108,14 @@ ActorHandle Scene::AddRigidActor(const RigidActorDesc& desc, Error* error, Actor
   RigidBodyModel model;
   RigidBodyState state;
   if (!BuildRigidBody(desc, "", &model, &state, error)) return {};
+  if (!model.samples.empty()) {
+    // One buffer for the samples of identical shapes (a grid of spheres).
+    const std::size_t hash = SamplesHash(model);
+    bool shared = false;
+    for (auto [it, end] = sampleSets_.equal_range(hash); it != end && !shared; ++it)
+      shared = ShareSamples(models_[it->second], &model);
+    if (!shared) sampleSets_.emplace(hash, static_cast<int>(models_.size()));
+  }
   filter_.AddActor(desc.contactLayer, parent.index);
   actors_.push_back({false, static_cast<int>(models_.size())});
   models_.push_back(std::move(model));

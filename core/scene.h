@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "core/contact_pipeline.h"
@@ -314,6 +315,8 @@ class Scene {
   SceneSettings settings_;
   std::string settingsError_;  ///< Validate(settings_), kept with every change of settings_
   std::vector<RigidBodyModel> models_;
+  /// SamplesHash → indices into models_ of the distinct sample sets so far (ShareSamples).
+  std::unordered_multimap<std::size_t, int> sampleSets_;
   std::vector<RigidBodyState> states_;
   std::vector<SoftBodyModel> softModels_;
   std::vector<SoftBodyState> softStates_;

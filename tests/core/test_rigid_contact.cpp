@@ -3,6 +3,7 @@
 
 #include "core/rigid_contact.h"
 #include "core/rigid_math.h"
+#include "core/scene.h"
 #include "derivative_check.h"
 
 using namespace superdex;
@@ -310,4 +311,57 @@ TEST_CASE("sample tree: leaves partition the samples, spheres bound them; cullin
       [&](int begin, int end) { visited += end - begin; });
   INFO(visited << " of " << A.samples.size() << " samples visited, " << active << " active");
   CHECK(visited < static_cast<int>(A.samples.size()) / 20);
+}
+
+TEST_CASE("identical shapes share one sample buffer; others keep their own",
+          "[core][contact]") {
+  // Two models from one description: equal samples, one buffer once shared.
+  RigidBodyModel a = Build(Sphere(0.05, 2), true);
+  RigidBodyModel b = Build(Sphere(0.05, 2), true);
+  REQUIRE(!a.samples.SharesBufferWith(b.samples));
+  CHECK(SamplesHash(a) == SamplesHash(b));
+  REQUIRE(ShareSamples(a, &b));
+  CHECK(b.samples.SharesBufferWith(a.samples));
+  CHECK(b.sampleTree.SharesBufferWith(a.sampleTree));
+  // A different radius or resolution: not shared, b's own samples kept.
+  for (const RigidShape& other : {Sphere(0.06, 2), Sphere(0.05, 3)}) {
+    RigidBodyModel c = Build(other, true);
+    const SurfaceSample* own = c.samples.data();
+    CHECK(!ShareSamples(a, &c));
+    CHECK(c.samples.data() == own);
+    CHECK(SamplesHash(a) != SamplesHash(c));
+  }
+
+  // In a scene: the spheres of one size share, the box and the other size do not, and the pair
+  // energies are those of unshared models.
+  Scene scene;
+  Error e;
+  std::vector<ActorHandle> h;
+  for (const RigidShape& s : {Sphere(0.05, 2), Box({0.1, 0.1, 0.1}, 2), Sphere(0.05, 2),
+                              Sphere(0.07, 2), Sphere(0.05, 2)}) {
+    RigidActorDesc d;
+    d.name = "a" + std::to_string(h.size());
+    d.shape = s;
+    d.position = Eigen::Vector3d(0.3 * h.size(), 0, 1);
+    h.push_back(scene.AddRigidActor(d, &e));
+    REQUIRE(h.back().index >= 0);
+  }
+  CHECK(scene.Model(h[2]).samples.SharesBufferWith(scene.Model(h[0]).samples));
+  CHECK(scene.Model(h[4]).samples.SharesBufferWith(scene.Model(h[0]).samples));
+  CHECK(scene.Model(h[4]).sampleTree.SharesBufferWith(scene.Model(h[0]).sampleTree));
+  CHECK(!scene.Model(h[3]).samples.SharesBufferWith(scene.Model(h[0]).samples));
+  CHECK(!scene.Model(h[1]).samples.SharesBufferWith(scene.Model(h[0]).samples));
+  const RigidBodyModel unshared = Build(Sphere(0.05, 2), true);
+  const RigidBodyModel ground = Build(Box({1, 1, 0.1}, 1), false);
+  RigidPose pa, pb;
+  pa.p = Eigen::Vector3d(0.01, 0.02, 0.05 + 0.05 - 0.003);
+  pa.R = ExpSo3(Eigen::Vector3d(0.2, -0.1, 0.4));
+  PenaltyParams p;
+  RigidPairPenalty fromScene, fromOwn;
+  EvaluateRigidPairPenalty(scene.Model(h[4]), pa, ground, pb, false, p, 2, &fromScene);
+  EvaluateRigidPairPenalty(unshared, pa, ground, pb, false, p, 2, &fromOwn);
+  REQUIRE(fromOwn.activeSamples > 0);
+  CHECK(fromScene.value == fromOwn.value);
+  CHECK(fromScene.gradient == fromOwn.gradient);
+  CHECK(fromScene.hessian == fromOwn.hessian);
 }
