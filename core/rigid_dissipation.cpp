@@ -162,10 +162,20 @@ void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
   // least φ − |Y_n − Y|, and |Y_n − Y| <= |Y_n,A − Y_A| + ‖R_n,BᵀR_n,A − R_BᵀR_A‖_F |X|.
   const double shift = (YnA - YA).norm() + (RnBtRA - RBtRA).norm() * A.samplesRadius;
   const double slack = setup.mode == DissipationMode::ImplicitLoad ? 0.0 : L * shift;
+  // The per-sample reach test below (no load where both Y and Y_n lie beyond B's bounding
+  // sphere + δ) applied to a whole node: its samples lie within `radius` of its centre (the
+  // margin keeps the node test from rejecting a sample that the sample test, in its own
+  // rounding, would keep). The slack of the current-pose bound is the whole body's motion, so
+  // without this the nodes of a ball moving past another all pass (the landing of a pile).
+  const double nodeReach = reach * (1.0 + 1e-12);
   auto near = [&](const Eigen::Vector3d& center, double radius) {
     if (loadAtLast)
       return B.collider.Value(YnA + RnBtRA * center) - L * radius < delta;
-    return B.collider.Value(YA + RBtRA * center) - L * radius - slack < delta;
+    const Eigen::Vector3d Yc = YA + RBtRA * center;
+    if (finiteReach && Yc.norm() - radius >= nodeReach &&
+        (YnA + RnBtRA * center).norm() - radius >= nodeReach)
+      return false;
+    return B.collider.Value(Yc) - L * radius - slack < delta;
   };
   // Accumulated in fixed-size stencils, copied out at the end.
   PairVector residual = PairVector::Zero();

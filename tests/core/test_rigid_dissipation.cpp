@@ -338,3 +338,51 @@ TEST_CASE("rigid pair dissipation: a plane's reconstructed-load culling keeps ev
     }
   }
 }
+
+TEST_CASE("rigid pair dissipation: the sample tree's culling keeps every sample the samples' own "
+          "tests keep",
+          "[core][dissipation]") {
+  // Two balls of 960 samples each in the current-geometry modes: A grazes B now and was 4 cm to
+  // the side (and turned) at the last actual pose, so the stage's motion is large against the
+  // contact cap — the pile's landing. The tree (leaves of 16 samples, culled by the reach of B and by the
+  // reconstructed-load bound) must give what one leaf holding every sample gives, bit for bit:
+  // the same samples summed in the same order.
+  RigidShape ball;
+  ball.kind = RigidShapeKind::Sphere;
+  ball.radius = 0.05;
+  ball.surfaceResolution = 2;
+  for (DissipationMode mode : {DissipationMode::ReconstructedLoad, DissipationMode::ImplicitLoad}) {
+    for (bool bDynamic : {false, true}) {
+      Case c;
+      c.A = Build(ball, true);
+      c.B = Build(ball, bDynamic);
+      c.bDynamic = bDynamic;
+      c.a.p = Eigen::Vector3d(0.02, -0.01, 0.0985);  // 1.5 mm into B's reach
+      c.a.p *= 0.0975 / c.a.p.norm();
+      c.a.R = ExpSo3(Eigen::Vector3d(0.2, -0.3, 0.1));
+      c.setup.dt = 0.01;
+      c.setup.mode = mode;
+      c.setup.penalty.k = 1e5;
+      c.setup.coefficients = {0.5, 0.2, 1.5, 0.01};
+      c.setup.maxAlignment = 0.0;
+      RigidPose last = c.a;
+      last.p += 0.04 * Eigen::Vector3d(0.0985, 0.0, -0.02).normalized();  // across the normal
+      last.R = ExpSo3(Eigen::Vector3d(0.0, 0.1, -0.1)) * c.a.R;
+      c.a0 = StartOf(last);
+      c.b0 = StartOf(c.b);
+      Case flat = c;
+      SampleNode all = c.A.sampleTree.front();
+      all.left = all.right = -1;
+      flat.A.sampleTree = SharedArray<SampleNode>({all});
+      const Eigen::VectorXd zero = Eigen::VectorXd::Zero(bDynamic ? 12 : 6);
+      const RigidPairDissipation culled = Eval(c, zero, 2), every = Eval(flat, zero, 2);
+      DYNAMIC_SECTION(ToString(mode) << (bDynamic ? " dynamic B" : " static B")) {
+        REQUIRE(every.activeSamples > 0);
+        CHECK(culled.activeSamples == every.activeSamples);
+        CHECK(culled.value == every.value);
+        CHECK(culled.residual == every.residual);
+        CHECK(culled.jacobian == every.jacobian);
+      }
+    }
+  }
+}
