@@ -26,14 +26,16 @@ void ForEachPair(size_t n, bool parallel, F&& f) {
 }
 
 void AppendBlocks(const StencilMatrix& M, const int offs[2], int blocks,
-                  std::vector<Eigen::Triplet<double>>* triplets) {
+                  std::vector<DenseBlock6>* out) {
   for (int bi = 0; bi < blocks; ++bi) {
     if (offs[bi] < 0) continue;
     for (int bj = 0; bj < blocks; ++bj) {
       if (offs[bj] < 0) continue;
+      DenseBlock6& b = out->emplace_back();
+      b.row = offs[bi];
+      b.col = offs[bj];
       for (int c = 0; c < 6; ++c)
-        for (int r = 0; r < 6; ++r)
-          triplets->emplace_back(offs[bi] + r, offs[bj] + c, M(6 * bi + r, 6 * bj + c));
+        for (int r = 0; r < 6; ++r) b.v[6 * c + r] = M(6 * bi + r, 6 * bj + c);
     }
   }
 }
@@ -348,7 +350,8 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
                                  const std::vector<int>& dofOffset, int order,
                                  PsdProjection projection, Eigen::VectorXd* gradient,
                                  std::vector<Eigen::Triplet<double>>* triplets,
-                                 ContactStats* stats, const DissipationContext* dissipation,
+                                 std::vector<DenseBlock6>* blockOut, ContactStats* stats,
+                                 const DissipationContext* dissipation,
                                  Eigen::VectorXd* dissipationResidual,
                                  const std::vector<RigidStageStart>* stageStart,
                                  const SoftView* soft) {
@@ -424,10 +427,10 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
       energy += d->value;
       if (order >= 1)
         AddBlocks(d->residual, offs, blocks, dissipationResidual ? dissipationResidual : gradient);
-      if (order >= 2 && !potential) AppendBlocks(d->jacobian, offs, blocks, triplets);
+      if (order >= 2 && !potential) AppendBlocks(d->jacobian, offs, blocks, blockOut);
     }
     if (order >= 2 && (r.activeSamples > 0 || (d && potential)))
-      AppendBlocks(r.hessian, offs, blocks, triplets);
+      AppendBlocks(r.hessian, offs, blocks, blockOut);
   }
   // Soft colliding actors against rigid colliders, face by face.
   softResults_.resize(softPairs_.size());

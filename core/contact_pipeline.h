@@ -14,6 +14,7 @@
 #include "core/soft_collider.h"
 #include "core/soft_contact.h"
 #include "optim/stage_problem.h"
+#include "optim/triplet_assembly.h"
 
 namespace superdex {
 
@@ -88,14 +89,16 @@ class ContactPipeline {
   /// `stageStart`, the alignment rejection of the penalty is decided at x_n (see
   /// EvaluateRigidPairPenalty); without, at the given poses. order 0: value; 1: also adds the penalty gradient into
   /// *gradient and the dissipative residual into *dissipationResidual (may alias *gradient;
-  /// dofs at dofOffset[i], −1 for static actors); 2: also appends Jacobian triplets: each pair's
-  /// penalty Hessian plus, in ExplicitNormals mode, its dissipation Hessian, projected per
+  /// dofs at dofOffset[i], −1 for static actors); 2: also appends Jacobian entries: each rigid
+  /// pair's penalty Hessian plus, in ExplicitNormals mode, its dissipation Hessian, projected per
   /// `projection`; in the residual modes the dissipation Jacobian (not symmetric) is appended
-  /// unprojected. Pairs are evaluated in parallel; results are reduced in a fixed order, so the
+  /// unprojected. Rigid pairs append 6 × 6 blocks to *blocks (as if their triplets stood in
+  /// *triplets where it ended on entry: TripletAssembly's blockPosition), soft pairs triplets. Pairs are evaluated in parallel; results are reduced in a fixed order, so the
   /// output does not depend on the number of threads.
   double Evaluate(const std::vector<RigidPose>& poses, const std::vector<int>& dofOffset,
                   int order, PsdProjection projection, Eigen::VectorXd* gradient,
-                  std::vector<Eigen::Triplet<double>>* triplets, ContactStats* stats,
+                  std::vector<Eigen::Triplet<double>>* triplets,
+                  std::vector<DenseBlock6>* blocks, ContactStats* stats,
                   const DissipationContext* dissipation = nullptr,
                   Eigen::VectorXd* dissipationResidual = nullptr,
                   const std::vector<RigidStageStart>* stageStart = nullptr,

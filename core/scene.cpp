@@ -814,8 +814,8 @@ ContactStats Scene::ContactState() {
   view.x = &x;
   view.dofOffset = &softDofOffset_;
   CurrentPoses(&buffers_.reportPoses);
-  pipeline_.Evaluate(buffers_.reportPoses, dofOffset_, 0, PsdProjection::None, nullptr, nullptr, &st,
-                     nullptr, nullptr, nullptr, &view);
+  pipeline_.Evaluate(buffers_.reportPoses, dofOffset_, 0, PsdProjection::None, nullptr, nullptr,
+                     nullptr, &st, nullptr, nullptr, nullptr, &view);
   return st;
 }
 

@@ -90,6 +90,7 @@ double SceneStageProblem::EvaluateAt(const std::vector<RigidPose>& poses,
     if (rDiss != gPot) rDiss->setZero(numDofs_);
   }
   triplets_.clear();
+  ws_->blocks.clear();
   std::vector<double>& bodyValue = ws_->bodyValue;
   bodyValue.assign(models_.size(), 0.0);
   for (size_t i = 0; i < models_.size(); ++i) {
@@ -137,8 +138,9 @@ double SceneStageProblem::EvaluateAt(const std::vector<RigidPose>& poses,
     view.x0 = &soft_->x0;
     view.dofOffset = &soft_->dofOffset;
   }
-  value += contact_->Evaluate(poses, dofOffset_, order, projection, gPot, &triplets_, stats,
-                              dissipation_.enabled ? &context_ : nullptr, rDiss,
+  ws_->blockPosition = triplets_.size();
+  value += contact_->Evaluate(poses, dofOffset_, order, projection, gPot, &triplets_, &ws_->blocks,
+                              stats, dissipation_.enabled ? &context_ : nullptr, rDiss,
                               targets_.start.empty() ? nullptr : &targets_.start,
                               soft_ ? &view : nullptr);
   return value;
@@ -182,7 +184,8 @@ double SceneStageProblem::ValueAndDerivatives(const std::vector<RigidPose>& pose
                                               double* minDetF) {
   const double value = EvaluateAt(poses, softX, hessian ? 2 : 1, projection, gradient, gradient,
                                   stats, minDetF);
-  if (hessian) ws_->hessianAssembly.Assemble(triplets_, numDofs_, hessian);
+  if (hessian)
+    ws_->hessianAssembly.Assemble(triplets_, ws_->blocks, ws_->blockPosition, numDofs_, hessian);
   return value;
 }
 
@@ -224,7 +227,7 @@ void SceneStageProblem::ResidualAndJacobian(const std::vector<RigidPose>& poses,
         for (int k = 0; k < 3; ++k)
           if (k != c) triplets_.emplace_back(o + 3 + k, o + 3 + c, S(k, c));
     }
-    ws_->jacobianAssembly.Assemble(triplets_, numDofs_, J);
+    ws_->jacobianAssembly.Assemble(triplets_, ws_->blocks, ws_->blockPosition, numDofs_, J);
   }
   *r += scratch_;
 }

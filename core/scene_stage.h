@@ -57,6 +57,8 @@ struct StageWorkspace {
   Eigen::VectorXd scratch;                 ///< the dissipative residual's part
   Eigen::VectorXd pendingStep;             ///< the step of the last EvaluateAtStep-like call
   std::vector<Eigen::Triplet<double>> triplets;
+  std::vector<DenseBlock6> blocks;         ///< rigid pairs' 6 × 6 blocks (ContactPipeline)
+  size_t blockPosition = 0;                ///< where in `triplets` the blocks stand
   std::vector<SoftTermScratch> soft;
   TripletAssembly hessianAssembly;   ///< Evaluate's Hessians (pattern kept between iterations)
   TripletAssembly jacobianAssembly;  ///< EvaluateResidual's Jacobians

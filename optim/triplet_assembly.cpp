@@ -3,127 +3,200 @@
 #include <algorithm>
 
 namespace superdex {
+namespace {
 
-bool TripletAssembly::SamePattern(const std::vector<Triplet>& triplets, Eigen::Index n) const {
-  if (n != n_ || triplets.size() != rows_.size()) return false;
-  for (size_t k = 0; k < triplets.size(); ++k)
-    if (triplets[k].row() != rows_[k] || triplets[k].col() != cols_[k]) return false;
-  return true;
+using Index = Eigen::SparseMatrix<double>::StorageIndex;
+
+const std::vector<DenseBlock6>& NoBlocks() {
+  static const std::vector<DenseBlock6> none;
+  return none;
 }
+
+}  // namespace
 
 void TripletAssembly::Assemble(const std::vector<Triplet>& triplets, Eigen::Index n,
                                Eigen::SparseMatrix<double>* out) {
-  if (SamePattern(triplets, n)) {
+  Assemble(triplets, NoBlocks(), triplets.size(), n, out);
+}
+
+bool TripletAssembly::SamePattern(const std::vector<Triplet>& triplets,
+                                  const std::vector<DenseBlock6>& blocks, size_t blockPosition,
+                                  Eigen::Index n) const {
+  if (n != n_ || triplets.size() != rows_.size() || blocks.size() != blockRows_.size() ||
+      blockPosition != blockPosition_)
+    return false;
+  for (size_t k = 0; k < triplets.size(); ++k)
+    if (triplets[k].row() != rows_[k] || triplets[k].col() != cols_[k]) return false;
+  for (size_t b = 0; b < blocks.size(); ++b)
+    if (blocks[b].row != blockRows_[b] || blocks[b].col != blockCols_[b]) return false;
+  return true;
+}
+
+void TripletAssembly::Assemble(const std::vector<Triplet>& triplets,
+                               const std::vector<DenseBlock6>& blocks, size_t blockPosition,
+                               Eigen::Index n, Eigen::SparseMatrix<double>* out) {
+  if (SamePattern(triplets, blocks, blockPosition, n)) {
     ++reused_;
-    if (slot_.size() != triplets.size()) FindSlots();  // the sequence came back: worth its slots
-    Scatter(triplets, out);
+    if (!haveSlots_) FindSlots(triplets, blocks, blockPosition, false);  // the sequence came back: worth its slots
+    Scatter(triplets, blocks, out);
     return;
   }
   // A new sequence over the same entries (a contact stencil that comes back, an exact zero left
   // out, another order): setFromTriplets would give the stored structure, so the values are
   // scattered into it.
-  if (n == n_ && SlotsInPattern(triplets)) {
+  if (n == n_ && FindSlots(triplets, blocks, blockPosition, true)) {
     ++reused_;
-    Scatter(triplets, out);
+    Store(triplets, blocks, blockPosition);
+    Scatter(triplets, blocks, out);
     return;
   }
   // A new structure: built by setFromTriplets (which allocates).
   ++rebuilt_;
-  const size_t T = triplets.size();
   pattern_.resize(n, n);
-  pattern_.setFromTriplets(triplets.begin(), triplets.end());
+  if (blocks.empty()) {
+    pattern_.setFromTriplets(triplets.begin(), triplets.end());
+  } else {
+    expanded_.clear();
+    expanded_.reserve(triplets.size() + 36 * blocks.size());
+    expanded_.insert(expanded_.end(), triplets.begin(), triplets.begin() + blockPosition);
+    for (const DenseBlock6& b : blocks)
+      for (int c = 0; c < 6; ++c)
+        for (int r = 0; r < 6; ++r) expanded_.emplace_back(b.row + r, b.col + c, b.v[6 * c + r]);
+    expanded_.insert(expanded_.end(), triplets.begin() + blockPosition, triplets.end());
+    pattern_.setFromTriplets(expanded_.begin(), expanded_.end());
+  }
   pattern_.makeCompressed();
   n_ = n;
+  Store(triplets, blocks, blockPosition);
+  haveSlots_ = false;
+  *out = pattern_;
+}
+
+void TripletAssembly::Store(const std::vector<Triplet>& triplets,
+                            const std::vector<DenseBlock6>& blocks, size_t blockPosition) {
+  const size_t T = triplets.size(), B = blocks.size();
   rows_.resize(T);
   cols_.resize(T);
   for (size_t k = 0; k < T; ++k) {
     rows_[k] = triplets[k].row();
     cols_[k] = triplets[k].col();
   }
-  slot_.clear();
-  *out = pattern_;
+  blockRows_.resize(B);
+  blockCols_.resize(B);
+  for (size_t b = 0; b < B; ++b) {
+    blockRows_[b] = blocks[b].row;
+    blockCols_[b] = blocks[b].col;
+  }
+  blockPosition_ = blockPosition;
 }
 
 void TripletAssembly::Scatter(const std::vector<Triplet>& triplets,
+                              const std::vector<DenseBlock6>& blocks,
                               Eigen::SparseMatrix<double>* out) {
   double* v = pattern_.valuePtr();
-  for (size_t k = 0; k < triplets.size(); ++k) {
-    if (first_[k])
-      v[slot_[k]] = triplets[k].value();
-    else
-      v[slot_[k]] += triplets[k].value();
+  auto scalars = [&](size_t begin, size_t end) {
+    for (size_t k = begin; k < end; ++k) {
+      if (first_[k])
+        v[slot_[k]] = triplets[k].value();
+      else
+        v[slot_[k]] += triplets[k].value();
+    }
+  };
+  scalars(0, blockPosition_);
+  for (size_t b = 0; b < blocks.size(); ++b) {
+    const std::uint64_t first = blockFirst_[b];
+    const double* x = blocks[b].v;
+    for (int c = 0; c < 6; ++c) {
+      double* column = v + blockSlot_[6 * b + c];
+      for (int r = 0; r < 6; ++r) {
+        if (first >> (6 * c + r) & 1u)
+          column[r] = x[6 * c + r];
+        else
+          column[r] += x[6 * c + r];
+      }
+    }
   }
+  scalars(blockPosition_, triplets.size());
   *out = pattern_;
 }
 
-bool TripletAssembly::SlotsInPattern(const std::vector<Triplet>& triplets) {
-  const size_t T = triplets.size();
+bool TripletAssembly::FindSlots(const std::vector<Triplet>& triplets,
+                                const std::vector<DenseBlock6>& blocks, size_t position,
+                                bool exact) {
+  const size_t T = triplets.size(), B = blocks.size();
   const size_t nnz = static_cast<size_t>(pattern_.nonZeros());
-  if (T < nnz) return false;  // some entry cannot be hit
+  if (exact && T + 36 * B < nnz) return false;  // some entry cannot be hit
+  haveSlots_ = false;
   slot_.resize(T);
   first_.assign(T, 0);
+  blockSlot_.resize(6 * B);
+  blockFirst_.assign(B, 0);
   seen_.assign(nnz, 0);
-  using Index = Eigen::SparseMatrix<double>::StorageIndex;
   const Index* inner = pattern_.innerIndexPtr();
   const Index* outer = pattern_.outerIndexPtr();
   size_t hit = 0;
   Index lastCol = -1;
   Eigen::Index last = -1;  // the previous triplet's slot
-  for (size_t k = 0; k < T; ++k) {
-    const Index row = static_cast<Index>(triplets[k].row());
-    const Index col = static_cast<Index>(triplets[k].col());
+  // The entry (row, col), or −1 when the pattern lacks it.
+  auto find = [&](Index row, Index col) -> Eigen::Index {
     // Stencil blocks are appended column by column: the next row of the same column is usually
     // the next stored entry.
-    Eigen::Index at;
-    if (col == lastCol && last + 1 < outer[col + 1] && inner[last + 1] == row) {
-      at = last + 1;
-    } else {
-      const Index* begin = inner + outer[col];
-      const Index* end = inner + outer[col + 1];
-      const Index* it = std::lower_bound(begin, end, row);
-      if (it == end || *it != row) {
-        slot_.clear();
-        return false;
+    if (col == lastCol && last + 1 < outer[col + 1] && inner[last + 1] == row) return last + 1;
+    if (col < 0 || col >= pattern_.outerSize()) return -1;
+    const Index* begin = inner + outer[col];
+    const Index* end = inner + outer[col + 1];
+    const Index* it = std::lower_bound(begin, end, row);
+    if (it == end || *it != row) return -1;
+    return it - inner;
+  };
+  auto scalars = [&](size_t begin, size_t end) {
+    for (size_t k = begin; k < end; ++k) {
+      const Index row = static_cast<Index>(triplets[k].row());
+      const Index col = static_cast<Index>(triplets[k].col());
+      const Eigen::Index at = find(row, col);
+      if (at < 0) return false;
+      lastCol = col;
+      last = at;
+      slot_[k] = at;
+      first_[k] = !seen_[at];
+      if (first_[k]) {
+        seen_[at] = 1;
+        ++hit;
       }
-      at = it - inner;
     }
-    lastCol = col;
-    last = at;
-    slot_[k] = at;
-    first_[k] = !seen_[slot_[k]];
-    if (first_[k]) {
-      seen_[slot_[k]] = 1;
-      ++hit;
-    }
-  }
-  if (hit != nnz) {
+    return true;
+  };
+  auto fail = [&] {
     slot_.clear();
+    blockSlot_.clear();
     return false;
+  };
+  if (!scalars(0, position)) return fail();
+  for (size_t b = 0; b < B; ++b) {
+    std::uint64_t first = 0;
+    for (int c = 0; c < 6; ++c) {
+      const Index col = static_cast<Index>(blocks[b].col + c);
+      const Index row = static_cast<Index>(blocks[b].row);
+      lastCol = -1;
+      const Eigen::Index at = find(row, col);
+      // The block's six rows of this column are consecutive entries (no other row lies between).
+      if (at < 0 || at + 5 >= outer[col + 1] || inner[at + 5] != row + 5) return fail();
+      blockSlot_[6 * b + c] = at;
+      for (int r = 0; r < 6; ++r) {
+        if (!seen_[at + r]) {
+          seen_[at + r] = 1;
+          first |= std::uint64_t(1) << (6 * c + r);
+          ++hit;
+        }
+      }
+    }
+    blockFirst_[b] = first;
   }
-  rows_.resize(T);
-  cols_.resize(T);
-  for (size_t k = 0; k < T; ++k) {
-    rows_[k] = triplets[k].row();
-    cols_[k] = triplets[k].col();
-  }
+  lastCol = -1;
+  if (!scalars(position, T)) return fail();
+  if (exact && hit != nnz) return fail();
+  haveSlots_ = true;
   return true;
-}
-
-void TripletAssembly::FindSlots() {
-  const size_t T = rows_.size();
-  slot_.resize(T);
-  first_.assign(T, 0);
-  seen_.assign(pattern_.nonZeros(), 0);
-  using Index = Eigen::SparseMatrix<double>::StorageIndex;
-  const Index* inner = pattern_.innerIndexPtr();
-  const Index* outer = pattern_.outerIndexPtr();
-  for (size_t k = 0; k < T; ++k) {
-    const Index* begin = inner + outer[cols_[k]];
-    const Index* end = inner + outer[cols_[k] + 1];
-    slot_[k] = std::lower_bound(begin, end, static_cast<Index>(rows_[k])) - inner;
-    first_[k] = !seen_[slot_[k]];
-    seen_[slot_[k]] = 1;
-  }
 }
 
 }  // namespace superdex
