@@ -5,13 +5,17 @@
 
 namespace superdex {
 
+namespace {
+// A few boxes (a body over a plane, a small stack): every pair is tested directly, already in
+// the sorted order of the result; the sweep's setup and sorts cost more than that (a sphere over
+// a plane: 460 instructions per call, 11 % of a free-flight drop step with the pair setup), and
+// so would keeping candidates.
+constexpr int kDirectLimit = 8;
+}  // namespace
+
 void FindOverlappingPairs(const std::vector<Aabb>& boxes, std::vector<std::pair<int, int>>* pairs) {
   pairs->clear();
   const int n = static_cast<int>(boxes.size());
-  // A few boxes (a body over a plane, a small stack): every pair is tested directly, already in
-  // the sorted order of the result; the sweep's setup and sorts cost more than that (a sphere
-  // over a plane: 460 instructions per call, 11 % of a free-flight drop step with the pair setup).
-  constexpr int kDirectLimit = 8;
   if (n <= kDirectLimit) {
     for (int i = 0; i < n; ++i) {
       if (boxes[i].IsEmpty()) continue;
@@ -64,6 +68,41 @@ void FindOverlappingPairs(const std::vector<Aabb>& boxes, std::vector<std::pair<
         pairs->emplace_back(std::min(i, j), std::max(i, j));
       }
   std::sort(pairs->begin(), pairs->end());
+}
+
+namespace {
+
+bool Contains(const Aabb& outer, const Aabb& inner) {
+  return (outer.min.array() <= inner.min.array()).all() &&
+         (inner.max.array() <= outer.max.array()).all();
+}
+
+}  // namespace
+
+void OverlapCache::Find(const std::vector<Aabb>& boxes, std::vector<std::pair<int, int>>* pairs) {
+  const size_t n = boxes.size();
+  if (n <= static_cast<size_t>(kDirectLimit)) {
+    FindOverlappingPairs(boxes, pairs);
+    return;
+  }
+  bool valid = fat_.size() == n;
+  // Empty and NaN boxes overlap nothing, wherever they are.
+  for (size_t i = 0; valid && i < n; ++i)
+    valid = boxes[i].IsEmpty() || boxes[i].min.hasNaN() || boxes[i].max.hasNaN() ||
+            (!fat_[i].IsEmpty() && Contains(fat_[i], boxes[i]));
+  if (!valid) {
+    ++sweeps_;
+    fat_ = boxes;
+    for (Aabb& b : fat_) {
+      if (b.IsEmpty() || !b.min.allFinite() || !b.max.allFinite()) continue;
+      b.Inflate(kFatFraction * (b.max - b.min).maxCoeff());
+    }
+    FindOverlappingPairs(fat_, &candidates_);
+  }
+  pairs->clear();
+  for (const auto& [i, j] : candidates_)
+    if (!boxes[i].IsEmpty() && !boxes[j].IsEmpty() && boxes[i].Overlaps(boxes[j]))
+      pairs->emplace_back(i, j);
 }
 
 }  // namespace superdex

@@ -154,7 +154,7 @@ void ContactPipeline::FindPairs(const std::vector<RigidPose>& poses,
     if (soft->xLast) boxes_[n + s].Extend(SoftBounds((*soft->xLast)[s]));
     boxes_[n + s].Inflate(softInflation_[s]);
   }
-  FindOverlappingPairs(boxes_, &overlaps_);
+  overlapCache_.Find(boxes_, &overlaps_);
   pairs_.clear();
   softPairs_.clear();
   softColliderPairs_.clear();

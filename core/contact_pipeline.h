@@ -7,6 +7,7 @@
 #include <Eigen/SparseCore>
 #include <vector>
 
+#include "core/broad_phase.h"
 #include "core/contact_filter.h"
 #include "core/rigid_body.h"
 #include "core/rigid_contact.h"
@@ -147,6 +148,7 @@ class ContactPipeline {
   std::vector<double> inflation_;  // per actor: its collider reach padding [m]
   std::vector<Aabb> boxes_;
   std::vector<std::pair<int, int>> overlaps_;
+  OverlapCache overlapCache_;  // the broad phase's candidates, kept while the boxes stay inside
   std::vector<ContactPair> pairs_;
   std::vector<RigidPairPenalty> results_;
   std::vector<RigidPairDissipation> dissipationResults_;

@@ -73,3 +73,45 @@ TEST_CASE("FindOverlappingPairs lists every overlapping pair once, sorted", "[br
   FindOverlappingPairs({sphere, plane}, &pairs);
   CHECK(pairs.empty());
 }
+
+TEST_CASE("OverlapCache gives FindOverlappingPairs' pairs while boxes drift, sweeping rarely",
+          "[broad_phase]") {
+  // Boxes that move a little at each call (a stage's Newton iterates), with now and then one
+  // that jumps (out of its fat box) or turns empty and back; every call must list exactly the
+  // overlapping pairs, sorted; the sweep must run far less often than the calls.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int n : {3, 9, 40, 200}) {
+    std::vector<Aabb> boxes = RandomBoxes(n, &rng);
+    OverlapCache cache;
+    std::vector<std::pair<int, int>> pairs;
+    const int calls = 60;
+    for (int call = 0; call < calls; ++call) {
+      for (Aabb& b : boxes) {
+        if (b.IsEmpty() || !b.min.allFinite() || !b.max.allFinite()) continue;
+        const Eigen::Vector3d move(1e-3 * u(rng), 1e-3 * u(rng), 1e-3 * u(rng));
+        b.min += move;
+        b.max += move;
+      }
+      if (call % 10 == 5) {  // a jump, and a box emptied or restored
+        Aabb& b = boxes[call % n];
+        if (b.min.allFinite() && b.max.allFinite() && !b.IsEmpty()) {
+          b.min.x() += 0.5;
+          b.max.x() += 0.5;
+        }
+        Aabb& e = boxes[(3 * call) % n];
+        if (e.IsEmpty()) {
+          e.min = Eigen::Vector3d(0.4, 0.4, 0.4);
+          e.max = Eigen::Vector3d(0.6, 0.6, 0.6);
+        } else if (e.min.allFinite() && e.max.allFinite()) {
+          e = Aabb();
+        }
+      }
+      cache.Find(boxes, &pairs);
+      INFO("n = " << n << ", call " << call);
+      REQUIRE(pairs == BruteForce(boxes));
+    }
+    INFO("n = " << n << ": " << cache.sweeps() << " sweeps in " << calls << " calls");
+    if (n > 8) CHECK(cache.sweeps() <= 15);
+  }
+}
