@@ -25,7 +25,7 @@ void ForEachPair(size_t n, bool parallel, F&& f) {
   }
 }
 
-void AppendBlocks(const StencilMatrix& M, const int offs[2], int blocks,
+void AppendBlocks(const SmallStencilMatrix& M, const int offs[2], int blocks,
                   std::vector<DenseBlock6>* out) {
   for (int bi = 0; bi < blocks; ++bi) {
     if (offs[bi] < 0) continue;
@@ -94,7 +94,7 @@ void AppendBlocks3(const StencilMatrix* H, const StencilMatrix* J, const int* of
   }
 }
 
-void AddBlocks(const StencilVector& g, const int offs[2], int blocks, Eigen::VectorXd* out) {
+void AddBlocks(const SmallStencilVector& g, const int offs[2], int blocks, Eigen::VectorXd* out) {
   for (int bi = 0; bi < blocks; ++bi)
     if (offs[bi] >= 0) out->segment<6>(offs[bi]) += g.segment<6>(6 * bi);
 }

@@ -30,8 +30,8 @@ struct RigidPose {
 ///   S_θBpA = [n]×,  S_θBpB = −[n]×,  S_θBθA = (n·r) I − r nᵀ   (and their transposes).
 struct RigidPairPenalty {
   double value = 0.0;      ///< Σ w_q W [J]
-  StencilVector gradient;  ///< [N, N·m]
-  StencilMatrix hessian;   ///< unprojected
+  SmallStencilVector gradient;  ///< [N, N·m]
+  SmallStencilMatrix hessian;   ///< unprojected
   int activeSamples = 0;   ///< samples with φ < δ
   double minPhi = INFINITY;///< smallest φ among the samples tested [m]
 };

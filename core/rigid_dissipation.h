@@ -70,9 +70,9 @@ struct DissipationSetup {
 
 struct RigidPairDissipation {
   double value = 0.0;        ///< Δt_i Σ w R [J] (the potential in ExplicitNormals mode)
-  StencilVector residual;    ///< [N, N·m]: w J_Yᵀ ∂R/∂V summed
-  StencilMatrix jacobian;    ///< ExplicitNormals: Hessian of `value` (symmetric, unprojected);
-                             ///< otherwise ∂residual/∂q (not symmetric)
+  SmallStencilVector residual;  ///< [N, N·m]: w J_Yᵀ ∂R/∂V summed
+  SmallStencilMatrix jacobian;  ///< ExplicitNormals: Hessian of `value` (symmetric, unprojected);
+                                ///< otherwise ∂residual/∂q (not symmetric)
   int activeSamples = 0;     ///< samples with a positive dissipative load
   double maxCoulombRatio = 0.0;  ///< max over samples of ‖T_C‖ / (μ λ̂_n) (<= 1 by construction)
 };

@@ -5,13 +5,16 @@
 
 namespace superdex {
 
-void ProjectToPsd(StencilMatrix* H, bool useAbsoluteValues) {
+namespace {
+
+template <typename Matrix>
+void Project(Matrix* H, bool useAbsoluteValues) {
   const Eigen::Index n = H->rows();
   if (n == 0) return;
-  Eigen::LLT<StencilMatrix> llt(*H);
+  Eigen::LLT<Matrix> llt(*H);
   if (llt.info() == Eigen::Success) return;  // positive definite already
-  Eigen::SelfAdjointEigenSolver<StencilMatrix> eig(*H);
-  StencilVector lambda = eig.eigenvalues();
+  Eigen::SelfAdjointEigenSolver<Matrix> eig(*H);
+  auto lambda = eig.eigenvalues().eval();
   bool changed = false;
   for (Eigen::Index i = 0; i < n; ++i) {
     if (lambda[i] < 0.0) {
@@ -20,8 +23,16 @@ void ProjectToPsd(StencilMatrix* H, bool useAbsoluteValues) {
     }
   }
   if (!changed) return;
-  const StencilMatrix& V = eig.eigenvectors();
+  const Matrix& V = eig.eigenvectors();
   *H = V * lambda.asDiagonal() * V.transpose();
+}
+
+}  // namespace
+
+void ProjectToPsd(StencilMatrix* H, bool useAbsoluteValues) { Project(H, useAbsoluteValues); }
+
+void ProjectToPsd(SmallStencilMatrix* H, bool useAbsoluteValues) {
+  Project(H, useAbsoluteValues);
 }
 
 }  // namespace superdex

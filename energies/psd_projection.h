@@ -10,5 +10,6 @@ namespace superdex {
 /// invariance of a contact pair) are preserved. Skips the decomposition when H is already PSD by
 /// a cheap test (a successful LDLT with non-negative pivots).
 void ProjectToPsd(StencilMatrix* H, bool useAbsoluteValues);
+void ProjectToPsd(SmallStencilMatrix* H, bool useAbsoluteValues);
 
 }  // namespace superdex
