@@ -5,6 +5,7 @@
 #include "core/rigid_math.h"
 #include "energies/psd_projection.h"
 #include "energies/rigid_inertia.h"
+#include "optim/linear_solver.h"
 
 namespace superdex {
 
@@ -43,6 +44,11 @@ SceneStageProblem::SceneStageProblem(const std::vector<RigidBodyModel>& models,
   context_.fadeFriction = dissipation_.fadeFriction;
   context_.slips = dissipation_.slips;
   context_.recordSlips = dissipation_.recordSlips;
+  // Where the linear solves are Krylov by default, the matrices keep a superset pattern while
+  // contacts come and go (explicit zeros: the Krylov iterates are the same).
+  const bool keepSuperset = numDofs_ >= kAutoIterativeUnknowns;
+  ws_->hessianAssembly.SetKeepSuperset(keepSuperset);
+  ws_->jacobianAssembly.SetKeepSuperset(keepSuperset);
 }
 
 bool SceneStageProblem::IsPotential() const {

@@ -69,6 +69,7 @@ void TripletAssembly::Assemble(const std::vector<Triplet>& triplets,
   n_ = n;
   Store(triplets, blocks, blockPosition);
   haveSlots_ = false;
+  unhit_.clear();
   *out = pattern_;
 }
 
@@ -94,6 +95,7 @@ void TripletAssembly::Scatter(const std::vector<Triplet>& triplets,
                               const std::vector<DenseBlock6>& blocks,
                               Eigen::SparseMatrix<double>* out) {
   double* v = pattern_.valuePtr();
+  for (Eigen::Index e : unhit_) v[e] = 0.0;
   auto scalars = [&](size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k) {
       if (first_[k])
@@ -125,8 +127,10 @@ bool TripletAssembly::FindSlots(const std::vector<Triplet>& triplets,
                                 bool exact) {
   const size_t T = triplets.size(), B = blocks.size();
   const size_t nnz = static_cast<size_t>(pattern_.nonZeros());
-  if (exact && T + 36 * B < nnz) return false;  // some entry cannot be hit
+  const size_t needed = keepSuperset_ ? static_cast<size_t>(kSupersetFill * nnz) : nnz;
+  if (exact && T + 36 * B < needed) return false;  // too few entries can be hit
   haveSlots_ = false;
+  unhit_.clear();
   slot_.resize(T);
   first_.assign(T, 0);
   blockSlot_.resize(6 * B);
@@ -169,6 +173,7 @@ bool TripletAssembly::FindSlots(const std::vector<Triplet>& triplets,
   auto fail = [&] {
     slot_.clear();
     blockSlot_.clear();
+    unhit_.clear();
     return false;
   };
   if (!scalars(0, position)) return fail();
@@ -194,7 +199,10 @@ bool TripletAssembly::FindSlots(const std::vector<Triplet>& triplets,
   }
   lastCol = -1;
   if (!scalars(position, T)) return fail();
-  if (exact && hit != nnz) return fail();
+  if (exact && hit < needed) return fail();
+  if (hit != nnz)
+    for (size_t e = 0; e < nnz; ++e)
+      if (!seen_[e]) unhit_.push_back(static_cast<Eigen::Index>(e));
   haveSlots_ = true;
   return true;
 }

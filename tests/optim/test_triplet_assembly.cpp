@@ -166,3 +166,68 @@ TEST_CASE("triplet assembly: 6 x 6 blocks count as their triplets at their place
   assembly.Assemble(t, blocks, position, n, &out);
   CHECK(BitwiseEqual(out, Reference(t, n)));
 }
+
+TEST_CASE("triplet assembly: a kept superset pattern holds the same values and explicit zeros",
+          "[optim]") {
+  std::mt19937 rng(21);
+  std::uniform_int_distribution<int> index(0, 39);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  const int n = 40;
+  Triplets t;
+  for (int k = 0; k < 500; ++k) t.emplace_back(index(rng), index(rng), value(rng));
+  // out's entries: ref's, bit for bit, and explicit zeros where ref has none.
+  auto sameValues = [](const Eigen::SparseMatrix<double>& out,
+                       const Eigen::SparseMatrix<double>& ref) {
+    int matched = 0;
+    for (int c = 0; c < out.outerSize(); ++c)
+      for (Eigen::SparseMatrix<double>::InnerIterator e(out, c); e; ++e) {
+        const double r = ref.coeff(e.row(), e.col());
+        if (std::memcmp(&r, &e.valueRef(), sizeof r) != 0 && !(r == 0.0 && e.value() == 0.0))
+          return false;
+        if (r != 0.0 || e.value() != 0.0) ++matched;
+      }
+    int refNonzero = 0;
+    for (int c = 0; c < ref.outerSize(); ++c)
+      for (Eigen::SparseMatrix<double>::InnerIterator e(ref, c); e; ++e) refNonzero += e.value() != 0.0;
+    return matched == refNonzero;
+  };
+  TripletAssembly assembly;
+  assembly.SetKeepSuperset(true);
+  Eigen::SparseMatrix<double> out;
+  assembly.Assemble(t, n, &out);
+  const Eigen::Index full = out.nonZeros();
+  // Drop the triplets of a few entries (contacts that left): the pattern stays.
+  auto dropEntry = [&](int k) {
+    const int r = t[k].row(), c = t[k].col();
+    t.erase(std::remove_if(t.begin(), t.end(),
+                           [&](const Eigen::Triplet<double>& e) {
+                             return e.row() == r && e.col() == c;
+                           }),
+            t.end());
+  };
+  for (int k = 0; k < 10; ++k) dropEntry(7 * k);
+  for (auto& e : t) e = Eigen::Triplet<double>(e.row(), e.col(), value(rng));
+  assembly.Assemble(t, n, &out);
+  CHECK(assembly.rebuilt() == 1);
+  CHECK(out.nonZeros() == full);
+  CHECK(sameValues(out, Reference(t, n)));
+  // The same sequence again: still exact (the missed entries zeroed again).
+  for (auto& e : t) e = Eigen::Triplet<double>(e.row(), e.col(), value(rng));
+  assembly.Assemble(t, n, &out);
+  CHECK(assembly.rebuilt() == 1);
+  CHECK(sameValues(out, Reference(t, n)));
+  // Below kSupersetFill of the pattern: rebuilt to the exact structure.
+  while (static_cast<double>(Reference(t, n).nonZeros()) >=
+         TripletAssembly::kSupersetFill * static_cast<double>(full))
+    dropEntry(0);
+  assembly.Assemble(t, n, &out);
+  CHECK(assembly.rebuilt() == 2);
+  CHECK(BitwiseEqual(out, Reference(t, n)));
+  // Without the option, any missed entry rebuilds.
+  TripletAssembly exact;
+  exact.Assemble(t, n, &out);
+  dropEntry(3);
+  exact.Assemble(t, n, &out);
+  CHECK(exact.rebuilt() == 2);
+  CHECK(BitwiseEqual(out, Reference(t, n)));
+}
