@@ -11,6 +11,7 @@
 #include "optim/linear_solver.h"
 
 #include "optim/block_jacobi.h"
+#include "optim/row_operator.h"
 
 #include <klu.h>
 #include <malloc.h>
@@ -116,6 +117,7 @@ struct SymmetricSolver::Impl {
   // Conjugate gradients: the matrix, its block-Jacobi preconditioner, the iteration's vectors.
   SparseMatrix matrix;
   BlockJacobi preconditioner;
+  RowOperator op;  // the matrix's products, parallel over rows
   Eigen::VectorXd r, z, p, q;
 
   bool SamePattern(const SparseMatrix& H) const {
@@ -192,6 +194,7 @@ bool SymmetricSolver::Factorize(const Eigen::SparseMatrix<double>& H) {
     s.matrix = *A;
     s.preconditioner.compute(s.matrix);
     if (!s.preconditioner.PositiveDefinite()) return false;  // neither is the matrix
+    s.op.Set(s.matrix);
     s.backend = BackendKind::Pcg;
     return true;
   }
@@ -248,7 +251,8 @@ void SymmetricSolver::Solve(const Eigen::VectorXd& b, Eigen::VectorXd* out) cons
     double rz = s.r.dot(s.z);
     const double stop = s.settings.tolerance * bNorm;
     for (int k = 0; k < s.settings.maxIterations; ++k) {
-      s.q.noalias() = s.matrix * s.p;
+      s.q.setZero(n);  // q = H p, as Eigen's column-major product forms it, in parallel
+      s.op.ScaleAndAdd(s.p.data(), 1.0, s.q.data());
       const double curvature = s.p.dot(s.q);
       s.info.iterations = k + 1;
       // pᵀHp <= 0: H is not positive definite (what a failed Cholesky reports).
@@ -380,7 +384,9 @@ struct UnsymmetricSolver::Impl {
   LinearSolveInfo info;
   bool iterative = false;  // the last Factorize prepared BiCGSTAB, not the LU
   bool luValid = false;    // lu holds the factors of `matrix`
-  Eigen::BiCGSTAB<SparseMatrix, BlockJacobi> krylov;
+  // BiCGSTAB: Eigen's routine on the matrix's parallel products, block-Jacobi preconditioned.
+  RowOperator op;
+  BlockJacobi preconditioner;
 
   bool FactorizeLu() {
     const bool same = SamePattern(matrix);
@@ -469,9 +475,8 @@ bool UnsymmetricSolver::Factorize(const Eigen::SparseMatrix<double>& J) {
   if (s.iterative) {
     if (!Eigen::Map<const Eigen::VectorXd>(s.matrix.valuePtr(), s.matrix.nonZeros()).allFinite())
       return false;
-    s.krylov.setTolerance(s.settings.tolerance);
-    s.krylov.setMaxIterations(s.settings.maxIterations);
-    s.krylov.compute(s.matrix);
+    s.op.Set(s.matrix);
+    s.preconditioner.compute(s.matrix);
     return true;
   }
   return s.FactorizeLu();
@@ -482,7 +487,7 @@ void UnsymmetricSolver::SetSettings(const LinearSolverSettings& settings) {
 }
 
 void UnsymmetricSolver::SetLeadingSixBlocks(int k) {
-  impl_->krylov.preconditioner().SetLeadingSixBlocks(k);
+  impl_->preconditioner.SetLeadingSixBlocks(k);
 }
 
 const LinearSolveInfo& UnsymmetricSolver::LastSolve() const { return impl_->info; }
@@ -510,9 +515,14 @@ void UnsymmetricSolver::Solve(const Eigen::VectorXd& b, Eigen::VectorXd* out) {
   }
   if (s.iterative && !s.luValid) {
     s.info.iterative = true;
-    x = s.krylov.solve(b);
-    s.info.iterations = static_cast<int>(s.krylov.iterations());
-    if (s.krylov.info() == Eigen::Success && x.allFinite()) return;
+    // What Eigen::BiCGSTAB::solve does: from x = 0, converged when the relative residual
+    // estimate is within the tolerance.
+    x.setZero(b.size());
+    Eigen::Index iterations = s.settings.maxIterations;
+    double error = s.settings.tolerance;
+    const bool ok = Eigen::internal::bicgstab(s.op, b, x, s.preconditioner, iterations, error);
+    s.info.iterations = static_cast<int>(iterations);
+    if (ok && error <= s.settings.tolerance && x.allFinite()) return;
     // Not converged, or broken down: the LU of the same matrix (kept for further solves).
     s.info.fellBack = true;
     if (!s.FactorizeLu()) {

@@ -1,0 +1,74 @@
+// The sparse matrix of the Krylov solves (optim/linear_solver.cpp) as an operator whose product
+// y = A x runs in parallel over rows (TBB): a row-major copy of A, each row's entries in column
+// order. Per entry it forms the same products and sums, in the same order, as Eigen's column-major
+// sparse × dense product (res_i += A_ij · (α x_j), j ascending), so the Krylov iterates are bit
+// for bit those of the serial product, on any number of threads. It plugs into Eigen's iterative
+// routines as a matrix-free operator (Eigen's "matrix-free solvers" pattern).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+namespace superdex {
+class RowOperator;
+}
+
+namespace Eigen {
+namespace internal {
+template <>
+struct traits<superdex::RowOperator> : public traits<SparseMatrix<double>> {};
+}  // namespace internal
+}  // namespace Eigen
+
+namespace superdex {
+
+class RowOperator : public Eigen::EigenBase<RowOperator> {
+ public:
+  using Scalar = double;
+  using RealScalar = double;
+  using StorageIndex = int;
+  enum {
+    ColsAtCompileTime = Eigen::Dynamic,
+    MaxColsAtCompileTime = Eigen::Dynamic,
+    IsRowMajor = false
+  };
+
+  /// Copies A (compressed or not) row by row.
+  void Set(const Eigen::SparseMatrix<double>& A);
+  Eigen::Index rows() const { return rows_.rows(); }
+  Eigen::Index cols() const { return rows_.cols(); }
+
+  /// dst += alpha A x (x and dst of cols() and rows() entries; they must not overlap).
+  void ScaleAndAdd(const double* x, double alpha, double* dst) const;
+
+  template <typename Rhs>
+  Eigen::Product<RowOperator, Rhs, Eigen::AliasFreeProduct> operator*(
+      const Eigen::MatrixBase<Rhs>& x) const {
+    return Eigen::Product<RowOperator, Rhs, Eigen::AliasFreeProduct>(*this, x.derived());
+  }
+
+ private:
+  Eigen::SparseMatrix<double, Eigen::RowMajor> rows_;
+};
+
+}  // namespace superdex
+
+namespace Eigen {
+namespace internal {
+
+template <typename Rhs>
+struct generic_product_impl<superdex::RowOperator, Rhs, SparseShape, DenseShape, GemvProduct>
+    : generic_product_impl_base<superdex::RowOperator, Rhs,
+                                generic_product_impl<superdex::RowOperator, Rhs>> {
+  using Scalar = typename Product<superdex::RowOperator, Rhs>::Scalar;
+  template <typename Dest>
+  static void scaleAndAddTo(Dest& dst, const superdex::RowOperator& lhs, const Rhs& rhs,
+                            const Scalar& alpha) {
+    const Ref<const VectorXd> x(rhs);
+    Ref<VectorXd> y(dst);
+    lhs.ScaleAndAdd(x.data(), alpha, y.data());
+  }
+};
+
+}  // namespace internal
+}  // namespace Eigen
