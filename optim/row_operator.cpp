@@ -3,6 +3,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
+
 namespace superdex {
 namespace {
 /// Rows per task; below two grains the product runs on the calling thread.
@@ -10,14 +12,42 @@ constexpr Eigen::Index kRowGrain = 512;
 }  // namespace
 
 void RowOperator::Set(const Eigen::SparseMatrix<double>& A) {
-  rows_ = A;  // Eigen transposes the storage order: each row's entries in column order
-  rows_.makeCompressed();
+  eigen_assert(A.isCompressed() && A.rows() == A.cols());
+  const Eigen::Index n = A.cols();
+  const size_t nnz = static_cast<size_t>(A.nonZeros());
+  const int* outer = A.outerIndexPtr();
+  const int* inner = A.innerIndexPtr();
+  const bool same = n == n_ && colInner_.size() == nnz &&
+                    std::equal(outer, outer + n + 1, colOuter_.begin()) &&
+                    std::equal(inner, inner + nnz, colInner_.begin());
+  if (!same) {
+    n_ = n;
+    colOuter_.assign(outer, outer + n + 1);
+    colInner_.assign(inner, inner + nnz);
+    rowOuter_.assign(n + 1, 0);
+    for (size_t k = 0; k < nnz; ++k) ++rowOuter_[inner[k] + 1];
+    for (Eigen::Index i = 0; i < n; ++i) rowOuter_[i + 1] += rowOuter_[i];
+    rowInner_.resize(nnz);
+    position_.resize(nnz);
+    rowValue_.resize(nnz);
+    // Columns in ascending order: each row receives its entries in column order.
+    std::vector<int>& next = rowScratch_;
+    next.assign(rowOuter_.begin(), rowOuter_.end() - 1);
+    for (Eigen::Index j = 0; j < n; ++j)
+      for (int k = outer[j]; k < outer[j + 1]; ++k) {
+        const int at = next[inner[k]]++;
+        rowInner_[at] = static_cast<int>(j);
+        position_[k] = at;
+      }
+  }
+  const double* value = A.valuePtr();
+  for (size_t k = 0; k < nnz; ++k) rowValue_[position_[k]] = value[k];
 }
 
 void RowOperator::ScaleAndAdd(const double* x, double alpha, double* dst) const {
-  const int* outer = rows_.outerIndexPtr();
-  const int* inner = rows_.innerIndexPtr();
-  const double* value = rows_.valuePtr();
+  const int* outer = rowOuter_.data();
+  const int* inner = rowInner_.data();
+  const double* value = rowValue_.data();
   auto rowRange = [&](Eigen::Index begin, Eigen::Index end) {
     for (Eigen::Index i = begin; i < end; ++i) {
       double acc = dst[i];
@@ -25,7 +55,7 @@ void RowOperator::ScaleAndAdd(const double* x, double alpha, double* dst) const 
       dst[i] = acc;
     }
   };
-  const Eigen::Index n = rows_.rows();
+  const Eigen::Index n = n_;
   if (n < 2 * kRowGrain) {
     rowRange(0, n);
     return;

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <vector>
 
 namespace superdex {
 class RowOperator;
@@ -36,10 +37,11 @@ class RowOperator : public Eigen::EigenBase<RowOperator> {
     IsRowMajor = false
   };
 
-  /// Copies A (compressed or not) row by row.
+  /// Copies the compressed matrix A row by row. While A's pattern stays the one of the last call
+  /// only the values are copied (no allocation once the buffers have their size).
   void Set(const Eigen::SparseMatrix<double>& A);
-  Eigen::Index rows() const { return rows_.rows(); }
-  Eigen::Index cols() const { return rows_.cols(); }
+  Eigen::Index rows() const { return n_; }
+  Eigen::Index cols() const { return n_; }
 
   /// dst += alpha A x (x and dst of cols() and rows() entries; they must not overlap).
   void ScaleAndAdd(const double* x, double alpha, double* dst) const;
@@ -51,7 +53,12 @@ class RowOperator : public Eigen::EigenBase<RowOperator> {
   }
 
  private:
-  Eigen::SparseMatrix<double, Eigen::RowMajor> rows_;
+  Eigen::Index n_ = 0;
+  std::vector<int> colOuter_, colInner_;  // A's pattern at the last call (column-major)
+  std::vector<int> rowOuter_, rowInner_;  // the same entries by rows, columns ascending
+  std::vector<int> position_;             // A's entry k at rowValue_[position_[k]]
+  std::vector<double> rowValue_;
+  std::vector<int> rowScratch_;           // Set's fill pointers
 };
 
 }  // namespace superdex

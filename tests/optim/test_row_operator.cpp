@@ -82,3 +82,28 @@ TEST_CASE("RowOperator: Eigen's column-major product bit for bit, serial and par
     }
   }
 }
+
+TEST_CASE("RowOperator: new values on the same pattern, then a new pattern", "[optim]") {
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const int n = 2500;
+  Eigen::SparseMatrix<double> A = RandomMatrix(n, &rng);
+  RowOperator op;
+  op.Set(A);
+  Eigen::VectorXd x(n);
+  for (int i = 0; i < n; ++i) x[i] = u(rng);
+  for (int round = 0; round < 2; ++round) {
+    for (int k = 0; k < A.nonZeros(); ++k) A.valuePtr()[k] = u(rng);  // same pattern
+    op.Set(A);
+    Eigen::VectorXd y(n), yRef(n);
+    y.noalias() = op * x;
+    yRef.noalias() = A * x;
+    CHECK(SameBits(y, yRef));
+  }
+  A = RandomMatrix(n, &rng);  // another pattern
+  op.Set(A);
+  Eigen::VectorXd y(n), yRef(n);
+  y.noalias() = op * x;
+  yRef.noalias() = A * x;
+  CHECK(SameBits(y, yRef));
+}
