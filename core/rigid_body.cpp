@@ -393,15 +393,14 @@ bool ShareSamples(const RigidBodyModel& other, RigidBodyModel* m) {
 }
 
 std::size_t SamplesHash(const RigidBodyModel& m) {
-  // FNV-1a over the samples' coordinates, normals and weights (their bit patterns).
+  // FNV-1a over the bit patterns of the samples' coordinates, normals and weights, a 64-bit word
+  // at a time (equal sets hash equal; ShareSamples compares the elements themselves).
   std::uint64_t h = 1469598103934665603ull;
   auto mix = [&h](double x) {
     std::uint64_t bits;
     std::memcpy(&bits, &x, sizeof bits);
-    for (int i = 0; i < 8; ++i) {
-      h ^= (bits >> (8 * i)) & 0xffu;
-      h *= 1099511628211ull;
-    }
+    h ^= bits;
+    h *= 1099511628211ull;
   };
   mix(static_cast<double>(m.samples.size()));
   for (const SurfaceSample& s : m.samples) {
