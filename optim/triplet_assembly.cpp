@@ -129,16 +129,31 @@ bool TripletAssembly::FindSlots(const std::vector<Triplet>& triplets,
   const size_t nnz = static_cast<size_t>(pattern_.nonZeros());
   const size_t needed = keepSuperset_ ? static_cast<size_t>(kSupersetFill * nnz) : nnz;
   if (exact && T + 36 * B < needed) return false;  // too few entries can be hit
+  // A new sequence that begins as the stored one (a soft body's elastic terms, then contacts that
+  // changed) keeps the stored slots and first flags of that common beginning: the same entries
+  // in the same order land on the same slots.
+  size_t reuse = 0;
+  if (exact && haveSlots_ && slot_.size() == rows_.size()) {
+    const size_t limit = std::min({position, blockPosition_, T, rows_.size()});
+    while (reuse < limit && triplets[reuse].row() == rows_[reuse] &&
+           triplets[reuse].col() == cols_[reuse])
+      ++reuse;
+  }
   haveSlots_ = false;
   unhit_.clear();
   slot_.resize(T);
-  first_.assign(T, 0);
+  first_.resize(T);
+  std::fill(first_.begin() + reuse, first_.end(), 0);
   blockSlot_.resize(6 * B);
   blockFirst_.assign(B, 0);
   seen_.assign(nnz, 0);
   const Index* inner = pattern_.innerIndexPtr();
   const Index* outer = pattern_.outerIndexPtr();
   size_t hit = 0;
+  for (size_t k = 0; k < reuse; ++k) {
+    seen_[slot_[k]] = 1;
+    hit += first_[k] ? 1 : 0;
+  }
   Index lastCol = -1;
   Eigen::Index last = -1;  // the previous triplet's slot
   // The entry (row, col), or −1 when the pattern lacks it.
@@ -176,7 +191,7 @@ bool TripletAssembly::FindSlots(const std::vector<Triplet>& triplets,
     unhit_.clear();
     return false;
   };
-  if (!scalars(0, position)) return fail();
+  if (!scalars(reuse, position)) return fail();
   for (size_t b = 0; b < B; ++b) {
     std::uint64_t first = 0;
     for (int c = 0; c < 6; ++c) {
