@@ -37,7 +37,8 @@ void TripletAssembly::Assemble(const std::vector<Triplet>& triplets,
                                Eigen::Index n, Eigen::SparseMatrix<double>* out) {
   if (SamePattern(triplets, blocks, blockPosition, n)) {
     ++reused_;
-    if (!haveSlots_) FindSlots(triplets, blocks, blockPosition, false);  // the sequence came back: worth its slots
+    // The sequence came back: worth its slots.
+    if (!haveSlots_) FindSlots(triplets, blocks, blockPosition, false);
     Scatter(triplets, blocks, out);
     return;
   }

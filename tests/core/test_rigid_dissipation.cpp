@@ -38,6 +38,18 @@ RigidStageStart StartOf(const RigidPose& p) {
   return s;
 }
 
+/// The pair setup the derivative and culling cases share: Δt = 0.01 s, k = 1e5 Pa/m,
+/// μ = 0.5, c_t = 0.2 s/m, c_n = 1.5 s/m, V_f = 0.01 m/s, aligned contacts accepted (m = 0).
+DissipationSetup CaseSetup(DissipationMode mode) {
+  DissipationSetup setup;
+  setup.dt = 0.01;
+  setup.mode = mode;
+  setup.penalty.k = 1e5;
+  setup.coefficients = {0.5, 0.2, 1.5, 0.01};
+  setup.maxAlignment = 0.0;
+  return setup;
+}
+
 struct Case {
   RigidBodyModel A, B;
   RigidPose a, b;        // current
@@ -189,12 +201,8 @@ TEST_CASE("rigid pair dissipation: derivatives in every mode, both friction bran
           c.a.R = c.b.R * smallRot(0.05);
           c.a.p = c.b.p + c.b.R * Eigen::Vector3d(0.05, 0.03, 0.2 + 0.06 - 0.003);
           // Stage start: A displaced tangentially (slip·Δt) and normally, B a little rotated.
-          c.setup.dt = 0.01;
-          c.setup.mode = mode;
-          c.setup.penalty.k = 1e5;
-          c.setup.coefficients = {0.5, 0.2, 1.5, 0.01};
+          c.setup = CaseSetup(mode);
           c.setup.frictionWithColliderNormal = colliderNormal;
-          c.setup.maxAlignment = 0.0;
           RigidPose a0 = c.a, b0 = c.b;
           a0.p -= c.b.R * Eigen::Vector3d(slip * c.setup.dt, 0.3 * slip * c.setup.dt, 0.002);
           a0.R = smallRot(0.01) * a0.R;
@@ -231,10 +239,7 @@ TEST_CASE("rigid pair dissipation: derivatives on every alignment branch",
       c.B = Build(plane, false);
       c.a.R = ExpSo3(Eigen::Vector3d(0.0, 0.2, 0.05));
       c.a.p = Eigen::Vector3d(0, 0, 0.1 * (std::cos(0.2) + std::sin(0.2)) - 0.004);
-      c.setup.dt = 0.01;
-      c.setup.mode = mode;
-      c.setup.penalty.k = 1e5;
-      c.setup.coefficients = {0.5, 0.2, 1.5, 0.01};
+      c.setup = CaseSetup(mode);
       c.setup.maxAlignment = br.m;
       c.setup.fadeFriction = br.fade;
       RigidPose a0 = c.a;
@@ -312,11 +317,7 @@ TEST_CASE("rigid pair dissipation: a plane's reconstructed-load culling keeps ev
       c.B = Build(plane, false);
       c.a.R = ExpSo3(Eigen::Vector3d(0.0, 0.15, 0.1));
       c.a.p = Eigen::Vector3d(0.1, 0.05, 0.1 * (std::cos(0.15) + std::sin(0.15)) - 0.003 + lift);
-      c.setup.dt = 0.01;
-      c.setup.mode = mode;
-      c.setup.penalty.k = 1e5;
-      c.setup.coefficients = {0.5, 0.2, 1.5, 0.01};
-      c.setup.maxAlignment = 0.0;
+      c.setup = CaseSetup(mode);
       RigidPose last = c.a;
       last.R = ExpSo3(Eigen::Vector3d(0.0, 0.3, 0.0)) * c.a.R;
       last.p += Eigen::Vector3d(-0.06, 0.02, -lift);
@@ -360,11 +361,7 @@ TEST_CASE("rigid pair dissipation: the sample tree's culling keeps every sample 
       c.a.p = Eigen::Vector3d(0.02, -0.01, 0.0985);  // 1.5 mm into B's reach
       c.a.p *= 0.0975 / c.a.p.norm();
       c.a.R = ExpSo3(Eigen::Vector3d(0.2, -0.3, 0.1));
-      c.setup.dt = 0.01;
-      c.setup.mode = mode;
-      c.setup.penalty.k = 1e5;
-      c.setup.coefficients = {0.5, 0.2, 1.5, 0.01};
-      c.setup.maxAlignment = 0.0;
+      c.setup = CaseSetup(mode);
       RigidPose last = c.a;
       last.p += 0.04 * Eigen::Vector3d(0.0985, 0.0, -0.02).normalized();  // across the normal
       last.R = ExpSo3(Eigen::Vector3d(0.0, 0.1, -0.1)) * c.a.R;
