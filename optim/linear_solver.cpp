@@ -10,6 +10,7 @@
 // those of the last analysis; the numeric factorization is redone on every call.
 #include "optim/linear_solver.h"
 
+#include "optim/bicgstab.h"
 #include "optim/block_jacobi.h"
 #include "optim/row_operator.h"
 
@@ -23,7 +24,6 @@
 #include <Eigen/CholmodSupport>
 #include <Eigen/LU>
 #include <Eigen/UmfPackSupport>
-#include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <limits>
@@ -251,8 +251,8 @@ void SymmetricSolver::Solve(const Eigen::VectorXd& b, Eigen::VectorXd* out) cons
     double rz = s.r.dot(s.z);
     const double stop = s.settings.tolerance * bNorm;
     for (int k = 0; k < s.settings.maxIterations; ++k) {
-      s.q.setZero(n);  // q = H p, as Eigen's column-major product forms it, in parallel
-      s.op.ScaleAndAdd(s.p.data(), 1.0, s.q.data());
+      s.q.resize(n);
+      s.op.Multiply(s.p.data(), s.q.data());  // q = H p, as Eigen's product forms it, in parallel
       const double curvature = s.p.dot(s.q);
       s.info.iterations = k + 1;
       // pᵀHp <= 0: H is not positive definite (what a failed Cholesky reports).
@@ -384,9 +384,10 @@ struct UnsymmetricSolver::Impl {
   LinearSolveInfo info;
   bool iterative = false;  // the last Factorize prepared BiCGSTAB, not the LU
   bool luValid = false;    // lu holds the factors of `matrix`
-  // BiCGSTAB: Eigen's routine on the matrix's parallel products, block-Jacobi preconditioned.
+  // BiCGSTAB (optim/bicgstab.h) on the matrix's parallel products, block-Jacobi preconditioned.
   RowOperator op;
   BlockJacobi preconditioner;
+  BiCgStabWorkspace krylov;
 
   bool FactorizeLu() {
     const bool same = SamePattern(matrix);
@@ -515,14 +516,11 @@ void UnsymmetricSolver::Solve(const Eigen::VectorXd& b, Eigen::VectorXd* out) {
   }
   if (s.iterative && !s.luValid) {
     s.info.iterative = true;
-    // What Eigen::BiCGSTAB::solve does: from x = 0, converged when the relative residual
-    // estimate is within the tolerance.
-    x.setZero(b.size());
-    Eigen::Index iterations = s.settings.maxIterations;
-    double error = s.settings.tolerance;
-    const bool ok = Eigen::internal::bicgstab(s.op, b, x, s.preconditioner, iterations, error);
-    s.info.iterations = static_cast<int>(iterations);
-    if (ok && error <= s.settings.tolerance && x.allFinite()) return;
+    // From x = 0, converged when the relative residual estimate is within the tolerance.
+    const BiCgStabResult result = SolveBiCgStab(s.op, s.preconditioner, b, s.settings.tolerance,
+                                                s.settings.maxIterations, &x, &s.krylov);
+    s.info.iterations = result.iterations;
+    if (result.relativeResidual <= s.settings.tolerance && x.allFinite()) return;
     // Not converged, or broken down: the LU of the same matrix (kept for further solves).
     s.info.fellBack = true;
     if (!s.FactorizeLu()) {

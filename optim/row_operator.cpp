@@ -44,18 +44,18 @@ void RowOperator::Set(const Eigen::SparseMatrix<double>& A) {
   for (size_t k = 0; k < nnz; ++k) rowValue_[position_[k]] = value[k];
 }
 
-void RowOperator::ScaleAndAdd(const double* x, double alpha, double* dst) const {
-  const int* outer = rowOuter_.data();
-  const int* inner = rowInner_.data();
-  const double* value = rowValue_.data();
+namespace {
+
+/// dst_i = (accumulate ? dst_i : +0) + Σ_k A_ik (alpha x_k) for every row i, in parallel by rows.
+void RowProducts(Eigen::Index n, const int* outer, const int* inner, const double* value,
+                 const double* x, double alpha, bool accumulate, double* dst) {
   auto rowRange = [&](Eigen::Index begin, Eigen::Index end) {
     for (Eigen::Index i = begin; i < end; ++i) {
-      double acc = dst[i];
+      double acc = accumulate ? dst[i] : 0.0;
       for (int k = outer[i]; k < outer[i + 1]; ++k) acc += value[k] * (alpha * x[inner[k]]);
       dst[i] = acc;
     }
   };
-  const Eigen::Index n = n_;
   if (n < 2 * kRowGrain) {
     rowRange(0, n);
     return;
@@ -64,6 +64,16 @@ void RowOperator::ScaleAndAdd(const double* x, double alpha, double* dst) const 
                     [&](const tbb::blocked_range<Eigen::Index>& r) {
                       rowRange(r.begin(), r.end());
                     });
+}
+
+}  // namespace
+
+void RowOperator::ScaleAndAdd(const double* x, double alpha, double* dst) const {
+  RowProducts(n_, rowOuter_.data(), rowInner_.data(), rowValue_.data(), x, alpha, true, dst);
+}
+
+void RowOperator::Multiply(const double* x, double* dst) const {
+  RowProducts(n_, rowOuter_.data(), rowInner_.data(), rowValue_.data(), x, 1.0, false, dst);
 }
 
 }  // namespace superdex

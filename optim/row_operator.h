@@ -45,6 +45,9 @@ class RowOperator : public Eigen::EigenBase<RowOperator> {
 
   /// dst += alpha A x (x and dst of cols() and rows() entries; they must not overlap).
   void ScaleAndAdd(const double* x, double alpha, double* dst) const;
+  /// dst = A x: bit for bit what dst = 0 followed by ScaleAndAdd(x, 1, dst) gives (each row's sum
+  /// starts at +0 and 1 · x_j = x_j), without the pass that zeroes dst.
+  void Multiply(const double* x, double* dst) const;
 
   template <typename Rhs>
   Eigen::Product<RowOperator, Rhs, Eigen::AliasFreeProduct> operator*(

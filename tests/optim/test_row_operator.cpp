@@ -2,34 +2,23 @@
 // and the parallel path, and Eigen's BiCGSTAB routine on it against Eigen::BiCGSTAB on the
 // matrix itself (same iterates, same iteration count).
 #include <catch2/catch.hpp>
-#include <cstring>
 #include <random>
 
 #include <Eigen/IterativeLinearSolvers>
 
 #include "optim/block_jacobi.h"
 #include "optim/row_operator.h"
+#include "random_sparse.h"
 
 using namespace superdex;
 
 namespace {
 
-bool SameBits(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), sizeof(double) * a.size()) == 0;
-}
+using test::SameBits;
 
-/// A diagonally dominant, unsymmetric sparse matrix with values over many magnitudes (so that
-/// a change of the summation order would show in the last bits).
+/// A diagonally dominant, unsymmetric sparse matrix.
 Eigen::SparseMatrix<double> RandomMatrix(int n, std::mt19937* rng) {
-  std::uniform_int_distribution<int> index(0, n - 1);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<Eigen::Triplet<double>> t;
-  for (int i = 0; i < n; ++i) t.emplace_back(i, i, 40.0 + u(*rng));
-  for (int k = 0; k < 8 * n; ++k)
-    t.emplace_back(index(*rng), index(*rng), u(*rng) * std::pow(10.0, 3.0 * u(*rng)) * 1e-3);
-  Eigen::SparseMatrix<double> A(n, n);
-  A.setFromTriplets(t.begin(), t.end());
-  return A;
+  return test::RandomUnsymmetric(n, 40.0, 1e-3, rng);
 }
 
 }  // namespace
@@ -52,6 +41,9 @@ TEST_CASE("RowOperator: Eigen's column-major product bit for bit, serial and par
       y.noalias() = op * x;
       yRef.noalias() = A * x;
       CHECK(SameBits(y, yRef));
+      Eigen::VectorXd assigned = Eigen::VectorXd::Constant(n, 7.0);  // Multiply overwrites
+      op.Multiply(x.data(), assigned.data());
+      CHECK(SameBits(assigned, yRef));
       // b − A x: Eigen subtracts a sparse matrix's product in place (what ScaleAndAdd with −1
       // does), but evaluates an operator's product into a temporary first; from x = 0 (every
       // solve's start) both give b.
