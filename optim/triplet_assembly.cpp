@@ -47,7 +47,7 @@ void TripletAssembly::Assemble(const std::vector<Triplet>& triplets,
   // scattered into it.
   if (n == n_ && FindSlots(triplets, blocks, blockPosition, true)) {
     ++reused_;
-    Store(triplets, blocks, blockPosition);
+    Store(triplets, blocks, blockPosition, sharedPrefix_);
     Scatter(triplets, blocks, out);
     return;
   }
@@ -68,18 +68,19 @@ void TripletAssembly::Assemble(const std::vector<Triplet>& triplets,
   }
   pattern_.makeCompressed();
   n_ = n;
-  Store(triplets, blocks, blockPosition);
+  Store(triplets, blocks, blockPosition, 0);
   haveSlots_ = false;
   unhit_.clear();
   *out = pattern_;
 }
 
 void TripletAssembly::Store(const std::vector<Triplet>& triplets,
-                            const std::vector<DenseBlock6>& blocks, size_t blockPosition) {
+                            const std::vector<DenseBlock6>& blocks, size_t blockPosition,
+                            size_t from) {
   const size_t T = triplets.size(), B = blocks.size();
   rows_.resize(T);
   cols_.resize(T);
-  for (size_t k = 0; k < T; ++k) {
+  for (size_t k = from; k < T; ++k) {
     rows_[k] = triplets[k].row();
     cols_[k] = triplets[k].col();
   }
@@ -140,6 +141,7 @@ bool TripletAssembly::FindSlots(const std::vector<Triplet>& triplets,
            triplets[reuse].col() == cols_[reuse])
       ++reuse;
   }
+  sharedPrefix_ = reuse;
   haveSlots_ = false;
   unhit_.clear();
   slot_.resize(T);

@@ -60,8 +60,9 @@ class TripletAssembly {
   // the pattern's; otherwise the sequence is the stored one.
   bool FindSlots(const std::vector<Triplet>& triplets, const std::vector<DenseBlock6>& blocks,
                  size_t position, bool exact);
+  // Stores the sequence's (row, col) pairs; the first `from` equal the stored ones already.
   void Store(const std::vector<Triplet>& triplets, const std::vector<DenseBlock6>& blocks,
-             size_t blockPosition);
+             size_t blockPosition, size_t from);
   void Scatter(const std::vector<Triplet>& triplets, const std::vector<DenseBlock6>& blocks,
                Eigen::SparseMatrix<double>* out);
   Eigen::SparseMatrix<double> pattern_;
@@ -75,6 +76,7 @@ class TripletAssembly {
   std::vector<Eigen::Index> blockSlot_;     // 6 per block: entry (row, col + c)
   std::vector<std::uint64_t> blockFirst_;   // per block: bit 6c + r set where it is the first
   std::vector<char> seen_;                  // scratch of FindSlots
+  size_t sharedPrefix_ = 0;                 // FindSlots: leading triplets equal to the stored
   std::vector<Eigen::Index> unhit_;         // stored entries the sequence misses: set to zero
   bool keepSuperset_ = false;
   std::vector<Triplet> expanded_;           // scratch of a rebuild with blocks
