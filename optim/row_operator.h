@@ -2,11 +2,12 @@
 // y = A x runs in parallel over rows (TBB): a row-major copy of A, each row's entries in column
 // order. Per entry it forms the same products and sums, in the same order, as Eigen's column-major
 // sparse × dense product (res_i += A_ij · (α x_j), j ascending), so the Krylov iterates are bit
-// for bit those of the serial product, on any number of threads. It plugs into Eigen's iterative
-// routines as a matrix-free operator (Eigen's "matrix-free solvers" pattern). One difference:
-// Eigen forms b − A x for a sparse matrix in place (b, then += −1·A x entry by entry) and for an
-// operator through a temporary A x, so a BiCGSTAB restart (r = b − A x at x ≠ 0, after r has
-// become orthogonal to r₀) rounds differently; from a solve's start, x = 0, both give b.
+// for bit those of the serial product, on any number of threads. Our conjugate gradients and
+// BiCGSTAB (optim/bicgstab.h) call it directly; it also plugs into Eigen's iterative routines as a
+// matrix-free operator (Eigen's "matrix-free solvers" pattern). One difference there: Eigen forms
+// b − A x for a sparse matrix in place (b, then += −1·A x entry by entry) and for an operator
+// through a temporary A x, so a BiCGSTAB restart (r = b − A x at x ≠ 0, after r has become
+// orthogonal to r₀) rounds differently; from a solve's start, x = 0, both give b.
 #pragma once
 
 #include <Eigen/Core>
