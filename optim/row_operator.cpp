@@ -9,6 +9,8 @@ namespace superdex {
 namespace {
 /// Rows per task; below two grains the product runs on the calling thread.
 constexpr Eigen::Index kRowGrain = 512;
+/// The largest group of rows summed together (RowProducts).
+constexpr Eigen::Index kMaxGroupRows = 6;
 }  // namespace
 
 void RowOperator::Set(const Eigen::SparseMatrix<double>& A) {
@@ -39,6 +41,21 @@ void RowOperator::Set(const Eigen::SparseMatrix<double>& A) {
         rowInner_[at] = static_cast<int>(j);
         position_[k] = at;
       }
+    // Groups of up to kMaxGroupRows consecutive rows with one column pattern (a node's three rows,
+    // a rigid body's six in contact).
+    group_.clear();
+    for (Eigen::Index i = 0; i < n;) {
+      group_.push_back(static_cast<int>(i));
+      const int* columns = rowInner_.data() + rowOuter_[i];
+      const int length = rowOuter_[i + 1] - rowOuter_[i];
+      Eigen::Index g = 1;
+      while (g < kMaxGroupRows && i + g < n &&
+             rowOuter_[i + g + 1] - rowOuter_[i + g] == length &&
+             std::equal(columns, columns + length, rowInner_.data() + rowOuter_[i + g]))
+        ++g;
+      i += g;
+    }
+    group_.push_back(static_cast<int>(n));
   }
   const double* value = A.valuePtr();
   for (size_t k = 0; k < nnz; ++k) rowValue_[position_[k]] = value[k];
@@ -46,59 +63,64 @@ void RowOperator::Set(const Eigen::SparseMatrix<double>& A) {
 
 namespace {
 
-/// dst_i = (accumulate ? dst_i : +0) + Σ_k A_ik (alpha x_k) for every row i, in parallel by rows.
-void RowProducts(Eigen::Index n, const int* outer, const int* inner, const double* value,
-                 const double* x, double alpha, bool accumulate, double* dst) {
-  // Four rows at a time: each row's sum is one chain of dependent additions (its order fixed,
-  // so that the bits are Eigen's), and four independent chains keep the adder busy where one
-  // waits on its last addition.
-  auto rowRange = [&](Eigen::Index begin, Eigen::Index end) {
-    Eigen::Index i = begin;
-    for (; i + 4 <= end; i += 4) {
-      double acc0 = accumulate ? dst[i] : 0.0, acc1 = accumulate ? dst[i + 1] : 0.0;
-      double acc2 = accumulate ? dst[i + 2] : 0.0, acc3 = accumulate ? dst[i + 3] : 0.0;
-      const int k0 = outer[i], k1 = outer[i + 1], k2 = outer[i + 2], k3 = outer[i + 3];
-      const int n0 = k1 - k0, n1 = k2 - k1, n2 = k3 - k2, n3 = outer[i + 4] - k3;
-      const int common = std::min(std::min(n0, n1), std::min(n2, n3));
-      for (int t = 0; t < common; ++t) {
-        acc0 += value[k0 + t] * (alpha * x[inner[k0 + t]]);
-        acc1 += value[k1 + t] * (alpha * x[inner[k1 + t]]);
-        acc2 += value[k2 + t] * (alpha * x[inner[k2 + t]]);
-        acc3 += value[k3 + t] * (alpha * x[inner[k3 + t]]);
+/// Sums the rows [r0, r0 + G), which share one column pattern: x_j is loaded once for the G rows,
+/// and each row's sum runs in its own accumulator, over its entries in column order.
+template <int G>
+void GroupProducts(Eigen::Index r0, const int* outer, const int* inner, const double* value,
+                   const double* x, double alpha, bool accumulate, double* dst) {
+  double acc[G];
+  const double* v[G];
+  for (int r = 0; r < G; ++r) {
+    acc[r] = accumulate ? dst[r0 + r] : 0.0;
+    v[r] = value + outer[r0 + r];
+  }
+  const int* columns = inner + outer[r0];
+  const int length = outer[r0 + 1] - outer[r0];
+  for (int t = 0; t < length; ++t) {
+    const double xj = alpha * x[columns[t]];
+    for (int r = 0; r < G; ++r) acc[r] += v[r][t] * xj;
+  }
+  for (int r = 0; r < G; ++r) dst[r0 + r] = acc[r];
+}
+
+/// dst_i = (accumulate ? dst_i : +0) + Σ_k A_ik (alpha x_k) for every row i, in parallel over the
+/// row groups (`group`: first rows, then n).
+void RowProducts(const std::vector<int>& group, const int* outer, const int* inner,
+                 const double* value, const double* x, double alpha, bool accumulate,
+                 double* dst) {
+  auto groupRange = [&](size_t begin, size_t end) {
+    for (size_t q = begin; q < end; ++q) {
+      const Eigen::Index r0 = group[q];
+      switch (group[q + 1] - group[q]) {
+        case 2: GroupProducts<2>(r0, outer, inner, value, x, alpha, accumulate, dst); break;
+        case 3: GroupProducts<3>(r0, outer, inner, value, x, alpha, accumulate, dst); break;
+        case 4: GroupProducts<4>(r0, outer, inner, value, x, alpha, accumulate, dst); break;
+        case 5: GroupProducts<5>(r0, outer, inner, value, x, alpha, accumulate, dst); break;
+        case 6: GroupProducts<6>(r0, outer, inner, value, x, alpha, accumulate, dst); break;
+        default: GroupProducts<1>(r0, outer, inner, value, x, alpha, accumulate, dst); break;
       }
-      for (int k = k0 + common; k < k1; ++k) acc0 += value[k] * (alpha * x[inner[k]]);
-      for (int k = k1 + common; k < k2; ++k) acc1 += value[k] * (alpha * x[inner[k]]);
-      for (int k = k2 + common; k < k3; ++k) acc2 += value[k] * (alpha * x[inner[k]]);
-      for (int k = k3 + common; k < k3 + n3; ++k) acc3 += value[k] * (alpha * x[inner[k]]);
-      dst[i] = acc0;
-      dst[i + 1] = acc1;
-      dst[i + 2] = acc2;
-      dst[i + 3] = acc3;
-    }
-    for (; i < end; ++i) {
-      double acc = accumulate ? dst[i] : 0.0;
-      for (int k = outer[i]; k < outer[i + 1]; ++k) acc += value[k] * (alpha * x[inner[k]]);
-      dst[i] = acc;
     }
   };
+  const size_t groups = group.empty() ? 0 : group.size() - 1;
+  const Eigen::Index n = groups ? group.back() : 0;
   if (n < 2 * kRowGrain) {
-    rowRange(0, n);
+    groupRange(0, groups);
     return;
   }
-  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, n, kRowGrain),
-                    [&](const tbb::blocked_range<Eigen::Index>& r) {
-                      rowRange(r.begin(), r.end());
-                    });
+  // About kRowGrain rows per task.
+  const size_t grain = std::max<size_t>(1, static_cast<size_t>(kRowGrain) * groups / n);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, groups, grain),
+                    [&](const tbb::blocked_range<size_t>& r) { groupRange(r.begin(), r.end()); });
 }
 
 }  // namespace
 
 void RowOperator::ScaleAndAdd(const double* x, double alpha, double* dst) const {
-  RowProducts(n_, rowOuter_.data(), rowInner_.data(), rowValue_.data(), x, alpha, true, dst);
+  RowProducts(group_, rowOuter_.data(), rowInner_.data(), rowValue_.data(), x, alpha, true, dst);
 }
 
 void RowOperator::Multiply(const double* x, double* dst) const {
-  RowProducts(n_, rowOuter_.data(), rowInner_.data(), rowValue_.data(), x, 1.0, false, dst);
+  RowProducts(group_, rowOuter_.data(), rowInner_.data(), rowValue_.data(), x, 1.0, false, dst);
 }
 
 }  // namespace superdex

@@ -42,6 +42,8 @@ class RowOperator : public Eigen::EigenBase<RowOperator> {
   /// only the values are copied (no allocation once the buffers have their size).
   void Set(const Eigen::SparseMatrix<double>& A);
   Eigen::Index rows() const { return n_; }
+  /// Groups of consecutive rows with one column pattern, summed together (at most 6 rows each).
+  Eigen::Index RowGroups() const { return group_.empty() ? 0 : Eigen::Index(group_.size()) - 1; }
   Eigen::Index cols() const { return n_; }
 
   /// dst += alpha A x (x and dst of cols() and rows() entries; they must not overlap).
@@ -63,6 +65,7 @@ class RowOperator : public Eigen::EigenBase<RowOperator> {
   std::vector<int> position_;             // A's entry k at rowValue_[position_[k]]
   std::vector<double> rowValue_;
   std::vector<int> rowScratch_;           // Set's fill pointers
+  std::vector<int> group_;                // first rows of groups of rows with one pattern, then n
 };
 
 }  // namespace superdex

@@ -31,6 +31,7 @@ TEST_CASE("RowOperator: Eigen's column-major product bit for bit, serial and par
     const Eigen::SparseMatrix<double> A = RandomMatrix(n, &rng);
     RowOperator op;
     op.Set(A);
+    CHECK(op.RowGroups() == n);  // random rows: no two share a pattern
     Eigen::VectorXd x(n), b(n);
     for (int i = 0; i < n; ++i) {
       x[i] = u(rng);
@@ -71,6 +72,35 @@ TEST_CASE("RowOperator: Eigen's column-major product bit for bit, serial and par
       CHECK(error == reference.error());
       CHECK(SameBits(sol, solRef));
       CHECK((A * sol - b).norm() <= 1e-9 * b.norm());
+    }
+  }
+}
+
+TEST_CASE("RowOperator: rows that share a pattern, summed in groups, bit for bit", "[optim]") {
+  // Row blocks of 1 to 7 rows (7: a group of 6, then one), below and above the parallel grain.
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int n : {40, 3000}) {
+    const std::vector<int> sizes{3, 6, 1, 2, 5, 4, 7, 3};  // 31 rows in 9 groups
+    const Eigen::SparseMatrix<double> A = test::RandomBlocked(n, sizes, &rng);
+    RowOperator op;
+    op.Set(A);
+    CHECK(op.RowGroups() <= (n / 31 + 1) * 9);
+    CHECK(op.RowGroups() >= n / 31 * 9);
+    Eigen::VectorXd x(n), b(n);
+    for (int i = 0; i < n; ++i) {
+      x[i] = u(rng);
+      b[i] = u(rng);
+    }
+    DYNAMIC_SECTION("n = " << n) {
+      const Eigen::VectorXd yRef = A * x;
+      Eigen::VectorXd y(n);
+      op.Multiply(x.data(), y.data());
+      CHECK(SameBits(y, yRef));
+      Eigen::VectorXd r = b;
+      op.ScaleAndAdd(x.data(), -1.0, r.data());
+      const Eigen::VectorXd rRef = b - A * x;
+      CHECK(SameBits(r, rRef));
     }
   }
 }
