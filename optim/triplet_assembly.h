@@ -65,6 +65,10 @@ class TripletAssembly {
              size_t blockPosition, size_t from);
   void Scatter(const std::vector<Triplet>& triplets, const std::vector<DenseBlock6>& blocks,
                Eigen::SparseMatrix<double>* out);
+  // With slots for the stored sequence: if the sequence is the stored one, Scatter it (checked as
+  // it goes) and return true; otherwise false, the stored values left partly overwritten.
+  bool ScatterIfSame(const std::vector<Triplet>& triplets, const std::vector<DenseBlock6>& blocks,
+                     size_t blockPosition, Eigen::Index n, Eigen::SparseMatrix<double>* out);
   Eigen::SparseMatrix<double> pattern_;
   Eigen::Index n_ = -1;
   size_t blockPosition_ = 0;

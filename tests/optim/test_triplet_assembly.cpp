@@ -50,6 +50,20 @@ TEST_CASE("triplet assembly: reused and rebuilt patterns equal setFromTriplets b
   }
   CHECK(assembly.rebuilt() == 1);
   CHECK(assembly.reused() == 3);
+  // A sequence that differs from the stored one only in its last triplet, moved onto another
+  // stored entry: the checked scatter has written every value before it finds the difference,
+  // and the path that takes over must still give setFromTriplets' values.
+  {
+    Triplets moved = t;
+    const Eigen::Triplet<double> last = moved.back();
+    moved.back() = Eigen::Triplet<double>(t[0].row(), t[0].col(), last.value());
+    for (auto& e : moved) e = Eigen::Triplet<double>(e.row(), e.col(), 1e3 * value(rng));
+    TripletAssembly copy = assembly;  // the same stored sequence and slots
+    copy.Assemble(moved, n, &out);
+    CHECK(BitwiseEqual(out, Reference(moved, n)));
+    copy.Assemble(t, n, &out);  // and back: the original sequence's values
+    CHECK(BitwiseEqual(out, Reference(t, n)));
+  }
   // A different sequence over the same entries (reordered; one entry's triplet repeated) is
   // scattered into the stored pattern, and is still exact.
   std::shuffle(t.begin(), t.end(), rng);
