@@ -274,13 +274,16 @@ double RigidPairStepLimit(const RigidBodyModel& A, const RigidPose& a0, const Ri
   auto angle = [](const Eigen::Matrix3d& R1, const Eigen::Matrix3d& R0) {
     return std::acos(std::clamp(0.5 * ((R1 * R0.transpose()).trace() - 1.0), -1.0, 1.0));
   };
+  auto deep = [&](const Eigen::Vector3d& center, double radius) {
+    return B.collider.Value(YA1 + RBtRA1 * center) - L * radius < phiLimit;
+  };
+  // No sample deep at the trial pose (the sample tree's root test, which the sweep below would
+  // make first): nothing to limit, without the rotation angles (a body in free flight).
+  if (A.sampleTree.empty() || !deep(A.sampleTree[0].center, A.sampleTree[0].radius)) return alpha;
   const double rA = A.samplesRadius;
   const double moved = (a1.p - a0.p).norm() + angle(a1.R, a0.R) * rA + (b1.p - b0.p).norm() +
                        angle(b1.R, b0.R) * ((a0.p - b0.p).norm() + rA);
   if (L * moved <= 0.25 * params.eps) return alpha;
-  auto deep = [&](const Eigen::Vector3d& center, double radius) {
-    return B.collider.Value(YA1 + RBtRA1 * center) - L * radius < phiLimit;
-  };
   ForEachSampleRange(A, deep, [&](int begin, int end) {
     for (int k = begin; k < end; ++k) {
       const Eigen::Vector3d Y1 = YA1 + RBtRA1 * A.samples[k].X;
