@@ -50,28 +50,24 @@ bool TripletAssembly::SamePattern(const std::vector<Triplet>& triplets,
 void TripletAssembly::Assemble(const std::vector<Triplet>& triplets,
                                const std::vector<DenseBlock6>& blocks, size_t blockPosition,
                                Eigen::Index n, Eigen::SparseMatrix<double>* out) {
-  // The usual call: the stored sequence again, with its slots. Compared and scattered in one
-  // pass over the triplets; a mismatch leaves the values to the paths below, which overwrite
-  // every stored entry.
-  if (haveSlots_ && ScatterIfSame(triplets, blocks, blockPosition, n, out)) {
+  // The sequence came back: worth its slots.
+  if (!haveSlots_ && SamePattern(triplets, blocks, blockPosition, n))
+    FindSlots(triplets, blocks, blockPosition, false);
+  // The usual call: the stored sequence again, with its slots, compared while it is scattered; a
+  // mismatch leaves the values to the paths below, which overwrite every stored entry.
+  if (haveSlots_ && Scatter(triplets, blocks, blockPosition, n, out)) {
     ++reused_;
-    return;
-  }
-  if (SamePattern(triplets, blocks, blockPosition, n)) {
-    ++reused_;
-    // The sequence came back: worth its slots.
-    if (!haveSlots_) FindSlots(triplets, blocks, blockPosition, false);
-    Scatter(triplets, blocks, out);
     return;
   }
   // A new sequence over the same entries (a contact stencil that comes back, an exact zero left
   // out, another order): setFromTriplets would give the stored structure, so the values are
-  // scattered into it.
+  // scattered into it (the stored sequence now: Scatter's comparison passes).
   if (n == n_ && FindSlots(triplets, blocks, blockPosition, true)) {
-    ++reused_;
     Store(triplets, blocks, blockPosition, sharedPrefix_);
-    Scatter(triplets, blocks, out);
-    return;
+    if (Scatter(triplets, blocks, blockPosition, n, out)) {
+      ++reused_;
+      return;
+    }
   }
   // A new structure: built by setFromTriplets (which allocates).
   ++rebuilt_;
@@ -115,35 +111,14 @@ void TripletAssembly::Store(const std::vector<Triplet>& triplets,
   blockPosition_ = blockPosition;
 }
 
-void TripletAssembly::Scatter(const std::vector<Triplet>& triplets,
-                              const std::vector<DenseBlock6>& blocks,
-                              Eigen::SparseMatrix<double>* out) {
-  double* v = pattern_.valuePtr();
-  for (Eigen::Index e : unhit_) v[e] = 0.0;
-  auto scalars = [&](size_t begin, size_t end) {
-    for (size_t k = begin; k < end; ++k) {
-      if (first_[k])
-        v[slot_[k]] = triplets[k].value();
-      else
-        v[slot_[k]] += triplets[k].value();
-    }
-  };
-  scalars(0, blockPosition_);
-  for (size_t b = 0; b < blocks.size(); ++b) {
-    ScatterBlock(blocks[b], blockFirst_[b], &blockSlot_[6 * b], v);
-  }
-  scalars(blockPosition_, triplets.size());
-  *out = pattern_;
-}
-
-bool TripletAssembly::ScatterIfSame(const std::vector<Triplet>& triplets,
-                                    const std::vector<DenseBlock6>& blocks, size_t blockPosition,
-                                    Eigen::Index n, Eigen::SparseMatrix<double>* out) {
+bool TripletAssembly::Scatter(const std::vector<Triplet>& triplets,
+                              const std::vector<DenseBlock6>& blocks, size_t blockPosition,
+                              Eigen::Index n, Eigen::SparseMatrix<double>* out) {
   if (n != n_ || triplets.size() != rows_.size() || blocks.size() != blockRows_.size() ||
       blockPosition != blockPosition_ || slot_.size() != rows_.size())
     return false;
   double* v = pattern_.valuePtr();
-  // The same sums in the same order as Scatter.
+  // Each entry's triplets in sequence order, the first assigned: setFromTriplets' sums.
   auto scalars = [&](size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k) {
       const Triplet& t = triplets[k];

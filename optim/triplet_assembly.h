@@ -63,12 +63,11 @@ class TripletAssembly {
   // Stores the sequence's (row, col) pairs; the first `from` equal the stored ones already.
   void Store(const std::vector<Triplet>& triplets, const std::vector<DenseBlock6>& blocks,
              size_t blockPosition, size_t from);
-  void Scatter(const std::vector<Triplet>& triplets, const std::vector<DenseBlock6>& blocks,
-               Eigen::SparseMatrix<double>* out);
-  // With slots for the stored sequence: if the sequence is the stored one, Scatter it (checked as
-  // it goes) and return true; otherwise false, the stored values left partly overwritten.
-  bool ScatterIfSame(const std::vector<Triplet>& triplets, const std::vector<DenseBlock6>& blocks,
-                     size_t blockPosition, Eigen::Index n, Eigen::SparseMatrix<double>* out);
+  // With slots for the stored sequence: if the sequence is the stored one, scatters its values
+  // through the slots into *out (compared as it goes) and returns true; otherwise false, the
+  // stored values left partly overwritten.
+  bool Scatter(const std::vector<Triplet>& triplets, const std::vector<DenseBlock6>& blocks,
+               size_t blockPosition, Eigen::Index n, Eigen::SparseMatrix<double>* out);
   Eigen::SparseMatrix<double> pattern_;
   Eigen::Index n_ = -1;
   size_t blockPosition_ = 0;
