@@ -146,8 +146,11 @@ bool TripletAssembly::FindSlots(const std::vector<Triplet>& triplets,
                                 bool exact) {
   const size_t T = triplets.size(), B = blocks.size();
   const size_t nnz = static_cast<size_t>(pattern_.nonZeros());
-  const size_t needed = keepSuperset_ ? static_cast<size_t>(kSupersetFill * nnz) : nnz;
-  if (exact && T + 36 * B < needed) return false;  // too few entries can be hit
+  // Entries a new sequence must hit: all, or at least kSupersetFill of them (compared unrounded:
+  // a floor would accept a sequence just below the fill).
+  const double needed = keepSuperset_ ? kSupersetFill * static_cast<double>(nnz)
+                                      : static_cast<double>(nnz);
+  if (exact && static_cast<double>(T + 36 * B) < needed) return false;  // too few can be hit
   // A new sequence that begins as the stored one (a soft body's elastic terms, then contacts that
   // changed) keeps the stored slots and first flags of that common beginning: the same entries
   // in the same order land on the same slots.
@@ -234,7 +237,7 @@ bool TripletAssembly::FindSlots(const std::vector<Triplet>& triplets,
   }
   lastCol = -1;
   if (!scalars(position, T)) return fail();
-  if (exact && hit < needed) return fail();
+  if (exact && static_cast<double>(hit) < needed) return fail();
   if (hit != nnz)
     for (size_t e = 0; e < nnz; ++e)
       if (!seen_[e]) unhit_.push_back(static_cast<Eigen::Index>(e));
