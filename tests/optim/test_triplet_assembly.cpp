@@ -22,6 +22,18 @@ bool BitwiseEqual(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatri
          std::memcmp(a.valuePtr(), b.valuePtr(), sizeof(double) * nnz) == 0;
 }
 
+/// `count` triplets at random entries of an n × n matrix (duplicates among them), values in ±1.
+Triplets RandomTriplets(int n, int count, std::mt19937* rng) {
+  std::uniform_int_distribution<int> index(0, n - 1);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  Triplets t;
+  for (int k = 0; k < count; ++k) {
+    const int row = index(*rng), col = index(*rng);
+    t.emplace_back(row, col, value(*rng));
+  }
+  return t;
+}
+
 Eigen::SparseMatrix<double> Reference(const Triplets& t, int n) {
   Eigen::SparseMatrix<double> m(n, n);
   m.setFromTriplets(t.begin(), t.end());
@@ -34,11 +46,9 @@ Eigen::SparseMatrix<double> Reference(const Triplets& t, int n) {
 TEST_CASE("triplet assembly: reused and rebuilt patterns equal setFromTriplets bitwise",
           "[optim]") {
   std::mt19937 rng(9);
-  std::uniform_int_distribution<int> index(0, 29);
   std::uniform_real_distribution<double> value(-1.0, 1.0);
   const int n = 30;
-  Triplets t;
-  for (int k = 0; k < 400; ++k) t.emplace_back(index(rng), index(rng), value(rng));  // duplicates
+  Triplets t = RandomTriplets(n, 400, &rng);
   TripletAssembly assembly;
   Eigen::SparseMatrix<double> out;
   assembly.Assemble(t, n, &out);
@@ -109,11 +119,10 @@ TEST_CASE("triplet assembly: 6 x 6 blocks count as their triplets at their place
   // same sequence, another sequence over the same entries, a new structure — must equal
   // setFromTriplets of the expanded sequence bit for bit.
   std::mt19937 rng(4);
-  std::uniform_int_distribution<int> body(0, 5), index(0, 35);
+  std::uniform_int_distribution<int> body(0, 5);
   std::uniform_real_distribution<double> value(-1.0, 1.0);
   const int n = 36;
-  Triplets t;
-  for (int k = 0; k < 60; ++k) t.emplace_back(index(rng), index(rng), value(rng));
+  Triplets t = RandomTriplets(n, 60, &rng);
   const size_t position = 40;
   std::vector<DenseBlock6> blocks(25);
   for (DenseBlock6& b : blocks) {
@@ -184,11 +193,9 @@ TEST_CASE("triplet assembly: 6 x 6 blocks count as their triplets at their place
 TEST_CASE("triplet assembly: a kept superset pattern holds the same values and explicit zeros",
           "[optim]") {
   std::mt19937 rng(21);
-  std::uniform_int_distribution<int> index(0, 39);
   std::uniform_real_distribution<double> value(-1.0, 1.0);
   const int n = 40;
-  Triplets t;
-  for (int k = 0; k < 500; ++k) t.emplace_back(index(rng), index(rng), value(rng));
+  Triplets t = RandomTriplets(n, 500, &rng);
   // out's entries: ref's, bit for bit, and explicit zeros where ref has none.
   auto sameValues = [](const Eigen::SparseMatrix<double>& out,
                        const Eigen::SparseMatrix<double>& ref) {
