@@ -67,37 +67,36 @@ namespace {
 /// and each row's sum runs in its own accumulator, over its entries in column order.
 template <int G>
 void GroupProducts(Eigen::Index r0, const int* outer, const int* inner, const double* value,
-                   const double* x, double alpha, bool accumulate, double* dst) {
+                   const double* x, double* dst) {
   double acc[G];
   const double* v[G];
   for (int r = 0; r < G; ++r) {
-    acc[r] = accumulate ? dst[r0 + r] : 0.0;
+    acc[r] = 0.0;
     v[r] = value + outer[r0 + r];
   }
   const int* columns = inner + outer[r0];
   const int length = outer[r0 + 1] - outer[r0];
   for (int t = 0; t < length; ++t) {
-    const double xj = alpha * x[columns[t]];
+    const double xj = x[columns[t]];
     for (int r = 0; r < G; ++r) acc[r] += v[r][t] * xj;
   }
   for (int r = 0; r < G; ++r) dst[r0 + r] = acc[r];
 }
 
-/// dst_i = (accumulate ? dst_i : +0) + Σ_k A_ik (alpha x_k) for every row i, in parallel over the
-/// row groups (`group`: first rows, then n).
+/// dst_i = +0 + Σ_k A_ik x_k for every row i, in parallel over the row groups (`group`: first
+/// rows, then n).
 void RowProducts(const std::vector<int>& group, const int* outer, const int* inner,
-                 const double* value, const double* x, double alpha, bool accumulate,
-                 double* dst) {
+                 const double* value, const double* x, double* dst) {
   auto groupRange = [&](size_t begin, size_t end) {
     for (size_t q = begin; q < end; ++q) {
       const Eigen::Index r0 = group[q];
       switch (group[q + 1] - group[q]) {
-        case 2: GroupProducts<2>(r0, outer, inner, value, x, alpha, accumulate, dst); break;
-        case 3: GroupProducts<3>(r0, outer, inner, value, x, alpha, accumulate, dst); break;
-        case 4: GroupProducts<4>(r0, outer, inner, value, x, alpha, accumulate, dst); break;
-        case 5: GroupProducts<5>(r0, outer, inner, value, x, alpha, accumulate, dst); break;
-        case 6: GroupProducts<6>(r0, outer, inner, value, x, alpha, accumulate, dst); break;
-        default: GroupProducts<1>(r0, outer, inner, value, x, alpha, accumulate, dst); break;
+        case 2: GroupProducts<2>(r0, outer, inner, value, x, dst); break;
+        case 3: GroupProducts<3>(r0, outer, inner, value, x, dst); break;
+        case 4: GroupProducts<4>(r0, outer, inner, value, x, dst); break;
+        case 5: GroupProducts<5>(r0, outer, inner, value, x, dst); break;
+        case 6: GroupProducts<6>(r0, outer, inner, value, x, dst); break;
+        default: GroupProducts<1>(r0, outer, inner, value, x, dst); break;
       }
     }
   };
@@ -115,12 +114,8 @@ void RowProducts(const std::vector<int>& group, const int* outer, const int* inn
 
 }  // namespace
 
-void RowOperator::ScaleAndAdd(const double* x, double alpha, double* dst) const {
-  RowProducts(group_, rowOuter_.data(), rowInner_.data(), rowValue_.data(), x, alpha, true, dst);
-}
-
 void RowOperator::Multiply(const double* x, double* dst) const {
-  RowProducts(group_, rowOuter_.data(), rowInner_.data(), rowValue_.data(), x, 1.0, false, dst);
+  RowProducts(group_, rowOuter_.data(), rowInner_.data(), rowValue_.data(), x, dst);
 }
 
 }  // namespace superdex
