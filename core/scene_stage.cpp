@@ -300,6 +300,24 @@ bool SceneStageProblem::LastSplit(StageSplit* split) {
   return true;
 }
 
+bool SceneStageProblem::TrustStep(Eigen::VectorXd* d) {
+  bool changed = false;
+  for (size_t i = 0; i < models_.size(); ++i) {
+    const int o = dofOffset_[i];
+    if (o < 0) continue;
+    const RigidBodyModel& m = models_[i];
+    const double rho =
+        std::max(m.samplesRadius, m.mass > 0.0 ? std::sqrt(m.secondMoment.trace() / m.mass) : 0.0);
+    if (!(rho > 0.0)) continue;
+    const double move = d->segment<3>(o).norm() + d->segment<3>(o + 3).norm() * rho;
+    const double trust = kCorrectionTrust * rho;
+    if (!(move > trust)) continue;
+    d->segment<6>(o) *= trust / move;
+    changed = true;
+  }
+  return changed;
+}
+
 bool SceneStageProblem::LimitStep(Eigen::VectorXd* d) {
   if (!contact_) return false;
   Retract(*d, &trial_, nullptr);

@@ -64,6 +64,14 @@ struct StageWorkspace {
   TripletAssembly jacobianAssembly;  ///< EvaluateResidual's Jacobians
 };
 
+/// The trust region of one Newton correction of a rigid body (SceneStageProblem::TrustStep), as a
+/// fraction of the body's radius. The contact step limit bounds how much a sample's depth may
+/// grow, as the field reads it; it cannot see a correction that carries a body past the medial
+/// plane of a box (where the field's gradient flips and the body is pushed out the far side) or
+/// a rotation of many radians along the flat, rippled landscape a sampled sphere has about its
+/// centre (the inertia's curvature J/Δt² against the sampling's spurious torques).
+constexpr double kCorrectionTrust = 0.25;
+
 class SceneStageProblem : public StageProblem {
  public:
   /// `poses` is the iterate, updated in place by Commit; dynamic bodies own 6 dofs each
@@ -112,6 +120,10 @@ class SceneStageProblem : public StageProblem {
   /// (the move's sample depths may at most double, or reach ε/2; core/rigid_contact.h). Soft
   /// dofs are left as they are.
   bool LimitStep(Eigen::VectorXd* d) override;
+  /// Scales each dynamic rigid body's [δp, δθ] so that no point within the body's radius ρ moves
+  /// more than kCorrectionTrust ρ: ‖δp‖ + ‖δθ‖ ρ <= kCorrectionTrust ρ, ρ = max(samples' radius,
+  /// RMS radius √(tr J / m)) [m]. Soft dofs are left as they are.
+  bool TrustStep(Eigen::VectorXd* d) override;
   /// max over bodies of ‖δp‖∞ and ‖δθ‖ times the body's RMS radius √(tr J / m), and over soft
   /// nodes of ‖δx‖∞ [m].
   double StepNorm(const Eigen::VectorXd& d) const override;

@@ -354,12 +354,26 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
       return st;
     }
 
-    // --- The problem may shorten d blockwise (StageProblem::LimitStep); the shortened step is
-    // used if it is still a descent direction.
+    // --- The problem may shorten d blockwise (StageProblem::TrustStep, LimitStep); the
+    // shortened step is used, made a descent direction where it is none (newton_solver.h, 4).
     t0 = Clock::now();
     limited = d;
-    const bool isLimited = params.lineSearch != LineSearchKind::None && !(exact && tryExact) &&
-                           problem.LimitStep(&limited) && g.dot(limited) < 0.0;
+    bool isLimited = false;
+    if (params.lineSearch != LineSearchKind::None && !(exact && tryExact)) {
+      const bool trusted = problem.TrustStep(&limited);  // both run: no short circuit
+      const bool capped = problem.LimitStep(&limited);
+      isLimited = trusted || capped;
+      // A part whose shortened step is no descent direction takes its Newton direction scaled
+      // uniformly instead; so does the whole step if it still is none (one part). Never the
+      // unshortened step: its bodies would move past what the bounds allow.
+      if (isLimited && split) parts.ShortenByParts(g, d, &limited);
+      if (isLimited && !(g.dot(limited) < 0.0)) {
+        double fraction = 1.0;
+        for (Eigen::Index k = 0; k < n; ++k)
+          if (d[k] != 0.0) fraction = std::min(fraction, limited[k] / d[k]);
+        limited = fraction * d;
+      }
+    }
     const Eigen::VectorXd& dir = isLimited ? limited : d;
     const double dirSlope = isLimited ? g.dot(limited) : slope;
     if (isLimited) ++st.limitedSteps;

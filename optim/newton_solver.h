@@ -25,10 +25,16 @@
 //      Converged. A correction whose promised decrease |g·d| is itself inside the round-off band
 //      (<= 1e-14 |f(s)|: f cannot resolve it) is committed without evaluating f(s ⊕ d), and
 //      SolverStats::finalValue stays f(s).
-//   4. Step limit: d' = d shortened blockwise by problem.LimitStep (contact: no sample's depth more
-//      than doubles in one step, core/rigid_contact.h), used in place of d if g·d' < 0; an
-//      iteration on a limited step is not a full step for the adaptive projection. Skipped with
-//      LineSearchKind::None.
+//   4. Trust region and step limit: d' = d shortened blockwise by problem.TrustStep (a rigid body's
+//      correction moves no point within its radius more than a quarter of that radius,
+//      core/scene_stage.h), then by problem.LimitStep (contact: no sample's depth more than
+//      doubles in one step, core/rigid_contact.h). d' is used in place of d; where a part's d'
+//      is no descent direction for its share (the blockwise shortening broke the coupled Newton
+//      direction of bodies in contact), that part takes d_P scaled by the smallest fraction its
+//      dofs were shortened to, and so does the whole step if g·d' >= 0 remains (never the
+//      unshortened d: its bodies would move past the bounds). An iteration on a limited step is
+//      not a full step for the adaptive projection. Skipped with LineSearchKind::None and on
+//      exact-Hessian iterations.
 //      Line search (Armijo): α = 1, 1·β, 1·β², ... (β = backtrackFactor); accept the first α with
 //        f(s ⊕ αd) <= f(s) + c α g·d                                  (c = armijoConstant)
 //      or, as a round-off band, |f(s ⊕ αd) − f(s)| <= 1e-14 |f(s)| while the predicted change

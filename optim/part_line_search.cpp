@@ -69,6 +69,22 @@ void PartLineSearch::StartMinimization(const Eigen::VectorXd& g, const Eigen::Ve
   scale_ = std::abs(f);
 }
 
+void PartLineSearch::ShortenByParts(const Eigen::VectorXd& g, const Eigen::VectorXd& d,
+                                    Eigen::VectorXd* limited) {
+  Eigen::VectorXd& l = *limited;
+  partSlope_.assign(parts_, 0.0);
+  partFraction_.assign(parts_, 1.0);
+  for (Eigen::Index k = 0; k < d.size(); ++k) {
+    const int p = partOfUnit_[base_.unitOfDof[k]];
+    partSlope_[p] += g[k] * l[k];
+    if (d[k] != 0.0) partFraction_[p] = std::min(partFraction_[p], l[k] / d[k]);
+  }
+  for (Eigen::Index k = 0; k < d.size(); ++k) {
+    const int p = partOfUnit_[base_.unitOfDof[k]];
+    if (!(partSlope_[p] < 0.0)) l[k] = partFraction_[p] * d[k];
+  }
+}
+
 void PartLineSearch::StartResidual(const Eigen::VectorXd& r, const Eigen::VectorXd& dir) {
   residual_ = true;
   alpha_.assign(parts_, 1.0);

@@ -43,6 +43,13 @@ class PartLineSearch {
   void StartMinimization(const Eigen::VectorXd& g, const Eigen::VectorXd& dir);
   void StartResidual(const Eigen::VectorXd& r, const Eigen::VectorXd& dir);
 
+  /// A Newton step the problem shortened body by body (StageProblem::TrustStep, LimitStep):
+  /// where a part's shortened step `limited` is no descent direction for its share
+  /// (g_P·l_P >= 0: the shortening broke the coupled Newton direction of bodies in contact), the
+  /// part takes its Newton direction d_P scaled by the smallest fraction the shortening applied
+  /// to its dofs, a descent direction that respects every body's bound.
+  void ShortenByParts(const Eigen::VectorXd& g, const Eigen::VectorXd& d, Eigen::VectorXd* limited);
+
   /// step = Σ_P α_P dir_P.
   void Step(const Eigen::VectorXd& dir, Eigen::VectorXd* step) const;
 
@@ -78,6 +85,7 @@ class PartLineSearch {
   std::vector<int> parent_, groupOf_;
   std::vector<double> groupTrial_, groupBase_, groupSlope_, groupRequired_;
   std::vector<char> groupFails_;
+  std::vector<double> partSlope_, partFraction_;  // ShortenByParts
 };
 
 }  // namespace superdex

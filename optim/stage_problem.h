@@ -103,6 +103,14 @@ class StageProblem {
   /// still a descent direction, and test convergence on the unshortened one. Default: no change.
   virtual bool LimitStep(Eigen::VectorXd* /*d*/) { return false; }
 
+  /// Newton's trust region: may shorten a Newton correction d blockwise so that no part of the
+  /// state moves farther in one iteration than the problem's local models can be trusted (e.g. a
+  /// rigid body by more than a fraction of its own size, across which a contact's distance field
+  /// may kink or a thin collider may be crossed). Applied before LimitStep, to Newton corrections
+  /// only (a warm start, the motion's own prediction, is not a correction). Returns true if d was
+  /// changed; the solvers then treat the step as LimitStep's. Default: no change.
+  virtual bool TrustStep(Eigen::VectorXd* /*d*/) { return false; }
+
   /// The split (above) of the evaluation just made — Value, Evaluate, EvaluateAtStep, Residual,
   /// EvaluateResidual or EvaluateResidualAtStep — read before any other call. False (the
   /// default): the problem does not split, and the solvers treat it as one part.

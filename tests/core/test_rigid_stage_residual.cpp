@@ -1,4 +1,6 @@
 #include <catch2/catch.hpp>
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 
 #include "core/rigid_math.h"
@@ -168,6 +170,7 @@ class WithoutTrialDerivatives : public StageProblem {
     p_.EvaluateResidual(r, J);
   }
   bool LimitStep(Eigen::VectorXd* d) override { return p_.LimitStep(d); }
+  bool TrustStep(Eigen::VectorXd* d) override { return p_.TrustStep(d); }
   double StepNorm(const Eigen::VectorXd& d) const override { return p_.StepNorm(d); }
 
  private:
@@ -263,4 +266,40 @@ TEST_CASE("rigid stage: the dynamic bodies' six dofs are the Krylov precondition
   SceneStageProblem problem(f.models, swapped, 12, f.targets, Eigen::Vector3d(0, 0, -9.81),
                             &f.pipeline, &poses);
   CHECK(problem.LeadingSixDofBlocks() == 0);
+}
+
+TEST_CASE("rigid stage: the trust region bounds each body's Newton correction",
+          "[core][stage]") {
+  Stage s(DissipationMode::ExplicitNormals);
+  const RigidBodyModel& m = s.f.models[1];  // both boxes: half extents 0.1 m
+  const double rho =
+      std::max(m.samplesRadius, std::sqrt(m.secondMoment.trace() / m.mass));
+  REQUIRE(rho >= 0.1);
+  const double trust = kCorrectionTrust * rho;
+  auto moved = [&](const Eigen::VectorXd& d, int o) {
+    return d.segment<3>(o).norm() + d.segment<3>(o + 3).norm() * rho;
+  };
+  SECTION("a correction within the region is left as it is") {
+    Eigen::VectorXd d = Eigen::VectorXd::Zero(12);
+    d << 0.2 * trust, 0, 0, 0, 0, 0.5 * trust / rho, 0, -0.9 * trust, 0, 0, 0, 0;
+    const Eigen::VectorXd before = d;
+    CHECK_FALSE(s.problem.TrustStep(&d));
+    CHECK(d == before);
+  }
+  SECTION("a long translation and a rotation of radians are shortened, body by body") {
+    Eigen::VectorXd d = Eigen::VectorXd::Zero(12);
+    d.segment<3>(0) = Eigen::Vector3d(0.5, -0.2, 0.1);   // body 1: half a metre
+    d.segment<3>(9) = Eigen::Vector3d(0.0, 0.0, 3.0);    // body 2: three radians
+    d[6] = 1e-3;
+    const Eigen::VectorXd before = d;
+    CHECK(s.problem.TrustStep(&d));
+    for (int o : {0, 6}) {
+      INFO("body at dof " << o);
+      CHECK(moved(d, o) == Approx(trust).epsilon(1e-12));
+      // The direction is kept: a positive multiple of the body's block.
+      const double scale = d.segment<6>(o).norm() / before.segment<6>(o).norm();
+      CHECK(scale < 1.0);
+      CHECK((d.segment<6>(o) - scale * before.segment<6>(o)).norm() <= 1e-15);
+    }
+  }
 }

@@ -172,3 +172,67 @@ TEST_CASE("Part line search: a part whose step is no descent stays", "[optim][pa
   CHECK_FALSE(parts.AllFull());
   CHECK(parts.MinAlpha() == 0.0);
 }
+
+namespace {
+
+/// f = ½‖x‖² − b·x over three units of one dof each; units 0 and 1 are reported joined (one
+/// part), unit 2 stands alone. At x = 0, g = −b.
+class ThreeUnits : public StageProblem {
+ public:
+  explicit ThreeUnits(const Eigen::Vector3d& b) : b_(b) {}
+  int NumDofs() const override { return 3; }
+  double Value(const Eigen::VectorXd& d) override { return At(x_ + d, nullptr); }
+  double Evaluate(Eigen::VectorXd* g, Eigen::SparseMatrix<double>* H, PsdProjection) override {
+    if (H) {
+      H->resize(3, 3);
+      H->setIdentity();
+    }
+    return At(x_, g);
+  }
+  void Commit(const Eigen::VectorXd& d) override { x_ += d; }
+  bool IsPotential() const override { return true; }
+  void Residual(const Eigen::VectorXd&, Eigen::VectorXd*) override {}
+  void EvaluateResidual(Eigen::VectorXd*, Eigen::SparseMatrix<double>*) override {}
+  bool LastSplit(StageSplit* split) override {
+    split->unitOfDof = {0, 1, 2};
+    split->units = 3;
+    split->share = share_;
+    split->joins = {{0, 1}};
+    return true;
+  }
+
+ private:
+  double At(const Eigen::Vector3d& x, Eigen::VectorXd* g) {
+    for (int k = 0; k < 3; ++k) share_[k] = 0.5 * x[k] * x[k] - b_[k] * x[k];
+    if (g) *g = x - b_;
+    return share_[0] + share_[1] + share_[2];
+  }
+  Eigen::Vector3d b_, x_ = Eigen::Vector3d::Zero();
+  std::vector<double> share_{0.0, 0.0, 0.0};
+};
+
+}  // namespace
+
+TEST_CASE("Part line search: a shortened step that no longer descends is scaled uniformly",
+          "[optim][parts]") {
+  // g = (0.9, −0.5, −1). The direction d = (0.2, 1, 1) descends on the joined part {0, 1}
+  // (g·d = −0.32) and on unit 2. A bound that shortens dof 1 to a tenth and dof 2 to a half
+  // leaves l = (0.2, 0.1, 0.5): part {0, 1} now ascends (+0.13), unit 2 still descends.
+  ThreeUnits problem(Eigen::Vector3d(-0.9, 0.5, 1.0));
+  Eigen::VectorXd g;
+  Eigen::SparseMatrix<double> H;
+  problem.Evaluate(&g, &H, PsdProjection::None);
+  const Eigen::Vector3d d(0.2, 1.0, 1.0);
+  Eigen::VectorXd limited = Eigen::Vector3d(0.2, 0.1, 0.5);
+  PartLineSearch parts;
+  REQUIRE(parts.Begin(problem));
+  REQUIRE(parts.Parts() == 2);
+  REQUIRE(g[0] * limited[0] + g[1] * limited[1] > 0.0);
+  parts.ShortenByParts(g, d, &limited);
+  // Part {0, 1}: d scaled by the smallest fraction its dofs were shortened to, 0.1 — a descent
+  // direction within both dofs' bounds. Unit 2 keeps its shortened step.
+  CHECK(limited[0] == 0.1 * d[0]);
+  CHECK(limited[1] == 0.1 * d[1]);
+  CHECK(g[0] * limited[0] + g[1] * limited[1] < 0.0);
+  CHECK(limited[2] == 0.5);
+}
