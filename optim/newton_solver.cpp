@@ -367,12 +367,7 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
       // uniformly instead; so does the whole step if it still is none (one part). Never the
       // unshortened step: its bodies would move past what the bounds allow.
       if (isLimited && split) parts.ShortenByParts(g, d, &limited);
-      if (isLimited && !(g.dot(limited) < 0.0)) {
-        double fraction = 1.0;
-        for (Eigen::Index k = 0; k < n; ++k)
-          if (d[k] != 0.0) fraction = std::min(fraction, limited[k] / d[k]);
-        limited = fraction * d;
-      }
+      if (isLimited && !(g.dot(limited) < 0.0)) limited = SmallestFraction(d, limited) * d;
     }
     const Eigen::VectorXd& dir = isLimited ? limited : d;
     const double dirSlope = isLimited ? g.dot(limited) : slope;

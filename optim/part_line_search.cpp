@@ -69,6 +69,13 @@ void PartLineSearch::StartMinimization(const Eigen::VectorXd& g, const Eigen::Ve
   scale_ = std::abs(f);
 }
 
+double SmallestFraction(const Eigen::VectorXd& d, const Eigen::VectorXd& limited) {
+  double fraction = 1.0;
+  for (Eigen::Index k = 0; k < d.size(); ++k)
+    if (d[k] != 0.0) fraction = std::min(fraction, limited[k] / d[k]);
+  return fraction;
+}
+
 void PartLineSearch::ShortenByParts(const Eigen::VectorXd& g, const Eigen::VectorXd& d,
                                     Eigen::VectorXd* limited) {
   Eigen::VectorXd& l = *limited;
@@ -83,6 +90,17 @@ void PartLineSearch::ShortenByParts(const Eigen::VectorXd& g, const Eigen::Vecto
     const int p = partOfUnit_[base_.unitOfDof[k]];
     if (!(partSlope_[p] < 0.0)) l[k] = partFraction_[p] * d[k];
   }
+}
+
+void PartLineSearch::ScaleByParts(const Eigen::VectorXd& limited, Eigen::VectorXd* d) {
+  Eigen::VectorXd& x = *d;
+  partFraction_.assign(parts_, 1.0);
+  for (Eigen::Index k = 0; k < x.size(); ++k)
+    if (x[k] != 0.0) {
+      const int p = partOfUnit_[base_.unitOfDof[k]];
+      partFraction_[p] = std::min(partFraction_[p], limited[k] / x[k]);
+    }
+  for (Eigen::Index k = 0; k < x.size(); ++k) x[k] *= partFraction_[partOfUnit_[base_.unitOfDof[k]]];
 }
 
 void PartLineSearch::StartResidual(const Eigen::VectorXd& r, const Eigen::VectorXd& dir) {

@@ -28,6 +28,10 @@
 
 namespace superdex {
 
+/// The smallest fraction a blockwise shortening `limited` of d applied to any dof (1 if none):
+/// min over d_k ≠ 0 of limited_k / d_k.
+double SmallestFraction(const Eigen::VectorXd& d, const Eigen::VectorXd& limited);
+
 class PartLineSearch {
  public:
   /// Reads the split of the evaluation just made at the base state s. False when the problem
@@ -49,6 +53,10 @@ class PartLineSearch {
   /// part takes its Newton direction d_P scaled by the smallest fraction the shortening applied
   /// to its dofs, a descent direction that respects every body's bound.
   void ShortenByParts(const Eigen::VectorXd& g, const Eigen::VectorXd& d, Eigen::VectorXd* limited);
+
+  /// d_P ← φ_P d_P for every part, φ_P = the smallest fraction `limited` shortened any dof of P to
+  /// (a residual Newton direction stays one along each part: J_P d_P = −φ_P r_P).
+  void ScaleByParts(const Eigen::VectorXd& limited, Eigen::VectorXd* d);
 
   /// step = Σ_P α_P dir_P.
   void Step(const Eigen::VectorXd& dir, Eigen::VectorXd* step) const;

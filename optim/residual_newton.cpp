@@ -184,6 +184,19 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
     }
 
     t0 = Clock::now();
+    // The problem's trust region (StageProblem::TrustStep), as a uniform scale per part: d_P stays
+    // a Newton direction of its part (J_P d_P = −φ_P r_P), so the merit tests below still hold.
+    if (params.lineSearch != LineSearchKind::None) {
+      Eigen::VectorXd& limited = w.limited;
+      limited = d;
+      if (problem.TrustStep(&limited)) {
+        if (split) {
+          parts.ScaleByParts(limited, &d);
+        } else {
+          d *= SmallestFraction(d, limited);
+        }
+      }
+    }
     double alpha = 1.0;
     bool accepted = false;
     double trialTheta = NAN;

@@ -235,4 +235,10 @@ TEST_CASE("Part line search: a shortened step that no longer descends is scaled 
   CHECK(limited[1] == 0.1 * d[1]);
   CHECK(g[0] * limited[0] + g[1] * limited[1] < 0.0);
   CHECK(limited[2] == 0.5);
+  // The residual solver's form: every part's d_P scaled by its smallest fraction.
+  Eigen::VectorXd x = Eigen::Vector3d(1.0, 2.0, 4.0);
+  parts.ScaleByParts(Eigen::Vector3d(1.0, 0.2, 1.0), &x);
+  CHECK(x[0] == 0.1);
+  CHECK(x[1] == 0.1 * 2.0);
+  CHECK(x[2] == 0.25 * 4.0);
 }
