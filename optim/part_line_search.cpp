@@ -92,15 +92,14 @@ void PartLineSearch::ShortenByParts(const Eigen::VectorXd& g, const Eigen::Vecto
   }
 }
 
-void PartLineSearch::ScaleByParts(const Eigen::VectorXd& limited, Eigen::VectorXd* d) {
-  Eigen::VectorXd& x = *d;
+void PartLineSearch::CapSteps(const Eigen::VectorXd& d, const Eigen::VectorXd& limited) {
   partFraction_.assign(parts_, 1.0);
-  for (Eigen::Index k = 0; k < x.size(); ++k)
-    if (x[k] != 0.0) {
+  for (Eigen::Index k = 0; k < d.size(); ++k)
+    if (d[k] != 0.0) {
       const int p = partOfUnit_[base_.unitOfDof[k]];
-      partFraction_[p] = std::min(partFraction_[p], limited[k] / x[k]);
+      partFraction_[p] = std::min(partFraction_[p], limited[k] / d[k]);
     }
-  for (Eigen::Index k = 0; k < x.size(); ++k) x[k] *= partFraction_[partOfUnit_[base_.unitOfDof[k]]];
+  for (int p = 0; p < parts_; ++p) alpha_[p] = std::min(alpha_[p], partFraction_[p]);
 }
 
 void PartLineSearch::StartResidual(const Eigen::VectorXd& r, const Eigen::VectorXd& dir) {

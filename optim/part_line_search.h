@@ -54,9 +54,10 @@ class PartLineSearch {
   /// to its dofs, a descent direction that respects every body's bound.
   void ShortenByParts(const Eigen::VectorXd& g, const Eigen::VectorXd& d, Eigen::VectorXd* limited);
 
-  /// d_P ← φ_P d_P for every part, φ_P = the smallest fraction `limited` shortened any dof of P to
-  /// (a residual Newton direction stays one along each part: J_P d_P = −φ_P r_P).
-  void ScaleByParts(const Eigen::VectorXd& limited, Eigen::VectorXd* d);
+  /// After StartResidual: α_P ← min(α_P, φ_P), φ_P the smallest fraction the shortening
+  /// `limited` of d applied to a dof of P — the problem's trust region as the first step length
+  /// along Newton's own direction, on which the residual merit test is exact.
+  void CapSteps(const Eigen::VectorXd& d, const Eigen::VectorXd& limited);
 
   /// step = Σ_P α_P dir_P.
   void Step(const Eigen::VectorXd& dir, Eigen::VectorXd* step) const;
@@ -93,7 +94,7 @@ class PartLineSearch {
   std::vector<int> parent_, groupOf_;
   std::vector<double> groupTrial_, groupBase_, groupSlope_, groupRequired_;
   std::vector<char> groupFails_;
-  std::vector<double> partSlope_, partFraction_;  // ShortenByParts
+  std::vector<double> partSlope_, partFraction_;  // ShortenByParts, CapSteps
 };
 
 }  // namespace superdex

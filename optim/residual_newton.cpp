@@ -184,25 +184,25 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
     }
 
     t0 = Clock::now();
-    // The problem's trust region (StageProblem::TrustStep), as a uniform scale per part: d_P stays
-    // a Newton direction of its part (J_P d_P = −φ_P r_P), so the merit tests below still hold.
-    if (params.lineSearch != LineSearchKind::None) {
-      Eigen::VectorXd& limited = w.limited;
-      limited = d;
-      if (problem.TrustStep(&limited)) {
-        if (split) {
-          parts.ScaleByParts(limited, &d);
-        } else {
-          d *= SmallestFraction(d, limited);
-        }
-      }
-    }
     double alpha = 1.0;
     bool accepted = false;
     double trialTheta = NAN;
     const int trials = params.lineSearch == LineSearchKind::None ? 1 : params.maxLineSearchSteps;
     const bool partSearch = split;
     if (partSearch) parts.StartResidual(r, d);
+    // The problem's trust region (StageProblem::TrustStep) as the first step length along d, per
+    // part: α_P = φ_P, so that the merit tests (which assume Newton's direction) stay exact.
+    if (params.lineSearch != LineSearchKind::None) {
+      Eigen::VectorXd& limited = w.limited;
+      limited = d;
+      if (problem.TrustStep(&limited)) {
+        if (partSearch) {
+          parts.CapSteps(d, limited);
+        } else {
+          alpha = SmallestFraction(d, limited);
+        }
+      }
+    }
     for (int trial = 0; trial < trials; ++trial) {
       if (partSearch) {
         parts.Step(d, &step);

@@ -235,10 +235,14 @@ TEST_CASE("Part line search: a shortened step that no longer descends is scaled 
   CHECK(limited[1] == 0.1 * d[1]);
   CHECK(g[0] * limited[0] + g[1] * limited[1] < 0.0);
   CHECK(limited[2] == 0.5);
-  // The residual solver's form: every part's d_P scaled by its smallest fraction.
-  Eigen::VectorXd x = Eigen::Vector3d(1.0, 2.0, 4.0);
-  parts.ScaleByParts(Eigen::Vector3d(1.0, 0.2, 1.0), &x);
-  CHECK(x[0] == 0.1);
-  CHECK(x[1] == 0.1 * 2.0);
-  CHECK(x[2] == 0.25 * 4.0);
+  // The residual solver's form: every part starts at the smallest fraction of its dofs.
+  const Eigen::Vector3d x(1.0, 2.0, 4.0);
+  Eigen::VectorXd r = Eigen::Vector3d(-1.0, -1.0, -1.0), step;
+  parts.StartResidual(r, x);
+  parts.CapSteps(x, Eigen::Vector3d(1.0, 0.2, 1.0));
+  parts.Step(x, &step);
+  CHECK(step[0] == 0.1 * x[0]);
+  CHECK(step[1] == 0.1 * x[1]);
+  CHECK(step[2] == 0.25 * x[2]);
+  CHECK(parts.MinAlpha() == 0.1);
 }
