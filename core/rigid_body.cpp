@@ -424,6 +424,10 @@ Eigen::Vector3d SpinMomentum(const Eigen::Matrix3d& R, const Eigen::Matrix3d& Rd
   return Axial(Rdot * J * R.transpose() - R * J * Rdot.transpose());
 }
 
+double RmsRadius(const RigidBodyModel& model) {
+  return model.mass > 0.0 ? std::sqrt(model.secondMoment.trace() / model.mass) : 0.0;
+}
+
 Eigen::Matrix3d WorldInertia(const Eigen::Matrix3d& R, const Eigen::Matrix3d& J) {
   return R * (J.trace() * Eigen::Matrix3d::Identity() - J) * R.transpose();
 }

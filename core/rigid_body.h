@@ -158,6 +158,9 @@ Eigen::Vector3d AngularMomentum(const RigidBodyModel& model, const RigidBodyStat
 /// L = axial(Ṙ J Rᵀ − R J Ṙᵀ) [kg·m²/s] for the second moment J (R, Ṙ may be affine).
 Eigen::Vector3d SpinMomentum(const Eigen::Matrix3d& R, const Eigen::Matrix3d& Rdot,
                              const Eigen::Matrix3d& J);
+/// RMS distance of a body's material points from its centre of mass, √(tr J / m) [m] (0 without
+/// mass).
+double RmsRadius(const RigidBodyModel& model);
 /// World inertia tensor R (tr(J) 1 − J) Rᵀ [kg·m²]: L = I_w ω for Ṙ = [ω]× R.
 Eigen::Matrix3d WorldInertia(const Eigen::Matrix3d& R, const Eigen::Matrix3d& J);
 

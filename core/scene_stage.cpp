@@ -305,9 +305,7 @@ bool SceneStageProblem::TrustStep(Eigen::VectorXd* d) {
   for (size_t i = 0; i < models_.size(); ++i) {
     const int o = dofOffset_[i];
     if (o < 0) continue;
-    const RigidBodyModel& m = models_[i];
-    const double rho =
-        std::max(m.samplesRadius, m.mass > 0.0 ? std::sqrt(m.secondMoment.trace() / m.mass) : 0.0);
+    const double rho = std::max(models_[i].samplesRadius, RmsRadius(models_[i]));
     if (!(rho > 0.0)) continue;
     const double move = d->segment<3>(o).norm() + d->segment<3>(o + 3).norm() * rho;
     const double trust = kCorrectionTrust * rho;
@@ -351,8 +349,7 @@ double SceneStageProblem::StepNorm(const Eigen::VectorXd& d) const {
   for (size_t i = 0; i < models_.size(); ++i) {
     const int o = dofOffset_[i];
     if (o < 0) continue;
-    // RMS distance of the body's material points from its centre of mass.
-    const double radius = std::sqrt(models_[i].secondMoment.trace() / models_[i].mass);
+    const double radius = RmsRadius(models_[i]);
     norm = std::max(norm, d.segment<3>(o).lpNorm<Eigen::Infinity>());
     norm = std::max(norm, d.segment<3>(o + 3).norm() * radius);
   }

@@ -130,7 +130,7 @@ bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
     if (!body.dynamic) continue;
     const int u = static_cast<int>(movers.size());
     Mover mv;
-    const double radius = std::max(std::sqrt(body.secondMoment.trace() / body.mass), 1e-6);
+    const double radius = std::max(RmsRadius(body), 1e-6);
     const int o = scene.StateOffset(rigid[i]);
     for (int b = 0; b < blocks; ++b) {  // p, R, v, Ṙ
       const int base = b * blockSize + o;

@@ -76,16 +76,22 @@ double SmallestFraction(const Eigen::VectorXd& d, const Eigen::VectorXd& limited
   return fraction;
 }
 
+void PartLineSearch::PartFractions(const Eigen::VectorXd& d, const Eigen::VectorXd& limited) {
+  partFraction_.assign(parts_, 1.0);
+  for (Eigen::Index k = 0; k < d.size(); ++k)
+    if (d[k] != 0.0) {
+      const int p = partOfUnit_[base_.unitOfDof[k]];
+      partFraction_[p] = std::min(partFraction_[p], limited[k] / d[k]);
+    }
+}
+
 void PartLineSearch::ShortenByParts(const Eigen::VectorXd& g, const Eigen::VectorXd& d,
                                     Eigen::VectorXd* limited) {
   Eigen::VectorXd& l = *limited;
+  PartFractions(d, l);
   partSlope_.assign(parts_, 0.0);
-  partFraction_.assign(parts_, 1.0);
-  for (Eigen::Index k = 0; k < d.size(); ++k) {
-    const int p = partOfUnit_[base_.unitOfDof[k]];
-    partSlope_[p] += g[k] * l[k];
-    if (d[k] != 0.0) partFraction_[p] = std::min(partFraction_[p], l[k] / d[k]);
-  }
+  for (Eigen::Index k = 0; k < d.size(); ++k)
+    partSlope_[partOfUnit_[base_.unitOfDof[k]]] += g[k] * l[k];
   for (Eigen::Index k = 0; k < d.size(); ++k) {
     const int p = partOfUnit_[base_.unitOfDof[k]];
     if (!(partSlope_[p] < 0.0)) l[k] = partFraction_[p] * d[k];
@@ -93,12 +99,7 @@ void PartLineSearch::ShortenByParts(const Eigen::VectorXd& g, const Eigen::Vecto
 }
 
 void PartLineSearch::CapSteps(const Eigen::VectorXd& d, const Eigen::VectorXd& limited) {
-  partFraction_.assign(parts_, 1.0);
-  for (Eigen::Index k = 0; k < d.size(); ++k)
-    if (d[k] != 0.0) {
-      const int p = partOfUnit_[base_.unitOfDof[k]];
-      partFraction_[p] = std::min(partFraction_[p], limited[k] / d[k]);
-    }
+  PartFractions(d, limited);
   for (int p = 0; p < parts_; ++p) alpha_[p] = std::min(alpha_[p], partFraction_[p]);
 }
 

@@ -81,6 +81,8 @@ class PartLineSearch {
   void Unite(int a, int b);
   /// Labels the units' parts from base_.joins.
   bool Label();
+  /// partFraction_[P]: SmallestFraction over P's dofs.
+  void PartFractions(const Eigen::VectorXd& d, const Eigen::VectorXd& limited);
 
   StageSplit base_, trial_;
   int parts_ = 0;

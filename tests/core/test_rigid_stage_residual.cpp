@@ -272,8 +272,7 @@ TEST_CASE("rigid stage: the trust region bounds each body's Newton correction",
           "[core][stage]") {
   Stage s(DissipationMode::ExplicitNormals);
   const RigidBodyModel& m = s.f.models[1];  // both boxes: half extents 0.1 m
-  const double rho =
-      std::max(m.samplesRadius, std::sqrt(m.secondMoment.trace() / m.mass));
+  const double rho = std::max(m.samplesRadius, RmsRadius(m));
   REQUIRE(rho >= 0.1);
   const double trust = kCorrectionTrust * rho;
   auto moved = [&](const Eigen::VectorXd& d, int o) {
