@@ -398,7 +398,10 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
                       history ? time_ - historyTimes_[0] : 0.0, predictTime, start, dt,
                       &buffers_.predicted);
     TangentStep(dofOffset_, numDofs_, *poses, buffers_.predicted, &buffers_.warmStep);
-    WarmStart(problem, &buffers_.warmStep, settings_.solver.stepTolerance * dt);
+    FreeFlight(models_, states_, history ? &history_[0] : nullptr,
+               history ? time_ - historyTimes_[0] : 0.0, settings_.gravity, &buffers_.freeFlight);
+    WarmStart(problem, dofOffset_, buffers_.freeFlight, &buffers_.warmStep,
+              &buffers_.warmScratch, settings_.solver.stepTolerance * dt);
   }
   switch (settings_.stageSolver) {
     case StageSolverKind::Newton:

@@ -338,7 +338,8 @@ class Scene {
     std::vector<std::vector<RigidPose>> stagePoses;       // Q_i
     std::vector<double> bdfTimes, bdfWeights;
     StageTargets targets;
-    Eigen::VectorXd warmStep;
+    Eigen::VectorXd warmStep, warmScratch;
+    std::vector<char> freeFlight;  // per body: flew freely over the last step (FreeFlight)
   };
   StepBuffers buffers_;
   // Whether the pipeline is configured for the current actors; a copied scene configures its own

@@ -101,4 +101,56 @@ bool WarmStart(StageProblem& problem, Eigen::VectorXd* step, double negligibleSt
   return true;
 }
 
+void FreeFlight(const std::vector<RigidBodyModel>& models,
+                const std::vector<RigidBodyState>& current,
+                const std::vector<RigidBodyState>* previous, double hPrevious,
+                const Eigen::Vector3d& gravity, std::vector<char>* freeFlight) {
+  std::vector<char>& free = *freeFlight;
+  free.assign(current.size(), 1);
+  if (!previous || previous->size() != current.size() || !(hPrevious > 0.0)) return;
+  const double bound = kFreeFlightAcceleration * gravity.norm() + kFreeFlightFloor;
+  for (size_t i = 0; i < current.size() && i < models.size(); ++i) {
+    const RigidBodyModel& m = models[i];
+    if (!m.dynamic || !(m.mass > 0.0)) continue;
+    const RigidBodyState& s = current[i];
+    const RigidBodyState& s0 = (*previous)[i];
+    const double linear = ((s.v - s0.v) / hPrevious - gravity).norm();
+    const Eigen::Vector3d L = WorldInertia(s.R, m.secondMoment) * s.AngularVelocity();
+    const Eigen::Vector3d L0 = WorldInertia(s0.R, m.secondMoment) * s0.AngularVelocity();
+    const double rho = RmsRadius(m);
+    const double angular = rho > 0.0 ? (L - L0).norm() / (hPrevious * m.mass * rho) : 0.0;
+    free[i] = linear + angular <= bound;
+  }
+}
+
+bool WarmStart(StageProblem& problem, const std::vector<int>& dofOffset,
+               const std::vector<char>& freeFlight, Eigen::VectorXd* step,
+               Eigen::VectorXd* scratch, double negligibleStep) {
+  Eigen::VectorXd& d = *step;
+  const int n = problem.NumDofs();
+  if (n == 0 || d.size() != n || !d.allFinite() || problem.StepNorm(d) <= negligibleStep)
+    return false;
+  // `bounded` holds the moves of the bodies that did not fly freely and zero elsewhere (a zero
+  // block lies inside any trust region), so that TrustStep shortens those bodies only.
+  Eigen::VectorXd& bounded = *scratch;
+  bounded.setZero(n);
+  bool any = false;
+  for (size_t i = 0; i < dofOffset.size(); ++i) {
+    const int o = dofOffset[i];
+    if (o < 0 || o + 6 > n || (i < freeFlight.size() && freeFlight[i])) continue;
+    bounded.segment<6>(o) = d.segment<6>(o);
+    any = true;
+  }
+  if (any && problem.TrustStep(&bounded)) {
+    for (size_t i = 0; i < dofOffset.size(); ++i) {
+      const int o = dofOffset[i];
+      if (o >= 0 && o + 6 <= n && !(i < freeFlight.size() && freeFlight[i]))
+        d.segment<6>(o) = bounded.segment<6>(o);
+    }
+  }
+  problem.LimitStep(&d);
+  problem.Commit(d);
+  return true;
+}
+
 }  // namespace superdex

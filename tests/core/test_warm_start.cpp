@@ -1,6 +1,7 @@
 // The warm start of stage solves (core/warm_start.h): the prediction, the tangent step, the limited
 // move, and on whole scenes the same solutions in fewer Newton iterations.
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
 
 #include "core/integrators.h"
@@ -125,6 +126,101 @@ TEST_CASE("WarmStart takes the predicted step shortened by the step limit", "[wa
   CHECK(rest.x.isZero());
   CHECK_FALSE(WarmStart(rest, Eigen::Vector2d(NAN, 0.0)));
   CHECK(rest.x.isZero());
+}
+
+TEST_CASE("FreeFlight tells bodies moved by gravity alone from bodies a contact pushed",
+          "[warm_start]") {
+  std::vector<RigidBodyModel> models(5);
+  for (RigidBodyModel& m : models) {
+    m.mass = 2.0;
+    m.secondMoment = Eigen::Vector3d(0.03, 0.02, 0.01).asDiagonal();  // asymmetric [kg·m²]
+  }
+  models[4].dynamic = false;
+  models[4].mass = 0.0;
+  const Eigen::Vector3d g(0, 0, -9.81);
+  const double h = 0.01;
+  const Eigen::Matrix3d R0 = ExpSo3(Eigen::Vector3d(0.4, -0.3, 0.2));
+  const Eigen::Vector3d v0(1.0, -2.0, 3.0), w0(2.0, 5.0, -1.0);
+  const Eigen::Matrix3d R = ExpSo3(h * w0) * R0;
+  // Torque-free tumbling: ω changes with the pose, L = I_w ω does not.
+  const Eigen::Vector3d L0 = WorldInertia(R0, models[0].secondMoment) * w0;
+  const Eigen::Vector3d wFree = WorldInertia(R, models[0].secondMoment).inverse() * L0;
+  const double rho = RmsRadius(models[0]);
+  const double bound = kFreeFlightAcceleration * g.norm();
+  // (a test on ω instead of L would call it pushed: its change at ρ is 10× the bound)
+  REQUIRE((wFree - w0).norm() / h * rho > 10.0 * bound);
+  std::vector<RigidBodyState> previous(5, StateWith({0, 0, 1}, R0, v0, w0)), current(5);
+  current[0] = StateWith({0, 0, 1}, R, v0 + h * g, wFree);                  // free flight
+  current[1] = StateWith({0, 0, 1}, R, v0 + h * (g + Eigen::Vector3d(0, 0, 1.5 * bound)),
+                         wFree);                                            // a force past the bound
+  current[2] = StateWith({0, 0, 1}, R, v0 + h * (g + Eigen::Vector3d(0, 0, 0.5 * bound)),
+                         wFree);                                            // within it
+  // A torque whose acceleration at ρ is twice the bound.
+  const Eigen::Vector3d L2 = L0 + Eigen::Vector3d(2.0 * bound * h * models[0].mass * rho, 0, 0);
+  current[3] = StateWith({0, 0, 1}, R, v0 + h * g,
+                         WorldInertia(R, models[0].secondMoment).inverse() * L2);
+  current[4] = StateWith({0, 0, 0}, R0, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
+  std::vector<char> free;
+  FreeFlight(models, current, &previous, h, g, &free);
+  REQUIRE(free.size() == 5);
+  CHECK(free[0]);
+  CHECK_FALSE(free[1]);
+  CHECK(free[2]);
+  CHECK_FALSE(free[3]);
+  CHECK(free[4]);  // static
+  FreeFlight(models, current, nullptr, h, g, &free);  // no history: all free
+  CHECK(std::count(free.begin(), free.end(), 1) == 5);
+}
+
+namespace {
+
+/// Bodies of 6 dofs on R^(6k) with x ← x + d: the step limit halves every entry longer than
+/// `limit`; the trust region scales a body's block to a norm of at most `trust`.
+class BodiesToy : public Toy {
+ public:
+  BodiesToy(int bodies, double limit, double trust) : Toy(6 * bodies, limit), trust_(trust) {}
+  bool TrustStep(Eigen::VectorXd* d) override {
+    bool changed = false;
+    for (Eigen::Index o = 0; o < d->size(); o += 6) {
+      const double move = d->segment<6>(o).norm();
+      if (move <= trust_) continue;
+      d->segment<6>(o) *= trust_ / move;
+      changed = true;
+    }
+    return changed;
+  }
+
+ private:
+  double trust_;
+};
+
+}  // namespace
+
+TEST_CASE("WarmStart bounds the predictions that extrapolate contact, not free flight",
+          "[warm_start]") {
+  BodiesToy toy(4, 1.0, 0.5);
+  const std::vector<int> offset = {0, -1, 6, 12, 18};  // actor 1 static
+  std::vector<char> free = {1, 1, 0, 1, 1};
+  Eigen::VectorXd d = Eigen::VectorXd::Zero(24), scratch;
+  d.segment<6>(0).setConstant(0.4);   // free, within the limit: taken whole (norm 0.98 > 0.5)
+  d.segment<6>(6).setConstant(0.4);   // pushed by a contact last step: bounded to norm 0.5
+  d[11] = 4.0;                         // ... before the step limit (4 → 2 · 0.5/|d_1|, < 1)
+  d.segment<6>(12).setZero();
+  d[12] = 3.0;                         // free: only the step limit applies (3 → 1.5)
+  d.segment<6>(18).setConstant(0.1);  // free, small
+  Eigen::VectorXd expected = d;
+  expected.segment<6>(6) *= 0.5 / d.segment<6>(6).norm();
+  expected[12] = 1.5;
+  REQUIRE(WarmStart(toy, offset, free, &d, &scratch, 0.0));
+  CHECK((toy.x - expected).norm() < 1e-15);
+  CHECK((d - expected).norm() < 1e-15);
+  CHECK(toy.evaluations == 0);
+  // All free and unlimited: the prediction unchanged.
+  BodiesToy flight(4, 10.0, 0.5);
+  std::vector<char> allFree(5, 1);
+  Eigen::VectorXd e = Eigen::VectorXd::Constant(24, 0.4);
+  REQUIRE(WarmStart(flight, offset, allFree, &e, &scratch, 0.0));
+  CHECK((flight.x - Eigen::VectorXd::Constant(24, 0.4)).norm() == 0.0);
 }
 
 TEST_CASE("Warm-started stages reach the cold start's solutions in fewer Newton iterations",
