@@ -398,9 +398,12 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
                       history ? time_ - historyTimes_[0] : 0.0, predictTime, start, dt,
                       &buffers_.predicted);
     TangentStep(dofOffset_, numDofs_, *poses, buffers_.predicted, &buffers_.warmStep);
-    FreeFlight(models_, states_, history ? &history_[0] : nullptr,
-               history ? time_ - historyTimes_[0] : 0.0, settings_.gravity, &buffers_.freeFlight);
-    WarmStart(problem, dofOffset_, buffers_.freeFlight, &buffers_.warmStep,
+    const bool twoSteps = history_.size() >= 2 && historyTimes_.size() >= 2;
+    SteadyMotion(models_, states_, history ? &history_[0] : nullptr,
+                 history ? time_ - historyTimes_[0] : 0.0, twoSteps ? &history_[1] : nullptr,
+                 twoSteps ? historyTimes_[0] - historyTimes_[1] : 0.0, settings_.gravity,
+                 &buffers_.steady);
+    WarmStart(problem, dofOffset_, buffers_.steady, &buffers_.warmStep,
               &buffers_.warmScratch, settings_.solver.stepTolerance * dt);
   }
   switch (settings_.stageSolver) {

@@ -339,7 +339,7 @@ class Scene {
     std::vector<double> bdfTimes, bdfWeights;
     StageTargets targets;
     Eigen::VectorXd warmStep, warmScratch;
-    std::vector<char> freeFlight;  // per body: flew freely over the last step (FreeFlight)
+    std::vector<char> steady;  // per body: moved steadily over the last two steps (SteadyMotion)
   };
   StepBuffers buffers_;
   // Whether the pipeline is configured for the current actors; a copied scene configures its own

@@ -101,50 +101,57 @@ bool WarmStart(StageProblem& problem, Eigen::VectorXd* step, double negligibleSt
   return true;
 }
 
-void FreeFlight(const std::vector<RigidBodyModel>& models,
-                const std::vector<RigidBodyState>& current,
-                const std::vector<RigidBodyState>* previous, double hPrevious,
-                const Eigen::Vector3d& gravity, std::vector<char>* freeFlight) {
-  std::vector<char>& free = *freeFlight;
-  free.assign(current.size(), 1);
-  if (!previous || previous->size() != current.size() || !(hPrevious > 0.0)) return;
-  const double bound = kFreeFlightAcceleration * gravity.norm() + kFreeFlightFloor;
+void SteadyMotion(const std::vector<RigidBodyModel>& models,
+                  const std::vector<RigidBodyState>& current,
+                  const std::vector<RigidBodyState>* previous, double hPrevious,
+                  const std::vector<RigidBodyState>* before, double hBefore,
+                  const Eigen::Vector3d& gravity, std::vector<char>* steady) {
+  std::vector<char>& out = *steady;
+  out.assign(current.size(), 1);
+  if (!previous || !before || previous->size() != current.size() ||
+      before->size() != current.size() || !(hPrevious > 0.0) || !(hBefore > 0.0))
+    return;
+  const double bound = kSteadyAcceleration * gravity.norm() + kSteadyFloor;
   for (size_t i = 0; i < current.size() && i < models.size(); ++i) {
     const RigidBodyModel& m = models[i];
     if (!m.dynamic || !(m.mass > 0.0)) continue;
-    const RigidBodyState& s = current[i];
-    const RigidBodyState& s0 = (*previous)[i];
-    const double linear = ((s.v - s0.v) / hPrevious - gravity).norm();
-    const Eigen::Vector3d L = WorldInertia(s.R, m.secondMoment) * s.AngularVelocity();
-    const Eigen::Vector3d L0 = WorldInertia(s0.R, m.secondMoment) * s0.AngularVelocity();
+    const RigidBodyState& s2 = current[i];
+    const RigidBodyState& s1 = (*previous)[i];
+    const RigidBodyState& s0 = (*before)[i];
+    const Eigen::Vector3d a2 = (s2.v - s1.v) / hPrevious, a1 = (s1.v - s0.v) / hBefore;
+    auto momentum = [&](const RigidBodyState& s) -> Eigen::Vector3d {
+      return WorldInertia(s.R, m.secondMoment) * s.AngularVelocity();
+    };
+    const Eigen::Vector3d L2 = momentum(s2), L1 = momentum(s1), L0 = momentum(s0);
+    const Eigen::Vector3d dTorque = (L2 - L1) / hPrevious - (L1 - L0) / hBefore;
     const double rho = RmsRadius(m);
-    const double angular = rho > 0.0 ? (L - L0).norm() / (hPrevious * m.mass * rho) : 0.0;
-    free[i] = linear + angular <= bound;
+    const double angular = rho > 0.0 ? dTorque.norm() / (m.mass * rho) : 0.0;
+    out[i] = (a2 - a1).norm() + angular <= bound;
   }
 }
 
 bool WarmStart(StageProblem& problem, const std::vector<int>& dofOffset,
-               const std::vector<char>& freeFlight, Eigen::VectorXd* step,
+               const std::vector<char>& steady, Eigen::VectorXd* step,
                Eigen::VectorXd* scratch, double negligibleStep) {
   Eigen::VectorXd& d = *step;
   const int n = problem.NumDofs();
   if (n == 0 || d.size() != n || !d.allFinite() || problem.StepNorm(d) <= negligibleStep)
     return false;
-  // `bounded` holds the moves of the bodies that did not fly freely and zero elsewhere (a zero
+  // `bounded` holds the moves of the bodies that did not move steadily and zero elsewhere (a zero
   // block lies inside any trust region), so that TrustStep shortens those bodies only.
   Eigen::VectorXd& bounded = *scratch;
   bounded.setZero(n);
   bool any = false;
   for (size_t i = 0; i < dofOffset.size(); ++i) {
     const int o = dofOffset[i];
-    if (o < 0 || o + 6 > n || (i < freeFlight.size() && freeFlight[i])) continue;
+    if (o < 0 || o + 6 > n || (i < steady.size() && steady[i])) continue;
     bounded.segment<6>(o) = d.segment<6>(o);
     any = true;
   }
   if (any && problem.TrustStep(&bounded)) {
     for (size_t i = 0; i < dofOffset.size(); ++i) {
       const int o = dofOffset[i];
-      if (o >= 0 && o + 6 <= n && !(i < freeFlight.size() && freeFlight[i]))
+      if (o >= 0 && o + 6 <= n && !(i < steady.size() && steady[i]))
         d.segment<6>(o) = bounded.segment<6>(o);
     }
   }

@@ -10,7 +10,7 @@
 // acceleration (a sliding box, free flight) in every integrator, where the cold start is a whole
 // step's motion away. Where contact is about to change (an impact), each body's
 // predicted move is shortened by the stage problem's contact step limit, as Newton's own steps
-// are; where contact forces acted over the last step (a body not in free flight, FreeFlight), the
+// are; where the forces on a body changed over the last two steps (an impact: SteadyMotion), the
 // prediction extrapolates them and its move is first bounded by the trust region of a Newton
 // correction (a quarter of the body's radius, core/scene_stage.h). Soft nodes keep their cold start. The solution is the stage's root either way; only the
 // path to it changes.
@@ -83,36 +83,41 @@ bool WarmStart(StageProblem& problem, Eigen::VectorXd d, double negligibleStep =
 /// As above, shortening *step in place.
 bool WarmStart(StageProblem& problem, Eigen::VectorXd* step, double negligibleStep = 0.0);
 
-/// Which bodies flew freely over the last step (`previous`, hPrevious seconds before `current`):
-/// no force but gravity and no torque acted on them, to within
-///   |Δv/h − g| + |ΔL/h| / (m ρ) <= kFreeFlightAcceleration |g| + kFreeFlightFloor      [m/s²]
-/// with L = I_w ω the world angular momentum [kg·m²/s] and ρ the RMS radius √(tr J/m) [m] (a
-/// torque as the acceleration it gives the body's points at ρ). Such a body's prediction is its
-/// exact motion until it meets something. Static bodies, and every body without history
-/// (previous null or hPrevious <= 0), count as free. `freeFlight` is resized to the bodies.
-void FreeFlight(const std::vector<RigidBodyModel>& models,
-                const std::vector<RigidBodyState>& current,
-                const std::vector<RigidBodyState>* previous, double hPrevious,
-                const Eigen::Vector3d& gravity, std::vector<char>* freeFlight);
-constexpr double kFreeFlightAcceleration = 0.01;  ///< fraction of |g| [-]
-constexpr double kFreeFlightFloor = 1e-6;         ///< round-off floor, for scenes without gravity [m/s²]
+/// Which bodies moved steadily over the last two steps (states `before`, `previous`, `current`,
+/// hBefore and hPrevious seconds apart): the force and the torque on them changed by at most
+///   |a_n − a_{n−1}| + |τ_n − τ_{n−1}| / (m ρ) <= kSteadyAcceleration |g| + kSteadyFloor   [m/s²]
+/// with a_n = (v_n − v_{n−1})/h_{n−1}, τ_n = (L_n − L_{n−1})/h_{n−1}, L = I_w ω the world angular
+/// momentum [kg·m²/s] and ρ the RMS radius √(tr J/m) [m] (a torque as the acceleration it gives the
+/// body's points at ρ). Such a body's prediction (constant acceleration) is its exact motion — free
+/// flight, torque-free tumbling, steady sliding, rest — until its contacts change. Static bodies,
+/// and every body without two steps of history (either pointer null or a step <= 0), count as
+/// steady. `steady` is resized to the bodies.
+void SteadyMotion(const std::vector<RigidBodyModel>& models,
+                  const std::vector<RigidBodyState>& current,
+                  const std::vector<RigidBodyState>* previous, double hPrevious,
+                  const std::vector<RigidBodyState>* before, double hBefore,
+                  const Eigen::Vector3d& gravity, std::vector<char>* steady);
+constexpr double kSteadyAcceleration = 0.01;  ///< fraction of |g| [-]
+constexpr double kSteadyFloor = 1e-6;         ///< round-off floor, for scenes without gravity [m/s²]
 
 /// As above for a stage whose rigid bodies own the 6-dof blocks at dofOffset (< 0: none). The
-/// predicted move of a body that did not fly freely over the last step (`freeFlight`, see
-/// FreeFlight) extrapolates contact forces: it is first bounded by the trust region of a Newton
-/// correction (StageProblem::TrustStep), then every move by the step limit. A free body's
-/// prediction, exact while it meets nothing, is only limited. `scratch` is working memory (no
+/// predicted move of a body whose motion was not steady over the last two steps (`steady`, see
+/// SteadyMotion: an impact, a contact made or broken) extrapolates forces that just changed: it
+/// is first bounded by the trust region of a Newton correction (StageProblem::TrustStep), then
+/// every move by the step limit. A steady body's prediction is only limited. `scratch` is working memory (no
 /// allocation once it has the capacity). Costs one step-limit sweep, no evaluation.
 ///
-/// Measured (mean Newton iterations per step; the 1000-sphere pile's first 0.3 s at Δt = 1e-2 and
-/// its first 0.6 s at 2e-2; without → with the bound): explicit normals 10.07 → 9.73 and
-/// 25.33 → 21.97, default mode 12.00 → 11.83 and 39.0 → 37.2. Tried and not used: bounding
-/// every body's prediction (explicit normals 9.47 and 19.77) also cuts exact free flight (the
-/// drop at Δt = 1e-2 under BDF2 took 1.68 Newton iterations per step instead of 1.35); bounding
-/// also the free bodies whose move the step limit shortened (a second step-limit sweep): 9.67
-/// and 20.67; the bound after the step limit instead of before it: 10.10 and 23.10.
+/// Measured (mean Newton iterations per step, without → with the bound, Δt = 2e-2 unless named):
+/// the 160-sphere column (0.5 s) 46.0 → 24.7 with explicit normals, 61.5 → 42.2 in the default
+/// mode; the 1000-sphere pile with explicit normals 25.3 → 22.0 (0.6 s), 10.07 → 9.67 (0.3 s at
+/// Δt = 1e-2); default mode 12.00 → 11.77 (0.3 s at 1e-2), 39.0 → 45.8 at 2e-2 (0.6 s: 8 → 13
+/// stages re-solved with explicit normals; that mode's landing stages at 2e-2 fail erratically).
+/// Bounding only the bodies not in free flight also cut the sliding incline's exact prediction
+/// (BDF2 at Δt = 0.1: 2.55 → 3.35 Newton iterations per step); bounding every body's prediction
+/// also cut free flight (the drop at Δt = 1e-2 under BDF2: 1.35 → 1.68); the bound after the
+/// step limit instead of before it did worse on the pile (10.10 and 23.10 with explicit normals).
 bool WarmStart(StageProblem& problem, const std::vector<int>& dofOffset,
-               const std::vector<char>& freeFlight, Eigen::VectorXd* step,
+               const std::vector<char>& steady, Eigen::VectorXd* step,
                Eigen::VectorXd* scratch, double negligibleStep);
 
 }  // namespace superdex

@@ -128,48 +128,67 @@ TEST_CASE("WarmStart takes the predicted step shortened by the step limit", "[wa
   CHECK(rest.x.isZero());
 }
 
-TEST_CASE("FreeFlight tells bodies moved by gravity alone from bodies a contact pushed",
-          "[warm_start]") {
-  std::vector<RigidBodyModel> models(5);
-  for (RigidBodyModel& m : models) {
-    m.mass = 2.0;
-    m.secondMoment = Eigen::Vector3d(0.03, 0.02, 0.01).asDiagonal();  // asymmetric [kg·m²]
-  }
-  models[4].dynamic = false;
-  models[4].mass = 0.0;
+TEST_CASE("SteadyMotion tells steady motion from a change of the forces", "[warm_start]") {
+  RigidBodyModel body;
+  body.mass = 2.0;
+  body.secondMoment = Eigen::Vector3d(0.03, 0.02, 0.01).asDiagonal();  // asymmetric [kg·m²]
+  RigidBodyModel ground;
+  ground.dynamic = false;
+  const std::vector<RigidBodyModel> models = {body, body, body, body, body, ground};
   const Eigen::Vector3d g(0, 0, -9.81);
-  const double h = 0.01;
+  const double h0 = 0.02, h1 = 0.01;  // unequal steps
+  const double rho = RmsRadius(body);
+  const double bound = kSteadyAcceleration * g.norm();
+  // Three states h0 and h1 apart under the accelerations a1, a2 and the torques t1, t2 [N·m].
   const Eigen::Matrix3d R0 = ExpSo3(Eigen::Vector3d(0.4, -0.3, 0.2));
   const Eigen::Vector3d v0(1.0, -2.0, 3.0), w0(2.0, 5.0, -1.0);
-  const Eigen::Matrix3d R = ExpSo3(h * w0) * R0;
-  // Torque-free tumbling: ω changes with the pose, L = I_w ω does not.
-  const Eigen::Vector3d L0 = WorldInertia(R0, models[0].secondMoment) * w0;
-  const Eigen::Vector3d wFree = WorldInertia(R, models[0].secondMoment).inverse() * L0;
-  const double rho = RmsRadius(models[0]);
-  const double bound = kFreeFlightAcceleration * g.norm();
-  // (a test on ω instead of L would call it pushed: its change at ρ is 10× the bound)
-  REQUIRE((wFree - w0).norm() / h * rho > 10.0 * bound);
-  std::vector<RigidBodyState> previous(5, StateWith({0, 0, 1}, R0, v0, w0)), current(5);
-  current[0] = StateWith({0, 0, 1}, R, v0 + h * g, wFree);                  // free flight
-  current[1] = StateWith({0, 0, 1}, R, v0 + h * (g + Eigen::Vector3d(0, 0, 1.5 * bound)),
-                         wFree);                                            // a force past the bound
-  current[2] = StateWith({0, 0, 1}, R, v0 + h * (g + Eigen::Vector3d(0, 0, 0.5 * bound)),
-                         wFree);                                            // within it
-  // A torque whose acceleration at ρ is twice the bound.
-  const Eigen::Vector3d L2 = L0 + Eigen::Vector3d(2.0 * bound * h * models[0].mass * rho, 0, 0);
-  current[3] = StateWith({0, 0, 1}, R, v0 + h * g,
-                         WorldInertia(R, models[0].secondMoment).inverse() * L2);
-  current[4] = StateWith({0, 0, 0}, R0, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
-  std::vector<char> free;
-  FreeFlight(models, current, &previous, h, g, &free);
-  REQUIRE(free.size() == 5);
-  CHECK(free[0]);
-  CHECK_FALSE(free[1]);
-  CHECK(free[2]);
-  CHECK_FALSE(free[3]);
-  CHECK(free[4]);  // static
-  FreeFlight(models, current, nullptr, h, g, &free);  // no history: all free
-  CHECK(std::count(free.begin(), free.end(), 1) == 5);
+  auto motion = [&](const Eigen::Vector3d& a1, const Eigen::Vector3d& a2, const Eigen::Vector3d& t1,
+                    const Eigen::Vector3d& t2) {
+    const Eigen::Vector3d L0 = WorldInertia(R0, body.secondMoment) * w0;
+    const Eigen::Matrix3d R1 = ExpSo3(h0 * w0) * R0;
+    const Eigen::Vector3d L1 = L0 + h0 * t1;
+    const Eigen::Vector3d w1 = WorldInertia(R1, body.secondMoment).inverse() * L1;
+    const Eigen::Matrix3d R2 = ExpSo3(h1 * w1) * R1;
+    const Eigen::Vector3d w2 = WorldInertia(R2, body.secondMoment).inverse() * (L1 + h1 * t2);
+    return std::vector<RigidBodyState>{StateWith({0, 0, 1}, R0, v0, w0),
+                                       StateWith({0, 0, 1}, R1, v0 + h0 * a1, w1),
+                                       StateWith({0, 0, 1}, R2, v0 + h0 * a1 + h1 * a2, w2)};
+  };
+  const Eigen::Vector3d zero = Eigen::Vector3d::Zero(), up(0, 0, 1);
+  const Eigen::Vector3d slide = g + Eigen::Vector3d(3.0, 0.0, 8.0);  // a contact's steady force
+  const Eigen::Vector3d torque = 2.0 * bound * body.mass * rho * Eigen::Vector3d(1, 0, 0);
+  const std::vector<std::vector<RigidBodyState>> runs = {
+      motion(g, g, zero, zero),                     // free flight, torque-free tumbling
+      motion(slide, slide, zero, zero),             // steady sliding
+      motion(g, g + 1.5 * bound * up, zero, zero),  // an impact: the force changed past the bound
+      motion(g, g + 0.5 * bound * up, zero, zero),  // within it
+      motion(g, g, zero, torque),                   // a torque appeared: 2× the bound at ρ
+  };
+  // (A test on ω instead of L would call the tumbling body unsteady: ω changes 10× the bound.)
+  REQUIRE((runs[0][2].AngularVelocity() - runs[0][1].AngularVelocity()).norm() / h1 * rho >
+          10.0 * bound);
+  std::vector<RigidBodyState> before, previous, current;
+  for (const auto& r : runs) {
+    before.push_back(r[0]);
+    previous.push_back(r[1]);
+    current.push_back(r[2]);
+  }
+  const RigidBodyState rest = StateWith({0, 0, 0}, R0, zero, zero);
+  before.push_back(rest);
+  previous.push_back(rest);
+  current.push_back(rest);
+  std::vector<char> steady;
+  SteadyMotion(models, current, &previous, h1, &before, h0, g, &steady);
+  REQUIRE(steady.size() == 6);
+  CHECK(steady[0]);
+  CHECK(steady[1]);
+  CHECK_FALSE(steady[2]);
+  CHECK(steady[3]);
+  CHECK_FALSE(steady[4]);
+  CHECK(steady[5]);  // static
+  // Without two steps of history every body counts as steady.
+  SteadyMotion(models, current, &previous, h1, nullptr, 0.0, g, &steady);
+  CHECK(std::count(steady.begin(), steady.end(), 1) == 6);
 }
 
 namespace {
@@ -196,30 +215,30 @@ class BodiesToy : public Toy {
 
 }  // namespace
 
-TEST_CASE("WarmStart bounds the predictions that extrapolate contact, not free flight",
+TEST_CASE("WarmStart bounds the predictions that extrapolate a change of the forces",
           "[warm_start]") {
   BodiesToy toy(4, 1.0, 0.5);
   const std::vector<int> offset = {0, -1, 6, 12, 18};  // actor 1 static
-  std::vector<char> free = {1, 1, 0, 1, 1};
+  std::vector<char> steady = {1, 1, 0, 1, 1};
   Eigen::VectorXd d = Eigen::VectorXd::Zero(24), scratch;
-  d.segment<6>(0).setConstant(0.4);   // free, within the limit: taken whole (norm 0.98 > 0.5)
-  d.segment<6>(6).setConstant(0.4);   // pushed by a contact last step: bounded to norm 0.5
+  d.segment<6>(0).setConstant(0.4);   // steady, within the limit: taken whole (norm 0.98 > 0.5)
+  d.segment<6>(6).setConstant(0.4);   // its forces changed (an impact): bounded to norm 0.5
   d[11] = 4.0;                         // ... before the step limit (4 → 2 · 0.5/|d_1|, < 1)
   d.segment<6>(12).setZero();
-  d[12] = 3.0;                         // free: only the step limit applies (3 → 1.5)
-  d.segment<6>(18).setConstant(0.1);  // free, small
+  d[12] = 3.0;                         // steady: only the step limit applies (3 → 1.5)
+  d.segment<6>(18).setConstant(0.1);  // steady, small
   Eigen::VectorXd expected = d;
   expected.segment<6>(6) *= 0.5 / d.segment<6>(6).norm();
   expected[12] = 1.5;
-  REQUIRE(WarmStart(toy, offset, free, &d, &scratch, 0.0));
+  REQUIRE(WarmStart(toy, offset, steady, &d, &scratch, 0.0));
   CHECK((toy.x - expected).norm() < 1e-15);
   CHECK((d - expected).norm() < 1e-15);
   CHECK(toy.evaluations == 0);
-  // All free and unlimited: the prediction unchanged.
+  // All steady and unlimited: the prediction unchanged.
   BodiesToy flight(4, 10.0, 0.5);
-  std::vector<char> allFree(5, 1);
+  std::vector<char> allSteady(5, 1);
   Eigen::VectorXd e = Eigen::VectorXd::Constant(24, 0.4);
-  REQUIRE(WarmStart(flight, offset, allFree, &e, &scratch, 0.0));
+  REQUIRE(WarmStart(flight, offset, allSteady, &e, &scratch, 0.0));
   CHECK((flight.x - Eigen::VectorXd::Constant(24, 0.4)).norm() == 0.0);
 }
 
