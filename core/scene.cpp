@@ -11,6 +11,7 @@
 #include "core/rigid_math.h"
 #include "core/scene_stage.h"
 #include "core/warm_start.h"
+#include "energies/rigid_inertia.h"
 #include "optim/ceres_stage_solver.h"
 #include "optim/ipopt_stage_solver.h"
 #include "optim/residual_newton.h"
@@ -374,9 +375,15 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
     st.status = StageStatus::Converged;
     return st;
   }
+  SolverStats st;
+  if (settings_.closedFormFreeStages && settings_.stageSolver == StageSolverKind::Newton &&
+      softModels_.empty() && tapeMode_ == TapeMode::Off &&
+      FreeStage(targets, dissipation, poses, &st, contact)) {
+    lastPotentialIterations_ = 0;  // a local stage: the next warm start may try the exact Hessian
+    return st;
+  }
   SceneStageProblem problem(models_, dofOffset_, numDofs_, targets, settings_.gravity, &pipeline_,
                             poses, dissipation, soft, softX, &workspace_);
-  SolverStats st;
   // The warm start (core/warm_start.h; Newton only: Ipopt and Ceres check the cold stage). Kept
   // cold: (1) scenes with soft actors: soft nodes are not predicted, and a soft collider's stages
   // are only piecewise smooth (its deformed grid SDF's gradient jumps across tet and cell faces),
@@ -510,6 +517,35 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
   *contact = problem.LastContactStats();
   if (tapeMode_ == TapeMode::Record) RecordStage(targets, dissipation, *poses, soft, softX);
   return st;
+}
+
+bool Scene::FreeStage(const StageTargets& targets, const StageDissipation& dissipation,
+                      std::vector<RigidPose>* poses, SolverStats* stats, ContactStats* contact) {
+  std::vector<RigidPose>& free = buffers_.free;
+  free = *poses;
+  for (size_t i = 0; i < models_.size(); ++i) {
+    if (dofOffset_[i] < 0) continue;
+    const RigidInertiaMinimum x = MinimizeRigidInertia(
+        models_[i].secondMoment, targets.pHat[i], targets.RHat[i], targets.dt, settings_.gravity);
+    free[i] = {x.p, x.R};
+  }
+  // The contact terms as SceneStageProblem evaluates them there (value only): each pair adds its
+  // value, gradient and residual only through samples it counts active.
+  DissipationContext context;
+  context.dt = targets.dt;
+  context.mode = dissipation.mode;
+  context.fadeFriction = dissipation.fadeFriction;
+  ContactStats found;
+  pipeline_.Evaluate(free, dofOffset_, 0, PsdProjection::None, nullptr, nullptr, nullptr, &found,
+                     dissipation.enabled ? &context : nullptr, nullptr,
+                     targets.start.empty() ? nullptr : &targets.start);
+  if (found.activeSamples > 0 || found.dissipativeSamples > 0) return false;
+  poses->swap(free);
+  *contact = found;
+  *stats = SolverStats();
+  stats->status = StageStatus::Converged;
+  stats->passed.what = "closed-form free stage (no active contact sample)";
+  return true;
 }
 
 bool Scene::StepAndRecord(double dt, StepTape* tape, StepReport* report, Error* error) {

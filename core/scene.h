@@ -43,6 +43,14 @@ struct SceneSettings {
   /// core/warm_start.h). Changes the path to each stage's solution, not the solution or the
   /// convergence tests.
   bool warmStart = true;
+  /// A Newton stage of rigid bodies whose contact terms all vanish at the minimizer of inertia and
+  /// gravity (no contact sample active there, penalty or dissipation) is solved in closed form,
+  /// per body (MinimizeRigidInertia, energies/rigid_inertia.h), with 0 Newton iterations: free
+  /// flight pays no Newton iteration. That point is the stage's exact global minimizer (the
+  /// contact energies are >= 0 and vanish there) and the root of the residual modes' equations
+  /// (their contact terms vanish there too); Newton reaches the same point to its tolerance.
+  /// Not for scenes with soft actors, nor for the Ipopt and Ceres checks, nor for recorded steps.
+  bool closedFormFreeStages = true;
 };
 /// "" when valid, else a message naming the field.
 std::string Validate(const SceneSettings& settings, const std::string& prefix = "");
@@ -236,6 +244,11 @@ class Scene {
                          const std::vector<RigidPose>& last, std::vector<RigidPose>* poses,
                          ContactStats* contact, const SoftStage* soft = nullptr,
                          std::vector<Eigen::VectorXd>* softX = nullptr, double predictTime = 0.0);
+  // The closed-form stage of SceneSettings::closedFormFreeStages: true, with *poses set to every
+  // dynamic body's MinimizeRigidInertia and *stats, *contact filled, when no contact sample is
+  // active there (penalty or dissipation); false (nothing changed) otherwise.
+  bool FreeStage(const StageTargets& targets, const StageDissipation& dissipation,
+                 std::vector<RigidPose>* poses, SolverStats* stats, ContactStats* contact);
   friend class ForwardSensitivity;
   friend class StepLinearizer;
   friend class AdjointSensitivity;
@@ -340,6 +353,7 @@ class Scene {
     StageTargets targets;
     Eigen::VectorXd warmStep, warmScratch;
     std::vector<char> steady;  // per body: moved steadily over the last two steps (SteadyMotion)
+    std::vector<RigidPose> free;  // the closed-form free stage's poses (FreeStage)
   };
   StepBuffers buffers_;
   // Whether the pipeline is configured for the current actors; a copied scene configures its own

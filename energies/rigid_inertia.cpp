@@ -1,5 +1,8 @@
 #include "energies/rigid_inertia.h"
 
+#include <Eigen/LU>
+#include <Eigen/SVD>
+
 namespace superdex {
 
 RigidInertiaTerm RigidInertia(double mass, const Eigen::Matrix3d& J, const Eigen::Vector3d& p,
@@ -18,6 +21,19 @@ RigidInertiaTerm RigidInertia(double mass, const Eigen::Matrix3d& J, const Eigen
   t.hessian.bottomRightCorner<3, 3>() =
       M.trace() * Eigen::Matrix3d::Identity() - 0.5 * (M + M.transpose());
   return t;
+}
+
+RigidInertiaMinimum MinimizeRigidInertia(const Eigen::Matrix3d& J, const Eigen::Vector3d& pHat,
+                                         const Eigen::Matrix3d& RHat, double dt,
+                                         const Eigen::Vector3d& gravity) {
+  RigidInertiaMinimum out;
+  out.p = pHat + dt * dt * gravity;
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(RHat * J, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Eigen::Matrix3d& U = svd.matrixU();
+  const Eigen::Matrix3d& V = svd.matrixV();
+  Eigen::Vector3d sign(1.0, 1.0, (U * V.transpose()).determinant() < 0.0 ? -1.0 : 1.0);
+  out.R = U * sign.asDiagonal() * V.transpose();
+  return out;
 }
 
 }  // namespace superdex

@@ -27,6 +27,22 @@ RigidInertiaTerm RigidInertia(double mass, const Eigen::Matrix3d& secondMoment,
                               const Eigen::Vector3d& pHat, const Eigen::Matrix3d& RHat,
                               bool withDerivatives);
 
+/// The global minimizer over p [m] and R ∈ SO(3) of one free body's inertial stage energy
+///   Φ(p, R) = E(p, R) / Δt² − m g·p   [J]
+/// (E above, Δt the stage step [s], g gravity [m/s²]): the stage of a body that no contact term
+/// reaches. p* = p̂ + Δt² g. Since tr(R J Rᵀ) = tr J for every rotation, E's rotational part is
+/// const − tr(R (R̂ J)ᵀ), maximized over SO(3) by the rotation factor of R̂ J (orthogonal
+/// Procrustes): with R̂ J = U Σ Vᵀ, R* = U diag(1, 1, det(U Vᵀ)) Vᵀ. Exact, no iteration; R̂ need
+/// not be a rotation. The mass does not enter; J must be positive definite (a body with volume)
+/// for R* to be unique.
+struct RigidInertiaMinimum {
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+};
+RigidInertiaMinimum MinimizeRigidInertia(const Eigen::Matrix3d& secondMoment,
+                                         const Eigen::Vector3d& pHat, const Eigen::Matrix3d& RHat,
+                                         double dt, const Eigen::Vector3d& gravity);
+
 /// Gravity potential of a body of mass m [kg] with centre of mass at p [m] in gravity g [m/s²]:
 /// U = −m g·p [J], ∂U/∂p = −m g, ∂²U/∂p² = 0.
 inline double GravityPotential(double mass, const Eigen::Vector3d& g, const Eigen::Vector3d& p) {

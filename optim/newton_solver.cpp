@@ -89,6 +89,7 @@ std::string Format(const ConvergenceTest& test) {
     out->append(digits, r.ptr);
   };
   std::string s = test.what;
+  if (!*test.bound) return s + test.note;  // a test without a bound: its name says it all
   s += " = ";
   append(test.value, &s);
   s += " <= ";

@@ -103,7 +103,7 @@ struct ConvergenceTest {
 };
 
 /// "<what> = <value> <= <bound> = <boundValue><note>" (values with 6 significant digits;
-/// formatted without streams).
+/// formatted without streams); "<what><note>" for a test without a bound (bound empty).
 std::string Format(const ConvergenceTest& test);
 
 /// Statistics of one stage solve. Times are wall seconds.

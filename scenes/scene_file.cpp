@@ -547,12 +547,14 @@ bool LoadSceneText(const std::string& text, const std::string& baseDir, SceneFil
       const json& s = j.at("settings");
       CheckObject(s, "settings",
                   {"dt", "duration", "integrator", "gravity", "solver", "stage_solver",
-                   "warm_start", "experimental_eval_params"});
+                   "warm_start", "closed_form_free_stages", "experimental_eval_params"});
       out->dt = Positive(s, "settings", "dt", out->dt);
       out->duration = Positive(s, "settings", "duration", out->duration);
       settings.integrator = Enum(s, "settings", "integrator", settings.integrator);
       settings.gravity = Vector<3>(s, "settings", "gravity", settings.gravity);
       settings.warmStart = Bool(s, "settings", "warm_start", settings.warmStart);
+      settings.closedFormFreeStages = Bool(s, "settings", "closed_form_free_stages",
+                                           settings.closedFormFreeStages);
       if (s.contains("solver")) {
         const json& v = s.at("solver");
         const std::string p = "settings.solver";

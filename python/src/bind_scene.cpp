@@ -296,6 +296,9 @@ void BindScene(py::module_& m) {
       .def_readwrite("warm_start", &SceneSettings::warmStart,
                      "Newton stage solves of rigid bodies start from the motion's prediction "
                      "(the last step's acceleration continued). Default True.")
+      .def_readwrite("closed_form_free_stages", &SceneSettings::closedFormFreeStages,
+                     "A Newton stage with no contact sample active at the minimizer of inertia "
+                     "and gravity is solved in closed form (0 Newton iterations). Default True.")
       .def_property(
           "stage_solver", [](const SceneSettings& s) { return std::string(ToString(s.stageSolver)); },
           [](SceneSettings& s, const std::string& name) {

@@ -72,6 +72,9 @@ def test_bad_values_raise_value_error_naming_the_field_and_rule():
     assert w.warm_start is True
     w.warm_start = False
     assert w.warm_start is False
+    assert w.closed_form_free_stages is True
+    w.closed_form_free_stages = False
+    assert w.closed_form_free_stages is False
     with pytest.raises(ValueError, match="no actor named"):
         sd.Scene().actor("nobody")
 
@@ -82,6 +85,7 @@ def test_solver_failure_raises_runtime_error():
     s.solver.absolute_tolerance = 0.0
     s.solver.relative_tolerance = 0.0
     s.solver.step_tolerance = 0.0
+    s.closed_form_free_stages = False  # a free ball's stage would need no Newton iteration
     scene = sd.Scene(s)
     d = sd.RigidActorDesc("ball", sd.RigidShape.sphere(0.1))
     d.mass = 1.0

@@ -95,6 +95,15 @@ TEST_CASE("scene file: each defect gives one error with its JSON path", "[scenes
   REQUIRE(LoadSceneText(Replace(kGood, R"("duration": 0.01})", R"("duration": 0.01, "warm_start": false})"),
                         ".", &cold, &e));
   CHECK_FALSE(cold.scene->Settings().warmStart);
+  CHECK(cold.scene->Settings().closedFormFreeStages);
+  SceneFile newton;
+  REQUIRE(LoadSceneText(Replace(kGood, R"("duration": 0.01})",
+                                R"("duration": 0.01, "closed_form_free_stages": false})"),
+                        ".", &newton, &e));
+  CHECK_FALSE(newton.scene->Settings().closedFormFreeStages);
+  CHECK(LoadError(Replace(kGood, R"("duration": 0.01})",
+                          R"("duration": 0.01, "closed_form_free_stages": 1})")) ==
+        "settings.closed_form_free_stages: must be true or false, got number");
 }
 
 TEST_CASE("command line: bad scene files exit with code 2", "[scenes][cli]") {
