@@ -19,6 +19,9 @@
 namespace superdex {
 namespace {
 
+// Whether a stage's contact statistics show an active sample (penalty or dissipation).
+bool InContact(const ContactStats& c) { return c.activeSamples > 0 || c.dissipativeSamples > 0; }
+
 // a·x + b·y over every field (poses as matrices: the result's R need not be a rotation).
 RigidBodyState Affine(double a, const RigidBodyState& x, double b, const RigidBodyState& y) {
   RigidBodyState s;
@@ -376,8 +379,11 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
     return st;
   }
   SolverStats st;
+  // Tried where the last stage had no active contact sample: where it had, contact usually
+  // persists, and the check (a value-only contact evaluation) would cost 10 % of a sliding box's
+  // run for nothing. A stage that leaves contact is solved by Newton, the next one tried again.
   if (settings_.closedFormFreeStages && settings_.stageSolver == StageSolverKind::Newton &&
-      softModels_.empty() && tapeMode_ == TapeMode::Off &&
+      softModels_.empty() && tapeMode_ == TapeMode::Off && !lastStageInContact_ &&
       FreeStage(targets, dissipation, poses, &st, contact)) {
     lastPotentialIterations_ = 0;  // a local stage: the next warm start may try the exact Hessian
     return st;
@@ -502,6 +508,7 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
                        "normals" + (outcome.status == StageStatus::Converged ? "" : ": " + outcome.Message());
           st.fallback = true;
           *contact = explicitContact;
+          lastStageInContact_ = InContact(*contact);
           if (tapeMode_ == TapeMode::Record) RecordStage(targets, potential, *poses, soft, softX);
           return st;
         }
@@ -515,6 +522,7 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
       break;
   }
   *contact = problem.LastContactStats();
+  lastStageInContact_ = InContact(*contact);
   if (tapeMode_ == TapeMode::Record) RecordStage(targets, dissipation, *poses, soft, softX);
   return st;
 }

@@ -281,10 +281,12 @@ class Scene {
     int explicitFirstStages = 0;
     int explicitFirstRun = kExplicitFirstStages;
     int lastPotentialIterations = kNoLocalStage;
+    bool lastStageInContact = false;
   };
   Snapshot Save() const {
     return {states_, softStates_, history_, softHistory_, historyTimes_, time_,
-            explicitFirstStages_, explicitFirstRun_, lastPotentialIterations_};
+            explicitFirstStages_, explicitFirstRun_, lastPotentialIterations_,
+            lastStageInContact_};
   }
   void Restore(const Snapshot& s) {
     states_ = s.states;
@@ -296,6 +298,7 @@ class Scene {
     explicitFirstStages_ = s.explicitFirstStages;
     explicitFirstRun_ = s.explicitFirstRun;
     lastPotentialIterations_ = s.lastPotentialIterations;
+    lastStageInContact_ = s.lastStageInContact;
   }
   int HistoryBlocks() const;
   // The packed-state layout: calls visit(block, offset, actor ref, actor index) for every dynamic
@@ -387,6 +390,9 @@ class Scene {
   static constexpr int kLocalStageIterations = 3;
   static constexpr int kNoLocalStage = 1 << 30;
   int lastPotentialIterations_ = kNoLocalStage;
+  // Whether the last stage solved ended with an active contact sample (the closed-form free
+  // stage is tried only where it did not).
+  bool lastStageInContact_ = false;
   std::vector<int> dofOffset_;
   int numDofs_ = 0;
   ContactPipeline pipeline_;
