@@ -553,6 +553,7 @@ bool Scene::FreeStage(const StageTargets& targets, const StageDissipation& dissi
   *stats = SolverStats();
   stats->status = StageStatus::Converged;
   stats->passed.what = "closed-form free stage (no active contact sample)";
+  stats->closedForm = true;
   return true;
 }
 
@@ -649,6 +650,7 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
     ++rep.stages;
     rep.newtonIterations += st.iterations;
     rep.lineSearchSteps += st.lineSearchSteps;
+    if (st.closedForm) ++rep.freeStages;
     if (st.fallback) {
       ++rep.fallbacks;
       if (rep.fallbackMessage.empty()) rep.fallbackMessage = st.Message();

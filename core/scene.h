@@ -64,6 +64,8 @@ struct StepReport {
   int lineSearchSteps = 0;
   StageStatus status = StageStatus::Converged;  ///< worst over the stages
   std::string message;         ///< the solver's message for a non-converged stage
+  int freeStages = 0;          ///< stages solved in closed form (no active contact sample;
+                               ///< SceneSettings::closedFormFreeStages)
   int fallbacks = 0;           ///< stages re-solved with explicit normals after a failed
                                ///< residual solve (see Scene::SolveStage)
   std::string fallbackMessage; ///< the first such stage's message

@@ -126,6 +126,7 @@ struct SolverStats {
   std::string message;                 ///< why it stopped, in words (empty when `passed` says)
   ConvergenceTest passed;              ///< the convergence test that ended a Newton solve
   bool fallback = false;               ///< set by a caller that re-solved the stage another way
+  bool closedForm = false;             ///< set by a caller that solved it without iterating
   /// Why it stopped: `message`, or the passed convergence test formatted.
   std::string Message() const { return message.empty() && passed.what ? Format(passed) : message; }
 };

@@ -48,6 +48,8 @@ bool RunScene(SceneFile* file, const RunOptions& options, RunSummary* summary, E
     ++s.steps;
     s.newtonIterations += rep.newtonIterations;
     s.fallbacks += rep.fallbacks;
+    s.stages += rep.stages;
+    s.freeStages += rep.freeStages;
     s.krylovIterations += rep.krylovIterations;
     s.krylovFallbacks += rep.krylovFallbacks;
     s.assemblySeconds += rep.assemblySeconds;
@@ -124,6 +126,9 @@ void PrintSummary(const SceneFile& file, const RunSummary& s, std::ostream& os) 
   os << "output            " << s.outputSeconds << " s (trajectory, VTK frames, progress)\n";
   os << "Newton iterations " << double(s.newtonIterations) / std::max(1, s.steps)
      << " per step (max " << s.maxNewtonIterations << ")\n";
+  if (s.freeStages > 0)
+    os << "free stages       " << s.freeStages << " of " << s.stages
+       << " in closed form (no active contact sample: no Newton iteration)\n";
   if (s.krylovIterations > 0)
     os << "Krylov iterations " << double(s.krylovIterations) / std::max(1L, s.newtonIterations)
        << " per Newton iteration (" << s.krylovFallbacks << " solves fell back to direct)\n";

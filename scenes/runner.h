@@ -25,6 +25,8 @@ struct RunSummary {
   double outputSeconds = 0.0;  ///< writing trajectory frames and VTK files, and progress calls
   long newtonIterations = 0;
   int fallbacks = 0;  ///< stages re-solved with explicit normals after a failed residual solve
+  long stages = 0;      ///< stages solved, summed over steps
+  long freeStages = 0;  ///< of those, solved in closed form (StepReport::freeStages)
   long krylovIterations = 0;  ///< iterative linear solves: their iterations, summed
   long krylovFallbacks = 0;   ///< iterative linear solves that fell back to the direct solve
   double assemblySeconds = 0.0, factorizationSeconds = 0.0, lineSearchSeconds = 0.0;

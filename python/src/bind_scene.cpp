@@ -313,6 +313,8 @@ void BindScene(py::module_& m) {
       .def_readonly("dt", &StepReport::dt)
       .def_readonly("stages", &StepReport::stages)
       .def_readonly("newton_iterations", &StepReport::newtonIterations)
+      .def_readonly("free_stages", &StepReport::freeStages,
+                    "Stages solved in closed form (no active contact sample).")
       .def_property_readonly("status", [](const StepReport& r) { return ToString(r.status); })
       .def_readonly("message", &StepReport::message)
       .def_property_readonly("active_samples", [](const StepReport& r) { return r.contact.activeSamples; })

@@ -95,6 +95,19 @@ def test_solver_failure_raises_runtime_error():
         scene.step(0.01)
     report = scene.step(0.01, check=False)
     assert report.status == "Stopped"
+    assert report.free_stages == 0
+
+
+def test_free_flight_is_solved_in_closed_form():
+    scene = sd.Scene(sd.SceneSettings())
+    d = sd.RigidActorDesc("ball", sd.RigidShape.sphere(0.1))
+    d.mass = 1.0
+    d.angular_velocity = [0.0, 3.0, 1.0]
+    scene.add_rigid_actor(d)
+    report = scene.step(0.01)
+    assert report.status == "Converged"
+    assert report.newton_iterations == 0
+    assert report.free_stages == report.stages == 1
 
 
 def test_hunt_crossley_helpers_are_inverse():
