@@ -535,6 +535,8 @@ bool Scene::FreeStage(const StageTargets& targets, const StageDissipation& dissi
     if (dofOffset_[i] < 0) continue;
     const RigidInertiaMinimum x = MinimizeRigidInertia(
         models_[i].secondMoment, targets.pHat[i], targets.RHat[i], targets.dt, settings_.gravity);
+    // A non-finite target (a state gone bad) is left to Newton, which reports it.
+    if (!x.p.allFinite() || !x.R.allFinite()) return false;
     free[i] = {x.p, x.R};
   }
   // The contact terms as SceneStageProblem evaluates them there (value only): each pair adds its
