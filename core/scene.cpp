@@ -380,8 +380,8 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
   }
   SolverStats st;
   // Tried where the last stage had no active contact sample: where it had, contact usually
-  // persists, and the check (a value-only contact evaluation) would cost 10 % of a sliding box's
-  // run for nothing. A stage that leaves contact is solved by Newton, the next one tried again.
+  // persists, and the check (a value-only contact evaluation) made a sliding box's run 16 %
+  // longer for nothing. A stage that leaves contact is solved by Newton, the next one tried again.
   if (settings_.closedFormFreeStages && settings_.stageSolver == StageSolverKind::Newton &&
       softModels_.empty() && tapeMode_ == TapeMode::Off && !lastStageInContact_ &&
       FreeStage(targets, dissipation, poses, &st, contact)) {
@@ -541,15 +541,12 @@ bool Scene::FreeStage(const StageTargets& targets, const StageDissipation& dissi
   }
   // The contact terms as SceneStageProblem evaluates them there (value only): each pair adds its
   // value, gradient and residual only through samples it counts active.
-  DissipationContext context;
-  context.dt = targets.dt;
-  context.mode = dissipation.mode;
-  context.fadeFriction = dissipation.fadeFriction;
+  const DissipationContext context = ContextOf(dissipation, targets.dt);
   ContactStats found;
   pipeline_.Evaluate(free, dofOffset_, 0, PsdProjection::None, nullptr, nullptr, nullptr, &found,
                      dissipation.enabled ? &context : nullptr, nullptr,
                      targets.start.empty() ? nullptr : &targets.start);
-  if (found.activeSamples > 0 || found.dissipativeSamples > 0) return false;
+  if (InContact(found)) return false;
   poses->swap(free);
   *contact = found;
   *stats = SolverStats();

@@ -39,16 +39,22 @@ SceneStageProblem::SceneStageProblem(const std::vector<RigidBodyModel>& models,
     softTrial_ = *softX_;
     if (ws_->soft.size() < soft_->targets.size()) ws_->soft.resize(soft_->targets.size());
   }
-  context_.dt = targets_.dt;
-  context_.mode = dissipation_.mode;
-  context_.fadeFriction = dissipation_.fadeFriction;
-  context_.slips = dissipation_.slips;
-  context_.recordSlips = dissipation_.recordSlips;
+  context_ = ContextOf(dissipation_, targets_.dt);
   // Where the linear solves are Krylov by default, the matrices keep a superset pattern while
   // contacts come and go (explicit zeros: the Krylov iterates are the same).
   const bool keepSuperset = numDofs_ >= kAutoIterativeUnknowns;
   ws_->hessianAssembly.SetKeepSuperset(keepSuperset);
   ws_->jacobianAssembly.SetKeepSuperset(keepSuperset);
+}
+
+DissipationContext ContextOf(const StageDissipation& dissipation, double dt) {
+  DissipationContext c;
+  c.dt = dt;
+  c.mode = dissipation.mode;
+  c.fadeFriction = dissipation.fadeFriction;
+  c.slips = dissipation.slips;
+  c.recordSlips = dissipation.recordSlips;
+  return c;
 }
 
 bool SceneStageProblem::IsPotential() const {

@@ -45,6 +45,9 @@ struct SoftStage {
   std::vector<Eigen::VectorXd> x0, xLast;  ///< copies of the targets' x⁰ and x_n (contact view)
 };
 
+/// The pipeline's dissipation data for a stage of step dt [s] (ContactPipeline::Evaluate).
+DissipationContext ContextOf(const StageDissipation& dissipation, double dt);
+
 /// Buffers that one stage hands to the next (no allocation after the first stage of a scene).
 /// Problems that share it must be used one after the other (a solve ends before the next
 /// problem's begins), as the stage solves are.
