@@ -2,10 +2,9 @@
 #include <catch2/catch.hpp>
 #include <algorithm>
 #include <cmath>
-#include <random>
 
 #include "core/scene.h"
-#include "scene_builders.h"
+#include "hard_case_scenes.h"
 
 using namespace superdex;
 
@@ -34,23 +33,10 @@ Outcome Run(Scene& scene, double dt, double duration) {
   return o;
 }
 
-RigidActorDesc Box(const std::string& name, double side, double mass, const Eigen::Vector3d& p) {
-  RigidActorDesc d = test::Cube(1e9, 0.5, 0.0);
-  d.name = name;
-  d.shape.halfExtents = Eigen::Vector3d::Constant(side / 2);
-  d.mass = mass;
-  d.position = p;
-  return d;
-}
-
 }  // namespace
 
 TEST_CASE("hard case: 1000:1 mass ratio, a 1000 kg box on a 1 kg box", "[core][hard]") {
-  Scene scene;
-  Error e;
-  REQUIRE(scene.AddRigidActor(test::StaticGround(), &e).IsValid());
-  REQUIRE(scene.AddRigidActor(Box("light", 0.2, 1.0, {0, 0, 0.1 + 1e-5}), &e).IsValid());
-  REQUIRE(scene.AddRigidActor(Box("heavy", 0.2, 1000.0, {0, 0, 0.3 + 2e-5}), &e).IsValid());
+  Scene scene = test::MassRatioStack();
   const Outcome o = Run(scene, 1e-2, 2.0);
   INFO("max penetration " << o.maxPenetration * 1e3 << " mm, heavy at z = "
                           << scene.State({2}).p.z());
@@ -62,23 +48,9 @@ TEST_CASE("hard case: 1000:1 mass ratio, a 1000 kg box on a 1 kg box", "[core][h
 
 TEST_CASE("hard case: mu = 1 box on a 40 degree incline with V_f = 1e-5 m/s holds",
           "[core][hard][friction]") {
-  const double th = 40.0 * M_PI / 180.0;
-  const Eigen::Vector3d n(std::sin(th), 0, std::cos(th)), down(std::cos(th), 0, -std::sin(th));
-  SceneSettings settings;
-  settings.integrator = IntegrationMethod::BackwardEuler;
-  Scene scene(settings);
-  Error e;
-  REQUIRE(scene.AddRigidActor(test::Ground(n, 1e9, 1.0, 1.0), &e).IsValid());
-  // A flat box (0.3 × 0.3 × 0.1 m): a 0.2 m cube is close to tipping on 40° (it must carry its
-  // load 0.1 tan 40° = 0.084 m downhill of the centre, and its outermost quadrature samples lie
-  // at 0.083 m (2 cells per edge) or 0.092 m (4 cells): measured, it tips over in both cases).
-  RigidActorDesc cube = test::Cube(1e9, 1.0, 1.0);
-  cube.shape.halfExtents = Eigen::Vector3d(0.15, 0.15, 0.05);
-  cube.shape.surfaceResolution = 3;
-  cube.contact.frictionFalloffVel = 1e-5;
-  cube.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(th, Eigen::Vector3d::UnitY()));
-  cube.position = n * (0.05 + 1e-5);
-  REQUIRE(scene.AddRigidActor(cube, &e).IsValid());
+  const double th = test::kSteepInclineAngle;
+  const Eigen::Vector3d down(std::cos(th), 0, -std::sin(th));
+  Scene scene = test::SteepIncline();
   const auto bottom = [&]() -> Eigen::Vector3d {
     return scene.State({1}).p + scene.State({1}).R * Eigen::Vector3d(0, 0, -0.05);
   };
@@ -95,23 +67,14 @@ TEST_CASE("hard case: mu = 1 box on a 40 degree incline with V_f = 1e-5 m/s hold
 
 TEST_CASE("hard case: stiff contact k = 1e11 and a coarse step 1/30 s", "[core][hard]") {
   SECTION("k = 1e11, box resting") {
-    Scene scene;
-    Error e;
-    REQUIRE(scene.AddRigidActor(test::StaticGround(1e11, 0.5), &e).IsValid());
-    RigidActorDesc b = Box("box", 0.2, 1.0, {0, 0, 0.101});
-    b.contact.penaltyCoefficient = 1e11;
-    REQUIRE(scene.AddRigidActor(b, &e).IsValid());
+    Scene scene = test::StiffRestingBox();
     const Outcome o = Run(scene, 5e-3, 1.0);
     CHECK(o.finite);
     CHECK(o.notConverged == 0);
     CHECK(o.maxPenetration < 1e-3);
   }
   SECTION("dt = 1/30 s, a stack of 5 boxes stands") {
-    Scene scene;
-    Error e;
-    REQUIRE(scene.AddRigidActor(test::StaticGround(), &e).IsValid());
-    for (int k = 0; k < 5; ++k)
-      REQUIRE(scene.AddRigidActor(Box("b" + std::to_string(k), 0.2, 1.0, {0, 0, 0.1 + 0.2 * k + 1e-5 * (k + 1)}), &e).IsValid());
+    Scene scene = test::FiveBoxStack();
     const Outcome o = Run(scene, 1.0 / 30, 3.0);
     INFO("top at z = " << scene.State({5}).p.z());
     CHECK(o.finite);
@@ -125,13 +88,7 @@ TEST_CASE("hard case: a box spinning on a plane stops at the friction-torque rat
           "[core][hard][friction]") {
   // Uniform pressure m g / A on the bottom face; sliding friction torque Σ μ (m g / A) w_q |r_q|
   // over the bottom samples (the quadrature's own ∫|r| dA), I = m a²/6.
-  SceneSettings settings;
-  Scene scene(settings);
-  Error e;
-  REQUIRE(scene.AddRigidActor(test::StaticGround(1e9, 0.5), &e).IsValid());
-  RigidActorDesc b = Box("box", 0.2, 1.0, {0, 0, 0.1000165});
-  b.angularVelocity = Eigen::Vector3d(0, 0, 20.0);
-  REQUIRE(scene.AddRigidActor(b, &e).IsValid());
+  Scene scene = test::SpinningBox();
   double integral = 0.0;  // Σ w |r| over the bottom face
   for (const SurfaceSample& s : scene.Model({1}).samples)
     if (s.normal.z() < -0.5) integral += s.weight * s.X.head<2>().norm();
@@ -155,23 +112,7 @@ TEST_CASE("hard case: a 20 m/s sphere does not tunnel through a 1 cm static plat
   // must also be able to absorb the 200 J within half the plate (beyond the mid-plane the box
   // SDF pushes towards the far face): with the default k = 1e9 Pa/m the work over 5 mm is about
   // ½ k d (π 2 r d) d ≈ 20 J and the sphere tunnels (measured); k = 1e11 stops it.
-  Scene scene;
-  Error e;
-  RigidActorDesc plate;
-  plate.name = "plate";
-  plate.dynamic = false;
-  plate.shape.kind = RigidShapeKind::Box;
-  plate.shape.halfExtents = Eigen::Vector3d(0.5, 0.5, 0.005);
-  REQUIRE(scene.AddRigidActor(plate, &e).IsValid());
-  RigidActorDesc ball;
-  ball.name = "ball";
-  ball.shape.radius = 0.05;
-  ball.shape.surfaceResolution = 3;
-  ball.mass = 1.0;
-  ball.position = Eigen::Vector3d(0, 0, 0.005 + 0.05 + 0.01);
-  ball.linearVelocity = Eigen::Vector3d(0, 0, -20.0);
-  ball.contact.penaltyCoefficient = 1e11;  // k of a static collider's pair: the colliding actor's
-  REQUIRE(scene.AddRigidActor(ball, &e).IsValid());
+  Scene scene = test::SphereAtPlate();
   const Outcome o = Run(scene, 1e-4, 0.05);
   INFO("ball at z = " << scene.State({1}).p.z() << ", v_z = " << scene.State({1}).v.z()
                       << ", max penetration " << o.maxPenetration * 1e3 << " mm, "
@@ -189,18 +130,7 @@ TEST_CASE("hard case: a 20 m/s sphere does not tunnel through a 1 cm static plat
 TEST_CASE("hard case: a 105-box pyramid stands for 5 s at dt = 1/100 s", "[core][hard]") {
   // 14 rows (14 boxes at the base, 1 at the top) of 0.2 m, 1 kg boxes, 1 mm gaps within a row:
   // the issue's "100-box pyramid". Same layout as scenes/data/pyramid.json.
-  Scene scene;
-  Error e;
-  REQUIRE(scene.AddRigidActor(test::StaticGround(), &e).IsValid());
-  const int rows = 14;
-  for (int r = 0; r < rows; ++r) {
-    const int n = rows - r;
-    for (int k = 0; k < n; ++k) {
-      const Eigen::Vector3d p(0.201 * (k - 0.5 * (n - 1)), 0.0, 0.1 + 0.2 * r);
-      REQUIRE(scene.AddRigidActor(Box("b" + std::to_string(r) + "_" + std::to_string(k), 0.2,
-                                      1.0, p), &e).IsValid());
-    }
-  }
+  Scene scene = test::BoxPyramid();
   REQUIRE(scene.NumActors() == 106);
   const ActorHandle top{105};
   const Outcome o = Run(scene, 1e-2, 5.0);
@@ -224,39 +154,7 @@ TEST_CASE("hard case: a 160-sphere column falling at dt = 1/50 s neither stalls 
   // before the trust region of SceneStageProblem::TrustStep (measured; 3.9 mm after).
   for (const int mode : {0, 1}) {
     DYNAMIC_SECTION(test::kModeNames[mode]) {
-      SceneSettings settings;
-      settings.eval = test::EvalParamsForMode(mode);
-      Scene scene(settings);
-      Error e;
-      auto slab = [&](const std::string& name, const Eigen::Vector3d& size,
-                      const Eigen::Vector3d& p) {
-        RigidActorDesc d;
-        d.name = name;
-        d.dynamic = false;
-        d.shape.kind = RigidShapeKind::Box;
-        d.shape.halfExtents = 0.5 * size;
-        d.position = p;
-        REQUIRE(scene.AddRigidActor(d, &e).IsValid());
-      };
-      slab("floor", {1.4, 1.4, 0.1}, {0, 0, -0.05});
-      slab("wall_x0", {0.1, 1.4, 1.2}, {-0.7, 0, 0.6});
-      slab("wall_x1", {0.1, 1.4, 1.2}, {0.7, 0, 0.6});
-      slab("wall_y0", {1.3, 0.1, 1.2}, {0, -0.7, 0.6});
-      slab("wall_y1", {1.3, 0.1, 1.2}, {0, 0.7, 0.6});
-      std::mt19937 rng(7);
-      std::uniform_real_distribution<double> u(-1.0, 1.0);
-      int k = 0;
-      for (int z = 0; z < 10; ++z)
-        for (int y = 0; y < 4; ++y)
-          for (int x = 0; x < 4; ++x, ++k) {
-            RigidActorDesc d;
-            d.name = "ball_" + std::to_string(k);
-            d.shape.radius = 0.05;
-            d.shape.surfaceResolution = 2;
-            d.position = Eigen::Vector3d(-0.165 + 0.11 * x, -0.165 + 0.11 * y, 0.1 + 0.11 * z) +
-                         0.004 * Eigen::Vector3d(u(rng), u(rng), u(rng));
-            REQUIRE(scene.AddRigidActor(d, &e).IsValid());
-          }
+      Scene scene = test::SphereColumn(mode);
       const Outcome o = Run(scene, 0.02, 0.24);
       double inside = 0.0;  // largest |x|, |y| of a centre, and the lowest centre
       double lowest = INFINITY;
