@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "core/integrators.h"
-#include "core/rigid_math.h"
+#include "core/dynamics/integrators.h"
+#include "core/model/rigid_math.h"
 #include "scenes/scene_file.h"
 
 using namespace superdex;

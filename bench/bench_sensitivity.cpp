@@ -3,16 +3,16 @@
 // For 1000-step trajectories (the thrown box of scenes/data/fit_throw.json at dt = 4e-4 s, a
 // 2 × 2 × 2-cell soft cube dropped on the ground at dt = 1e-3 s, and 16 boxes sliding on the
 // ground at dt = 2e-3 s), prints the wall time of the plain simulation, of the simulation carrying
-// dS/dθ for P parameters (forward sensitivities, core/sensitivity.h), and of the gradient of a
-// loss over the whole trajectory for all P at once (adjoint, core/adjoint.h: the run with its
+// dS/dθ for P parameters (forward sensitivities, core/sensitivity/sensitivity.h), and of the gradient of a
+// loss over the whole trajectory for all P at once (adjoint, core/sensitivity/adjoint.h: the run with its
 // checkpoints plus the backward pass), with the ratio to the plain simulation.
 #include <chrono>
 #include <cstdio>
 #include <string>
 #include <vector>
 
-#include "core/adjoint.h"
-#include "core/sensitivity.h"
+#include "core/sensitivity/adjoint.h"
+#include "core/sensitivity/sensitivity.h"
 #include "scenes/scene_file.h"
 
 using namespace superdex;

@@ -7,10 +7,10 @@
 #include <cmath>
 #include <sstream>
 
-#include "core/integrators.h"
-#include "core/rigid_math.h"
-#include "core/scene_stage.h"
-#include "core/warm_start.h"
+#include "core/dynamics/integrators.h"
+#include "core/model/rigid_math.h"
+#include "core/dynamics/scene_stage.h"
+#include "core/dynamics/warm_start.h"
 #include "energies/rigid_inertia.h"
 #include "optim/ceres_stage_solver.h"
 #include "optim/ipopt_stage_solver.h"
@@ -390,7 +390,7 @@ SolverStats Scene::SolveStage(double dt, const std::vector<RigidBodyState>& star
   }
   SceneStageProblem problem(models_, dofOffset_, numDofs_, targets, settings_.gravity, &pipeline_,
                             poses, dissipation, soft, softX, &workspace_);
-  // The warm start (core/warm_start.h; Newton only: Ipopt and Ceres check the cold stage). Kept
+  // The warm start (core/dynamics/warm_start.h; Newton only: Ipopt and Ceres check the cold stage). Kept
   // cold: (1) scenes with soft actors: soft nodes are not predicted, and a soft collider's stages
   // are only piecewise smooth (its deformed grid SDF's gradient jumps across tet and cell faces),
   // so that at tolerances near round-off Newton ends in the iteration cap from some starts (cold or
@@ -721,7 +721,7 @@ bool Scene::Step(double h, StepReport* report, Error* error) {
       next[i].Rdot = (poses[i].R - start[i].R) / dt;
     }
   } else {
-    // DIRK stages in material-point form, with the three rotation rules of core/integrators.h.
+    // DIRK stages in material-point form, with the three rotation rules of core/dynamics/integrators.h.
     const DirkTableau& T = TableauOf(bdf3Startup ? IntegrationMethod::DIRK33 : method);
     // Every entry is written at its stage before it is read.
     std::vector<std::vector<RigidBodyState>>& VK = buffers_.stageSlopes;

@@ -7,13 +7,13 @@
 #include <unordered_map>
 #include <vector>
 
-#include "core/contact_pipeline.h"
-#include "core/enums.h"
-#include "core/error.h"
-#include "core/eval_params.h"
-#include "core/rigid_body.h"
-#include "core/scene_stage.h"
-#include "core/soft_body.h"
+#include "core/contact/contact_pipeline.h"
+#include "core/model/enums.h"
+#include "core/model/error.h"
+#include "core/model/eval_params.h"
+#include "core/model/rigid_body.h"
+#include "core/dynamics/scene_stage.h"
+#include "core/model/soft_body.h"
 #include "optim/linear_solver.h"
 #include "optim/newton_solver.h"
 
@@ -40,7 +40,7 @@ struct SceneSettings {
   ExperimentalEvalParams eval;
   /// Newton stage solves of rigid bodies start from the motion's prediction (the last step's
   /// acceleration continued, each body's move limited by the contact step limit;
-  /// core/warm_start.h). Changes the path to each stage's solution, not the solution or the
+  /// core/dynamics/warm_start.h). Changes the path to each stage's solution, not the solution or the
   /// convergence tests.
   bool warmStart = true;
   /// A Newton stage of rigid bodies whose contact terms all vanish at the minimizer of inertia and
@@ -96,7 +96,7 @@ struct EnergyReport {
   double Total() const { return kinetic + gravity + contact + elastic; }
 };
 
-/// One step's stages as core/sensitivity.h needs them: each stage's accepted solution, the
+/// One step's stages as core/sensitivity/sensitivity.h needs them: each stage's accepted solution, the
 /// dissipation mode it was solved in, the stage Jacobian ∂r/∂δ there and its LU factors.
 struct StageTapeEntry {
   std::vector<RigidPose> poses;
@@ -105,11 +105,11 @@ struct StageTapeEntry {
   Eigen::SparseMatrix<double> jacobian;
   std::unique_ptr<UnsymmetricSolver> lu = std::make_unique<UnsymmetricSolver>();
   bool factored = false;
-  /// Inject mode (core/step_linearization.h): the stage's solution is taken as poses ⊕ inject
+  /// Inject mode (core/sensitivity/step_linearization.h): the stage's solution is taken as poses ⊕ inject
   /// (the stage's chart, δ = [δp, δθ] per dynamic body, δx per free soft node; empty = 0), and
   /// the stage residual there, with the inputs of the perturbed step, is kept in `residual`.
   Eigen::VectorXd inject, residual;
-  /// The dissipative samples' slips at the solution (core/slip_tape.h): the replays and injected
+  /// The dissipative samples' slips at the solution (core/contact/slip_tape.h): the replays and injected
   /// runs evaluate the friction force about them.
   StageSlips slips;
 };
@@ -130,7 +130,7 @@ class Scene {
   ActorHandle AddSoftActor(const SoftActorDesc& desc, Error* error,
                            ActorHandle parent = ActorHandle());
 
-  // --- Contact filtering (spec: "Contact Filtering"; core/contact_filter.h). Each returns false
+  // --- Contact filtering (spec: "Contact Filtering"; core/contact/contact_filter.h). Each returns false
   // and fills *error for an invalid handle.
   /// Actor::SetContactLayer: an arbitrary string.
   bool SetContactLayer(ActorHandle actor, const std::string& layer, Error* error);
@@ -209,7 +209,7 @@ class Scene {
   ActorHandle FindActor(const std::string& name) const;
   const std::string& ActorName(ActorHandle a) const;
 
-  // --- The dynamic state as one vector (core/sensitivity.h differentiates the step map on it).
+  // --- The dynamic state as one vector (core/sensitivity/sensitivity.h differentiates the step map on it).
   // Per dynamic rigid actor p, R (column-major), v, Ṙ (24 entries), per soft actor x then v
   // (6 per node), in creation order; then, for the multistep methods, the same blocks for each
   // state of the history a step reads (zeros where the history is not filled yet).
@@ -241,7 +241,7 @@ class Scene {
   // *poses; on return *poses holds the stage solution.
   // `last` is the last configuration the bodies occupied (the dissipation geometry).
   // `predictTime` > 0 is the stage's time after t_n [s]: the Newton solvers then start from the
-  // predicted poses, limited by the contact step limit (core/warm_start.h).
+  // predicted poses, limited by the contact step limit (core/dynamics/warm_start.h).
   SolverStats SolveStage(double dt, const std::vector<RigidBodyState>& start,
                          const std::vector<RigidPose>& last, std::vector<RigidPose>* poses,
                          ContactStats* contact, const SoftStage* soft = nullptr,

@@ -1,9 +1,9 @@
 // Scene: state and parameter access beyond stepping — actor lookup, replacing states and
-// parameters, and the dynamic state as one vector (the layout core/sensitivity.h differentiates).
+// parameters, and the dynamic state as one vector (the layout core/sensitivity/sensitivity.h differentiates).
 #include <algorithm>
 #include <sstream>
 
-#include "core/integrators.h"
+#include "core/dynamics/integrators.h"
 #include "core/scene.h"
 #include "energies/stable_neo_hookean.h"
 

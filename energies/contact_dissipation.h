@@ -54,7 +54,7 @@ enum class DissipationHessian {
   Isotropic,
 };
 
-/// A recorded slip of one sample (sensitivities, core/slip_tape.h): the direction t* = V_t/V_t of
+/// A recorded slip of one sample (sensitivities, core/contact/slip_tape.h): the direction t* = V_t/V_t of
 /// its tangential velocity at a reference point (0 where V_t = 0) and whether V_t >= V_f there.
 ///
 /// ∂R/∂V_rel is only C¹ in V_rel: the Coulomb slope ρ'(V_t)/V_t = 2/V_f − V_t/V_f² (V_t < V_f)

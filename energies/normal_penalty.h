@@ -6,7 +6,7 @@
 
 namespace superdex {
 
-/// Parameters of one contact pair after combination (core/contact_params.h).
+/// Parameters of one contact pair after combination (core/model/contact_params.h).
 struct PenaltyParams {
   double k = 1e9;         ///< penalty coefficient k [Pa/m]
   double eps = 0.005;     ///< smoothing half-width ε [m]

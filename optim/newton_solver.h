@@ -27,8 +27,8 @@
 //      SolverStats::finalValue stays f(s).
 //   4. Trust region and step limit: d' = d shortened blockwise by problem.TrustStep (a rigid body's
 //      correction moves no point within its radius more than a quarter of that radius,
-//      core/scene_stage.h), then by problem.LimitStep (contact: no sample's depth more than
-//      doubles in one step, core/rigid_contact.h). d' is used in place of d; where a part's d'
+//      core/dynamics/scene_stage.h), then by problem.LimitStep (contact: no sample's depth more than
+//      doubles in one step, core/contact/rigid_contact.h). d' is used in place of d; where a part's d'
 //      is no descent direction for its share (the blockwise shortening broke the coupled Newton
 //      direction of bodies in contact), that part takes d_P scaled by the smallest fraction its
 //      dofs were shortened to, and so does the whole step if g·d' >= 0 remains (never the

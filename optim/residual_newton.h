@@ -16,7 +16,7 @@
 //      evaluation (SolverStats then reports ‖r‖ at s ⊕ d; unchecked, at s). Measured on the
 //      sliding incline (default mode, BDF2, Δt = 0.1): that check was 13 % of the stage solve.
 //   4. Trust region: where problem.TrustStep shortens d (a rigid body's correction bounded by a
-//      quarter of its radius, core/scene_stage.h), the line search starts each part at α_P = the
+//      quarter of its radius, core/dynamics/scene_stage.h), the line search starts each part at α_P = the
 //      smallest fraction any of its dofs was shortened to (the whole step without parts), along
 //      Newton's own direction, so the merit test below stays exact. Measured on the 1000-sphere
 //      pile (default mode, 0.3 s): Δt = 2e-2 32.7 → 29.9 iterations per step, stages re-solved

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "core/adjoint.h"
+#include "core/sensitivity/adjoint.h"
 
 namespace superdex {
 namespace {

@@ -3,18 +3,18 @@
 //
 //   minimize ½ Σ_k Σ_a ‖c_a(t_k; θ) − ĉ_a(t_k)‖²     [m²]
 //
-// over the parameters θ (names as in core/sensitivity.h, "ACTOR.NAME"), with c_a the simulated
+// over the parameters θ (names as in core/sensitivity/sensitivity.h, "ACTOR.NAME"), with c_a the simulated
 // centre of mass of actor a at the observed times t_k (which must fall on the step grid). Two
 // methods: Levenberg–Marquardt with the residuals' Jacobian from the forward sensitivities
-// (core/sensitivity.h; its cost grows with each parameter by a replay of every step), or L-BFGS
-// with the cost's gradient from one adjoint pass (core/adjoint.h; for many parameters).
+// (core/sensitivity/sensitivity.h; its cost grows with each parameter by a replay of every step), or L-BFGS
+// with the cost's gradient from one adjoint pass (core/sensitivity/adjoint.h; for many parameters).
 #pragma once
 
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "core/sensitivity.h"
+#include "core/sensitivity/sensitivity.h"
 #include "scenes/scene_file.h"
 
 namespace superdex {

@@ -6,8 +6,8 @@
 
 #include <Eigen/Geometry>
 
-#include "core/eval_params.h"
-#include "core/rigid_body.h"
+#include "core/model/eval_params.h"
+#include "core/model/rigid_body.h"
 
 namespace superdex::test {
 

@@ -1,5 +1,5 @@
-// Trajectory sensitivities, adjoint gradients and parameter fitting (core/sensitivity.h,
-// core/adjoint.h, scenes/fit.h).
+// Trajectory sensitivities, adjoint gradients and parameter fitting (core/sensitivity/sensitivity.h,
+// core/sensitivity/adjoint.h, scenes/fit.h).
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "bindings.h"
-#include "core/sensitivity.h"
+#include "core/sensitivity/sensitivity.h"
 #include "scenes/fit.h"
 
 namespace superdex::python {
@@ -83,7 +83,7 @@ ObservedTrajectory Observed(const SceneFile& file, const std::optional<std::stri
 void BindFit(py::module_& m) {
   py::class_<PySensitivity>(
       m, "ForwardSensitivity",
-      "Forward sensitivities dS/dθ carried along a simulation (core/sensitivity.h): each stage\n"
+      "Forward sensitivities dS/dθ carried along a simulation (core/sensitivity/sensitivity.h): each stage\n"
       "is differentiated by the implicit function theorem with its Jacobian factored at the\n"
       "solution; the partials of the stage residual are Richardson-extrapolated differences.\n"
       "Parameters are 'ACTOR.NAME' strings (see superdex.fit). Steps the scene it is given.")

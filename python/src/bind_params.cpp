@@ -5,18 +5,18 @@
 #include <sstream>
 
 #include "bindings.h"
-#include "core/collider_params.h"
-#include "core/contact_params.h"
-#include "core/enums.h"
-#include "core/eval_params.h"
-#include "core/soft_body.h"
+#include "core/model/collider_params.h"
+#include "core/model/contact_params.h"
+#include "core/model/enums.h"
+#include "core/model/eval_params.h"
+#include "core/model/soft_body.h"
 #include "energies/contact_dissipation.h"
 #include "energies/stable_neo_hookean.h"
 
 namespace superdex::python {
 namespace {
 
-// The rules BuildSoftBody applies to a soft actor's material (core/soft_body.cpp), so that a bad
+// The rules BuildSoftBody applies to a soft actor's material (core/model/soft_body.cpp), so that a bad
 // value is refused where it is assigned, with the same message.
 std::string Validate(const SoftMaterial& m) {
   std::string e = ValidateElasticMaterial(m.youngsModulus, m.poissonRatio, m.density);

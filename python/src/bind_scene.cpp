@@ -5,7 +5,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.h"
-#include "core/rigid_math.h"
+#include "core/model/rigid_math.h"
 #include "core/scene.h"
 #include "geometry/mesh_io.h"
 #include "geometry/triangle_mesh.h"

@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "bindings.h"
-#include "core/soft_body.h"
+#include "core/model/soft_body.h"
 #include "geometry/tet_mesh.h"
 #include "geometry/triangle_mesh.h"
 

@@ -1,6 +1,6 @@
-// Adjoint gradients (core/adjoint.h) and the step linearization they run on
-// (core/step_linearization.h): the linearization against the recorded stage Jacobians and its
-// own transpose, the adjoint gradient against the forward sensitivities (core/sensitivity.h,
+// Adjoint gradients (core/sensitivity/adjoint.h) and the step linearization they run on
+// (core/sensitivity/step_linearization.h): the linearization against the recorded stage Jacobians and its
+// own transpose, the adjoint gradient against the forward sensitivities (core/sensitivity/sensitivity.h,
 // which tests/core/test_sensitivity.cpp checks against trajectory differences) and against
 // trajectory differences directly.
 #include <catch2/catch.hpp>
@@ -8,8 +8,8 @@
 #include <random>
 #include <tbb/global_control.h>
 
-#include "core/adjoint.h"
-#include "core/step_linearization.h"
+#include "core/sensitivity/adjoint.h"
+#include "core/sensitivity/step_linearization.h"
 #include "sensitivity_scenes.h"
 
 using namespace superdex;
@@ -230,7 +230,7 @@ TEST_CASE("Adjoint gradients of four frictionless boxes match trajectory differe
 TEST_CASE("Adjoint gradients of four boxes with friction match the forward sensitivities",
           "[adjoint]") {
   // With Coulomb friction the resting contacts sit at V_t ≈ 0, where the friction force is only
-  // C¹; both difference schemes evaluate it about the recorded slips (core/slip_tape.h), and the
+  // C¹; both difference schemes evaluate it about the recorded slips (core/contact/slip_tape.h), and the
   // test below checks both against whole-simulation differences under every integrator.
   // Measured disagreement here: at most 3.9e-4 (d's viscous friction coefficient, DIRK22) and
   // 3.4e-4 (c's spin), both small remainders of this centre-of-mass loss (−0.0026 against
@@ -367,7 +367,7 @@ TEST_CASE("Sensitivities of four boxes with friction match trajectory difference
   // The spinning box c drags the resting box d on top of it until d sticks to it: sticking and
   // resting samples at V_t ≈ 0, where the friction force is only C¹. Both derivative schemes
   // difference the stage residual about the recorded solution with each sample's recorded slip
-  // (core/slip_tape.h); without it (the exact force differenced across the kink) the errors
+  // (core/contact/slip_tape.h); without it (the exact force differenced across the kink) the errors
   // against whole-simulation differences were up to 2.6e-2 (forward, SymplecticDIRK22, c's
   // velocity), 1.6e-2 (adjoint, DIRK33) and 3.5e-3 (forward, BackwardEuler). Measured with it:
   // at most 2.0e-4 (forward) and 1.4e-4 (adjoint), where the differences themselves move by up

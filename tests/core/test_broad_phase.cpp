@@ -1,11 +1,11 @@
-// The broad phase (core/broad_phase.h) against every pair tested directly: finite, infinite
+// The broad phase (core/contact/broad_phase.h) against every pair tested directly: finite, infinite
 // (planes, half-spaces), empty and NaN boxes, on both sides of the direct-test limit.
 #include <catch2/catch.hpp>
 
 #include <cmath>
 #include <random>
 
-#include "core/broad_phase.h"
+#include "core/contact/broad_phase.h"
 
 using namespace superdex;
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "core/rigid_math.h"
+#include "core/model/rigid_math.h"
 #include "core/scene.h"
 #include "energies/normal_penalty.h"
 #include "scene_builders.h"

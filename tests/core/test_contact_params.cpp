@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "core/contact_params.h"
+#include "core/model/contact_params.h"
 
 using namespace superdex;
 

@@ -4,7 +4,7 @@
 #include <catch2/catch.hpp>
 #include <random>
 
-#include "core/dissipation_kernels.h"
+#include "core/contact/dissipation_kernels.h"
 
 using namespace superdex;
 using namespace superdex::dissipation_kernels;

@@ -4,8 +4,8 @@
 // a stage where contact (penalty or retained dissipation) acts must still go to Newton.
 #include <catch2/catch.hpp>
 
-#include "core/integrators.h"
-#include "core/rigid_math.h"
+#include "core/dynamics/integrators.h"
+#include "core/model/rigid_math.h"
 #include "core/scene.h"
 #include "scene_builders.h"
 

@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "core/scene.h"
-#include "core/integrators.h"
+#include "core/dynamics/integrators.h"
 #include "energies/penalty_ramp.h"
 #include "scene_builders.h"
 

@@ -17,7 +17,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/integrators.h"
+#include "core/dynamics/integrators.h"
 #include "core/scene.h"
 
 using namespace superdex;

@@ -4,8 +4,8 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "core/integrators.h"
-#include "core/rigid_math.h"
+#include "core/dynamics/integrators.h"
+#include "core/model/rigid_math.h"
 #include "core/scene.h"
 
 using namespace superdex;

@@ -1,8 +1,8 @@
 #include <catch2/catch.hpp>
 #include <random>
 
-#include "core/rigid_contact.h"
-#include "core/rigid_math.h"
+#include "core/contact/rigid_contact.h"
+#include "core/model/rigid_math.h"
 #include "core/scene.h"
 #include "derivative_check.h"
 

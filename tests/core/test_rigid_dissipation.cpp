@@ -1,8 +1,8 @@
 #include <catch2/catch.hpp>
 #include <random>
 
-#include "core/rigid_dissipation.h"
-#include "core/rigid_math.h"
+#include "core/contact/rigid_dissipation.h"
+#include "core/model/rigid_math.h"
 #include "derivative_check.h"
 
 using namespace superdex;

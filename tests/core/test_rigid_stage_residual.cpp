@@ -3,8 +3,8 @@
 #include <cmath>
 #include <cstring>
 
-#include "core/rigid_math.h"
-#include "core/scene_stage.h"
+#include "core/model/rigid_math.h"
+#include "core/dynamics/scene_stage.h"
 #include "optim/residual_newton.h"
 #include "derivative_check.h"
 

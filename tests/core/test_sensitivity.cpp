@@ -1,11 +1,11 @@
-// Trajectory sensitivities (core/sensitivity.h) against central finite differences of whole
+// Trajectory sensitivities (core/sensitivity/sensitivity.h) against central finite differences of whole
 // simulations: a sliding box, a bouncing box and a soft cube, across integrators and dissipation
 // modes. Tolerance: 1e-5 relative to the largest entry of the compared derivative.
 #include <catch2/catch.hpp>
 #include <functional>
 #include <tbb/global_control.h>
 
-#include "core/sensitivity.h"
+#include "core/sensitivity/sensitivity.h"
 #include "sensitivity_scenes.h"
 
 using namespace superdex;
@@ -93,7 +93,7 @@ TEST_CASE("Sensitivities of a sliding box match trajectory differences", "[sensi
   }
   SECTION("DIRK22, implicit load, slides to rest") {
     // 200 ms: the box comes to rest, its samples at V_t ≈ 0 where the friction force is only C¹;
-    // the replays evaluate it about the recorded slips (core/slip_tape.h). Measured: at most
+    // the replays evaluate it about the recorded slips (core/contact/slip_tape.h). Measured: at most
     // 2.2e-6 (4.7e-4 off in the velocity direction when the exact force was differenced).
     CheckAgainstTrajectoryDifferences(
         [] { return SlidingBox(IntegrationMethod::DIRK22, DissipationMode::ImplicitLoad); },
@@ -139,7 +139,7 @@ TEST_CASE("Sensitivities of a soft cube sliding to rest match trajectory differe
   // Set down on the ground at 5 cm/s with μ = √(0.5 · 1.2): it stops sliding within about 40 ms
   // while it bounces on its own elastic mode (the centre moves ±2 mm vertically, ±1 cm/s
   // sideways), so its loaded samples cross V_t = 0 and V_f, where the friction force is only C¹;
-  // the replays evaluate it about the recorded slips (core/slip_tape.h). Measured: at
+  // the replays evaluate it about the recorded slips (core/contact/slip_tape.h). Measured: at
   // most 2.6e-7; with the soft pairs' force differenced exactly instead, 1.8e-4 (velocity.x and
   // position.x in both sections).
   const std::vector<Probe> probes = {{"soft.youngs_modulus", 1e-5},

@@ -1,8 +1,8 @@
-// The recorded slips of core/slip_tape.h: lookup by pair and sample, and the three ways a sample's
+// The recorded slips of core/contact/slip_tape.h: lookup by pair and sample, and the three ways a sample's
 // force is evaluated (exact, recorded, about the record).
 #include <catch2/catch.hpp>
 
-#include "core/slip_tape.h"
+#include "core/contact/slip_tape.h"
 
 using namespace superdex;
 

@@ -5,9 +5,9 @@
 #include <Eigen/Eigenvalues>
 #include <random>
 
-#include "core/rigid_math.h"
+#include "core/model/rigid_math.h"
 #include "core/scene.h"
-#include "core/scene_stage.h"
+#include "core/dynamics/scene_stage.h"
 #include "derivative_check.h"
 #include "scene_builders.h"
 

@@ -1,6 +1,6 @@
 // Scene::Step allocates nothing once a step has run: its buffers, the stage problem's workspace
 // and the Newton solvers' workspaces are kept from step to step (core/scene.h StepBuffers,
-// core/scene_stage.h StageWorkspace, optim/newton_solver.h NewtonWorkspace).
+// core/dynamics/scene_stage.h StageWorkspace, optim/newton_solver.h NewtonWorkspace).
 //
 // Counted by interposing glibc's allocation functions in this test executable (operator new and
 // Eigen both end in malloc); elsewhere the test is skipped.
@@ -141,7 +141,7 @@ TEST_CASE("A sphere in free flight keeps its matrix structure and allocates noth
 #endif
   // The shipped drop's ball after its first bounce: a round-off spin, whose rotation-block
   // entries are exact zeros at one stage and round-off at the next. The assembly keeps the
-  // whole rotation block in its pattern (core/scene_stage.cpp), so no stage rebuilds it. (Newton
+  // whole rotation block in its pattern (core/dynamics/scene_stage.cpp), so no stage rebuilds it. (Newton
   // on every stage: with the closed-form free stage a flight stage forms no matrix at all.)
   for (IntegrationMethod method : {IntegrationMethod::BDF2, IntegrationMethod::SymplecticDIRK22}) {
     DYNAMIC_SECTION(ToString(method)) {

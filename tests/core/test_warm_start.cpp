@@ -1,13 +1,13 @@
-// The warm start of stage solves (core/warm_start.h): the prediction, the tangent step, the limited
+// The warm start of stage solves (core/dynamics/warm_start.h): the prediction, the tangent step, the limited
 // move, and on whole scenes the same solutions in fewer Newton iterations.
 #include <catch2/catch.hpp>
 #include <algorithm>
 #include <cmath>
 
-#include "core/integrators.h"
-#include "core/rigid_math.h"
+#include "core/dynamics/integrators.h"
+#include "core/model/rigid_math.h"
 #include "core/scene.h"
-#include "core/warm_start.h"
+#include "core/dynamics/warm_start.h"
 #include "scene_builders.h"
 
 using namespace superdex;

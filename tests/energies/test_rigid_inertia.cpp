@@ -3,7 +3,7 @@
 
 #include <Eigen/LU>
 
-#include "core/rigid_math.h"
+#include "core/model/rigid_math.h"
 #include "derivative_check.h"
 #include "energies/rigid_inertia.h"
 

@@ -139,7 +139,7 @@ TEST_CASE("superdex fit recovers the shipped measurement's parameters", "[fit][c
 TEST_CASE("The adjoint cost gradient matches central differences of the cost", "[fit]") {
   // The gradient Σ_k r_k · dc_k/dθ sums 50 observations whose residuals (1 mm noise, and the
   // guess's error) partly cancel, and the box slides to rest, where the friction force is only
-  // C¹ in the slip velocity (differenced about the recorded slips, core/slip_tape.h). Measured
+  // C¹ in the slip velocity (differenced about the recorded slips, core/contact/slip_tape.h). Measured
   // against differences of the cost (which agree between steps 1e-6 and 1e-5 of θ): adjoint
   // 1e-6 … 5.9e-6 relative (3e-6 … 3.1e-5 when the exact force was differenced, and then the
   // forward sensitivities' Jᵀr, what Levenberg–Marquardt uses, 2e-6 … 1.6e-5).

@@ -1,0 +1,627 @@
+#include "core/contact/contact_pipeline.h"
+
+#include <tbb/parallel_for.h>
+
+#include "core/contact/broad_phase.h"
+#include "energies/psd_projection.h"
+
+namespace superdex {
+namespace {
+
+bool IsColliding(const RigidBodyModel& m) { return !m.samples.empty(); }
+bool IsCollider(const RigidBodyModel& m) { return m.collider.type != ColliderType::None; }
+
+// Below this many tested samples a pair list is evaluated serially.
+constexpr size_t kParallelSampleWork = 20000;
+
+// Runs f(0), ..., f(n − 1): in parallel over TBB's workers when `parallel` and n > 1, else in
+// order. Each f(k) writes only its own result slot, so the outcome does not depend on the threads.
+template <typename F>
+void ForEachPair(size_t n, bool parallel, F&& f) {
+  if (parallel && n > 1) {
+    tbb::parallel_for(size_t(0), n, f);
+  } else {
+    for (size_t k = 0; k < n; ++k) f(k);
+  }
+}
+
+void AppendBlocks(const SmallStencilMatrix& M, const int offs[2], int blocks,
+                  std::vector<DenseBlock6>* out) {
+  for (int bi = 0; bi < blocks; ++bi) {
+    if (offs[bi] < 0) continue;
+    for (int bj = 0; bj < blocks; ++bj) {
+      if (offs[bj] < 0) continue;
+      DenseBlock6& b = out->emplace_back();
+      b.row = offs[bi];
+      b.col = offs[bj];
+      for (int c = 0; c < 6; ++c)
+        for (int r = 0; r < 6; ++r) b.v[6 * c + r] = M(6 * bi + r, 6 * bj + c);
+    }
+  }
+}
+
+/// Adds a soft pair's counts and energies (SoftPairContact or SoftColliderPairContact) to *st;
+/// returns the energy it adds to the stage value (penalty plus dissipation) [J].
+template <typename PairResult>
+double AddPairStats(const PairResult& r, ContactStats* st) {
+  double energy = 0.0;
+  st->minSignedDistance = std::min(st->minSignedDistance, r.minPhi);
+  if (r.activeSamples > 0) {
+    ++st->activePairs;
+    st->activeSamples += r.activeSamples;
+    st->energy += r.penaltyValue;
+    energy += r.penaltyValue;
+  }
+  if (r.dissipativeSamples > 0) {
+    st->dissipativeSamples += r.dissipativeSamples;
+    st->dissipation += r.dissipationValue;
+    st->maxCoulombRatio = std::max(st->maxCoulombRatio, r.maxCoulombRatio);
+    energy += r.dissipationValue;
+  }
+  return energy;
+}
+
+/// The penalty part of a pair's combined parameters.
+PenaltyParams PenaltyOf(const PairContactParams& p) {
+  PenaltyParams pp;
+  pp.k = p.penaltyCoefficient;
+  pp.eps = p.smoothingHalfDistance;
+  pp.delta = p.threshold;
+  return pp;
+}
+
+/// Soft stencils are made of 3-dof blocks at offs[b] (−1: no dofs).
+void AddBlocks3(const StencilVector& g, const int* offs, int blocks, Eigen::VectorXd* out) {
+  for (int b = 0; b < blocks; ++b)
+    if (offs[b] >= 0) out->segment<3>(offs[b]) += g.segment<3>(3 * b);
+}
+
+/// Appends the nonzero entries of H (+ J when given; either may be null) block by block.
+void AppendBlocks3(const StencilMatrix* H, const StencilMatrix* J, const int* offs, int blocks,
+                   std::vector<Eigen::Triplet<double>>* triplets) {
+  for (int bi = 0; bi < blocks; ++bi) {
+    if (offs[bi] < 0) continue;
+    for (int bj = 0; bj < blocks; ++bj) {
+      if (offs[bj] < 0) continue;
+      for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) {
+          double v = 0.0;
+          if (H) v += (*H)(3 * bi + r, 3 * bj + c);
+          if (J) v += (*J)(3 * bi + r, 3 * bj + c);
+          if (v != 0.0) triplets->emplace_back(offs[bi] + r, offs[bj] + c, v);
+        }
+    }
+  }
+}
+
+void AddBlocks(const SmallStencilVector& g, const int offs[2], int blocks, Eigen::VectorXd* out) {
+  for (int bi = 0; bi < blocks; ++bi)
+    if (offs[bi] >= 0) out->segment<6>(offs[bi]) += g.segment<6>(6 * bi);
+}
+
+}  // namespace
+
+void ContactPipeline::Configure(const std::vector<RigidBodyModel>* models,
+                                const ContactFilter* filter,
+                                const std::vector<SoftBodyModel>* softModels,
+                                std::vector<int> rigidActor, std::vector<int> softActor) {
+  models_ = models;
+  filter_ = filter;
+  softModels_ = softModels && !softModels->empty() ? softModels : nullptr;
+  rigidActor_ = std::move(rigidActor);
+  softActor_ = std::move(softActor);
+  softInflation_.clear();
+  if (softModels_)
+    for (const SoftBodyModel& m : *softModels_)
+      softInflation_.push_back(m.collider == ColliderType::Sdf
+                                   ? std::max(0.0, m.contact.penaltyThresholdDefault +
+                                                       m.contact.penaltyThresholdExtraPadding) +
+                                         m.contact.distanceErrorBound
+                                   : 0.0);
+  const size_t n = models->size();
+  inflation_.assign(n, 0.0);
+  for (size_t i = 0; i < n; ++i) {
+    const ContactParams& c = (*models)[i].contact;
+    // A pair is possible when A's samples come within δ of B's shape; δ comes from the collider.
+    inflation_[i] = std::max(0.0, c.penaltyThresholdDefault + c.penaltyThresholdExtraPadding) +
+                    c.distanceErrorBound;
+  }
+}
+
+void ContactPipeline::FindPairs(const std::vector<RigidPose>& poses,
+                                const DissipationContext* dissipation,
+                                const std::vector<RigidStageStart>* stageStart,
+                                const SoftView* soft) {
+  const std::vector<RigidBodyModel>& models = *models_;
+  const size_t n = models.size();
+  const size_t ns = soft && softModels_ ? softModels_->size() : 0;
+  boxes_.resize(n + ns);
+  // Explicit normals retain the stage-start contacts: the boxes sweep from x⁰ to x.
+  const bool sweep = dissipation && dissipation->mode == DissipationMode::ExplicitNormals;
+  for (size_t i = 0; i < n; ++i) {
+    boxes_[i] = WorldBounds(models[i], poses[i].p, poses[i].R);
+    if (sweep) {
+      const RigidStageStart& s = (*stageStart)[i];
+      const Aabb b0 = WorldBounds(models[i], s.last.p, s.last.R);
+      boxes_[i].Extend(b0.min);
+      boxes_[i].Extend(b0.max);
+    }
+    boxes_[i].Inflate(inflation_[i]);
+  }
+  // Soft actors after the rigid ones; a soft actor is colliding only, so no padding of its own.
+  for (size_t s = 0; s < ns; ++s) {
+    boxes_[n + s] = SoftBounds((*soft->x)[s]);
+    if (soft->xLast) boxes_[n + s].Extend(SoftBounds((*soft->xLast)[s]));
+    boxes_[n + s].Inflate(softInflation_[s]);
+  }
+  overlapCache_.Find(boxes_, &overlaps_);
+  pairs_.clear();
+  softPairs_.clear();
+  softColliderPairs_.clear();
+  // A on the soft collider B (B's collider is an Sdf grid mapped by its deformation).
+  auto considerOnSoft = [&](bool aSoft, int a, int b) {
+    const SoftBodyModel& B = (*softModels_)[b];
+    if (B.collider != ColliderType::Sdf) return;
+    if (aSoft ? a == b : !IsColliding(models[a])) return;
+    const int actorA = aSoft ? softActor_[a] : RigidActor(a);
+    if (filter_ && !filter_->Allowed(actorA, softActor_[b])) return;
+    SoftColliderPair p;
+    p.collidingSoft = aSoft;
+    p.colliding = a;
+    p.collider = b;
+    // Both actors are dynamic; A's own collider type decides the threshold padding.
+    const bool aNoCollider =
+        aSoft ? (*softModels_)[a].collider == ColliderType::None
+              : (models[a].collider.type == ColliderType::None ||
+                 models[a].collider.type == ColliderType::PointCloud);
+    p.params = CombineContactParams(aSoft ? (*softModels_)[a].contact : models[a].contact, B.contact,
+                                    false, aNoCollider);
+    softColliderPairs_.push_back(p);
+  };
+  auto considerSoft = [&](int s, int b) {
+    const RigidBodyModel& B = models[b];
+    if (!IsCollider(B)) return;
+    if (filter_ && !filter_->Allowed(softActor_[s], RigidActor(b))) return;
+    SoftContactPair p;
+    p.soft = s;
+    p.collider = b;
+    // A soft actor's collider is None (the only role supported).
+    p.params = CombineContactParams((*softModels_)[s].contact, B.contact, !B.dynamic, true);
+    softPairs_.push_back(p);
+  };
+  auto consider = [&](int a, int b) {
+    const RigidBodyModel& A = models[a];
+    const RigidBodyModel& B = models[b];
+    if (!IsColliding(A) || !IsCollider(B)) return;
+    if (!A.dynamic && !B.dynamic) return;
+    if (filter_ && !filter_->Allowed(RigidActor(a), RigidActor(b))) return;
+    ContactPair p;
+    p.colliding = a;
+    p.collider = b;
+    const bool noCollider = A.collider.type == ColliderType::None ||
+                            A.collider.type == ColliderType::PointCloud;
+    p.params = CombineContactParams(A.contact, B.contact, !B.dynamic, noCollider);
+    pairs_.push_back(p);
+  };
+  for (const auto& [i, j] : overlaps_) {
+    const bool si = i >= static_cast<int>(n), sj = j >= static_cast<int>(n);
+    if (!si && !sj) {
+      consider(i, j);
+      consider(j, i);
+    } else if (si && !sj) {
+      considerSoft(i - static_cast<int>(n), j);
+      considerOnSoft(false, j, i - static_cast<int>(n));
+    } else if (!si && sj) {
+      considerSoft(j - static_cast<int>(n), i);
+      considerOnSoft(false, i, j - static_cast<int>(n));
+    } else {
+      considerOnSoft(true, i - static_cast<int>(n), j - static_cast<int>(n));
+      considerOnSoft(true, j - static_cast<int>(n), i - static_cast<int>(n));
+    }
+  }
+}
+
+void ContactPipeline::SoftColliderInputs(const SoftColliderPair& sp,
+                                         const std::vector<RigidPose>& poses,
+                                         const std::vector<RigidStageStart>* stageStart,
+                                         const SoftView& soft, CollidingInput* a,
+                                         SoftColliderInput* b) const {
+  *a = CollidingInput();
+  if (sp.collidingSoft) {
+    a->soft = &(*softModels_)[sp.colliding];
+    a->x = &(*soft.x)[sp.colliding];
+    a->xLast = soft.xLast ? &(*soft.xLast)[sp.colliding] : nullptr;
+    a->x0 = soft.x0 ? &(*soft.x0)[sp.colliding] : nullptr;
+  } else {
+    a->rigid = &(*models_)[sp.colliding];
+    a->pose = &poses[sp.colliding];
+    a->start = stageStart ? &(*stageStart)[sp.colliding] : nullptr;
+  }
+  *b = SoftColliderInput();
+  b->model = &(*softModels_)[sp.collider];
+  b->x = &(*soft.x)[sp.collider];
+  b->xLast = soft.xLast ? &(*soft.xLast)[sp.collider] : nullptr;
+  b->x0 = soft.x0 ? &(*soft.x0)[sp.collider] : nullptr;
+  b->locator = &locators_[sp.collider];
+  b->locatorLast = soft.xLast ? &locatorsLast_[sp.collider] : &locators_[sp.collider];
+}
+
+template <typename Id>
+void ContactPipeline::BeginSlips(const DissipationContext* dissipation, SlipPairKind kind,
+                                 size_t n, Id id) {
+  SlipLists& lists = slipLists_[static_cast<int>(kind)];
+  lists.use.clear();  // no slips in use: SlipUse gives every pair none
+  if (!dissipation || !dissipation->slips) return;
+  lists.use.resize(n);
+  if (dissipation->recordSlips) {
+    lists.record.assign(n, PairSlips());
+    for (size_t k = 0; k < n; ++k) lists.use[k] = {&lists.record[k], true};
+    return;
+  }
+  for (size_t k = 0; k < n; ++k) {
+    const std::pair<int, int> p = id(k);
+    lists.use[k].slips = dissipation->slips->Find(kind, p.first, p.second);
+  }
+}
+
+template <typename Id>
+void ContactPipeline::EndSlips(const DissipationContext* dissipation, SlipPairKind kind, size_t n,
+                               Id id) {
+  if (!dissipation || !dissipation->slips || !dissipation->recordSlips) return;
+  SlipLists& lists = slipLists_[static_cast<int>(kind)];
+  for (size_t k = 0; k < n; ++k) {
+    if (lists.record[k].samples.empty()) continue;
+    const std::pair<int, int> p = id(k);
+    dissipation->slips->Add(kind, p.first, p.second, std::move(lists.record[k]));
+  }
+}
+
+DissipationSetup ContactPipeline::MakeSetup(const PairContactParams& params,
+                                            const DissipationContext& dissipation,
+                                            bool isotropicFriction) const {
+  DissipationSetup setup;
+  setup.isotropicFrictionHessian = isotropicFriction;
+  setup.mode = dissipation.mode;
+  setup.fadeFriction = dissipation.fadeFriction;
+  setup.dt = dissipation.dt;
+  setup.penalty = PenaltyOf(params);
+  setup.coefficients.mu = params.coulombFrictionCoefficient;
+  setup.coefficients.ct = params.viscousFrictionCoefficient;
+  setup.coefficients.cn = params.normalViscousDampingCoefficient;
+  setup.coefficients.vf = params.frictionFalloffVel;
+  setup.maxAlignment = params.maxAlignmentNormals;
+  setup.frictionWithColliderNormal = params.frictionWithColliderNormal;
+  return setup;
+}
+
+size_t ContactPipeline::RigidPairWork() const {
+  size_t work = 0;
+  for (const ContactPair& p : pairs_) work += (*models_)[p.colliding].samples.size();
+  return work;
+}
+
+bool ContactPipeline::SplitLastEvaluation(const std::vector<int>& dofOffset,
+                                          std::vector<double>* share,
+                                          std::vector<std::pair<int, int>>* joins) const {
+  const bool withDissipation = !dissipationResults_.empty();
+  if (!softPairs_.empty() || !softColliderPairs_.empty() || results_.size() != pairs_.size() ||
+      (withDissipation && dissipationResults_.size() != pairs_.size()))
+    return false;
+  for (size_t k = 0; k < pairs_.size(); ++k) {
+    const RigidPairPenalty& r = results_[k];
+    const RigidPairDissipation* d =
+        withDissipation && dissipationResults_[k].activeSamples > 0 ? &dissipationResults_[k]
+                                                                    : nullptr;
+    if (r.activeSamples == 0 && !d) continue;
+    const int a = pairs_[k].colliding, b = pairs_[k].collider;
+    const int owner = dofOffset[a] >= 0 ? a : b;
+    if (dofOffset[owner] < 0) continue;
+    if (r.activeSamples > 0) (*share)[owner] += r.value;
+    if (d) (*share)[owner] += d->value;
+    if (dofOffset[a] >= 0 && dofOffset[b] >= 0) joins->emplace_back(a, b);
+  }
+  return true;
+}
+
+void ContactPipeline::StepLimits(const std::vector<RigidPose>& poses,
+                                 const std::vector<RigidPose>& trial,
+                                 std::vector<double>* alpha) {
+  const std::vector<RigidBodyModel>& models = *models_;
+  alpha->assign(models.size(), 1.0);
+  FindPairs(trial, nullptr, nullptr, nullptr);
+  pairLimits_.resize(pairs_.size());
+  auto evaluate = [&](size_t k) {
+    const ContactPair& cp = pairs_[k];
+    pairLimits_[k] =
+        RigidPairStepLimit(models[cp.colliding], poses[cp.colliding], trial[cp.colliding],
+                           models[cp.collider], poses[cp.collider], trial[cp.collider],
+                           PenaltyOf(cp.params));
+  };
+  ForEachPair(pairs_.size(), RigidPairWork() >= kParallelSampleWork, evaluate);
+  for (size_t k = 0; k < pairs_.size(); ++k) {
+    double& a = (*alpha)[pairs_[k].colliding];
+    double& b = (*alpha)[pairs_[k].collider];
+    a = std::min(a, pairLimits_[k]);
+    b = std::min(b, pairLimits_[k]);
+  }
+}
+
+double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
+                                 const std::vector<int>& dofOffset, int order,
+                                 PsdProjection projection, Eigen::VectorXd* gradient,
+                                 std::vector<Eigen::Triplet<double>>* triplets,
+                                 std::vector<DenseBlock6>* blockOut, ContactStats* stats,
+                                 const DissipationContext* dissipation,
+                                 Eigen::VectorXd* dissipationResidual,
+                                 const std::vector<RigidStageStart>* stageStart,
+                                 const SoftView* soft) {
+  const std::vector<RigidBodyModel>& models = *models_;
+  FindPairs(poses, dissipation, stageStart, soft);
+  results_.resize(pairs_.size());
+  dissipationResults_.resize(dissipation ? pairs_.size() : 0);
+  const bool potential = !dissipation || dissipation->mode == DissipationMode::ExplicitNormals;
+  // Projected Hessians are the globalization model: the Coulomb term's isotropic majorizer.
+  const bool isotropic = potential && projection != PsdProjection::None;
+  const std::vector<RigidStageStart>* reference = stageStart;
+  if (dissipation && dissipation->slips && dissipation->recordSlips) dissipation->slips->Clear();
+  const auto rigidId = [&](size_t k) { return std::make_pair(pairs_[k].colliding, pairs_[k].collider); };
+  const auto softId = [&](size_t k) { return std::make_pair(softPairs_[k].soft, softPairs_[k].collider); };
+  const auto onSoftId = [&](size_t k) {
+    const SoftColliderPair& p = softColliderPairs_[k];
+    return std::make_pair(p.collidingSoft ? -1 - p.colliding : p.colliding, p.collider);
+  };
+  BeginSlips(dissipation, SlipPairKind::Rigid, pairs_.size(), rigidId);
+
+  auto evaluate = [&](size_t k) {
+    const ContactPair& cp = pairs_[k];
+    const PenaltyParams pp = PenaltyOf(cp.params);
+    const RigidBodyModel& A = models[cp.colliding];
+    const RigidBodyModel& B = models[cp.collider];
+    RigidPairPenalty& r = results_[k];
+    const RigidPose* aRef = reference ? &(*reference)[cp.colliding].last : nullptr;
+    const RigidPose* bRef = reference ? &(*reference)[cp.collider].last : nullptr;
+    EvaluateRigidPairPenalty(A, poses[cp.colliding], B, poses[cp.collider], B.dynamic, pp, order,
+                             &r, cp.params.maxAlignmentNormals, aRef, bRef);
+    if (dissipation) {
+      DissipationSetup setup = MakeSetup(cp.params, *dissipation, isotropic);
+      setup.slips = SlipUse(SlipPairKind::Rigid, k);
+      RigidPairDissipation& d = dissipationResults_[k];
+      const std::vector<RigidStageStart>& start = *stageStart;
+      EvaluateRigidPairDissipation(A, poses[cp.colliding], start[cp.colliding], B,
+                                   poses[cp.collider], start[cp.collider], B.dynamic, setup, order,
+                                   &d);
+      if (order >= 2 && potential && d.activeSamples > 0) {
+        r.hessian += d.jacobian;
+      }
+    }
+    const bool any = r.activeSamples > 0 ||
+                     (dissipation && potential && dissipationResults_[k].activeSamples > 0);
+    if (order >= 2 && any && projection != PsdProjection::None)
+      ProjectToPsd(&r.hessian, projection == PsdProjection::Abs);
+  };
+  ForEachPair(pairs_.size(), RigidPairWork() >= kParallelSampleWork, evaluate);
+  EndSlips(dissipation, SlipPairKind::Rigid, pairs_.size(), rigidId);
+
+  // Fixed-order reduction.
+  double energy = 0.0;
+  ContactStats st;
+  st.candidatePairs = static_cast<int>(pairs_.size());
+  for (size_t k = 0; k < pairs_.size(); ++k) {
+    const RigidPairPenalty& r = results_[k];
+    const int offs[2] = {dofOffset[pairs_[k].colliding], dofOffset[pairs_[k].collider]};
+    const int blocks = models[pairs_[k].collider].dynamic ? 2 : 1;
+    st.minSignedDistance = std::min(st.minSignedDistance, r.minPhi);
+    const RigidPairDissipation* d =
+        dissipation && dissipationResults_[k].activeSamples > 0 ? &dissipationResults_[k] : nullptr;
+    if (r.activeSamples > 0) {
+      ++st.activePairs;
+      st.activeSamples += r.activeSamples;
+      st.energy += r.value;
+      energy += r.value;
+      if (order >= 1) AddBlocks(r.gradient, offs, blocks, gradient);
+    }
+    if (d) {
+      st.dissipativeSamples += d->activeSamples;
+      st.dissipation += d->value;
+      st.maxCoulombRatio = std::max(st.maxCoulombRatio, d->maxCoulombRatio);
+      energy += d->value;
+      if (order >= 1)
+        AddBlocks(d->residual, offs, blocks, dissipationResidual ? dissipationResidual : gradient);
+      if (order >= 2 && !potential) AppendBlocks(d->jacobian, offs, blocks, blockOut);
+    }
+    if (order >= 2 && (r.activeSamples > 0 || (d && potential)))
+      AppendBlocks(r.hessian, offs, blocks, blockOut);
+  }
+  // Soft colliding actors against rigid colliders, face by face.
+  softResults_.resize(softPairs_.size());
+  BeginSlips(dissipation, SlipPairKind::SoftOnRigid, softPairs_.size(), softId);
+  auto evaluateSoft = [&](size_t k) {
+    const SoftContactPair& sp = softPairs_[k];
+    const PenaltyParams pp = PenaltyOf(sp.params);
+    SoftPairInput in;
+    in.model = &(*softModels_)[sp.soft];
+    in.x = &(*soft->x)[sp.soft];
+    in.xLast = soft->xLast ? &(*soft->xLast)[sp.soft] : nullptr;
+    in.x0 = soft->x0 ? &(*soft->x0)[sp.soft] : nullptr;
+    const RigidBodyModel& B = models[sp.collider];
+    DissipationSetup setup;
+    if (dissipation) setup = MakeSetup(sp.params, *dissipation, isotropic);
+    setup.slips = SlipUse(SlipPairKind::SoftOnRigid, k);
+    const RigidStageStart* b0 = stageStart ? &(*stageStart)[sp.collider] : nullptr;
+    SoftPairContact& r = softResults_[k];
+    EvaluateSoftRigidPair(in, B, poses[sp.collider], b0, B.dynamic, pp,
+                          sp.params.maxAlignmentNormals, dissipation ? &setup : nullptr, order, &r);
+    if (order < 2) return;
+    for (int f = 0; f < r.numFaces; ++f) {
+      SoftFaceContact& fc = r.faces[f];
+      if (potential && fc.dissipationActive) fc.penaltyHessian += fc.dissipationJacobian;
+      if ((fc.penaltyActive || (potential && fc.dissipationActive)) &&
+          projection != PsdProjection::None)
+        ProjectToPsd(&fc.penaltyHessian, projection == PsdProjection::Abs);
+    }
+  };
+  ForEachPair(softPairs_.size(), true, evaluateSoft);
+  EndSlips(dissipation, SlipPairKind::SoftOnRigid, softPairs_.size(), softId);
+  st.candidatePairs += static_cast<int>(softPairs_.size());
+  for (size_t k = 0; k < softPairs_.size(); ++k) {
+    const SoftContactPair& sp = softPairs_[k];
+    const SoftPairContact& r = softResults_[k];
+    const SoftBodyModel& A = (*softModels_)[sp.soft];
+    energy += AddPairStats(r, &st);
+    if (order == 0) continue;
+    // The face stencil's dofs: three nodes, then B's [δp, δθ] (dynamic B only).
+    const int softOffset = (*soft->dofOffset)[sp.soft];
+    const int bOffset = dofOffset[sp.collider];
+    const bool bDynamic = models[sp.collider].dynamic;
+    const int blocks = bDynamic ? 5 : 3;
+    for (int f = 0; f < r.numFaces; ++f) {
+      const SoftFaceContact& fc = r.faces[f];
+      int offs[5];
+      for (int a = 0; a < 3; ++a) {
+        const int free = A.freeIndex[A.faces[fc.face][a]];
+        offs[a] = free < 0 ? -1 : softOffset + 3 * free;
+      }
+      if (bDynamic) {
+        offs[3] = bOffset;
+        offs[4] = bOffset + 3;
+      }
+      Eigen::VectorXd* dr = dissipationResidual ? dissipationResidual : gradient;
+      if (fc.penaltyActive) AddBlocks3(fc.penaltyGradient, offs, blocks, gradient);
+      if (fc.dissipationActive) AddBlocks3(fc.dissipationResidual, offs, blocks, dr);
+      if (order < 2) continue;
+      const bool hess = fc.penaltyActive || (potential && fc.dissipationActive);
+      const bool jac = !potential && fc.dissipationActive;
+      AppendBlocks3(hess ? &fc.penaltyHessian : nullptr, jac ? &fc.dissipationJacobian : nullptr,
+                    offs, blocks, triplets);
+    }
+  }
+
+  // Samples of rigid and soft actors on soft colliders, one stencil per sample.
+  if (!softColliderPairs_.empty()) {
+    const size_t ns = softModels_->size();
+    locators_.resize(ns);
+    locatorsLast_.resize(ns);
+    std::vector<char> built(ns, 0);
+    for (const SoftColliderPair& p : softColliderPairs_) built[p.collider] = 1;
+    for (size_t b = 0; b < ns; ++b) {
+      if (!built[b]) continue;
+      locators_[b].Build((*soft->x)[b], (*softModels_)[b].rest.tets);
+      if (soft->xLast) locatorsLast_[b].Build((*soft->xLast)[b], (*softModels_)[b].rest.tets);
+    }
+  }
+  softColliderResults_.resize(softColliderPairs_.size());
+  BeginSlips(dissipation, SlipPairKind::OnSoft, softColliderPairs_.size(), onSoftId);
+  auto evaluateOnSoft = [&](size_t k) {
+    const SoftColliderPair& sp = softColliderPairs_[k];
+    const PenaltyParams pp = PenaltyOf(sp.params);
+    CollidingInput a;
+    SoftColliderInput b;
+    SoftColliderInputs(sp, poses, stageStart, *soft, &a, &b);
+    DissipationSetup setup;
+    if (dissipation) setup = MakeSetup(sp.params, *dissipation, isotropic);
+    setup.slips = SlipUse(SlipPairKind::OnSoft, k);
+    SoftColliderPairContact& r = softColliderResults_[k];
+    EvaluatePairOnSoftCollider(a, b, pp, sp.params.maxAlignmentNormals,
+                               dissipation ? &setup : nullptr, order, &r);
+    if (order < 2 || projection == PsdProjection::None) return;
+    for (int e = 0; e < r.numEntries; ++e) {
+      SoftColliderEntry& en = r.entries[e];
+      if (!en.dissipation || potential) ProjectToPsd(&en.hessian, projection == PsdProjection::Abs);
+    }
+  };
+  ForEachPair(softColliderPairs_.size(), true, evaluateOnSoft);
+  EndSlips(dissipation, SlipPairKind::OnSoft, softColliderPairs_.size(), onSoftId);
+  if (dissipation && dissipation->slips && dissipation->recordSlips) dissipation->slips->Seal();
+  st.candidatePairs += static_cast<int>(softColliderPairs_.size());
+  for (size_t k = 0; k < softColliderPairs_.size(); ++k) {
+    const SoftColliderPair& sp = softColliderPairs_[k];
+    const SoftColliderPairContact& r = softColliderResults_[k];
+    energy += AddPairStats(r, &st);
+    if (order == 0) continue;
+    const SoftBodyModel& B = (*softModels_)[sp.collider];
+    const int bOffset = (*soft->dofOffset)[sp.collider];
+    for (int e = 0; e < r.numEntries; ++e) {
+      const SoftColliderEntry& en = r.entries[e];
+      int offs[7];
+      int blocks = 0;
+      if (sp.collidingSoft) {
+        const SoftBodyModel& A = (*softModels_)[sp.colliding];
+        const int aOffset = (*soft->dofOffset)[sp.colliding];
+        for (int c = 0; c < 3; ++c) {
+          const int free = A.freeIndex[A.faces[en.aFace][c]];
+          offs[blocks++] = free < 0 ? -1 : aOffset + 3 * free;
+        }
+      } else {
+        const int o = dofOffset[sp.colliding];
+        offs[blocks++] = o;
+        offs[blocks++] = o < 0 ? -1 : o + 3;
+      }
+      for (int c = 0; c < 4; ++c) {
+        const int free = B.freeIndex[B.rest.tets[en.bTet][c]];
+        offs[blocks++] = free < 0 ? -1 : bOffset + 3 * free;
+      }
+      Eigen::VectorXd* target =
+          en.dissipation && dissipationResidual ? dissipationResidual : gradient;
+      AddBlocks3(en.gradient, offs, blocks, target);
+      if (order >= 2) AppendBlocks3(&en.hessian, nullptr, offs, blocks, triplets);
+    }
+  }
+  if (stats) *stats = st;
+  return energy;
+}
+
+void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,
+                                     std::vector<ContactSampleRecord>* records,
+                                     const SoftView* soft) {
+  const std::vector<RigidBodyModel>& models = *models_;
+  FindPairs(poses, nullptr, nullptr, soft);
+  records->clear();
+  RigidPairPenalty scratch;
+  for (const ContactPair& cp : pairs_) {
+    const PenaltyParams pp = PenaltyOf(cp.params);
+    const size_t first = records->size();
+    EvaluateRigidPairPenalty(models[cp.colliding], poses[cp.colliding], models[cp.collider],
+                             poses[cp.collider], models[cp.collider].dynamic, pp, 0, &scratch,
+                             cp.params.maxAlignmentNormals, nullptr, nullptr, records);
+    for (size_t k = first; k < records->size(); ++k) {
+      (*records)[k].colliding = RigidActor(cp.colliding);
+      (*records)[k].collider = RigidActor(cp.collider);
+    }
+  }
+  SoftPairContact scratchSoft;
+  for (const SoftContactPair& sp : softPairs_) {
+    const PenaltyParams pp = PenaltyOf(sp.params);
+    SoftPairInput in;
+    in.model = &(*softModels_)[sp.soft];
+    in.x = &(*soft->x)[sp.soft];
+    const size_t first = records->size();
+    EvaluateSoftRigidPair(in, models[sp.collider], poses[sp.collider], nullptr,
+                          models[sp.collider].dynamic, pp, sp.params.maxAlignmentNormals, nullptr,
+                          0, &scratchSoft, records);
+    for (size_t k = first; k < records->size(); ++k) {
+      (*records)[k].colliding = softActor_[sp.soft];
+      (*records)[k].collider = RigidActor(sp.collider);
+    }
+  }
+  if (!softColliderPairs_.empty()) {
+    locators_.resize(softModels_->size());
+    for (const SoftColliderPair& p : softColliderPairs_)
+      locators_[p.collider].Build((*soft->x)[p.collider], (*softModels_)[p.collider].rest.tets);
+  }
+  SoftColliderPairContact scratchOnSoft;
+  for (const SoftColliderPair& sp : softColliderPairs_) {
+    const PenaltyParams pp = PenaltyOf(sp.params);
+    CollidingInput a;
+    SoftColliderInput b;
+    SoftColliderInputs(sp, poses, nullptr, *soft, &a, &b);
+    const size_t first = records->size();
+    EvaluatePairOnSoftCollider(a, b, pp, sp.params.maxAlignmentNormals, nullptr, 0, &scratchOnSoft,
+                               records);
+    for (size_t k = first; k < records->size(); ++k) {
+      (*records)[k].colliding = sp.collidingSoft ? softActor_[sp.colliding] : RigidActor(sp.colliding);
+      (*records)[k].collider = softActor_[sp.collider];
+    }
+  }
+}
+
+}  // namespace superdex

@@ -1,0 +1,187 @@
+// The contact pipeline over rigid actors (spec: "Contact Pipeline"): broad phase over actor
+// bounding boxes, narrow phase of colliding samples against collider fields, response into the
+// stage's gradient and Hessian.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <vector>
+
+#include "core/contact/broad_phase.h"
+#include "core/contact/contact_filter.h"
+#include "core/model/rigid_body.h"
+#include "core/contact/rigid_contact.h"
+#include "core/contact/rigid_dissipation.h"
+#include "core/contact/soft_collider.h"
+#include "core/contact/soft_contact.h"
+#include "optim/stage_problem.h"
+#include "optim/triplet_assembly.h"
+
+namespace superdex {
+
+/// What the last evaluation saw.
+struct ContactStats {
+  int candidatePairs = 0;      ///< ordered pairs after broad phase and role/filter checks
+  int activePairs = 0;         ///< pairs with at least one sample below its threshold
+  int activeSamples = 0;       ///< samples with φ < δ
+  double minSignedDistance = INFINITY;  ///< smallest φ over tested samples [m]
+  double energy = 0.0;         ///< Σ Π_{A,B} [J]
+  int dissipativeSamples = 0;  ///< samples with a positive dissipative load
+  double dissipation = 0.0;    ///< Δt_i Σ w R [J] (0 without a dissipation context)
+  double maxCoulombRatio = 0.0;///< max ‖T_C‖/(μ λ̂_n) over samples (<= 1)
+};
+
+/// The stage data dissipation needs (spec: "Stage-Discrete Dissipation"); the stage-start poses
+/// are Evaluate's `stageStart`.
+struct DissipationContext {
+  double dt = 0.0;                                      ///< Δt_i [s]
+  DissipationMode mode = DissipationMode::ReconstructedLoad;
+  bool fadeFriction = true;
+  /// Sensitivities (core/contact/slip_tape.h): record every dissipative sample's slip into *slips
+  /// (`recordSlips`), or evaluate the force about the slips recorded there; null: neither.
+  StageSlips* slips = nullptr;
+  bool recordSlips = false;
+};
+
+/// Ordered pair (A colliding, B collider) with its combined parameters.
+struct ContactPair {
+  int colliding = -1;
+  int collider = -1;
+  PairContactParams params;
+};
+
+/// Ordered pair (soft A colliding, rigid B collider).
+struct SoftContactPair {
+  int soft = -1;      ///< index into the soft models
+  int collider = -1;  ///< index into the rigid models
+  PairContactParams params;
+};
+
+/// Ordered pair (A colliding: rigid or soft, B: a soft actor with an Sdf collider).
+struct SoftColliderPair {
+  bool collidingSoft = false;
+  int colliding = -1;  ///< rigid model index, or soft model index when collidingSoft
+  int collider = -1;   ///< soft model index
+  PairContactParams params;
+};
+
+/// The soft actors' positions for one evaluation. Node i of soft actor s owns the dofs
+/// dofOffset[s] + 3 freeIndex[i] (none when freeIndex is −1: a prescribed node).
+struct SoftView {
+  const std::vector<Eigen::VectorXd>* x = nullptr;      ///< current positions
+  const std::vector<Eigen::VectorXd>* xLast = nullptr;  ///< last actual positions x_n (or null)
+  const std::vector<Eigen::VectorXd>* x0 = nullptr;     ///< stage start (dissipation; or null)
+  const std::vector<int>* dofOffset = nullptr;          ///< per soft actor
+};
+
+class ContactPipeline {
+ public:
+  /// Precomputes per-actor data. `models` must outlive the pipeline's use.
+  /// `filter` (may be null: everything eligible) is read at every evaluation.
+  /// `softModels` (may be null) are colliding soft actors. The filter sees actor indices:
+  /// rigidActor[i] for rigid model i and softActor[s] for soft model s (empty: rigid model i is
+  /// actor i, as in a scene of rigid actors only).
+  void Configure(const std::vector<RigidBodyModel>* models, const ContactFilter* filter = nullptr,
+                 const std::vector<SoftBodyModel>* softModels = nullptr,
+                 std::vector<int> rigidActor = {}, std::vector<int> softActor = {});
+
+  /// Π = Σ over eligible ordered pairs of the penalty energy at the given poses, plus Δt_i Σ w R
+  /// when `dissipation` is not null (it then needs `stageStart`, x⁰ and x_n per actor). With
+  /// `stageStart`, the alignment rejection of the penalty is decided at x_n (see
+  /// EvaluateRigidPairPenalty); without, at the given poses. order 0: value; 1: also adds the penalty gradient into
+  /// *gradient and the dissipative residual into *dissipationResidual (may alias *gradient;
+  /// dofs at dofOffset[i], −1 for static actors); 2: also appends Jacobian entries: each rigid
+  /// pair's penalty Hessian plus, in ExplicitNormals mode, its dissipation Hessian, projected per
+  /// `projection`; in the residual modes the dissipation Jacobian (not symmetric) is appended
+  /// unprojected. Rigid pairs append 6 × 6 blocks to *blocks (as if their triplets stood in
+  /// *triplets where it ended on entry: TripletAssembly's blockPosition), soft pairs triplets. Pairs are evaluated in parallel; results are reduced in a fixed order, so the
+  /// output does not depend on the number of threads.
+  double Evaluate(const std::vector<RigidPose>& poses, const std::vector<int>& dofOffset,
+                  int order, PsdProjection projection, Eigen::VectorXd* gradient,
+                  std::vector<Eigen::Triplet<double>>* triplets,
+                  std::vector<DenseBlock6>* blocks, ContactStats* stats,
+                  const DissipationContext* dissipation = nullptr,
+                  Eigen::VectorXd* dissipationResidual = nullptr,
+                  const std::vector<RigidStageStart>* stageStart = nullptr,
+                  const SoftView* soft = nullptr);
+
+  /// Step limits of Newton's global phase: (*alpha)[i] <= 1 the largest fraction of rigid body
+  /// i's move from `poses` to `trial` that RigidPairStepLimit allows for every pair it is part
+  /// of, both moving by the same fraction (1 for bodies without such a pair). Pairs with soft
+  /// actors impose no limit. Pairs are found at `trial`; evaluated in parallel, reduced by min.
+  void StepLimits(const std::vector<RigidPose>& poses, const std::vector<RigidPose>& trial,
+                  std::vector<double>* alpha);
+
+  /// Every active contact sample at the given poses (serial; for reporting). Records carry actor
+  /// indices (see Configure) and, for soft colliding actors, the boundary face.
+  void CollectSamples(const std::vector<RigidPose>& poses,
+                      std::vector<ContactSampleRecord>* records, const SoftView* soft = nullptr);
+
+  /// The last Evaluate's rigid pairs by body (StageProblem::LastSplit): each pair's penalty and
+  /// dissipation values, as Evaluate summed them, added to (*share)[i] of its first dynamic actor
+  /// i (dofOffset[i] >= 0), and each pair of two dynamic actors with an active sample (penalty or
+  /// dissipation) appended to *joins as (colliding, collider). False, with nothing added, if that
+  /// evaluation had pairs with soft actors (not split) or the pairs changed since (StepLimits).
+  bool SplitLastEvaluation(const std::vector<int>& dofOffset, std::vector<double>* share,
+                           std::vector<std::pair<int, int>>* joins) const;
+
+  /// The ordered pairs found by the last evaluation.
+  const std::vector<ContactPair>& Pairs() const { return pairs_; }
+
+ private:
+  void FindPairs(const std::vector<RigidPose>& poses, const DissipationContext* dissipation,
+                 const std::vector<RigidStageStart>* stageStart, const SoftView* soft);
+  int RigidActor(int i) const { return rigidActor_.empty() ? i : rigidActor_[i]; }
+  /// Samples of the colliding actors over pairs_: whether a sweep pays for parallel workers.
+  size_t RigidPairWork() const;
+  /// `isotropicFriction`: DissipationSetup::isotropicFrictionHessian.
+  DissipationSetup MakeSetup(const PairContactParams& params,
+                             const DissipationContext& dissipation,
+                             bool isotropicFriction) const;
+  // The two sides of a pair on a soft collider (the locators must be built).
+  void SoftColliderInputs(const SoftColliderPair& pair, const std::vector<RigidPose>& poses,
+                          const std::vector<RigidStageStart>* stageStart, const SoftView& soft,
+                          CollidingInput* a, SoftColliderInput* b) const;
+
+  const std::vector<RigidBodyModel>* models_ = nullptr;
+  const ContactFilter* filter_ = nullptr;
+  std::vector<double> inflation_;  // per actor: its collider reach padding [m]
+  std::vector<Aabb> boxes_;
+  std::vector<std::pair<int, int>> overlaps_;
+  OverlapCache overlapCache_;  // the broad phase's candidates, kept while the boxes stay inside
+  std::vector<ContactPair> pairs_;
+  std::vector<RigidPairPenalty> results_;
+  std::vector<RigidPairDissipation> dissipationResults_;
+  std::vector<double> pairLimits_;
+  const std::vector<SoftBodyModel>* softModels_ = nullptr;
+  std::vector<int> rigidActor_, softActor_;
+  std::vector<SoftContactPair> softPairs_;
+  std::vector<SoftPairContact> softResults_;
+  std::vector<SoftColliderPair> softColliderPairs_;
+  std::vector<SoftColliderPairContact> softColliderResults_;
+  std::vector<TetLocator> locators_, locatorsLast_;  // per soft actor
+  std::vector<double> softInflation_;
+  std::vector<int> dofs_;  // scratch: a face stencil's global dofs
+  // Per pair kind (SlipPairKind): the pairs' slip use in the evaluation under way and, when
+  // recording, their buffers.
+  struct SlipLists {
+    std::vector<PairSlipUse> use;
+    std::vector<PairSlips> record;
+  };
+  SlipLists slipLists_[3];
+  /// Sets slipLists_[kind].use for n pairs named by id(k) = (colliding, collider): buffers to
+  /// record into or the records to read; left empty without slips in the context (plain
+  /// simulation pays no per-pair work for them).
+  template <typename Id>
+  void BeginSlips(const DissipationContext* dissipation, SlipPairKind kind, size_t n, Id id);
+  /// Pair k's slip use in the evaluation under way (none when the list is empty).
+  PairSlipUse SlipUse(SlipPairKind kind, size_t k) const {
+    const std::vector<PairSlipUse>& use = slipLists_[static_cast<int>(kind)].use;
+    return use.empty() ? PairSlipUse() : use[k];
+  }
+  /// Recording: hands the buffers to the context's record.
+  template <typename Id>
+  void EndSlips(const DissipationContext* dissipation, SlipPairKind kind, size_t n, Id id);
+};
+
+}  // namespace superdex

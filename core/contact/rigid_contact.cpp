@@ -1,0 +1,302 @@
+#include "core/contact/rigid_contact.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/model/rigid_math.h"
+
+namespace superdex {
+namespace {
+
+/// X K for a skew K (zero diagonal): each entry sums the two products with K's nonzero entries.
+Eigen::Matrix3d TimesSkew(const Eigen::Matrix3d& X, const Eigen::Matrix3d& K) {
+  Eigen::Matrix3d out;
+  for (int i = 0; i < 3; ++i) {
+    out(i, 0) = X(i, 1) * K(1, 0) + X(i, 2) * K(2, 0);
+    out(i, 1) = X(i, 2) * K(2, 1) + X(i, 0) * K(0, 1);
+    out(i, 2) = X(i, 0) * K(0, 2) + X(i, 1) * K(1, 2);
+  }
+  return out;
+}
+
+/// Kᵀ X for a skew K: (Kᵀ X)(m, b) = Σ_{k ≠ m} K(k, m) X(k, b).
+Eigen::Matrix3d SkewTransposeTimes(const Eigen::Matrix3d& K, const Eigen::Matrix3d& X) {
+  Eigen::Matrix3d out;
+  for (int b = 0; b < 3; ++b) {
+    out(0, b) = K(1, 0) * X(1, b) + K(2, 0) * X(2, b);
+    out(1, b) = K(2, 1) * X(2, b) + K(0, 1) * X(0, b);
+    out(2, b) = K(0, 2) * X(0, b) + K(1, 2) * X(1, b);
+  }
+  return out;
+}
+
+template <typename Vector, typename Matrix>
+void AddFunctionOfPullbackTo(const Eigen::Vector3d& r, const Eigen::Vector3d& d,
+                             const Eigen::Matrix3d& RB, const Eigen::Vector3d& gY,
+                             const Eigen::Matrix3d* HY, bool bDynamic, double w, Vector* grad,
+                             Matrix* hess) {
+  const Eigen::Vector3d n = RB * gY;
+  grad->template segment<3>(0) += w * n;
+  grad->template segment<3>(3) += w * r.cross(n);
+  if (bDynamic) {
+    grad->template segment<3>(6) -= w * n;
+    grad->template segment<3>(9) -= w * d.cross(n);
+  }
+  if (!hess) return;
+  // Jx = ∂x_w/∂δ = [I, K_r, −I, K_d] with the skew blocks K_r = −[r]×, K_d = [d]×, so that
+  // Jxᵀ Hw Jx is assembled from 3×3 blocks: Hw, Hw K, Kᵀ Hw, Kᵀ Hw K. Each entry is the sum of
+  // the same nonzero products as the full 3×12 matrix products (whose other terms are products
+  // with the identity's and the skews' zeros, ±0, and with 1 or −1, exact), so the result is the
+  // same to the bit, at a quarter of the multiplications.
+  const Eigen::Matrix3d Hw = w * (RB * (*HY) * RB.transpose());
+  const Eigen::Matrix3d Kr = -Skew(r);
+  const Eigen::Matrix3d HK = TimesSkew(Hw, Kr);
+  hess->template block<3, 3>(0, 0) += Hw;
+  hess->template block<3, 3>(0, 3) += HK;
+  hess->template block<3, 3>(3, 0) += SkewTransposeTimes(Kr, Hw);
+  hess->template block<3, 3>(3, 3) += SkewTransposeTimes(Kr, HK);
+  if (bDynamic) {
+    const Eigen::Matrix3d Kd = Skew(d);
+    const Eigen::Matrix3d HKd = TimesSkew(Hw, Kd);
+    const Eigen::Matrix3d KrH = SkewTransposeTimes(Kr, Hw);
+    const Eigen::Matrix3d KdH = SkewTransposeTimes(Kd, Hw);
+    hess->template block<3, 3>(0, 6) -= Hw;
+    hess->template block<3, 3>(0, 9) += HKd;
+    hess->template block<3, 3>(3, 6) -= KrH;
+    hess->template block<3, 3>(3, 9) += SkewTransposeTimes(Kr, HKd);
+    hess->template block<3, 3>(6, 0) -= Hw;
+    hess->template block<3, 3>(6, 3) -= HK;
+    hess->template block<3, 3>(6, 6) += Hw;
+    hess->template block<3, 3>(6, 9) -= HKd;
+    hess->template block<3, 3>(9, 0) += KdH;
+    hess->template block<3, 3>(9, 3) += SkewTransposeTimes(Kd, HK);
+    hess->template block<3, 3>(9, 6) -= KdH;
+    hess->template block<3, 3>(9, 9) += SkewTransposeTimes(Kd, HKd);
+  }
+  const Eigen::Vector3d nw = w * n;
+  const double nr = nw.dot(r);
+  hess->template block<3, 3>(3, 3) +=
+      0.5 * (nw * r.transpose() + r * nw.transpose()) - nr * Eigen::Matrix3d::Identity();
+  if (bDynamic) {
+    const double nd = nw.dot(d);
+    const Eigen::Matrix3d Nx = Skew(nw);
+    hess->template block<3, 3>(9, 9) +=
+        0.5 * (nw * d.transpose() + d * nw.transpose()) - nd * Eigen::Matrix3d::Identity();
+    hess->template block<3, 3>(9, 0) += Nx;
+    hess->template block<3, 3>(0, 9) += Nx.transpose();
+    hess->template block<3, 3>(9, 6) -= Nx;
+    hess->template block<3, 3>(6, 9) -= Nx.transpose();
+    const Eigen::Matrix3d C = nr * Eigen::Matrix3d::Identity() - r * nw.transpose();
+    hess->template block<3, 3>(9, 3) += C;
+    hess->template block<3, 3>(3, 9) += C.transpose();
+  }
+}
+
+}  // namespace
+
+void AddFunctionOfPullback(const Eigen::Vector3d& r, const Eigen::Vector3d& d,
+                           const Eigen::Matrix3d& RB, const Eigen::Vector3d& gY,
+                           const Eigen::Matrix3d* HY, bool bDynamic, double w,
+                           StencilVector* grad, StencilMatrix* hess) {
+  AddFunctionOfPullbackTo(r, d, RB, gY, HY, bDynamic, w, grad, hess);
+}
+
+void AddFunctionOfPullback(const Eigen::Vector3d& r, const Eigen::Vector3d& d,
+                           const Eigen::Matrix3d& RB, const Eigen::Vector3d& gY,
+                           const Eigen::Matrix3d* HY, bool bDynamic, double w, PairVector* grad,
+                           PairMatrix* hess) {
+  AddFunctionOfPullbackTo(r, d, RB, gY, HY, bDynamic, w, grad, hess);
+}
+
+void PairHessianSums::Add(const Eigen::Vector3d& rB, const Eigen::Vector3d& gY,
+                          const Eigen::Matrix3d& HY, double w) {
+  const Eigen::Matrix3d K = -Skew(rB);
+  const Eigen::Matrix3d H = w * HY;
+  const Eigen::Matrix3d HK = TimesSkew(H, K);
+  H0_ += H;
+  H1_ += HK;
+  H2_ += SkewTransposeTimes(K, HK);
+  const Eigen::Vector3d g = w * gY;
+  P_ += g * rB.transpose();
+  N_ += g;
+  empty_ = false;
+}
+
+void PairHessianSums::AddTo(const Eigen::Matrix3d& RB, const Eigen::Vector3d& c, bool bDynamic,
+                            PairMatrix* hess) const {
+  if (empty_) return;
+  const Eigen::Matrix3d RBt = RB.transpose();
+  const Eigen::Matrix3d A0 = RB * H0_ * RBt, A1 = RB * H1_ * RBt, A2 = RB * H2_ * RBt;
+  const Eigen::Matrix3d P = RB * P_ * RBt;  // Σ w n rᵀ (world)
+  const Eigen::Vector3d N = RB * N_;         // Σ w n
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  // The retraction curvature Σ (sym(n rᵀ) − (n·r) I) of the rotation block.
+  const double pr = P.trace();
+  hess->block<3, 3>(0, 0) += A0;
+  hess->block<3, 3>(0, 3) += A1;
+  hess->block<3, 3>(3, 0) += A1.transpose();
+  hess->block<3, 3>(3, 3) += A2 + 0.5 * (P + P.transpose()) - pr * I;
+  if (!bDynamic) return;
+  const Eigen::Matrix3d Kc = Skew(c);
+  const Eigen::Matrix3d A0Kc = A0 * Kc;                 // Σ Hw [c]×
+  const Eigen::Matrix3d HKd = A0Kc - A1;               // Σ Hw K_d, K_d = [d]× = [c]× − K_r
+  const Eigen::Matrix3d KrHKd = A1.transpose() * Kc - A2;  // Σ K_rᵀ Hw K_d
+  const Eigen::Matrix3d KdHKd =
+      Kc.transpose() * A0Kc - Kc.transpose() * A1 - A1.transpose() * Kc + A2;
+  hess->block<3, 3>(0, 6) -= A0;
+  hess->block<3, 3>(0, 9) += HKd;
+  hess->block<3, 3>(3, 6) -= A1.transpose();
+  hess->block<3, 3>(3, 9) += KrHKd;
+  hess->block<3, 3>(6, 0) -= A0;
+  hess->block<3, 3>(6, 3) -= A1;
+  hess->block<3, 3>(6, 6) += A0;
+  hess->block<3, 3>(6, 9) -= HKd;
+  hess->block<3, 3>(9, 0) += HKd.transpose();
+  hess->block<3, 3>(9, 3) += KrHKd.transpose();
+  hess->block<3, 3>(9, 6) -= HKd.transpose();
+  hess->block<3, 3>(9, 9) += KdHKd;
+  // Retraction curvature: Σ n dᵀ = N cᵀ + P; the [n]× couplings of B's rotation with the
+  // translations; C = Σ ((n·r) I − r nᵀ) = tr(P) I − Pᵀ.
+  const Eigen::Matrix3d Pd = N * c.transpose() + P;
+  hess->block<3, 3>(9, 9) += 0.5 * (Pd + Pd.transpose()) - Pd.trace() * I;
+  const Eigen::Matrix3d Nx = Skew(N);
+  hess->block<3, 3>(9, 0) += Nx;
+  hess->block<3, 3>(0, 9) += Nx.transpose();
+  hess->block<3, 3>(9, 6) -= Nx;
+  hess->block<3, 3>(6, 9) -= Nx.transpose();
+  const Eigen::Matrix3d C = pr * I - P.transpose();
+  hess->block<3, 3>(9, 3) += C;
+  hess->block<3, 3>(3, 9) += C.transpose();
+}
+
+void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& a, const RigidBodyModel& B,
+                              const RigidPose& b, bool bDynamic, const PenaltyParams& params,
+                              int order, RigidPairPenalty* out, double maxAlignment,
+                              const RigidPose* aRef, const RigidPose* bRef,
+                              std::vector<ContactSampleRecord>* records) {
+  const int n = bDynamic ? 12 : 6;
+  out->value = 0.0;
+  out->activeSamples = 0;
+  out->minPhi = INFINITY;
+  const double delta = params.delta;
+  const double reach = B.collider.boundingRadius + delta;  // |Y| beyond this: φ >= δ
+  const Eigen::Matrix3d RBt = b.R.transpose();
+  const Eigen::Matrix3d RBtRA = RBt * a.R;
+  const Eigen::Vector3d YA = RBt * (a.p - b.p);  // A's centre in B's frame
+  // Tree culling (the root first: the whole pair): with a field of Lipschitz constant L every
+  // sample of a node has φ >= φ(centre) − L radius.
+  const double L = B.collider.lipschitz;
+  auto near = [&](const Eigen::Vector3d& center, double radius) {
+    return B.collider.Value(YA + RBtRA * center) - L * radius < delta;
+  };
+  // A candidate pair whose root is out of reach (a ball in flight over the ground) returns zeros
+  // before its stencils are formed.
+  if (!A.sampleTree.empty() && !near(A.sampleTree.front().center, A.sampleTree.front().radius)) {
+    if (order >= 1) out->gradient.setZero(n);
+    if (order >= 2) out->hessian.setZero(n, n);
+    return;
+  }
+  // Accumulated in fixed-size stencils, copied out at the end.
+  PairVector gradient = PairVector::Zero();
+  PairMatrix hessian;
+  if (order >= 2) hessian.setZero();
+  const bool alignmentTest = std::isfinite(maxAlignment);
+  const RigidPose& ar = aRef ? *aRef : a;
+  const RigidPose& br = bRef ? *bRef : b;
+  const Eigen::Matrix3d RBtRAref = br.R.transpose() * ar.R;
+  const Eigen::Vector3d YAref = br.R.transpose() * (ar.p - br.p);
+  const bool sameReference = !aRef && !bRef;
+
+  PairHessianSums sums;
+  ForEachSampleRange(A, near, [&](int begin, int end) {
+    for (int k = begin; k < end; ++k) {
+      const SurfaceSample& s = A.samples[k];
+      const Eigen::Vector3d Y = YA + RBtRA * s.X;
+      if (std::isfinite(reach) && Y.squaredNorm() >= reach * reach) continue;
+      SdfSample f;
+      const bool below = B.collider.EvaluateBelow(Y, delta, &f);
+      out->minPhi = std::min(out->minPhi, f.value);
+      if (!below) continue;
+      if (alignmentTest) {
+        const Eigen::Vector3d G = sameReference
+                                      ? f.gradient
+                                      : B.collider.Evaluate(YAref + RBtRAref * s.X).gradient;
+        if (G.dot(RBtRAref * s.normal) > maxAlignment + kAlignmentRoundoff) continue;
+      }
+      ++out->activeSamples;
+      const PenaltyDensity W = NormalPenaltyDensity(f.value, params);
+      out->value += s.weight * W.W;
+      if (records) {
+        ContactSampleRecord rec;
+        rec.position = a.p + a.R * s.X;
+        rec.normal = b.R * f.gradient.normalized();
+        rec.phi = f.value;
+        rec.lambdaN = W.lambdaN;
+        rec.traction = W.lambdaN * (b.R * f.gradient);
+        rec.weight = s.weight;
+        records->push_back(rec);
+      }
+      if (order == 0) continue;
+      const Eigen::Vector3d r = a.R * s.X;
+      const Eigen::Vector3d d = a.p + r - b.p;
+      // W(Φ(Y)): g_Y = W' G, H_Y = W'' G Gᵀ + W' ∇²Φ.
+      const Eigen::Vector3d gY = W.dW * f.gradient;
+      Eigen::Matrix3d HY;
+      if (order >= 2) HY = W.d2W * f.gradient * f.gradient.transpose() + W.dW * f.hessian;
+      AddFunctionOfPullback(r, d, b.R, gY, nullptr, bDynamic, s.weight, &gradient, nullptr);
+      if (order >= 2) sums.Add(Y - YA, gY, HY, s.weight);
+    }
+  });
+  out->gradient = gradient.head(n);
+  if (order >= 2) {
+    sums.AddTo(b.R, a.p - b.p, bDynamic, &hessian);
+    out->hessian = hessian.topLeftCorner(n, n);
+  }
+}
+
+double RigidPairStepLimit(const RigidBodyModel& A, const RigidPose& a0, const RigidPose& a1,
+                          const RigidBodyModel& B, const RigidPose& b0, const RigidPose& b1,
+                          const PenaltyParams& params) {
+  // Samples with φ₁ >= δ − ε/2 have s₁ <= ε/2 and cannot break the limit.
+  const double phiLimit = params.delta - 0.5 * params.eps;
+  const double reach = B.collider.boundingRadius + phiLimit;
+  const Eigen::Matrix3d RBt1 = b1.R.transpose();
+  const Eigen::Matrix3d RBtRA1 = RBt1 * a1.R;
+  const Eigen::Vector3d YA1 = RBt1 * (a1.p - b1.p);
+  const Eigen::Matrix3d RBtRA0 = b0.R.transpose() * a0.R;
+  const Eigen::Vector3d YA0 = b0.R.transpose() * (a0.p - b0.p);
+  const double L = B.collider.lipschitz;
+  double alpha = 1.0;
+  // A sample cannot break the limit unless its depth grows by more than ε/4 (cap − s₀ =
+  // max(s₀, ε/2 − s₀) for s₀ >= 0, > ε/2 for s₀ < 0), and the depth moves by at most L times the
+  // sample's displacement relative to B: |Δp_A| + θ_A r_A + |Δp_B| + θ_B (|p_A − p_B| + r_A),
+  // θ the rotation angle of each body's move, r_A = A.samplesRadius.
+  auto angle = [](const Eigen::Matrix3d& R1, const Eigen::Matrix3d& R0) {
+    return std::acos(std::clamp(0.5 * ((R1 * R0.transpose()).trace() - 1.0), -1.0, 1.0));
+  };
+  auto deep = [&](const Eigen::Vector3d& center, double radius) {
+    return B.collider.Value(YA1 + RBtRA1 * center) - L * radius < phiLimit;
+  };
+  // No sample deep at the trial pose (the sample tree's root test, which the sweep below would
+  // make first): nothing to limit, without the rotation angles (a body in free flight).
+  if (A.sampleTree.empty() || !deep(A.sampleTree[0].center, A.sampleTree[0].radius)) return alpha;
+  const double rA = A.samplesRadius;
+  const double moved = (a1.p - a0.p).norm() + angle(a1.R, a0.R) * rA + (b1.p - b0.p).norm() +
+                       angle(b1.R, b0.R) * ((a0.p - b0.p).norm() + rA);
+  if (L * moved <= 0.25 * params.eps) return alpha;
+  ForEachSampleRange(A, deep, [&](int begin, int end) {
+    for (int k = begin; k < end; ++k) {
+      const Eigen::Vector3d Y1 = YA1 + RBtRA1 * A.samples[k].X;
+      if (std::isfinite(reach) && Y1.squaredNorm() >= reach * reach) continue;
+      const double s1 = params.delta - B.collider.Value(Y1);
+      if (s1 <= 0.5 * params.eps) continue;
+      const double s0 =
+          params.delta - B.collider.Value(YA0 + RBtRA0 * A.samples[k].X);
+      const double cap = std::max(2.0 * s0, 0.5 * params.eps);
+      if (s1 > cap) alpha = std::min(alpha, (cap - s0) / (s1 - s0));
+    }
+  });
+  return alpha;
+}
+
+}  // namespace superdex

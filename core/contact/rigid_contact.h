@@ -1,0 +1,125 @@
+// Normal penalty between a colliding rigid actor's surface samples and a rigid collider's field.
+#pragma once
+
+#include <vector>
+
+#include "core/model/rigid_body.h"
+#include "energies/normal_penalty.h"
+#include "energies/stencil.h"
+
+namespace superdex {
+
+/// Sum over the samples of A of w_q W(φ_B(x_A,q)), the discrete Π_{A,B} (spec: "Surface
+/// Quadrature"), with its gradient and Hessian on the stencil
+///   [δp_A, δθ_A]            (6 dofs, B static) or
+///   [δp_A, δθ_A, δp_B, δθ_B] (12 dofs, B dynamic),
+/// with the retractions p ← p + δp, R ← exp([δθ]×) R.
+///
+/// Kinematics of one sample (X in A's body frame): r = R_A X, x = p_A + r, d = x − p_B,
+/// Y = R_Bᵀ d (the pullback X_B(x)), φ = Φ_B(Y), G = ∇Φ_B(Y), world normal n = R_B G.
+///   ∇φ = [n, r × n, −n, −d × n]   (balanced: equal and opposite forces at x, zero net torque)
+///   ∇²φ = J_xᵀ (R_B ∇²Φ_B R_Bᵀ) J_x + S,  J_x = [I, −[r]×, −I, [d]×],
+/// with S the curvature of the retractions contracted with n:
+///   S_θAθA = ½(n rᵀ + r nᵀ) − (n·r) I,   S_θBθB = ½(n dᵀ + d nᵀ) − (n·d) I,
+///   S_θBpA = [n]×,  S_θBpB = −[n]×,  S_θBθA = (n·r) I − r nᵀ   (and their transposes).
+struct RigidPairPenalty {
+  double value = 0.0;      ///< Σ w_q W [J]
+  SmallStencilVector gradient;  ///< [N, N·m]
+  SmallStencilMatrix hessian;   ///< unprojected
+  int activeSamples = 0;   ///< samples with φ < δ
+  double minPhi = INFINITY;///< smallest φ among the samples tested [m]
+};
+
+/// One active contact sample (φ < δ, not rejected), in the world frame, for reporting.
+struct ContactSampleRecord {
+  int colliding = -1;        ///< actor index of A (filled by the pipeline)
+  int collider = -1;         ///< actor index of B
+  Eigen::Vector3d position;  ///< x_A [m]
+  Eigen::Vector3d normal;    ///< R_B N_B: the collider field's unit direction
+  double phi = 0.0;          ///< φ_B(x_A) [m]
+  double lambdaN = 0.0;      ///< normal-load coefficient λ_n [Pa]
+  Eigen::Vector3d traction;  ///< nominal normal traction on A, t_n = λ_n R_B G_B [Pa]
+  double weight = 0.0;       ///< reference-area weight w_q [m²]; force = w_q t_n
+  int face = -1;             ///< soft colliding actor: its boundary face; −1 for rigid actors
+};
+
+/// Round-off allowance of the alignment test: a sample is rejected when s > m + this. A face
+/// exactly perpendicular to the collider's surface has s = 0 up to round-off.
+constexpr double kAlignmentRoundoff = 1e-9;
+
+/// order: 0 value only, 1 with gradient, 2 with gradient and Hessian.
+///
+/// Alignment rejection (spec: "Normal/Tangential Split"): a sample whose alignment
+/// s = G_B·N_A (N_A = R_Bᵀ R_A n_A, raw vectors) exceeds `maxAlignment` (the collider's m) is
+/// rejected entirely; +∞ disables the test. The test is evaluated at the reference poses
+/// (aRef, bRef), normally the stage-start configuration x_n, so that within one stage the set of
+/// rejected samples is fixed and the stage energy stays smooth: evaluated at the current iterate,
+/// the samples of a face perpendicular to the collider (s = 0 = m by default, e.g. the side faces
+/// of a box pressed into a plane deeper than their first sample row) would be rejected and
+/// accepted at random from one Newton iterate to the next, and the stage would not converge.
+/// Null references use the current poses.
+void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& poseA,
+                              const RigidBodyModel& B, const RigidPose& poseB, bool bDynamic,
+                              const PenaltyParams& params, int order, RigidPairPenalty* out,
+                              double maxAlignment = INFINITY, const RigidPose* aRef = nullptr,
+                              const RigidPose* bRef = nullptr,
+                              std::vector<ContactSampleRecord>* records = nullptr);
+
+/// Step limit of Newton's global phase (SceneStageProblem::LimitStep): the largest fraction
+/// α ∈ (0, 1] of the move (a0 → a1, b0 → b1), interpolated linearly per sample, that keeps every
+/// sample's penetration depth s = δ − φ (the ramp's argument, spec: "Normal penalty") within
+///     s₁ <= max(2 s₀, ε/2)                                                          [m]
+/// (s₀ at the poses a0, b0). The contact force of a sample grows like s⁵ on the ramp
+/// (h h' ≈ 3 s⁵/(16 ε⁴) for s ≪ ε), so a Newton step taken from where a sample barely touches
+/// predicts its load from a stiffness that is orders of magnitude too small and overshoots deep
+/// into the collider; Newton then returns only at the rate 4/5 per iteration. Letting the depth at
+/// most double per iteration reaches the equilibrium depth in log₂ steps instead. Samples whose
+/// alignment is rejected are not excluded (the limit is only more cautious).
+double RigidPairStepLimit(const RigidBodyModel& A, const RigidPose& a0, const RigidPose& a1,
+                          const RigidBodyModel& B, const RigidPose& b0, const RigidPose& b1,
+                          const PenaltyParams& params);
+
+/// Chains a scalar function f(Y) of the pullback Y = R_Bᵀ(p_A + r − p_B), r = R_A X, through the
+/// rigid retractions (the stencil above): adds w·J_Yᵀ g_Y = w·[n, r × n, −n, −d × n] (n = R_B g_Y,
+/// d = p_A + r − p_B) to *grad and, if hess is not null, w·(J_xᵀ R_B H_Y R_Bᵀ J_x + S(n)) with S the
+/// retraction curvature of the comment above (n in place of the normal).
+void AddFunctionOfPullback(const Eigen::Vector3d& r, const Eigen::Vector3d& d,
+                           const Eigen::Matrix3d& RB, const Eigen::Vector3d& gY,
+                           const Eigen::Matrix3d* HY, bool bDynamic, double w,
+                           StencilVector* grad, StencilMatrix* hess);
+/// A rigid pair's stencil with fixed sizes (12 entries; the first 6 with a static B): the pair
+/// sweeps accumulate into these, whose 3 × 3 blocks have compile-time strides.
+using PairVector = Eigen::Matrix<double, 12, 1>;
+using PairMatrix = Eigen::Matrix<double, 12, 12>;
+/// As above, into a pair's fixed-size stencil (the same sums in the same order).
+void AddFunctionOfPullback(const Eigen::Vector3d& r, const Eigen::Vector3d& d,
+                           const Eigen::Matrix3d& RB, const Eigen::Vector3d& gY,
+                           const Eigen::Matrix3d* HY, bool bDynamic, double w, PairVector* grad,
+                           PairMatrix* hess);
+
+/// The Hessian part of AddFunctionOfPullback summed over a pair's samples as moments in B's
+/// frame, mapped to the stencil once per pair. With r_B = R_Bᵀ r (= Y − Y_A, Y_A = R_Bᵀ(p_A − p_B)),
+/// K = −[r_B]× and c = p_A − p_B (world, so that d = c + r):
+///   H₀ = Σ w H_Y,  H₁ = Σ w H_Y K,  H₂ = Σ w Kᵀ H_Y K,  P = Σ w g_Y r_Bᵀ,  N = Σ w g_Y,
+/// and with A_k = R_B H_k R_Bᵀ, the stencil blocks are the per-sample sums of AddFunctionOfPullback
+/// regrouped: e.g. Σ Hw [d]× = A₀ [c]× − A₁, Σ [d]×ᵀ Hw [d]× = [c]×ᵀA₀[c]× − [c]×ᵀA₁ − A₁ᵀ[c]× + A₂,
+/// and the retraction curvature from R_B P R_Bᵀ and R_B N. Per sample 2 skew products and two
+/// outer products instead of the 12 × 12 stencil's 16 blocks; the same Hessian up to rounding
+/// (tests/core/test_rigid_contact.cpp). H_Y must be symmetric.
+class PairHessianSums {
+ public:
+  void Add(const Eigen::Vector3d& rB, const Eigen::Vector3d& gY, const Eigen::Matrix3d& HY,
+           double w);
+  /// Adds the summed Hessian to *hess (the first 6 × 6 block with a static B).
+  void AddTo(const Eigen::Matrix3d& RB, const Eigen::Vector3d& c, bool bDynamic,
+             PairMatrix* hess) const;
+  bool Empty() const { return empty_; }
+
+ private:
+  Eigen::Matrix3d H0_ = Eigen::Matrix3d::Zero(), H1_ = Eigen::Matrix3d::Zero(),
+                  H2_ = Eigen::Matrix3d::Zero(), P_ = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d N_ = Eigen::Vector3d::Zero();
+  bool empty_ = true;
+};
+
+}  // namespace superdex

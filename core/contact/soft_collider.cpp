@@ -1,0 +1,430 @@
+#include "core/contact/soft_collider.h"
+
+#include <Eigen/LU>
+#include <cmath>
+
+#include "core/contact/dissipation_kernels.h"
+#include "core/model/rigid_math.h"
+
+namespace superdex {
+namespace {
+using namespace dissipation_kernels;
+
+using Vec15 = Eigen::Matrix<double, 15, 1>;
+using Mat15 = Eigen::Matrix<double, 15, 15>;
+
+/// The affine pullback through tet t of B at positions x (extended beyond the tet).
+struct Pullback {
+  int tet = -1;
+  Eigen::Vector4d lambda;
+  Eigen::Vector3d X;     // reference point [m]
+  Eigen::Matrix3d B;     // Ds⁻¹
+  Eigen::Matrix3d Finv;  // Dm Ds⁻¹
+  Eigen::Matrix3d F;     // Ds Dm⁻¹
+};
+
+bool PullbackThrough(const SoftBodyModel& m, const Eigen::VectorXd& x, int t,
+                     const Eigen::Vector3d& y, Pullback* pb) {
+  const Eigen::Vector4i& T = m.rest.tets[t];
+  const Eigen::Vector3d x0 = x.segment<3>(3 * T[0]);
+  Eigen::Matrix3d Ds;
+  Ds << x.segment<3>(3 * T[1]) - x0, x.segment<3>(3 * T[2]) - x0, x.segment<3>(3 * T[3]) - x0;
+  const double det = Ds.determinant();
+  if (!(std::isfinite(det) && det > 0.0)) return false;
+  pb->tet = t;
+  pb->B = Ds.inverse();
+  const Eigen::Vector3d beta = pb->B * (y - x0);
+  pb->lambda << 1.0 - beta.sum(), beta;
+  const Eigen::Matrix3d& DmInv = m.elements[t].DmInv;
+  const Eigen::Matrix3d Dm = DmInv.inverse();
+  pb->X = m.rest.vertices[T[0]] + Dm * beta;
+  pb->Finv = Dm * pb->B;
+  pb->F = Ds * DmInv;
+  return true;
+}
+
+/// f(X) chained to the point stencil z = [y, x_0..x_3] (header formulas), weighted by w.
+void PointStencil(const Pullback& pb, const Eigen::Vector3d& gX, const Eigen::Matrix3d* HX,
+                  double w, Vec15* gz, Mat15* Hz) {
+  Eigen::Matrix<double, 3, 15> R;
+  R.leftCols<3>().setIdentity();
+  for (int a = 0; a < 4; ++a) R.middleCols<3>(3 + 3 * a) = -pb.lambda[a] * Eigen::Matrix3d::Identity();
+  const Eigen::Matrix<double, 3, 15> J = pb.Finv * R;
+  *gz = w * J.transpose() * gX;
+  if (!HX) return;
+  *Hz = w * J.transpose() * (*HX) * J;
+  const Eigen::Vector3d c = w * pb.Finv.transpose() * gX;
+  Eigen::Matrix<double, 4, 3> L;
+  L.bottomRows<3>() = pb.B;
+  L.row(0) = -pb.B.colwise().sum();
+  for (int a = 0; a < 4; ++a) {
+    const Vec15 u = R.transpose() * L.row(a).transpose();
+    // v_a = c at the x_a block: u vᵀ touches only the columns of that block.
+    Hz->middleCols<3>(3 + 3 * a) -= u * c.transpose();
+    Hz->middleRows<3>(3 + 3 * a) -= c * u.transpose();
+  }
+}
+
+/// How the sample point y moves with A's stencil dofs.
+struct SampleKinematics {
+  bool rigid = true;
+  Eigen::Vector3d r = Eigen::Vector3d::Zero();     // rigid: y − p_A
+  Eigen::Vector3d bary = Eigen::Vector3d::Zero();  // soft: face barycentrics
+  int Dofs() const { return rigid ? 6 : 9; }
+};
+
+/// Maps the point stencil to [A's dofs, B's tet]: y → A by J_y (with the rigid rotation
+/// curvature ½(g rᵀ + r gᵀ) − (g·r) I on δθ_A, g the gradient w.r.t. y), and adds into *g, *H.
+void ChainToStencil(const SampleKinematics& k, const Vec15& gz, const Mat15* Hz, StencilVector* g,
+                    StencilMatrix* H) {
+  const int nA = k.Dofs();
+  Eigen::Matrix<double, 3, 9> Jy = Eigen::Matrix<double, 3, 9>::Zero();
+  if (k.rigid) {
+    Jy.leftCols<3>().setIdentity();
+    Jy.middleCols<3>(3) = -Skew(k.r);
+  } else {
+    for (int a = 0; a < 3; ++a) Jy.middleCols<3>(3 * a) = k.bary[a] * Eigen::Matrix3d::Identity();
+  }
+  const auto JyA = Jy.leftCols(nA);
+  const Eigen::Vector3d gy = gz.head<3>();
+  g->head(nA) += JyA.transpose() * gy;
+  g->segment<12>(nA) += gz.tail<12>();
+  if (!Hz) return;
+  H->topLeftCorner(nA, nA) += JyA.transpose() * Hz->topLeftCorner<3, 3>() * JyA;
+  if (k.rigid)
+    H->block<3, 3>(3, 3) += 0.5 * (gy * k.r.transpose() + k.r * gy.transpose()) -
+                            gy.dot(k.r) * Eigen::Matrix3d::Identity();
+  const Eigen::MatrixXd AB = JyA.transpose() * Hz->topRightCorner<3, 12>();
+  H->block(0, nA, nA, 12) += AB;
+  H->block(nA, 0, 12, nA) += AB.transpose();
+  H->block<12, 12>(nA, nA) += Hz->bottomRightCorner<12, 12>();
+}
+
+Eigen::Vector3d Normalized(const Eigen::Vector3d& v) {
+  const double n = v.norm();
+  return n > 0 ? Eigen::Vector3d(v / n) : Eigen::Vector3d::Zero();
+}
+
+/// One sample of a current-geometry dissipation mode as a function of the stencil step δ
+/// ([A's dofs, B's tet]); first-order rigid retraction as in core/contact/rigid_dissipation.cpp. Output:
+/// the residual [A's part, −λ_a F⁻ᵀ g per tet node].
+struct CurrentModeSample {
+  SampleKinematics kin;
+  // A: rigid (p, R, body point and normal) or soft (face nodes, barycentrics)
+  Eigen::Vector3d pA, XA, nBody;
+  Eigen::Matrix3d RA;
+  Eigen::Vector3d xs[3];
+  // B: tet nodes, reference data, field at the current pullback
+  Eigen::Vector3d xb[4];
+  Eigen::Vector3d Xr0;
+  Eigen::Matrix3d Dm, DmInv;
+  Eigen::Vector3d Xbar, Yn, X0;
+  SdfSample field;
+  const DissipationSetup* setup = nullptr;
+
+  template <typename T>
+  void Residual(const T* delta, T* out) const {
+    const DissipationSetup& s = *setup;
+    const int nA = kin.Dofs();
+    Vec3<T> y, n, r;
+    if (kin.rigid) {
+      const Vec3<T> dth(delta[3], delta[4], delta[5]);
+      const Mat3<T> R = RA.cast<T>() + SkewT<T>(dth) * RA.cast<T>();
+      r = R * XA.cast<T>();
+      y = pA.cast<T>() + Vec3<T>(delta[0], delta[1], delta[2]) + r;
+      n = R * nBody.cast<T>();
+    } else {
+      Vec3<T> x[3];
+      for (int a = 0; a < 3; ++a)
+        x[a] = xs[a].cast<T>() + Vec3<T>(delta[3 * a], delta[3 * a + 1], delta[3 * a + 2]);
+      y = T(kin.bary[0]) * x[0] + T(kin.bary[1]) * x[1] + T(kin.bary[2]) * x[2];
+      n = (x[1] - x[0]).cross(x[2] - x[0]);
+    }
+    Vec3<T> xbT[4];
+    for (int a = 0; a < 4; ++a)
+      xbT[a] = xb[a].cast<T>() +
+               Vec3<T>(delta[nA + 3 * a], delta[nA + 3 * a + 1], delta[nA + 3 * a + 2]);
+    Mat3<T> Ds;
+    Ds.col(0) = xbT[1] - xbT[0];
+    Ds.col(1) = xbT[2] - xbT[0];
+    Ds.col(2) = xbT[3] - xbT[0];
+    const Mat3<T> B = Ds.inverse();
+    const Vec3<T> beta = B * (y - xbT[0]);
+    const T lambda0 = T(1.0) - beta.sum();
+    const Vec3<T> X = Xr0.cast<T>() + Dm.cast<T>() * beta;
+    const Mat3<T> Finv = Dm.cast<T>() * B;
+    const Mat3<T> F = Ds * DmInv.cast<T>();
+    using std::sqrt;
+    Vec3<T> NA = F.transpose() * n;  // normals map by Fᵀ
+    NA = NA / sqrt(NA.squaredNorm());
+    const Vec3<T> g = CurrentModeDissipationGradient<T>(X, NA, Xbar, field, Yn, X0, s);
+    const Vec3<T> ry = Finv.transpose() * g;
+    if (kin.rigid) {
+      const Vec3<T> tau = r.cross(ry);
+      for (int k = 0; k < 3; ++k) {
+        out[k] = ry[k];
+        out[3 + k] = tau[k];
+      }
+    } else {
+      for (int a = 0; a < 3; ++a)
+        for (int k = 0; k < 3; ++k) out[3 * a + k] = T(kin.bary[a]) * ry[k];
+    }
+    const T lam[4] = {lambda0, beta[0], beta[1], beta[2]};
+    for (int a = 0; a < 4; ++a)
+      for (int k = 0; k < 3; ++k) out[nA + 3 * a + k] = -lam[a] * ry[k];
+  }
+};
+
+/// Everything about one colliding sample at the three configurations.
+struct SamplePoint {
+  SampleKinematics kin;
+  int face = -1;
+  int key = 0;  // the sample's index in A's sample list (core/contact/slip_tape.h)
+  double weight = 0.0;
+  Eigen::Vector3d y, yn, y0;  // current, last, stage start [m]
+  Eigen::Vector3d n, nn;      // A's outward normal now and at x_n (unit)
+};
+
+}  // namespace
+
+void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput& Bin,
+                                const PenaltyParams& penalty, double maxAlignment,
+                                const DissipationSetup* diss, int order,
+                                SoftColliderPairContact* out,
+                                std::vector<ContactSampleRecord>* records) {
+  const SoftBodyModel& B = *Bin.model;
+  const Eigen::VectorXd& xB = *Bin.x;
+  const Eigen::VectorXd& xBn = Bin.xLast ? *Bin.xLast : xB;
+  const GridSdf& grid = *B.colliderGrid;
+  out->penaltyValue = out->dissipationValue = 0.0;
+  out->activeSamples = out->dissipativeSamples = 0;
+  out->minPhi = INFINITY;
+  out->maxCoulombRatio = 0.0;
+  out->numEntries = 0;
+  const double delta = penalty.delta;
+  const bool alignmentTest = std::isfinite(maxAlignment);
+  const bool withDissipation = diss && diss->coefficients.Any() && Bin.x0 &&
+                               (A.rigid ? A.start != nullptr : A.x0 != nullptr);
+  const bool explicitNormals = withDissipation && diss->mode == DissipationMode::ExplicitNormals;
+  const int nA = A.rigid ? 6 : 9;
+  const int n = nA + 12;
+  Aabb box = SoftBounds(xB), boxLast = SoftBounds(xBn);
+  box.Inflate(1e-9);
+  boxLast.Inflate(1e-9);
+  auto inside = [](const Aabb& b, const Eigen::Vector3d& p) {
+    return (p.array() >= b.min.array()).all() && (p.array() <= b.max.array()).all();
+  };
+  auto newEntry = [&](int face, int tet, bool dissipation) -> SoftColliderEntry& {
+    if (out->numEntries == static_cast<int>(out->entries.size())) out->entries.emplace_back();
+    SoftColliderEntry& e = out->entries[out->numEntries++];
+    e.aFace = face;
+    e.bTet = tet;
+    e.dissipation = dissipation;
+    e.gradient.setZero(n);
+    if (order >= 2) e.hessian.setZero(n, n);
+    return e;
+  };
+
+  Vec15 gz;
+  Mat15 Hz;
+  auto process = [&](const SamplePoint& sp) {
+    const double w = sp.weight;
+    const bool nowIn = inside(box, sp.y);
+    Pullback pb;
+    bool located = false;
+    SdfSample field;
+    if (nowIn) {
+      Eigen::Vector4d lam;
+      const int t = Bin.locator->Locate(sp.y, &lam);
+      located = t >= 0 && PullbackThrough(B, xB, t, sp.y, &pb);
+      if (located) {
+        field = grid.Evaluate(pb.X);
+        out->minPhi = std::min(out->minPhi, field.value);
+      }
+    }
+    // --- Penalty.
+    if (located && field.value < delta) {
+      bool rejected = false;
+      if (alignmentTest) {
+        Pullback pbn;
+        if (PullbackThrough(B, xBn, pb.tet, sp.yn, &pbn)) {
+          const Eigen::Vector3d Gn = grid.Evaluate(pbn.X).gradient;
+          rejected = Gn.dot(Normalized(pbn.F.transpose() * sp.nn)) > maxAlignment + kAlignmentRoundoff;
+        }
+      }
+      if (!rejected) {
+        ++out->activeSamples;
+        const PenaltyDensity W = NormalPenaltyDensity(field.value, penalty);
+        out->penaltyValue += w * W.W;
+        if (records) {
+          ContactSampleRecord rec;
+          rec.position = sp.y;
+          // The world normal of φ_B: ∇_y φ = F⁻ᵀ ∇Φ.
+          const Eigen::Vector3d gradWorld = pb.Finv.transpose() * field.gradient;
+          rec.normal = Normalized(gradWorld);
+          rec.phi = field.value;
+          rec.lambdaN = W.lambdaN;
+          rec.traction = W.lambdaN * gradWorld;
+          rec.weight = w;
+          rec.face = sp.face;
+          records->push_back(rec);
+        }
+        if (order >= 1) {
+          const Eigen::Vector3d gX = W.dW * field.gradient;
+          Eigen::Matrix3d HX;
+          if (order >= 2)
+            HX = W.d2W * field.gradient * field.gradient.transpose() + W.dW * field.hessian;
+          PointStencil(pb, gX, order >= 2 ? &HX : nullptr, w, &gz, &Hz);
+          SoftColliderEntry& e = newEntry(sp.face, pb.tet, false);
+          ChainToStencil(sp.kin, gz, order >= 2 ? &Hz : nullptr, &e.gradient,
+                         order >= 2 ? &e.hessian : nullptr);
+        }
+      }
+    }
+    // --- Dissipation.
+    if (!withDissipation) return;
+    const DissipationSetup& ds = *diss;
+    const Eigen::VectorXd& xB0 = *Bin.x0;
+    if (explicitNormals) {
+      if (!inside(boxLast, sp.yn)) return;
+      Eigen::Vector4d lam;
+      const int tn = Bin.locatorLast->Locate(sp.yn, &lam);
+      Pullback pbn, pbc, pb0;
+      if (tn < 0 || !PullbackThrough(B, xBn, tn, sp.yn, &pbn)) return;
+      const SdfSample f0 = grid.Evaluate(pbn.X);
+      if (f0.value >= delta) return;
+      const Eigen::Vector3d NA0 = Normalized(pbn.F.transpose() * sp.nn);
+      const double al = f0.gradient.dot(NA0);
+      if (al > maxAlignment + kAlignmentRoundoff) return;
+      const double lambdaHat =
+          AlignmentFactor(al, ds) * NormalPenaltyDensity(f0.value, ds.penalty).lambdaN;
+      if (lambdaHat == 0.0) return;
+      if (!PullbackThrough(B, xB, tn, sp.y, &pbc) || !PullbackThrough(B, xB0, tn, sp.y0, &pb0))
+        return;
+      const Eigen::Vector3d N = SplitDirection(f0.gradient, NA0, ds);
+      const Eigen::Vector3d V = (pbc.X - pb0.X) / ds.dt;
+      const DissipationDensity D = EvaluateSampleDissipation(
+          lambdaHat, N, V, ds.coefficients, ds.HessianKind(order >= 2), ds.slips, sp.key);
+      ++out->dissipativeSamples;
+      out->dissipationValue += w * ds.dt * D.R;
+      if (ds.coefficients.mu > 0.0)
+        out->maxCoulombRatio =
+            std::max(out->maxCoulombRatio, D.coulomb.norm() / (ds.coefficients.mu * lambdaHat));
+      if (order == 0) return;
+      const Eigen::Matrix3d HX = D.hessian / ds.dt;
+      PointStencil(pbc, D.gradient, order >= 2 ? &HX : nullptr, w, &gz, &Hz);
+      SoftColliderEntry& e = newEntry(sp.face, tn, true);
+      ChainToStencil(sp.kin, gz, order >= 2 ? &Hz : nullptr, &e.gradient,
+                     order >= 2 ? &e.hessian : nullptr);
+      return;
+    }
+    if (!located) return;
+    Pullback pbn, pb0;
+    if (!PullbackThrough(B, xBn, pb.tet, sp.yn, &pbn) || !PullbackThrough(B, xB0, pb.tet, sp.y0, &pb0))
+      return;
+    const double phiLoad = ds.mode == DissipationMode::ImplicitLoad
+                               ? field.value
+                               : field.value + field.gradient.dot(pbn.X - pb.X);
+    if (phiLoad >= delta) return;
+    const Eigen::Vector3d NA = Normalized(pb.F.transpose() * sp.n);
+    const double al = field.gradient.dot(NA);
+    if (al > maxAlignment + kAlignmentRoundoff) return;
+    const double lambdaHat =
+        AlignmentFactor(al, ds) * NormalPenaltyDensity(phiLoad, ds.penalty).lambdaN;
+    if (lambdaHat == 0.0) return;
+    const Eigen::Vector3d N = SplitDirection(field.gradient, NA, ds);
+    const Eigen::Vector3d V = (pb.X - pb0.X) / ds.dt;
+    const DissipationDensity D = EvaluateSampleDissipation(
+        lambdaHat, N, V, ds.coefficients, DissipationHessian::None, ds.slips, sp.key);
+    ++out->dissipativeSamples;
+    out->dissipationValue += w * ds.dt * D.R;
+    if (ds.coefficients.mu > 0.0)
+      out->maxCoulombRatio =
+          std::max(out->maxCoulombRatio, D.coulomb.norm() / (ds.coefficients.mu * lambdaHat));
+    if (order == 0) return;
+    PointStencil(pb, D.gradient, nullptr, w, &gz, nullptr);
+    SoftColliderEntry& e = newEntry(sp.face, pb.tet, true);
+    ChainToStencil(sp.kin, gz, nullptr, &e.gradient, nullptr);
+    if (order < 2) return;
+    CurrentModeSample cs;
+    cs.kin = sp.kin;
+    const Eigen::Vector4i& T = B.rest.tets[pb.tet];
+    for (int a = 0; a < 4; ++a) cs.xb[a] = xB.segment<3>(3 * T[a]);
+    cs.Xr0 = B.rest.vertices[T[0]];
+    cs.DmInv = B.elements[pb.tet].DmInv;
+    cs.Dm = cs.DmInv.inverse();
+    cs.Xbar = pb.X;
+    cs.Yn = pbn.X;
+    cs.X0 = pb0.X;
+    cs.field = field;
+    cs.setup = &ds;
+    if (A.rigid) {
+      cs.pA = A.pose->p;
+      cs.RA = A.pose->R;
+      cs.XA = A.pose->R.transpose() * sp.kin.r;
+      cs.nBody = A.pose->R.transpose() * sp.n;
+      AddResidualJacobian<18>(cs, w, &e.hessian);
+    } else {
+      const Eigen::Vector3i& F = A.soft->faces[sp.face];
+      for (int a = 0; a < 3; ++a) cs.xs[a] = A.x->segment<3>(3 * F[a]);
+      AddResidualJacobian<21>(cs, w, &e.hessian);
+    }
+  };
+
+  SamplePoint sp;
+  if (A.rigid) {
+    const RigidBodyModel& M = *A.rigid;
+    const RigidPose& a = *A.pose;
+    const RigidPose& an = A.start ? A.start->last : a;
+    sp.kin.rigid = true;
+    for (size_t k = 0; k < M.samples.size(); ++k) {
+      const SurfaceSample& s = M.samples[k];
+      sp.key = static_cast<int>(k);
+      sp.kin.r = a.R * s.X;
+      sp.y = a.p + sp.kin.r;
+      sp.yn = an.p + an.R * s.X;
+      // Cheap rejection: a sample outside both boxes carries nothing.
+      if (!inside(box, sp.y) && !(explicitNormals && inside(boxLast, sp.yn))) continue;
+      sp.y0 = A.start ? Eigen::Vector3d(A.start->p + A.start->R * s.X) : sp.y;
+      sp.n = a.R * s.normal;
+      sp.nn = an.R * s.normal;
+      sp.weight = s.weight;
+      sp.face = -1;
+      process(sp);
+    }
+  } else {
+    const SoftBodyModel& M = *A.soft;
+    const Eigen::VectorXd& x = *A.x;
+    const Eigen::VectorXd& xn = A.xLast ? *A.xLast : x;
+    sp.kin.rigid = false;
+    for (size_t f = 0; f < M.faces.size(); ++f) {
+      const Eigen::Vector3i& F = M.faces[f];
+      Aabb fb;
+      for (int k = 0; k < 3; ++k) {
+        fb.Extend(Eigen::Vector3d(x.segment<3>(3 * F[k])));
+        fb.Extend(Eigen::Vector3d(xn.segment<3>(3 * F[k])));
+      }
+      if (!fb.Overlaps(box) && !fb.Overlaps(boxLast)) continue;
+      sp.n = SoftFaceNormal(M, x, static_cast<int>(f));
+      sp.nn = SoftFaceNormal(M, xn, static_cast<int>(f));
+      sp.face = static_cast<int>(f);
+      for (int q = M.faceSampleBegin[f]; q < M.faceSampleBegin[f + 1]; ++q) {
+        const SoftSurfaceSample& s = M.samples[q];
+        sp.key = q;
+        sp.kin.bary = s.bary;
+        sp.y.setZero();
+        sp.yn.setZero();
+        sp.y0.setZero();
+        for (int k = 0; k < 3; ++k) {
+          sp.y += s.bary[k] * x.segment<3>(3 * F[k]);
+          sp.yn += s.bary[k] * xn.segment<3>(3 * F[k]);
+          sp.y0 += s.bary[k] * (A.x0 ? A.x0->segment<3>(3 * F[k]) : x.segment<3>(3 * F[k]));
+        }
+        sp.weight = s.weight;
+        process(sp);
+      }
+    }
+  }
+}
+
+}  // namespace superdex

@@ -1,0 +1,84 @@
+// A soft actor as a collider (experimental, spec: "Contact Kinematics"): the grid SDF Φ_B of its
+// reference surface, mapped by the deformation. For a query point y the pullback X_B(y) is found
+// in the deformed tet t that contains y and inverted through its affine map:
+//   β = Ds⁻¹ (y − x_0),  λ = (1 − Σβ, β),  X = X_0 + Dm β,   F = Ds Dm⁻¹,  F⁻¹ = Dm Ds⁻¹,
+// Ds, Dm the tet's deformed and reference edge matrices. Points in no tet are rejected. The
+// spatial field φ_B(y) = Φ_B(X_B(y)) is not an exact SDF; V_rel = (X − X⁰)/Δt_i is measured in
+// B's reference coordinates (its magnitude follows the local stretch F⁻¹), and the colliding
+// normal enters the alignment test as Fᵀ n_A (normals map by the transpose).
+//
+// Derivatives of f(X) on the point stencil z = [y, x_0, x_1, x_2, x_3] (15 dofs):
+//   ∂X/∂z = F⁻¹ R,  R = [I, −λ_0 I, −λ_1 I, −λ_2 I, −λ_3 I]
+//   ∇_z f = Rᵀ F⁻ᵀ g,   g = ∂f/∂X
+//   ∇²_z f = Rᵀ F⁻ᵀ H F⁻¹ R − Σ_a (u_a v_aᵀ + v_a u_aᵀ),  u_a = Rᵀ L_aᵀ, v_a = c at x_a, c = F⁻ᵀ g,
+// with L the 4 × 3 matrix of dλ/dr (rows of Ds⁻¹, row 0 minus their sum), r = dy − Σ λ_a dx_a.
+// The point y is then chained to the colliding actor A: a rigid sample y = p_A + R_A X_A (6 dofs,
+// with the rotation curvature of core/contact/rigid_contact.h) or a soft face sample y = Σ b_a x_a
+// (9 dofs). Each active sample contributes one stencil [A's dofs, the 4 tet nodes of B].
+//
+// Tet choice per term: the penalty uses the tet containing the current y (the pullback is
+// continuous across tets; its derivative jumps). Stage-start quantities (X⁰ for V_rel, X_n for
+// the reconstructed load, the alignment reference) use that tet's affine map at x⁰ and x_n. In
+// ExplicitNormals mode every term of a sample uses the tet that contains y_n at x_n, so that the
+// dissipation potential is smooth in q within the stage.
+#pragma once
+
+#include <vector>
+
+#include "core/contact/rigid_contact.h"
+#include "core/contact/rigid_dissipation.h"
+#include "core/model/soft_body.h"
+#include "geometry/tet_locator.h"
+
+namespace superdex {
+
+/// The collider B at one stage: positions now, at x_n and at the stage start, and point locators
+/// for the current and last configurations (built by the caller).
+struct SoftColliderInput {
+  const SoftBodyModel* model = nullptr;
+  const Eigen::VectorXd* x = nullptr;
+  const Eigen::VectorXd* xLast = nullptr;  ///< null: x
+  const Eigen::VectorXd* x0 = nullptr;     ///< null: no dissipation
+  const TetLocator* locator = nullptr;     ///< over x
+  const TetLocator* locatorLast = nullptr; ///< over xLast (explicit normals)
+};
+
+/// The colliding actor A: a rigid body (pose, stage start) or a soft actor (positions).
+struct CollidingInput {
+  const RigidBodyModel* rigid = nullptr;
+  const RigidPose* pose = nullptr;
+  const RigidStageStart* start = nullptr;  ///< rigid A's x⁰ and x_n (null: the pose)
+  const SoftBodyModel* soft = nullptr;
+  const Eigen::VectorXd* x = nullptr;
+  const Eigen::VectorXd* xLast = nullptr;
+  const Eigen::VectorXd* x0 = nullptr;
+};
+
+/// One sample's contribution on [A's dofs (6 rigid | 9 soft face), B's tet (12)].
+struct SoftColliderEntry {
+  int aFace = -1;        ///< soft A: its boundary face; rigid A: −1
+  int bTet = -1;
+  bool dissipation = false;  ///< a dissipation term (else the penalty)
+  StencilVector gradient;    ///< penalty gradient or dissipative residual
+  StencilMatrix hessian;     ///< penalty Hessian, explicit-normals dissipation Hessian, or the
+                             ///< residual-mode dissipation Jacobian (not symmetric)
+};
+
+struct SoftColliderPairContact {
+  double penaltyValue = 0.0, dissipationValue = 0.0;
+  int activeSamples = 0, dissipativeSamples = 0;
+  double minPhi = INFINITY;
+  double maxCoulombRatio = 0.0;
+  std::vector<SoftColliderEntry> entries;  ///< capacity reused
+  int numEntries = 0;
+};
+
+/// Penalty (and, with `dissipation`, the stage-discrete dissipation) of A's samples against the
+/// soft collider B. order 0/1/2 as elsewhere. `records` (order 0) collects active penalty samples.
+void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput& B,
+                                const PenaltyParams& penalty, double maxAlignment,
+                                const DissipationSetup* dissipation, int order,
+                                SoftColliderPairContact* out,
+                                std::vector<ContactSampleRecord>* records = nullptr);
+
+}  // namespace superdex

@@ -1,0 +1,280 @@
+#include "core/contact/soft_contact.h"
+
+#include <cmath>
+
+#include "core/contact/dissipation_kernels.h"
+#include "core/model/rigid_math.h"
+
+namespace superdex {
+namespace {
+using namespace dissipation_kernels;
+
+// A sample point's 12-stencil [p_A, θ_A (unused: r = 0), p_B, θ_B] (6 when B is static) spread
+// onto the face stencil [x_i, x_j, x_k, p_B, θ_B] by the barycentrics b.
+void SpreadGradient(const StencilVector& g, const Eigen::Vector3d& b, bool bDynamic,
+                    StencilVector* out) {
+  for (int a = 0; a < 3; ++a) out->segment<3>(3 * a) += b[a] * g.segment<3>(0);
+  if (bDynamic) out->segment<6>(9) += g.segment<6>(6);
+}
+
+void SpreadHessian(const StencilMatrix& H, const Eigen::Vector3d& b, bool bDynamic,
+                   StencilMatrix* out) {
+  for (int a = 0; a < 3; ++a) {
+    for (int c = 0; c < 3; ++c) out->block<3, 3>(3 * a, 3 * c) += b[a] * b[c] * H.block<3, 3>(0, 0);
+    if (bDynamic) {
+      out->block<3, 6>(3 * a, 9) += b[a] * H.block<3, 6>(0, 6);
+      out->block<6, 3>(9, 3 * a) += b[a] * H.block<6, 3>(6, 0);
+    }
+  }
+  if (bDynamic) out->block<6, 6>(9, 9) += H.block<6, 6>(6, 6);
+}
+
+Eigen::Vector3d Node(const Eigen::VectorXd& x, int i) { return x.segment<3>(3 * i); }
+
+Eigen::Vector3d UnitFaceNormal(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                               const Eigen::Vector3d& c) {
+  const Eigen::Vector3d n = (b - a).cross(c - a);
+  const double len = n.norm();
+  return len > 0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero();
+}
+
+/// One sample of a current-geometry mode as a function of the face stencil's step δ: nodes
+/// x_a + δx_a, B by the first-order retraction p_B + δp, (1 + [δθ]×) R_B (exact for first
+/// derivatives at δ = 0). Output: the world residual [b_a f (3 nodes), −f, −d × f], f = R_B ∂R/∂V.
+struct SoftCurrentModeSample {
+  Eigen::Vector3d xs[3];   // face nodes
+  Eigen::Vector3d bary;
+  const RigidPose* b = nullptr;
+  Eigen::Vector3d Y, Y0, Yn;
+  SdfSample field;
+  const DissipationSetup* setup = nullptr;
+  bool bDynamic = false;
+
+  /// Adds w ∂residual/∂δ. The kernel g is differentiated in its six arguments (Y, N_A) by
+  /// forward-mode AD; the chain to the stencil is analytic (y = Σ b_a x_a, d = y − p_B,
+  /// m = (x₁ − x₀) × (x₂ − x₀), n = m/|m|, N_A = R_Bᵀ n):
+  ///   dY = R_Bᵀ (dy − δp_B + [d]× δθ_B),   dN_A = R_Bᵀ ((I − n nᵀ)/|m| dm + [n]× δθ_B),
+  ///   dm = ([e₂]× − [e₁]×) δx₀ − [e₂]× δx₁ + [e₁]× δx₂   (e_i = x_i − x₀),
+  ///   df = R_B (G_Y dY + G_N dN_A) − [f]× δθ_B,   d(−d × f) = [f]× (dy − δp_B) − [d]× df.
+  void AddJacobian(double w, StencilMatrix* J) const {
+    const Eigen::Matrix3d& RB = b->R;
+    const Eigen::Vector3d y = bary[0] * xs[0] + bary[1] * xs[1] + bary[2] * xs[2];
+    const Eigen::Vector3d d = y - b->p;
+    const Eigen::Vector3d e1 = xs[1] - xs[0], e2 = xs[2] - xs[0];
+    const Eigen::Vector3d m = e1.cross(e2);
+    const double len = m.norm();
+    const Eigen::Vector3d n = m / len;
+    const CurrentModeLinearization lin =
+        LinearizeCurrentModeGradient(Y, RB.transpose() * n, field, Yn, Y0, *setup);
+    const Eigen::Vector3d f = RB * lin.g;
+    const Eigen::Matrix3d A = RB * lin.GY * RB.transpose();  // df per world dY-direction
+    const Eigen::Matrix3d C = RB * lin.GN * RB.transpose();  // df per world dn-direction
+    const Eigen::Matrix3d P = (Eigen::Matrix3d::Identity() - n * n.transpose()) / len;
+    const Eigen::Matrix3d S1 = Skew(e1), S2 = Skew(e2), Sf = Skew(f), Sd = Skew(d);
+    const Eigen::Matrix3d dm[3] = {S2 - S1, -S2, S1};
+    Eigen::Matrix<double, 3, 15> df = Eigen::Matrix<double, 3, 15>::Zero();
+    for (int a = 0; a < 3; ++a) df.block<3, 3>(0, 3 * a) = bary[a] * A + C * P * dm[a];
+    if (bDynamic) {
+      df.block<3, 3>(0, 9) = -A;
+      df.block<3, 3>(0, 12) = A * Sd + C * Skew(n) - Sf;
+    }
+    const int cols = bDynamic ? 15 : 9;
+    for (int a = 0; a < 3; ++a) J->block(3 * a, 0, 3, cols) += (w * bary[a]) * df.leftCols(cols);
+    if (bDynamic) {
+      Eigen::Matrix<double, 3, 15> dd = Eigen::Matrix<double, 3, 15>::Zero();
+      for (int a = 0; a < 3; ++a) dd.block<3, 3>(0, 3 * a) = bary[a] * Eigen::Matrix3d::Identity();
+      dd.block<3, 3>(0, 9) = -Eigen::Matrix3d::Identity();
+      J->block<3, 15>(9, 0) -= w * df;
+      J->block<3, 15>(12, 0) += w * (Sf * dd - Sd * df);
+    }
+  }
+};
+
+}  // namespace
+
+void EvaluateSoftRigidPair(const SoftPairInput& in, const RigidBodyModel& B, const RigidPose& b,
+                           const RigidStageStart* b0, bool bDynamic, const PenaltyParams& penalty,
+                           double maxAlignment, const DissipationSetup* diss, int order,
+                           SoftPairContact* out, std::vector<ContactSampleRecord>* records) {
+  const SoftBodyModel& A = *in.model;
+  const Eigen::VectorXd& x = *in.x;
+  const Eigen::VectorXd& xn = in.xLast ? *in.xLast : x;
+  const int n = bDynamic ? 15 : 9;
+  out->penaltyValue = out->dissipationValue = 0.0;
+  out->activeSamples = out->dissipativeSamples = 0;
+  out->minPhi = INFINITY;
+  out->maxCoulombRatio = 0.0;
+  out->numFaces = 0;
+  const double delta = penalty.delta;
+  const double L = B.collider.lipschitz;
+  const Eigen::Matrix3d RBt = b.R.transpose();
+  // Geometry reference (alignment, explicit normals): B at x_n when a stage start is given.
+  const RigidPose& bn = b0 ? b0->last : b;
+  const Eigen::Matrix3d RnBt = bn.R.transpose();
+  const bool alignmentTest = std::isfinite(maxAlignment);
+  const bool withDissipation = diss && diss->coefficients.Any() && b0 && in.x0;
+  const bool explicitNormals = withDissipation && diss->mode == DissipationMode::ExplicitNormals;
+  const double m = maxAlignment;
+
+  StencilVector g12;
+  StencilMatrix H12;
+  const int n12 = bDynamic ? 12 : 6;
+  for (size_t f = 0; f < A.faces.size(); ++f) {
+    const Eigen::Vector3i& F = A.faces[f];
+    const Eigen::Vector3d xs[3] = {Node(x, F[0]), Node(x, F[1]), Node(x, F[2])};
+    const Eigen::Vector3d xns[3] = {Node(xn, F[0]), Node(xn, F[1]), Node(xn, F[2])};
+    // Face culling by bounding spheres (1-Lipschitz up to L): current and reference faces.
+    const Eigen::Vector3d c = (xs[0] + xs[1] + xs[2]) / 3.0;
+    const double rad = std::max({(xs[0] - c).norm(), (xs[1] - c).norm(), (xs[2] - c).norm()});
+    const Eigen::Vector3d cn = (xns[0] + xns[1] + xns[2]) / 3.0;
+    const double radn =
+        std::max({(xns[0] - cn).norm(), (xns[1] - cn).norm(), (xns[2] - cn).norm()});
+    const double phiNow = B.collider.Value(RBt * (c - b.p)) - L * rad;
+    bool needed = phiNow < delta;  // the penalty looks at the current face only
+    if (withDissipation && !needed) {
+      if (explicitNormals) {
+        needed = B.collider.Value(RnBt * (cn - bn.p)) - L * radn < delta;
+      } else if (diss->mode == DissipationMode::ReconstructedLoad) {
+        // φ + G·(Y_n − Y) >= φ − L|Y_n − Y| for every sample of the face.
+        const double shift = (RnBt * (cn - bn.p) - RBt * (c - b.p)).norm() + rad + radn;
+        needed = phiNow - L * shift < delta;
+      }
+    }
+    if (!needed) continue;
+
+    if (out->numFaces == static_cast<int>(out->faces.size())) out->faces.emplace_back();
+    SoftFaceContact& fc = out->faces[out->numFaces];
+    fc.face = static_cast<int>(f);
+    fc.penaltyActive = fc.dissipationActive = false;
+    if (order >= 1) {
+      fc.penaltyGradient.setZero(n);
+      fc.dissipationResidual.setZero(n);
+    }
+    if (order >= 2) {
+      fc.penaltyHessian.setZero(n, n);
+      fc.dissipationJacobian.setZero(n, n);
+    }
+    const Eigen::Vector3d nA = UnitFaceNormal(xs[0], xs[1], xs[2]);
+    const Eigen::Vector3d nAn = UnitFaceNormal(xns[0], xns[1], xns[2]);
+    Eigen::Vector3d x0s[3] = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+    if (withDissipation)
+      for (int a = 0; a < 3; ++a) x0s[a] = Node(*in.x0, F[a]);
+
+    for (int q = A.faceSampleBegin[f]; q < A.faceSampleBegin[f + 1]; ++q) {
+      const SoftSurfaceSample& s = A.samples[q];
+      const Eigen::Vector3d& w3 = s.bary;
+      const Eigen::Vector3d y = w3[0] * xs[0] + w3[1] * xs[1] + w3[2] * xs[2];
+      const Eigen::Vector3d yn = w3[0] * xns[0] + w3[1] * xns[1] + w3[2] * xns[2];
+      const Eigen::Vector3d d = y - b.p;
+      const Eigen::Vector3d Y = RBt * d;
+      const Eigen::Vector3d Yn = RnBt * (yn - bn.p);
+      const SdfSample field = B.collider.Evaluate(Y);
+      out->minPhi = std::min(out->minPhi, field.value);
+
+      // --- Penalty.
+      if (field.value < delta) {
+        bool rejected = false;
+        if (alignmentTest) {
+          const Eigen::Vector3d G = b0 ? B.collider.Evaluate(Yn).gradient : field.gradient;
+          const Eigen::Vector3d NA = b0 ? Eigen::Vector3d(RnBt * nAn) : Eigen::Vector3d(RBt * nA);
+          rejected = G.dot(NA) > m + kAlignmentRoundoff;
+        }
+        if (!rejected) {
+          ++out->activeSamples;
+          fc.penaltyActive = true;
+          const PenaltyDensity W = NormalPenaltyDensity(field.value, penalty);
+          out->penaltyValue += s.weight * W.W;
+          if (records) {
+            ContactSampleRecord rec;
+            rec.position = y;
+            rec.normal = b.R * field.gradient.normalized();
+            rec.phi = field.value;
+            rec.lambdaN = W.lambdaN;
+            rec.traction = W.lambdaN * (b.R * field.gradient);
+            rec.weight = s.weight;
+            rec.face = static_cast<int>(f);
+            records->push_back(rec);
+          }
+          if (order >= 1) {
+            g12.setZero(n12);
+            if (order >= 2) H12.setZero(n12, n12);
+            const Eigen::Vector3d gY = W.dW * field.gradient;
+            Eigen::Matrix3d HY;
+            if (order >= 2)
+              HY = W.d2W * field.gradient * field.gradient.transpose() + W.dW * field.hessian;
+            AddFunctionOfPullback(Eigen::Vector3d::Zero(), d, b.R, gY,
+                                  order >= 2 ? &HY : nullptr, bDynamic, s.weight, &g12,
+                                  order >= 2 ? &H12 : nullptr);
+            SpreadGradient(g12, w3, bDynamic, &fc.penaltyGradient);
+            if (order >= 2) SpreadHessian(H12, w3, bDynamic, &fc.penaltyHessian);
+          }
+        }
+      }
+
+      // --- Dissipation.
+      if (!withDissipation) continue;
+      const DissipationSetup& ds = *diss;
+      double lambdaHat = 0.0;
+      Eigen::Vector3d N;
+      if (explicitNormals) {
+        const SdfSample f0 = B.collider.Evaluate(Yn);
+        if (f0.value >= delta) continue;
+        const Eigen::Vector3d NA0 = RnBt * nAn;
+        const double al = f0.gradient.dot(NA0);
+        if (al > m + kAlignmentRoundoff) continue;
+        lambdaHat = AlignmentFactor(al, ds) * NormalPenaltyDensity(f0.value, ds.penalty).lambdaN;
+        N = SplitDirection(f0.gradient, NA0, ds);
+      } else {
+        const double phiLoad = ds.mode == DissipationMode::ImplicitLoad
+                                   ? field.value
+                                   : field.value + field.gradient.dot(Yn - Y);
+        if (phiLoad >= delta) continue;
+        const Eigen::Vector3d NA = RBt * nA;
+        const double al = field.gradient.dot(NA);
+        if (al > m + kAlignmentRoundoff) continue;
+        lambdaHat = AlignmentFactor(al, ds) * NormalPenaltyDensity(phiLoad, ds.penalty).lambdaN;
+        N = SplitDirection(field.gradient, NA, ds);
+      }
+      if (lambdaHat == 0.0) continue;
+      const Eigen::Vector3d y0 = w3[0] * x0s[0] + w3[1] * x0s[1] + w3[2] * x0s[2];
+      const Eigen::Vector3d Y0 = b0->Rinv * (y0 - b0->p);
+      const Eigen::Vector3d V = (Y - Y0) / ds.dt;
+      const DissipationDensity D = EvaluateSampleDissipation(
+          lambdaHat, N, V, ds.coefficients, ds.HessianKind(explicitNormals && order >= 2),
+          ds.slips, q);
+      ++out->dissipativeSamples;
+      fc.dissipationActive = true;
+      out->dissipationValue += s.weight * ds.dt * D.R;
+      if (ds.coefficients.mu > 0.0 && lambdaHat > 0.0)
+        out->maxCoulombRatio =
+            std::max(out->maxCoulombRatio, D.coulomb.norm() / (ds.coefficients.mu * lambdaHat));
+      if (order == 0) continue;
+      g12.setZero(n12);
+      if (explicitNormals && order >= 2) H12.setZero(n12, n12);
+      const Eigen::Matrix3d HY = D.hessian / ds.dt;
+      AddFunctionOfPullback(Eigen::Vector3d::Zero(), d, b.R, D.gradient,
+                            explicitNormals && order >= 2 ? &HY : nullptr, bDynamic, s.weight,
+                            &g12, explicitNormals && order >= 2 ? &H12 : nullptr);
+      SpreadGradient(g12, w3, bDynamic, &fc.dissipationResidual);
+      if (order < 2) continue;
+      if (explicitNormals) {
+        SpreadHessian(H12, w3, bDynamic, &fc.dissipationJacobian);
+      } else {
+        SoftCurrentModeSample sample;
+        for (int a = 0; a < 3; ++a) sample.xs[a] = xs[a];
+        sample.bary = w3;
+        sample.b = &b;
+        sample.Y = Y;
+        sample.Y0 = Y0;
+        sample.Yn = Yn;
+        sample.field = field;
+        sample.setup = &ds;
+        sample.bDynamic = bDynamic;
+        sample.AddJacobian(s.weight, &fc.dissipationJacobian);
+      }
+    }
+    if (fc.penaltyActive || fc.dissipationActive) ++out->numFaces;
+  }
+}
+
+}  // namespace superdex

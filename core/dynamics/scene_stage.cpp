@@ -1,0 +1,369 @@
+#include "core/dynamics/scene_stage.h"
+
+#include <Eigen/Cholesky>
+
+#include "core/model/rigid_math.h"
+#include "energies/psd_projection.h"
+#include "energies/rigid_inertia.h"
+#include "optim/linear_solver.h"
+
+namespace superdex {
+
+SceneStageProblem::SceneStageProblem(const std::vector<RigidBodyModel>& models,
+                                     const std::vector<int>& dofOffset, int numDofs,
+                                     const StageTargets& targets, const Eigen::Vector3d& gravity,
+                                     ContactPipeline* contact, std::vector<RigidPose>* poses,
+                                     const StageDissipation& dissipation, const SoftStage* soft,
+                                     std::vector<Eigen::VectorXd>* softX,
+                                     StageWorkspace* workspace)
+    : models_(models),
+      dofOffset_(dofOffset),
+      numDofs_(numDofs),
+      targets_(targets),
+      gravity_(gravity),
+      contact_(contact),
+      poses_(poses),
+      ownWorkspace_(workspace ? nullptr : std::make_unique<StageWorkspace>()),
+      ws_(workspace ? workspace : ownWorkspace_.get()),
+      trial_(ws_->trial),
+      softTrial_(ws_->softTrial),
+      limits_(ws_->limits),
+      scratch_(ws_->scratch),
+      pendingStep_(ws_->pendingStep),
+      triplets_(ws_->triplets),
+      dissipation_(dissipation),
+      soft_(soft && softX && !soft->targets.empty() ? soft : nullptr),
+      softX_(soft_ ? softX : nullptr) {
+  trial_.resize(poses->size());  // Retract writes every entry
+  if (soft_) {
+    softTrial_ = *softX_;
+    if (ws_->soft.size() < soft_->targets.size()) ws_->soft.resize(soft_->targets.size());
+  }
+  context_ = ContextOf(dissipation_, targets_.dt);
+  // Where the linear solves are Krylov by default, the matrices keep a superset pattern while
+  // contacts come and go (explicit zeros: the Krylov iterates are the same).
+  const bool keepSuperset = numDofs_ >= kAutoIterativeUnknowns;
+  ws_->hessianAssembly.SetKeepSuperset(keepSuperset);
+  ws_->jacobianAssembly.SetKeepSuperset(keepSuperset);
+}
+
+DissipationContext ContextOf(const StageDissipation& dissipation, double dt) {
+  DissipationContext c;
+  c.dt = dt;
+  c.mode = dissipation.mode;
+  c.fadeFriction = dissipation.fadeFriction;
+  c.slips = dissipation.slips;
+  c.recordSlips = dissipation.recordSlips;
+  return c;
+}
+
+bool SceneStageProblem::IsPotential() const {
+  return !dissipation_.enabled || dissipation_.mode == DissipationMode::ExplicitNormals;
+}
+
+double SceneStageProblem::BodyEnergy(size_t i, const RigidPose& pose) const {
+  const RigidBodyModel& m = models_[i];
+  const double w = 1.0 / (targets_.dt * targets_.dt);
+  const RigidInertiaTerm t = RigidInertia(m.mass, m.secondMoment, pose.p, pose.R,
+                                          targets_.pHat[i], targets_.RHat[i], false);
+  return w * t.value + GravityPotential(m.mass, gravity_, pose.p);
+}
+
+void SceneStageProblem::Retract(const Eigen::VectorXd& d, std::vector<RigidPose>* out,
+                                std::vector<Eigen::VectorXd>* softOut) const {
+  if (soft_ && softOut) {
+    for (size_t s = 0; s < soft_->targets.size(); ++s) {
+      const SoftBodyModel& m = (*soft_->models)[s];
+      Eigen::VectorXd& x = (*softOut)[s];
+      x = (*softX_)[s];
+      for (int a = 0; a < m.NumNodes(); ++a)
+        if (m.freeIndex[a] >= 0)
+          x.segment<3>(3 * a) += d.segment<3>(soft_->dofOffset[s] + 3 * m.freeIndex[a]);
+    }
+  }
+  for (size_t i = 0; i < models_.size(); ++i) {
+    const int o = dofOffset_[i];
+    (*out)[i] = (*poses_)[i];
+    if (o < 0) continue;
+    (*out)[i].p += d.segment<3>(o);
+    (*out)[i].R = ExpSo3(d.segment<3>(o + 3)) * (*poses_)[i].R;
+  }
+}
+
+double SceneStageProblem::EvaluateAt(const std::vector<RigidPose>& poses,
+                                     const std::vector<Eigen::VectorXd>& softX, int order,
+                                     PsdProjection projection, Eigen::VectorXd* gPot,
+                                     Eigen::VectorXd* rDiss, ContactStats* stats,
+                                     double* minDetF) {
+  const double w = 1.0 / (targets_.dt * targets_.dt);
+  double value = 0.0;
+  if (order >= 1) {
+    gPot->setZero(numDofs_);
+    if (rDiss != gPot) rDiss->setZero(numDofs_);
+  }
+  triplets_.clear();
+  ws_->blocks.clear();
+  std::vector<double>& bodyValue = ws_->bodyValue;
+  bodyValue.assign(models_.size(), 0.0);
+  for (size_t i = 0; i < models_.size(); ++i) {
+    const int o = dofOffset_[i];
+    if (o < 0) continue;
+    const RigidBodyModel& m = models_[i];
+    const RigidInertiaTerm t = RigidInertia(m.mass, m.secondMoment, poses[i].p, poses[i].R,
+                                            targets_.pHat[i], targets_.RHat[i], order >= 1);
+    bodyValue[i] = w * t.value + GravityPotential(m.mass, gravity_, poses[i].p);
+    value += bodyValue[i];
+    if (order == 0) continue;
+    gPot->segment<6>(o) += w * t.gradient;
+    gPot->segment<3>(o) -= m.mass * gravity_;
+    if (order < 2) continue;
+    StencilMatrix H = w * t.hessian;
+    // The inertia Hessian is block diagonal: w m I (positive) and the rotation block. When the
+    // rotation block factorizes, the whole matrix is positive definite (its LLT's pivots are the
+    // blocks' own) and ProjectToPsd would return it unchanged.
+    if (projection != PsdProjection::None &&
+        Eigen::LLT<Eigen::Matrix3d>(H.bottomRightCorner<3, 3>()).info() != Eigen::Success)
+      ProjectToPsd(&H, projection == PsdProjection::Abs);
+    // The translation diagonal and the whole rotation block are appended even where an entry is
+    // zero: a body in free flight has rotation-block entries that are exact zeros at one stage and
+    // round-off at the next, and each such change made the assembly rebuild its pattern (the
+    // undamped drop: 1540 of 2037 assemblies). Other entries (the translation–rotation coupling a
+    // projection may leave at round-off level) only where nonzero.
+    for (int c = 0; c < 6; ++c)
+      for (int r = 0; r < 6; ++r)
+        if (r == c || (r >= 3 && c >= 3) || H(r, c) != 0.0)
+          triplets_.emplace_back(o + r, o + c, H(r, c));
+  }
+  SoftView view;
+  if (soft_) {
+    double minDet = INFINITY;
+    for (size_t s = 0; s < soft_->targets.size(); ++s) {
+      double md = INFINITY;
+      value += EvaluateSoftStageTerms((*soft_->models)[s], soft_->targets[s], targets_.dt, gravity_,
+                                      softX[s], order, projection, soft_->dofOffset[s], gPot,
+                                      &triplets_, &ws_->soft[s], &md);
+      minDet = std::min(minDet, md);
+    }
+    if (minDetF) *minDetF = minDet;
+    view.x = &softX;
+    view.xLast = &soft_->xLast;
+    view.x0 = &soft_->x0;
+    view.dofOffset = &soft_->dofOffset;
+  }
+  ws_->blockPosition = triplets_.size();
+  value += contact_->Evaluate(poses, dofOffset_, order, projection, gPot, &triplets_, &ws_->blocks,
+                              stats, dissipation_.enabled ? &context_ : nullptr, rDiss,
+                              targets_.start.empty() ? nullptr : &targets_.start,
+                              soft_ ? &view : nullptr);
+  return value;
+}
+
+double SceneStageProblem::Value(const Eigen::VectorXd& d) {
+  Retract(d, &trial_, &softTrial_);
+  return EvaluateAt(trial_, softTrial_, 0, PsdProjection::None, nullptr, nullptr);
+}
+
+double SceneStageProblem::Evaluate(Eigen::VectorXd* gradient,
+                                   Eigen::SparseMatrix<double>* hessian,
+                                   PsdProjection projection) {
+  return ValueAndDerivatives(*poses_, SoftPositions(), gradient, hessian, projection, &lastStats_,
+                             &lastMinDetF_);
+}
+
+void SceneStageProblem::BeginTrial(const Eigen::VectorXd& d) {
+  // trial_ is what Commit(d) installs (the same Retract), so the sums evaluated there are those
+  // that Evaluate and EvaluateResidual form after it, bit for bit.
+  Retract(d, &trial_, &softTrial_);
+  pendingStep_ = d;
+  hasPending_ = true;
+}
+
+bool SceneStageProblem::EvaluateAtStep(const Eigen::VectorXd& d, double* value,
+                                       Eigen::VectorXd* gradient,
+                                       Eigen::SparseMatrix<double>* hessian,
+                                       PsdProjection projection) {
+  BeginTrial(d);
+  *value = ValueAndDerivatives(trial_, softTrial_, gradient, hessian, projection, &pendingStats_,
+                               &pendingMinDetF_);
+  return true;
+}
+
+double SceneStageProblem::ValueAndDerivatives(const std::vector<RigidPose>& poses,
+                                              const std::vector<Eigen::VectorXd>& softX,
+                                              Eigen::VectorXd* gradient,
+                                              Eigen::SparseMatrix<double>* hessian,
+                                              PsdProjection projection, ContactStats* stats,
+                                              double* minDetF) {
+  const double value = EvaluateAt(poses, softX, hessian ? 2 : 1, projection, gradient, gradient,
+                                  stats, minDetF);
+  if (hessian)
+    ws_->hessianAssembly.Assemble(triplets_, ws_->blocks, ws_->blockPosition, numDofs_, hessian);
+  return value;
+}
+
+void SceneStageProblem::Residual(const Eigen::VectorXd& d, Eigen::VectorXd* r) {
+  Retract(d, &trial_, &softTrial_);
+  EvaluateAt(trial_, softTrial_, 1, PsdProjection::None, r, r);
+}
+
+void SceneStageProblem::EvaluateResidual(Eigen::VectorXd* r, Eigen::SparseMatrix<double>* J) {
+  ResidualAndJacobian(*poses_, SoftPositions(), r, J, &lastStats_, &lastMinDetF_);
+}
+
+bool SceneStageProblem::EvaluateResidualAtStep(const Eigen::VectorXd& d, Eigen::VectorXd* r,
+                                               Eigen::SparseMatrix<double>* J) {
+  BeginTrial(d);
+  ResidualAndJacobian(trial_, softTrial_, r, J, &pendingStats_, &pendingMinDetF_);
+  return true;
+}
+
+void SceneStageProblem::ResidualAndJacobian(const std::vector<RigidPose>& poses,
+                                            const std::vector<Eigen::VectorXd>& softX,
+                                            Eigen::VectorXd* r, Eigen::SparseMatrix<double>* J,
+                                            ContactStats* stats, double* minDetF) {
+  EvaluateAt(poses, softX, J ? 2 : 1, PsdProjection::None, r, &scratch_, stats, minDetF);
+  if (J) {
+    // The rotation entries of r are world torques τ. Along the retraction exp([δθ]×) R the torque
+    // of a potential changes by (H − ½[τ]×) δθ, H its second derivative (assembled above); the
+    // dissipation Jacobian of the residual modes is already that of the world torque.
+    const bool dissipationIsPotential = IsPotential();
+    for (size_t i = 0; i < models_.size(); ++i) {
+      const int o = dofOffset_[i];
+      if (o < 0) continue;
+      Eigen::Vector3d tau = r->segment<3>(o + 3);
+      if (dissipationIsPotential) tau += scratch_.segment<3>(o + 3);
+      const Eigen::Matrix3d S = -0.5 * Skew(tau);
+      // Every off-diagonal entry, zero or not, so that the sequence stays the same when τ
+      // changes (the entries are in the rotation block the inertia term always appends).
+      for (int c = 0; c < 3; ++c)
+        for (int k = 0; k < 3; ++k)
+          if (k != c) triplets_.emplace_back(o + 3 + k, o + 3 + c, S(k, c));
+    }
+    ws_->jacobianAssembly.Assemble(triplets_, ws_->blocks, ws_->blockPosition, numDofs_, J);
+  }
+  *r += scratch_;
+}
+
+void SceneStageProblem::SetChartOrigin() {
+  origin_ = *poses_;
+  if (soft_) softOrigin_ = *softX_;
+}
+
+void SceneStageProblem::MoveInChart(const Eigen::VectorXd& d) {
+  if (soft_) {
+    // Soft nodes live in a vector space: the chart is the identity.
+    *softX_ = softOrigin_;
+    Retract(d, &trial_, &softTrial_);
+    *softX_ = softTrial_;
+  }
+  for (size_t i = 0; i < models_.size(); ++i) {
+    const int o = dofOffset_[i];
+    (*poses_)[i] = origin_[i];
+    if (o < 0) continue;
+    (*poses_)[i].p += d.segment<3>(o);
+    (*poses_)[i].R = ExpSo3(d.segment<3>(o + 3)) * origin_[i].R;
+  }
+}
+
+Eigen::MatrixXd SceneStageProblem::ChartTangentMap(const Eigen::VectorXd& d) const {
+  Eigen::MatrixXd T = Eigen::MatrixXd::Identity(numDofs_, numDofs_);
+  for (size_t i = 0; i < models_.size(); ++i) {
+    const int o = dofOffset_[i];
+    if (o >= 0) T.block<3, 3>(o + 3, o + 3) = LeftJacobianSo3(d.segment<3>(o + 3));
+  }
+  return T;
+}
+
+void SceneStageProblem::Commit(const Eigen::VectorXd& d) {
+  Retract(d, &trial_, &softTrial_);
+  *poses_ = trial_;
+  if (soft_) *softX_ = softTrial_;
+  if (hasPending_ && pendingStep_ == d) {
+    lastStats_ = pendingStats_;
+    lastMinDetF_ = pendingMinDetF_;
+  }
+  hasPending_ = false;
+}
+
+bool SceneStageProblem::LastSplit(StageSplit* split) {
+  if (soft_) return false;
+  const int units = numDofs_ / 6;
+  if (static_cast<int>(split->unitOfDof.size()) != numDofs_ || split->units != units) {
+    split->unitOfDof.resize(numDofs_);
+    for (int k = 0; k < numDofs_; ++k) split->unitOfDof[k] = k / 6;
+    split->units = units;
+  }
+  if (ws_->bodyValue.size() != models_.size()) return false;
+  std::vector<double>& value = ws_->splitValue;
+  value = ws_->bodyValue;
+  split->joins.clear();
+  if (contact_ && !contact_->SplitLastEvaluation(dofOffset_, &value, &split->joins)) return false;
+  split->share.assign(units, 0.0);
+  for (size_t i = 0; i < models_.size(); ++i)
+    if (dofOffset_[i] >= 0) split->share[dofOffset_[i] / 6] += value[i];
+  for (std::pair<int, int>& j : split->joins)
+    j = {dofOffset_[j.first] / 6, dofOffset_[j.second] / 6};
+  return true;
+}
+
+bool SceneStageProblem::TrustStep(Eigen::VectorXd* d) {
+  bool changed = false;
+  for (size_t i = 0; i < models_.size(); ++i) {
+    const int o = dofOffset_[i];
+    if (o < 0) continue;
+    const double rho = std::max(models_[i].samplesRadius, RmsRadius(models_[i]));
+    if (!(rho > 0.0)) continue;
+    const double move = d->segment<3>(o).norm() + d->segment<3>(o + 3).norm() * rho;
+    const double trust = kCorrectionTrust * rho;
+    if (!(move > trust)) continue;
+    d->segment<6>(o) *= trust / move;
+    changed = true;
+  }
+  return changed;
+}
+
+bool SceneStageProblem::LimitStep(Eigen::VectorXd* d) {
+  if (!contact_) return false;
+  Retract(*d, &trial_, nullptr);
+  contact_->StepLimits(*poses_, trial_, &limits_);
+  bool changed = false;
+  for (size_t i = 0; i < models_.size(); ++i) {
+    const int o = dofOffset_[i];
+    if (o < 0 || limits_[i] >= 1.0) continue;
+    d->segment<6>(o) *= limits_[i];
+    changed = true;
+  }
+  return changed;
+}
+
+int SceneStageProblem::LeadingSixDofBlocks() const {
+  // Bodies in dof order: offsets 0, 6, 12, … without gaps (else no 6-blocks are claimed).
+  int k = 0;
+  int expected = 0;
+  for (size_t i = 0; i < models_.size(); ++i) {
+    const int o = dofOffset_[i];
+    if (o < 0) continue;
+    if (o != expected) return 0;
+    ++k;
+    expected += 6;
+  }
+  return k;
+}
+
+double SceneStageProblem::StepNorm(const Eigen::VectorXd& d) const {
+  double norm = 0.0;
+  for (size_t i = 0; i < models_.size(); ++i) {
+    const int o = dofOffset_[i];
+    if (o < 0) continue;
+    const double radius = RmsRadius(models_[i]);
+    norm = std::max(norm, d.segment<3>(o).lpNorm<Eigen::Infinity>());
+    norm = std::max(norm, d.segment<3>(o + 3).norm() * radius);
+  }
+  if (soft_) {
+    const int begin = soft_->dofOffset.front();
+    norm = std::max(norm, d.segment(begin, numDofs_ - begin).lpNorm<Eigen::Infinity>());
+  }
+  return norm;
+}
+
+}  // namespace superdex

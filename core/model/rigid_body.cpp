@@ -1,0 +1,456 @@
+#include "core/model/rigid_body.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <functional>
+#include <map>
+#include <tuple>
+#include <limits>
+#include <sstream>
+
+#include "core/model/rigid_math.h"
+#include "geometry/quadrature.h"
+
+namespace superdex {
+namespace {
+
+bool IsFinite(const Eigen::MatrixXd& m) { return m.allFinite(); }
+
+std::string Num(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+const char* ShapeName(RigidShapeKind k) {
+  switch (k) {
+    case RigidShapeKind::Sphere: return "sphere";
+    case RigidShapeKind::Box: return "box";
+    case RigidShapeKind::Mesh: return "mesh";
+    case RigidShapeKind::Plane: return "plane";
+  }
+  return "?";
+}
+
+// Samples on the exact sphere: flat icosphere quadrature points projected radially, weights scaled
+// by the area ratio of the central projection, dA_sphere = r² cos(angle)/|X_flat|² dA_flat.
+void SphereSamples(double r, int subdivisions, const TriangleQuadratureRule& rule,
+                   std::vector<SurfaceSample>* out) {
+  const TriangleMesh mesh = MakeIcosphere(r, subdivisions);
+  for (int f = 0; f < mesh.NumFaces(); ++f) {
+    const Eigen::Vector3i& t = mesh.faces[f];
+    const double area = mesh.FaceArea(f);
+    const Eigen::Vector3d nf = mesh.FaceNormal(f);
+    for (size_t q = 0; q < rule.weights.size(); ++q) {
+      const Eigen::Vector3d& b = rule.barycentric[q];
+      const Eigen::Vector3d xf =
+          b[0] * mesh.vertices[t[0]] + b[1] * mesh.vertices[t[1]] + b[2] * mesh.vertices[t[2]];
+      const double len = xf.norm();
+      const Eigen::Vector3d n = xf / len;
+      const double jac = r * r / (len * len) * n.dot(nf);
+      out->push_back({r * n, n, area * rule.weights[q] * jac});
+    }
+  }
+}
+
+void MeshSamples(const TriangleMesh& mesh, const Eigen::Vector3d& offset,
+                 const TriangleQuadratureRule& rule, std::vector<SurfaceSample>* out) {
+  for (int f = 0; f < mesh.NumFaces(); ++f) {
+    const Eigen::Vector3i& t = mesh.faces[f];
+    const double area = mesh.FaceArea(f);
+    if (!(area > 0.0)) continue;
+    const Eigen::Vector3d nf = mesh.FaceNormal(f);
+    for (size_t q = 0; q < rule.weights.size(); ++q) {
+      const Eigen::Vector3d& b = rule.barycentric[q];
+      const Eigen::Vector3d x =
+          b[0] * mesh.vertices[t[0]] + b[1] * mesh.vertices[t[1]] + b[2] * mesh.vertices[t[2]];
+      out->push_back({x - offset, nf, area * rule.weights[q]});
+    }
+  }
+}
+
+// Builds the sample tree of `samples`: median splits of the sample range along the longest side
+// of its box (ties by original index, so the tree is deterministic), leaves of at most
+// kSamplesPerLeaf; samples reordered into leaf order. Each node's sphere is centred on its box.
+std::vector<SampleNode> BuildSampleTree(std::vector<SurfaceSample>* samples) {
+  std::vector<SampleNode> tree;
+  const int n = static_cast<int>(samples->size());
+  if (n == 0) return tree;
+  const std::vector<SurfaceSample>& s = *samples;
+  std::vector<int> order(n);
+  for (int i = 0; i < n; ++i) order[i] = i;
+  auto bound = [&](SampleNode* node) {
+    Aabb box;
+    for (int k = node->begin; k < node->end; ++k) box.Extend(s[order[k]].X);
+    node->center = 0.5 * (box.min + box.max);
+    node->radius = 0.0;
+    for (int k = node->begin; k < node->end; ++k)
+      node->radius = std::max(node->radius, (s[order[k]].X - node->center).norm());
+    return box;
+  };
+  tree.reserve(2 * (n / kSamplesPerLeaf + 1));
+  std::vector<int> pending = {0};
+  tree.push_back({0, n});
+  while (!pending.empty()) {
+    const int index = pending.back();
+    pending.pop_back();
+    const Aabb box = bound(&tree[index]);
+    const SampleNode node = tree[index];
+    if (node.end - node.begin <= kSamplesPerLeaf) continue;
+    int axis = 0;
+    (box.max - box.min).maxCoeff(&axis);
+    const int mid = (node.begin + node.end) / 2;
+    std::nth_element(order.begin() + node.begin, order.begin() + mid, order.begin() + node.end,
+                     [&](int a, int b) {
+                       const double xa = s[a].X[axis], xb = s[b].X[axis];
+                       return xa < xb || (xa == xb && a < b);
+                     });
+    const int left = static_cast<int>(tree.size());
+    tree.push_back({node.begin, mid});
+    tree.push_back({mid, node.end});
+    tree[index].left = left;
+    tree[index].right = left + 1;
+    pending.push_back(left + 1);
+    pending.push_back(left);
+  }
+  std::vector<SurfaceSample> sorted(n);
+  for (int k = 0; k < n; ++k) sorted[k] = s[order[k]];
+  *samples = std::move(sorted);
+  return tree;
+}
+
+bool SameSample(const SurfaceSample& a, const SurfaceSample& b) {
+  return a.X == b.X && a.normal == b.normal && a.weight == b.weight;
+}
+
+bool SameNode(const SampleNode& a, const SampleNode& b) {
+  return a.begin == b.begin && a.end == b.end && a.left == b.left && a.right == b.right &&
+         a.center == b.center && a.radius == b.radius;
+}
+
+}  // namespace
+
+SdfSample RigidCollider::Evaluate(const Eigen::Vector3d& X) const {
+  switch (type) {
+    case ColliderType::Sphere: return sphere.Evaluate(X);
+    case ColliderType::Box: return box.Evaluate(X);
+    case ColliderType::Plane: return plane.Evaluate(X);
+    case ColliderType::Mesh: return mesh->Evaluate(X);
+    case ColliderType::Sdf: return grid->Evaluate(X);
+    default: {
+      SdfSample s;
+      s.value = std::numeric_limits<double>::infinity();
+      return s;
+    }
+  }
+}
+
+double RigidCollider::Value(const Eigen::Vector3d& X) const {
+  switch (type) {
+    case ColliderType::Sphere: return sphere.Value(X);
+    case ColliderType::Box: return box.Value(X);
+    case ColliderType::Plane: return plane.Value(X);
+    default: return Evaluate(X).value;
+  }
+}
+
+bool RigidCollider::EvaluateBelow(const Eigen::Vector3d& X, double bound, SdfSample* s) const {
+  switch (type) {
+    case ColliderType::Sphere: return sphere.EvaluateBelow(X, bound, s);
+    case ColliderType::Box: return box.EvaluateBelow(X, bound, s);
+    case ColliderType::Plane: return plane.EvaluateBelow(X, bound, s);
+    default:  // mesh and grid fields evaluate in full
+      *s = Evaluate(X);
+      return !(s->value >= bound);
+  }
+}
+
+Eigen::Vector3d RigidBodyState::AngularVelocity() const { return Axial(Rdot * R.transpose()); }
+
+bool BuildRigidBody(const RigidActorDesc& d, const std::string& prefix, RigidBodyModel* m,
+                    RigidBodyState* st, Error* error) {
+  const RigidShape& shape = d.shape;
+  *m = RigidBodyModel();
+  m->name = d.name;
+  m->dynamic = d.dynamic;
+  m->shape = shape;
+  m->contact = d.contact;
+  m->requestedCollider = d.colliderType;
+  m->boundaryElementType = d.boundaryElementType;
+  m->contactLayer = d.contactLayer;
+
+  if (std::string msg = Validate(d.contact, prefix + "contact."); !msg.empty())
+    return Fail(error, msg);
+  if (!IsFinite(d.position) || !IsFinite(d.linearVelocity) || !IsFinite(d.angularVelocity))
+    return Fail(error, prefix + "position/velocity: must be finite");
+  if (!(d.orientation.coeffs().allFinite() && d.orientation.norm() > 1e-12))
+    return Fail(error, prefix + "orientation: must be a non-zero finite quaternion");
+
+  // Shape, mass properties in the shape frame.
+  double mass = 0.0;
+  Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d com = Eigen::Vector3d::Zero();
+  const double rho = d.density;
+  if (d.dynamic && !d.mass && !(std::isfinite(rho) && rho > 0))
+    return Fail(error, prefix + "density: must be > 0, got " + Num(rho));
+  switch (shape.kind) {
+    case RigidShapeKind::Sphere: {
+      const double r = shape.radius;
+      if (!(std::isfinite(r) && r > 0)) return Fail(error, prefix + "shape.radius: must be > 0, got " + Num(r));
+      if (shape.surfaceResolution < 0 || shape.surfaceResolution > 7)
+        return Fail(error, prefix + "shape.surface_resolution: sphere subdivisions must be in [0, 7], got " +
+                               Num(shape.surfaceResolution));
+      mass = rho * 4.0 / 3.0 * M_PI * r * r * r;
+      J = Eigen::Matrix3d::Identity() * (mass * r * r / 5.0);
+      m->localBounds.Extend(Eigen::Vector3d::Constant(-r));
+      m->localBounds.Extend(Eigen::Vector3d::Constant(r));
+      break;
+    }
+    case RigidShapeKind::Box: {
+      const Eigen::Vector3d& h = shape.halfExtents;
+      if (!(h.allFinite() && h.minCoeff() > 0))
+        return Fail(error, prefix + "shape.half_extents: must be > 0");
+      if (shape.surfaceResolution < 1 || shape.surfaceResolution > 64)
+        return Fail(error, prefix + "shape.surface_resolution: box divisions must be in [1, 64], got " +
+                               Num(shape.surfaceResolution));
+      mass = rho * 8.0 * h.prod();
+      J = (mass / 3.0) * h.cwiseProduct(h).asDiagonal();
+      m->localBounds.Extend(-h);
+      m->localBounds.Extend(h);
+      break;
+    }
+    case RigidShapeKind::Mesh: {
+      if (!shape.mesh || shape.mesh->NumFaces() == 0)
+        return Fail(error, prefix + "shape.mesh: must have at least one face");
+      const MassProperties mp = ComputeMassProperties(*shape.mesh, d.dynamic ? rho : 1.0);
+      if (d.dynamic && !(mp.volume > 0))
+        return Fail(error, prefix + "shape.mesh: encloses no positive volume (not closed or "
+                                    "inward-oriented), got volume " + Num(mp.volume));
+      mass = mp.mass;
+      J = mp.secondMoment;
+      com = mp.volume > 0 ? mp.centerOfMass : Eigen::Vector3d::Zero();
+      for (const auto& v : shape.mesh->vertices) m->localBounds.Extend(v - com);
+      break;
+    }
+    case RigidShapeKind::Plane: {
+      if (d.dynamic) return Fail(error, prefix + "shape: a plane can only be a static actor");
+      if (!(shape.planeNormal.allFinite() && shape.planeNormal.norm() > 1e-12))
+        return Fail(error, prefix + "shape.normal: must be a non-zero vector");
+      m->shape.planeNormal.normalize();
+      m->localBounds = Aabb::Everything();
+      break;
+    }
+  }
+  if (d.dynamic) {
+    if (d.mass) {
+      if (!(std::isfinite(*d.mass) && *d.mass > 0))
+        return Fail(error, prefix + "mass: must be > 0, got " + Num(*d.mass));
+      J *= *d.mass / mass;
+      mass = *d.mass;
+    }
+    if (d.inertia) {
+      const Eigen::Matrix3d& I = *d.inertia;
+      if (!I.allFinite() || (I - I.transpose()).norm() > 1e-9 * I.norm())
+        return Fail(error, prefix + "inertia: must be a finite symmetric matrix");
+      const Eigen::Vector3d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I).eigenvalues();
+      if (ev.minCoeff() <= 0 || ev[2] > ev[0] + ev[1] * (1 + 1e-12))
+        return Fail(error, prefix + "inertia: principal moments must be > 0 and satisfy the "
+                                    "triangle inequality");
+      J = 0.5 * I.trace() * Eigen::Matrix3d::Identity() - I;
+    }
+    m->mass = mass;
+    m->secondMoment = J;
+  }
+  m->shapeOffset = com;
+
+  // Collider role.
+  RigidCollider& c = m->collider;
+  ColliderType want = d.colliderType;
+  const char* shapeName = ShapeName(shape.kind);
+  if (want == ColliderType::Auto) {
+    switch (shape.kind) {
+      case RigidShapeKind::Sphere: want = ColliderType::Sphere; break;
+      case RigidShapeKind::Box: want = ColliderType::Box; break;
+      case RigidShapeKind::Plane: want = ColliderType::Plane; break;
+      case RigidShapeKind::Mesh: want = ColliderType::Sdf; break;  // spec: Sdf for rigid meshes
+    }
+  }
+  if (want == ColliderType::PointCloud)
+    return Fail(error, prefix + "collider_type: PointCloud is not supported yet (supported: "
+                                "Auto, None, Sphere, Box, Plane, Mesh, Sdf)");
+  const bool analytic = want == ColliderType::Sphere || want == ColliderType::Box ||
+                        want == ColliderType::Plane;
+  const bool match = want == ColliderType::None || !analytic ||
+                     (want == ColliderType::Sphere && shape.kind == RigidShapeKind::Sphere) ||
+                     (want == ColliderType::Box && shape.kind == RigidShapeKind::Box) ||
+                     (want == ColliderType::Plane && shape.kind == RigidShapeKind::Plane);
+  if (!match)
+    return Fail(error, prefix + "collider_type: " + ToString(want) + " needs a " +
+                           (want == ColliderType::Sphere ? "sphere"
+                            : want == ColliderType::Box  ? "box"
+                                                         : "plane") +
+                           " shape, got " + shapeName);
+  if ((want == ColliderType::Mesh || want == ColliderType::Sdf) &&
+      shape.kind == RigidShapeKind::Plane)
+    return Fail(error, prefix + "collider_type: " + ToString(want) +
+                           " needs a closed shape, got plane");
+  c.type = want;
+  c.sphere.radius = shape.radius;
+  c.box.halfExtents = shape.halfExtents;
+  c.plane.normal = m->shape.planeNormal;
+  c.plane.offset = 0.0;
+  c.boundingRadius = shape.kind == RigidShapeKind::Plane
+                         ? std::numeric_limits<double>::infinity()
+                         : std::max(m->localBounds.min.norm(), m->localBounds.max.norm());
+  if (shape.kind == RigidShapeKind::Sphere) c.boundingRadius = shape.radius;
+  if (want == ColliderType::Mesh || want == ColliderType::Sdf) {
+    // The shape's closed mesh in the body frame (origin at the centre of mass).
+    TriangleMesh mesh = shape.kind == RigidShapeKind::Mesh ? *shape.mesh
+                        : shape.kind == RigidShapeKind::Sphere
+                            ? MakeIcosphere(shape.radius, shape.surfaceResolution)
+                            : MakeBoxMesh(shape.halfExtents, shape.surfaceResolution);
+    for (Eigen::Vector3d& x : mesh.vertices) x -= com;
+    std::string why;
+    auto exact = MeshSdf::Build(mesh, &why);
+    if (!exact)
+      return Fail(error, prefix + "shape." + why +
+                             (shape.meshSource.empty() ? "" : " in " + shape.meshSource) +
+                             "; collider_type " + ToString(want) + " needs a closed, outward "
+                             "oriented mesh (or collider_type None)");
+    c.boundingRadius = exact->BoundingRadius();
+    if (want == ColliderType::Mesh) {
+      c.mesh = exact;
+    } else {
+      if (std::string m2 = Validate(d.gridSdf, prefix + "grid_sdf."); !m2.empty())
+        return Fail(error, m2);
+      std::function<double(const Eigen::Vector3d&)> phi;
+      if (shape.kind == RigidShapeKind::Sphere) {
+        const SphereSdf sp{shape.radius};
+        phi = [sp](const Eigen::Vector3d& X) { return sp.Evaluate(X).value; };
+      } else if (shape.kind == RigidShapeKind::Box) {
+        const BoxSdf bx{shape.halfExtents};
+        phi = [bx](const Eigen::Vector3d& X) { return bx.Evaluate(X).value; };
+      } else {
+        phi = [exact](const Eigen::Vector3d& X) { return exact->Value(X); };
+      }
+      std::string why2;
+      c.grid = BuildGridSdf(mesh, phi, d.gridSdf, &why2);
+      if (!c.grid) return Fail(error, prefix + "grid_sdf: " + why2);
+      const Eigen::Vector3i nodes = c.grid->Nodes();
+      const double h = c.grid->Spacing();
+      c.lipschitz = std::sqrt(3.0);
+      std::ostringstream note;
+      note << "actor '" << d.name << "': grid SDF " << nodes.x() << " x " << nodes.y() << " x "
+           << nodes.z() << " nodes, voxel " << h << " m, " << c.grid->MemoryBytes() / 1048576.0
+           << " MiB";
+      m->notice = note.str();
+    }
+  }
+
+  // Colliding role: dynamic rigid actors only (spec: "Default Roles by Actor Type").
+  std::vector<SurfaceSample> samples;
+  if (d.dynamic) {
+    const TriangleQuadratureRule& rule = GetTriangleQuadratureRule(d.boundaryElementType);
+    switch (shape.kind) {
+      case RigidShapeKind::Sphere:
+        SphereSamples(shape.radius, shape.surfaceResolution, rule, &samples);
+        break;
+      case RigidShapeKind::Box:
+        MeshSamples(MakeBoxMesh(shape.halfExtents, shape.surfaceResolution),
+                    Eigen::Vector3d::Zero(), rule, &samples);
+        break;
+      case RigidShapeKind::Mesh: MeshSamples(*shape.mesh, com, rule, &samples); break;
+      case RigidShapeKind::Plane: break;
+    }
+  }
+
+  for (const SurfaceSample& s : samples) m->samplesRadius = std::max(m->samplesRadius, s.X.norm());
+  std::vector<SampleNode> tree = BuildSampleTree(&samples);
+  m->samples = SharedArray<SurfaceSample>(std::move(samples));
+  m->sampleTree = SharedArray<SampleNode>(std::move(tree));
+
+  // Initial state.
+  *st = RigidBodyState();
+  st->R = d.orientation.normalized().toRotationMatrix();
+  st->p = d.position + st->R * com;
+  if (d.dynamic) {
+    st->v = d.linearVelocity;
+    st->Rdot = Skew(d.angularVelocity) * st->R;
+  }
+  return true;
+}
+
+bool ShareSamples(const RigidBodyModel& other, RigidBodyModel* m) {
+  if (!SameElements(other.samples, m->samples, SameSample) ||
+      !SameElements(other.sampleTree, m->sampleTree, SameNode))
+    return false;
+  m->samples = other.samples;
+  m->sampleTree = other.sampleTree;
+  return true;
+}
+
+std::size_t SamplesHash(const RigidBodyModel& m) {
+  // FNV-1a over the bit patterns of the samples' coordinates, normals and weights, a 64-bit word
+  // at a time (equal sets hash equal; ShareSamples compares the elements themselves).
+  std::uint64_t h = 1469598103934665603ull;
+  auto mix = [&h](double x) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    h ^= bits;
+    h *= 1099511628211ull;
+  };
+  mix(static_cast<double>(m.samples.size()));
+  for (const SurfaceSample& s : m.samples) {
+    for (int i = 0; i < 3; ++i) mix(s.X[i]);
+    for (int i = 0; i < 3; ++i) mix(s.normal[i]);
+    mix(s.weight);
+  }
+  return static_cast<std::size_t>(h);
+}
+
+double KineticEnergy(const RigidBodyModel& m, const RigidBodyState& s) {
+  return 0.5 * m.mass * s.v.squaredNorm() + 0.5 * (s.Rdot * m.secondMoment * s.Rdot.transpose()).trace();
+}
+
+Eigen::Vector3d LinearMomentum(const RigidBodyModel& m, const RigidBodyState& s) {
+  return m.mass * s.v;
+}
+
+Eigen::Vector3d SpinMomentum(const Eigen::Matrix3d& R, const Eigen::Matrix3d& Rdot,
+                             const Eigen::Matrix3d& J) {
+  return Axial(Rdot * J * R.transpose() - R * J * Rdot.transpose());
+}
+
+double RmsRadius(const RigidBodyModel& model) {
+  return model.mass > 0.0 ? std::sqrt(model.secondMoment.trace() / model.mass) : 0.0;
+}
+
+Eigen::Matrix3d WorldInertia(const Eigen::Matrix3d& R, const Eigen::Matrix3d& J) {
+  return R * (J.trace() * Eigen::Matrix3d::Identity() - J) * R.transpose();
+}
+
+Eigen::Vector3d AngularMomentum(const RigidBodyModel& m, const RigidBodyState& s) {
+  return m.mass * s.p.cross(s.v) + SpinMomentum(s.R, s.Rdot, m.secondMoment);
+}
+
+Aabb WorldBounds(const RigidBodyModel& m, const Eigen::Vector3d& p, const Eigen::Matrix3d& R) {
+  if (m.shape.kind == RigidShapeKind::Plane) return Aabb::Everything();
+  Aabb b;
+  if (m.shape.kind == RigidShapeKind::Sphere) {
+    b.Extend(p);
+    b.Inflate(m.shape.radius);
+    return b;
+  }
+  const Eigen::Vector3d c = 0.5 * (m.localBounds.min + m.localBounds.max);
+  const Eigen::Vector3d h = 0.5 * (m.localBounds.max - m.localBounds.min);
+  const Eigen::Vector3d wc = p + R * c;
+  const Eigen::Vector3d wh = R.cwiseAbs() * h;
+  b.min = wc - wh;
+  b.max = wc + wh;
+  return b;
+}
+
+}  // namespace superdex

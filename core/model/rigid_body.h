@@ -1,0 +1,197 @@
+// Rigid actors: their description (what a user gives), model (fixed during a run) and state.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/model/contact_params.h"
+#include "core/model/enums.h"
+#include "core/model/error.h"
+#include "core/model/shared_array.h"
+#include "geometry/aabb.h"
+#include "core/model/collider_params.h"
+#include "geometry/analytic_sdf.h"
+#include "geometry/grid_sdf.h"
+#include "geometry/mesh_sdf.h"
+#include "geometry/triangle_mesh.h"
+
+namespace superdex {
+
+/// Pose of a rigid body: centre of mass p [m] and rotation R (body → world).
+struct RigidPose {
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+};
+
+enum class RigidShapeKind { Sphere, Box, Mesh, Plane };
+
+/// Geometry of a rigid actor in its own frame. Sphere and Box are centred at the frame origin.
+/// A Plane (static actors only) is the half space {X : n·X <= 0} of its frame. A Mesh is a closed,
+/// outward-oriented triangle mesh in the frame given by its file.
+struct RigidShape {
+  RigidShapeKind kind = RigidShapeKind::Sphere;
+  double radius = 0.5;                                      ///< Sphere [m]
+  Eigen::Vector3d halfExtents = Eigen::Vector3d::Constant(0.5);  ///< Box [m]
+  Eigen::Vector3d planeNormal = Eigen::Vector3d::UnitZ();   ///< Plane (unit after creation)
+  std::shared_ptr<const TriangleMesh> mesh;                 ///< Mesh
+  std::string meshSource;                                   ///< Mesh: its file, for messages
+  /// Surface resolution of the colliding samples: icosphere subdivisions for a Sphere, grid
+  /// divisions per box edge for a Box; ignored for Mesh (its own faces) and Plane (no samples).
+  int surfaceResolution = 3;
+};
+
+/// What a user gives to create a rigid actor.
+struct RigidActorDesc {
+  std::string name;
+  bool dynamic = true;
+  RigidShape shape;
+  double density = 1000.0;                    ///< [kg/m³], used when mass is not given
+  std::optional<double> mass;                 ///< [kg]; overrides density
+  std::optional<Eigen::Matrix3d> inertia;     ///< inertia tensor about the centre of mass in the
+                                              ///< shape frame [kg·m²]; default from the shape
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();        ///< shape frame origin [m]
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d linearVelocity = Eigen::Vector3d::Zero();  ///< of the centre of mass [m/s]
+  Eigen::Vector3d angularVelocity = Eigen::Vector3d::Zero(); ///< world frame [rad/s]
+  ContactParams contact;
+  ColliderType colliderType = ColliderType::Auto;
+  ActorBoundaryElementType boundaryElementType = ActorBoundaryElementType::P1Q3;
+  std::string contactLayer = "default";
+  GridSdfParams gridSdf;  ///< used when the collider resolves to Sdf
+};
+
+/// A node of a body's sample tree: a contiguous range [begin, end) of its samples with a
+/// bounding sphere in the body frame, so that a narrow phase can skip whole groups: with a
+/// collider field of Lipschitz constant L, every sample of the node has φ >= φ(centre) − L radius.
+/// Internal nodes split their range in two halves (children `left`, `right`); leaves (left = −1)
+/// hold at most kSamplesPerLeaf samples.
+struct SampleNode {
+  int begin = 0, end = 0;
+  int left = -1, right = -1;
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();  ///< [m]
+  double radius = 0.0;                               ///< [m]
+};
+constexpr int kSamplesPerLeaf = 16;
+
+/// One colliding quadrature sample in the body frame (origin at the centre of mass).
+struct SurfaceSample {
+  Eigen::Vector3d X;       ///< reference position [m]
+  Eigen::Vector3d normal;  ///< outward unit normal n_A in the body frame
+  double weight;           ///< reference-area weight w_q [m²]
+};
+
+/// The analytic field of a rigid collider, in the body frame.
+struct RigidCollider {
+  ColliderType type = ColliderType::None;  ///< resolved: None, Sphere, Box, Plane, Mesh or Sdf
+  SphereSdf sphere;
+  BoxSdf box;
+  PlaneSdf plane;
+  std::shared_ptr<const MeshSdf> mesh;     ///< Mesh: exact distance to the shape's mesh
+  std::shared_ptr<const GridSdf> grid;     ///< Sdf: trilinear grid
+  /// Bound on |∇Φ| used by the culling tests: 1 for exact distance fields, √3 for a trilinear
+  /// grid (each partial derivative of the interpolant is a node difference over h).
+  double lipschitz = 1.0;
+  double boundingRadius = 0.0;  ///< max |X| over the shape (infinite for a plane) [m]
+  SdfSample Evaluate(const Eigen::Vector3d& X) const;
+  /// Φ(X) alone (culling tests and inactive samples): the analytic fields skip their gradient
+  /// and Hessian; mesh and grid fields evaluate in full.
+  double Value(const Eigen::Vector3d& X) const;
+  /// Φ(X), with ∇Φ and ∇∇Φ unless Φ >= bound: fills *s (its value always) and returns false
+  /// only where Φ >= bound (a NaN is evaluated in full and returns true, as Evaluate would pass
+  /// it on). For the per-sample loops, where most samples lie beyond the contact threshold.
+  bool EvaluateBelow(const Eigen::Vector3d& X, double bound, SdfSample* s) const;
+};
+
+/// Everything about a rigid actor that stays fixed during a run. The body frame has its origin at
+/// the centre of mass; `shapeOffset` is the centre of mass in the user's shape frame.
+struct RigidBodyModel {
+  std::string name;
+  bool dynamic = true;
+  RigidShape shape;
+  double mass = 0.0;                                        ///< [kg] (0 for static actors)
+  Eigen::Matrix3d secondMoment = Eigen::Matrix3d::Zero();   ///< J = ∫ X Xᵀ dm [kg·m²]
+  Eigen::Vector3d shapeOffset = Eigen::Vector3d::Zero();    ///< [m]
+  /// Colliding role (empty if none); shared with the models of identical shapes (ShareSamples).
+  SharedArray<SurfaceSample> samples;
+  double samplesRadius = 0.0;                               ///< max |X| over the samples [m]
+  /// Bounding-sphere tree over the samples (node 0 the root; samples stored in leaf order), built
+  /// by median splits along the longest side of each node's box.
+  SharedArray<SampleNode> sampleTree;
+  Aabb localBounds;                                         ///< body-frame bounds of the shape
+  RigidCollider collider;                                   ///< collider role
+  ColliderType requestedCollider = ColliderType::Auto;
+  ContactParams contact;
+  ActorBoundaryElementType boundaryElementType = ActorBoundaryElementType::P1Q3;
+  std::string contactLayer;
+  std::string notice;  ///< a one-time note for the run log (e.g. a collider not supported yet)
+};
+
+/// Makes `m` share `other`'s samples and sample tree (one buffer for both models) when they are
+/// equal element for element; returns whether they were. Models from the same description
+/// (a grid of identical spheres) then read one copy in the contact sweeps.
+bool ShareSamples(const RigidBodyModel& other, RigidBodyModel* m);
+/// A hash of a model's samples (equal samples, equal hash), to find candidates for ShareSamples.
+std::size_t SamplesHash(const RigidBodyModel& m);
+
+/// Pose and velocity. Velocities are kept in material-point form: the velocity of body point X
+/// is v + Ṙ X, so that BDF combinations of states are plain affine combinations.
+struct RigidBodyState {
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();      ///< centre of mass [m]
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();  ///< rotation body → world
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();      ///< centre-of-mass velocity [m/s]
+  Eigen::Matrix3d Rdot = Eigen::Matrix3d::Zero();   ///< dR/dt [1/s]
+
+  /// World angular velocity ω = axial(Ṙ Rᵀ) [rad/s].
+  Eigen::Vector3d AngularVelocity() const;
+};
+
+/// Builds the model and initial state, validating the description. Returns false with a message
+/// naming the field (`prefix` + snake_case name) on invalid input.
+bool BuildRigidBody(const RigidActorDesc& desc, const std::string& prefix, RigidBodyModel* model,
+                    RigidBodyState* state, Error* error);
+
+/// Kinetic energy ½ m|v|² + ½ tr(Ṙ J Ṙᵀ) [J].
+double KineticEnergy(const RigidBodyModel& model, const RigidBodyState& state);
+/// Linear momentum m v [kg·m/s] and angular momentum about the world origin
+/// m p × v + axial(Ṙ J Rᵀ − R J Ṙᵀ) [kg·m²/s] (the integral of x × v dm over material points).
+Eigen::Vector3d LinearMomentum(const RigidBodyModel& model, const RigidBodyState& state);
+Eigen::Vector3d AngularMomentum(const RigidBodyModel& model, const RigidBodyState& state);
+/// Spin angular momentum about the centre of mass of a material-point state (R, Ṙ), world frame:
+/// L = axial(Ṙ J Rᵀ − R J Ṙᵀ) [kg·m²/s] for the second moment J (R, Ṙ may be affine).
+Eigen::Vector3d SpinMomentum(const Eigen::Matrix3d& R, const Eigen::Matrix3d& Rdot,
+                             const Eigen::Matrix3d& J);
+/// RMS distance of a body's material points from its centre of mass, √(tr J / m) [m] (0 without
+/// mass).
+double RmsRadius(const RigidBodyModel& model);
+/// World inertia tensor R (tr(J) 1 − J) Rᵀ [kg·m²]: L = I_w ω for Ṙ = [ω]× R.
+Eigen::Matrix3d WorldInertia(const Eigen::Matrix3d& R, const Eigen::Matrix3d& J);
+
+/// World AABB of the shape at the given pose (infinite for a plane).
+Aabb WorldBounds(const RigidBodyModel& model, const Eigen::Vector3d& p, const Eigen::Matrix3d& R);
+
+/// Calls visit(begin, end) for the sample range of every leaf of m's sample tree reached by
+/// descending from the root through the nodes that keep(centre, radius) accepts (body frame), in
+/// the samples' storage order, so that sums over the visited samples are deterministic.
+template <typename Keep, typename Visit>
+void ForEachSampleRange(const RigidBodyModel& m, Keep&& keep, Visit&& visit) {
+  if (m.sampleTree.empty()) return;
+  int stack[64];  // depth <= log2(samples / kSamplesPerLeaf) + 1 for median splits
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const SampleNode& node = m.sampleTree[stack[--top]];
+    if (!keep(node.center, node.radius)) continue;
+    if (node.left < 0) {
+      visit(node.begin, node.end);
+      continue;
+    }
+    stack[top++] = node.right;
+    stack[top++] = node.left;
+  }
+}
+
+}  // namespace superdex

@@ -1,0 +1,122 @@
+// Soft actors: tetrahedral finite elements with the stable neo-Hookean material. Description
+// (what a user gives), model (fixed during a run) and state (node positions and velocities).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/model/collider_params.h"
+#include "core/model/contact_params.h"
+#include "core/model/enums.h"
+#include "core/model/error.h"
+#include "energies/stable_neo_hookean.h"
+#include "geometry/aabb.h"
+#include "geometry/quadrature.h"
+#include "geometry/tet_mesh.h"
+
+namespace superdex {
+
+/// Bulk material of a soft actor. Restitution of a soft body comes from its bulk (spec:
+/// "Friction and Damping"): `stiffnessDamping` β adds the Rayleigh dissipation R = β/2 vᵀ K v.
+struct SoftMaterial {
+  double youngsModulus = 1e5;    ///< E [Pa], > 0
+  double poissonRatio = 0.3;     ///< ν [-], in (−1, 0.5)
+  double density = 1000.0;       ///< ρ [kg/m³], > 0
+  double stiffnessDamping = 0.0; ///< β [s], >= 0
+};
+
+/// A set of nodes whose positions are prescribed: pinned (held at their initial positions) or
+/// driven along a piecewise-linear path of displacements from the initial positions.
+struct NodeConstraint {
+  std::vector<int> nodes;  ///< node indices of the tet mesh
+  /// Keyframes (t [s], displacement [m]) with increasing times; empty: pinned. Before the first
+  /// keyframe the first displacement holds, after the last the last one.
+  std::vector<std::pair<double, Eigen::Vector3d>> path;
+  /// Displacement at time t [m] (zero when pinned).
+  Eigen::Vector3d Displacement(double t) const;
+};
+
+/// What a user gives to create a soft actor. The tet mesh is the rest shape (in its own frame);
+/// position and orientation place it in the world; every node starts with `linearVelocity`.
+struct SoftActorDesc {
+  std::string name;
+  std::shared_ptr<const TetMesh> mesh;
+  std::string meshSource;  ///< the mesh's file or generator, for messages
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();               ///< [m]
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d linearVelocity = Eigen::Vector3d::Zero();         ///< [m/s]
+  SoftMaterial material;
+  ContactParams contact;
+  /// Soft actors are colliding only by default (spec: "Default Roles by Actor Type"). Sdf or Auto
+  /// (experimental) make the actor a collider too: a grid SDF of its reference surface, mapped by
+  /// the deformation (core/contact/soft_collider.h). Other types are refused.
+  ColliderType colliderType = ColliderType::None;
+  GridSdfParams gridSdf;  ///< sizes the collider grid
+  ActorBoundaryElementType boundaryElementType = ActorBoundaryElementType::P1Q3;
+  std::string contactLayer = "default";
+  std::vector<NodeConstraint> constraints;
+};
+
+/// One colliding quadrature sample on a boundary face: y = Σ_a b_a x_{face[a]}.
+struct SoftSurfaceSample {
+  int face = 0;              ///< index into SoftBodyModel::faces
+  Eigen::Vector3d bary;      ///< barycentric coordinates
+  double weight = 0.0;       ///< reference-area weight w_q [m²]
+};
+
+/// Everything about a soft actor that stays fixed during a run.
+struct SoftBodyModel {
+  std::string name;
+  TetMesh rest;                          ///< reference configuration [m]
+  std::vector<TetElement> elements;      ///< per tet: Dm⁻¹, rest volume
+  LameParameters lame;                   ///< μ, λ [Pa]
+  SoftMaterial material;
+  Eigen::VectorXd nodeMass;              ///< lumped: ρ V/4 from each adjacent tet [kg]
+  double mass = 0.0;                     ///< [kg]
+  std::vector<Eigen::Vector3i> faces;    ///< boundary faces, outward (counter-clockwise)
+  std::vector<double> faceArea;          ///< reference area [m²]
+  std::vector<SoftSurfaceSample> samples;///< grouped face by face
+  std::vector<int> faceSampleBegin;      ///< samples of face f: [begin[f], begin[f+1])
+  std::vector<int> freeIndex;            ///< per node: index among the free nodes, −1 if prescribed
+  int numFree = 0;
+  std::vector<NodeConstraint> constraints;
+  ContactParams contact;
+  ActorBoundaryElementType boundaryElementType = ActorBoundaryElementType::P1Q3;
+  std::string contactLayer;
+  /// Collider role: None, or Sdf with the grid of Φ_B over the reference configuration.
+  ColliderType collider = ColliderType::None;
+  std::shared_ptr<const GridSdf> colliderGrid;
+  double colliderLipschitz = std::sqrt(3.0);  ///< bound on |∇Φ_B| of the trilinear grid
+  std::string notice;                          ///< grid size and memory, for the run log
+  int NumNodes() const { return rest.NumVertices(); }
+};
+
+/// Node positions x and velocities v, stacked [x_0; x_1; …] (3n entries) [m], [m/s].
+struct SoftBodyState {
+  Eigen::VectorXd x;
+  Eigen::VectorXd v;
+};
+
+/// Builds the model and initial state, validating the description (fields named with `prefix`).
+bool BuildSoftBody(const SoftActorDesc& desc, const std::string& prefix, SoftBodyModel* model,
+                   SoftBodyState* state, Error* error);
+
+/// Positions of the prescribed nodes at time t written into *x (others untouched); `initial` is
+/// the state the actor was created with.
+void ApplyNodeConstraints(const SoftBodyModel& model, const Eigen::VectorXd& initial, double t,
+                          Eigen::VectorXd* x);
+
+/// Kinetic energy ½ Σ m_a |v_a|² [J].
+double KineticEnergy(const SoftBodyModel& model, const SoftBodyState& state);
+/// Elastic energy Σ_t V_t Ψ(F_t) [J] and the smallest det F over the tets at positions x.
+double ElasticEnergy(const SoftBodyModel& model, const Eigen::VectorXd& x, double* minDetF);
+/// World bounds of the nodes.
+Aabb SoftBounds(const Eigen::VectorXd& x);
+/// Outward unit normal of boundary face f at positions x (zero for a degenerate face).
+Eigen::Vector3d SoftFaceNormal(const SoftBodyModel& model, const Eigen::VectorXd& x, int f);
+
+}  // namespace superdex

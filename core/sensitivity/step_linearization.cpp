@@ -1,0 +1,393 @@
+#include "core/sensitivity/step_linearization.h"
+
+#include "core/model/rigid_math.h"
+#include "core/sensitivity/scene_replica.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+namespace superdex {
+namespace {
+
+// One difference direction: z (or parameter) moved by step × `move`; the directional derivative
+// D is entered into the partials' columns as D × `spread`.
+struct Direction {
+  std::vector<std::pair<int, double>> move, spread;
+  double step = 0.0;
+};
+
+// A body or soft node as the differences see it: the directions of its local coordinates and of
+// its own contact parameters, and the units (bodies and nodes) whose rows its moves reach.
+struct Mover {
+  std::vector<Direction> directions, parameters;
+  std::vector<int> reach;
+  bool alone = false;  // a prescribed soft node: no column in J_i, moved by itself
+};
+
+// Greedy distance-2 colouring: two movers share a colour only if no unit is reached by both.
+// Sorts each mover's reach; returns the colour classes, the movers that must move alone last,
+// each in a class of its own.
+std::vector<std::vector<int>> ColourMovers(std::vector<Mover>* moversPtr) {
+  std::vector<Mover>& movers = *moversPtr;
+  const int U = static_cast<int>(movers.size());
+  std::vector<std::vector<int>> reachedBy(U);
+  for (int u = 0; u < U; ++u) {
+    std::vector<int>& r = movers[u].reach;
+    std::sort(r.begin(), r.end());
+    r.erase(std::unique(r.begin(), r.end()), r.end());
+    for (int w : r) reachedBy[w].push_back(u);
+  }
+  std::vector<int> color(U, -1), stamp;
+  std::vector<std::vector<int>> members;
+  for (int u = 0; u < U; ++u) {
+    if (movers[u].alone) continue;
+    for (int w : movers[u].reach)
+      for (int v : reachedBy[w])
+        if (color[v] >= 0) stamp[color[v]] = u;
+    int c = 0;
+    while (c < static_cast<int>(stamp.size()) && stamp[c] == u) ++c;
+    if (c == static_cast<int>(stamp.size())) {
+      stamp.push_back(-1);
+      members.emplace_back();
+    }
+    color[u] = c;
+    members[c].push_back(u);
+  }
+  for (int u = 0; u < U; ++u)
+    if (movers[u].alone) members.push_back({u});
+  return members;
+}
+
+
+}  // namespace
+
+bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
+                               const std::vector<SceneParameter>& parameters, StepReport* report,
+                               Error* error) {
+  Scene& scene = *scenePtr;
+  std::vector<SceneParameter> model;
+  for (size_t j = 0; j < parameters.size(); ++j) {
+    if (parameters[j].IsInitialState()) continue;
+    if (!CheckDifferentiable(scene, parameters[j], static_cast<int>(j), error)) return false;
+    model.push_back(parameters[j]);
+  }
+  const Scene::Snapshot before = scene.Save();
+  const Eigen::VectorXd S0 = scene.PackState();
+  if (!scene.StepAndRecord(dt, &tape_, report, error)) return false;
+  const int s = tape_.used;
+  const int nd = scene.numDofs_;
+  const int ns = static_cast<int>(S0.size());
+  const int P = static_cast<int>(model.size());
+  const int zSize = ns + s * nd;
+  const int m = s * nd + ns;
+  stateSize_ = ns;
+  numDofs_ = nd;
+  parameters_ = P;
+  runs_ = 0;
+  unattributed_ = 0.0;
+
+  // The movers, and the unit of each output row (ρ_i rows by dof, S_{n+1} rows by state entry).
+  const int blocks = 1 + scene.HistoryBlocks();
+  const int blockSize = ns / blocks;
+  // Half the forward replay's state step (core/sensitivity/sensitivity.cpp): a column moves one coordinate
+  // of a body, the replay a whole sensitivity direction. Measured on the four-box stack under six
+  // integrators and both modes (tests/core/test_adjoint.cpp), mean error against trajectory
+  // differences: 7.7e-6 at a quarter, 8.0e-6 at half, 1.7e-5 at the full step, 1.7e-4 at twice it.
+  const double h = 0.5 * DifferenceStateStep(scene, dt);
+  std::vector<Mover> movers;
+  std::vector<int> rowUnit(m, -1), dofUnit(nd, -1);
+  auto claimRows = [&](int unit, int stateEntry, int count) {
+    for (int b = 0; b < blocks; ++b)
+      for (int k = 0; k < count; ++k) rowUnit[s * nd + b * blockSize + stateEntry + k] = unit;
+  };
+  auto addColumns = [&](Mover* mv, int first, int count, double step) {
+    for (int k = 0; k < count; ++k) mv->directions.push_back({{{first + k, 1.0}}, {{first + k, 1.0}}, step});
+  };
+  // The rotation block R (9 entries from `first`): only the three tangent directions [e_k]× R are
+  // differenced — every state the step sees has R on SO(3), and so has every variation of it
+  // (dR = [ξ]× R) — and each derivative D_k is entered as D_k V_kᵀ/2 over the nine entries
+  // (V_k = vec([e_k]× R), V_kᵀV_l = 2δ_kl), which reproduces D_k on every tangent variation.
+  auto addRotation = [&](Mover* mv, int first, double step) {
+    const Eigen::Matrix3d R = Eigen::Map<const Eigen::Matrix3d>(S0.data() + first);
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Matrix3d V = Skew(Eigen::Vector3d::Unit(k)) * R;
+      Direction d;
+      d.step = step;
+      for (int e = 0; e < 9; ++e) {
+        d.move.emplace_back(first + e, V.data()[e]);
+        d.spread.emplace_back(first + e, 0.5 * V.data()[e]);
+      }
+      mv->directions.push_back(std::move(d));
+    }
+  };
+  const std::vector<ActorHandle> rigid = scene.RigidActors();
+  for (size_t i = 0; i < scene.models_.size(); ++i) {
+    const RigidBodyModel& body = scene.models_[i];
+    if (!body.dynamic) continue;
+    const int u = static_cast<int>(movers.size());
+    Mover mv;
+    const double radius = std::max(RmsRadius(body), 1e-6);
+    const int o = scene.StateOffset(rigid[i]);
+    for (int b = 0; b < blocks; ++b) {  // p, R, v, Ṙ
+      const int base = b * blockSize + o;
+      addColumns(&mv, base, 3, h);
+      addRotation(&mv, base + 3, h / radius);
+      addColumns(&mv, base + 12, 3, h / dt);
+      addColumns(&mv, base + 15, 9, h / (dt * radius));
+    }
+    claimRows(u, o, 24);
+    const int dof = scene.dofOffset_[i];
+    for (int k = 0; k < 6; ++k) dofUnit[dof + k] = u;
+    for (int st = 0; st < s; ++st) {
+      addColumns(&mv, ns + st * nd + dof, 3, h);
+      addColumns(&mv, ns + st * nd + dof + 3, 3, h / radius);
+      for (int k = 0; k < 6; ++k) rowUnit[st * nd + dof + k] = u;
+    }
+    movers.push_back(std::move(mv));
+  }
+  const std::vector<ActorHandle> soft = scene.SoftActors();
+  for (size_t a = 0; a < soft.size(); ++a) {
+    const SoftBodyModel& body = scene.softModels_[a];
+    const int N = body.NumNodes();
+    const int o = scene.StateOffset(soft[a]);
+    for (int k = 0; k < N; ++k) {
+      const int u = static_cast<int>(movers.size());
+      Mover mv;
+      for (int b = 0; b < blocks; ++b) {  // x, v
+        addColumns(&mv, b * blockSize + o + 3 * k, 3, h);
+        addColumns(&mv, b * blockSize + o + 3 * N + 3 * k, 3, h / dt);
+      }
+      claimRows(u, o + 3 * k, 3);
+      claimRows(u, o + 3 * N + 3 * k, 3);
+      const int free = body.freeIndex[k];
+      mv.alone = free < 0;
+      if (!mv.alone) {
+        const int dof = scene.softDofOffset_[a] + 3 * free;
+        for (int c = 0; c < 3; ++c) dofUnit[dof + c] = u;
+        for (int st = 0; st < s; ++st) {
+          addColumns(&mv, ns + st * nd + dof, 3, h);
+          for (int c = 0; c < 3; ++c) rowUnit[st * nd + dof + c] = u;
+        }
+      }
+      movers.push_back(std::move(mv));
+    }
+  }
+  const int U = static_cast<int>(movers.size());
+
+  // Reach: the units coupled in any stage's Jacobian (column unit reaches row unit), and itself.
+  for (int u = 0; u < U; ++u) movers[u].reach.push_back(u);
+  for (int st = 0; st < s; ++st) {
+    const Eigen::SparseMatrix<double>& J = tape_.stages[st].jacobian;
+    for (int c = 0; c < J.outerSize(); ++c)
+      for (Eigen::SparseMatrix<double>::InnerIterator e(J, c); e; ++e)
+        movers[dofUnit[c]].reach.push_back(dofUnit[e.row()]);
+  }
+  const std::vector<std::vector<int>> members = ColourMovers(&movers);
+  colors_ = static_cast<int>(members.size());
+
+  // Model parameters of a dynamic rigid actor reach the rows its mover reaches (the pair values
+  // of its contacts): they are moved with its colour. Others (static and soft actors') alone.
+  std::vector<std::vector<int>> owned(U);
+  std::vector<int> aloneParameters;
+  {
+    std::vector<int> moverOfRigid(scene.models_.size(), -1);
+    int u = 0;
+    for (size_t i = 0; i < scene.models_.size(); ++i)
+      if (scene.models_[i].dynamic) moverOfRigid[i] = u++;
+    for (int p = 0; p < P; ++p) {
+      const Scene::ActorRef& a = scene.actors_[model[p].actor.index];
+      const int mover = a.soft ? -1 : moverOfRigid[a.local];
+      if (mover >= 0 && model[p].kind <= SceneParameterKind::FrictionFalloffVel)
+        owned[mover].push_back(p);
+      else
+        aloneParameters.push_back(p);
+    }
+  }
+  std::vector<double> parameterStep(P);
+  for (int p = 0; p < P; ++p) parameterStep[p] = 1e-4 * std::abs(ParameterValue(scene, model[p]));
+  for (int u = 0; u < U; ++u)
+    for (int p : owned[u])
+      movers[u].parameters.push_back({{{zSize + p, 1.0}}, {{zSize + p, 1.0}}, parameterStep[p]});
+
+  // One run of the step in Inject mode on a replica, with z and the parameters moved by `moves`
+  // (z index, or zSize + parameter index; amount).
+  using Moves = std::vector<std::pair<int, double>>;
+  auto run = [&](SceneReplica& rep, const Moves& moves, Eigen::VectorXd* y) -> bool {
+    Scene& sc = rep.scene;
+    sc.Restore(before);
+    Eigen::VectorXd S = S0;
+    for (int st = 0; st < s; ++st) rep.tape.stages[st].inject.setZero(nd);
+    std::vector<std::pair<int, double>> changed;  // parameter, nominal value
+    bool valid = true;
+    for (const auto& [k, v] : moves) {
+      if (k < ns) {
+        S[k] += v;
+      } else if (k < zSize) {
+        rep.tape.stages[(k - ns) / nd].inject[(k - ns) % nd] += v;
+      } else if (valid) {
+        const SceneParameter& p = model[k - zSize];
+        changed.emplace_back(k - zSize, ParameterValue(sc, p));
+        valid = SetParameterValue(&sc, p, changed.back().second + v, &rep.error);
+      }
+    }
+    sc.UnpackState(S);
+    bool stepped = false;
+    if (valid) {
+      sc.tape_ = &rep.tape;
+      sc.tapeMode_ = Scene::TapeMode::Inject;
+      stepped = sc.Step(dt, nullptr, &rep.error);
+      sc.tapeMode_ = Scene::TapeMode::Off;
+    }
+    for (const auto& [p, value] : changed) SetParameterValue(&sc, model[p], value, nullptr);
+    if (!stepped) return false;
+    y->resize(m);
+    for (int st = 0; st < s; ++st) y->segment(st * nd, nd) = rep.tape.stages[st].residual;
+    y->tail(ns) = sc.PackState();
+    return true;
+  };
+  // (4 D(η/2) − D(η))/3 with D(η) = (y(+η) − y(−η))/(2η), times η (divided by each row's η later).
+  auto richardson = [&](SceneReplica& rep, const Moves& moves, Eigen::VectorXd* e) -> bool {
+    Eigen::VectorXd plus, minus, full;
+    Moves scaled = moves;
+    for (double f : {1.0, 0.5}) {
+      for (size_t k = 0; k < moves.size(); ++k) scaled[k].second = f * moves[k].second;
+      if (!run(rep, scaled, &plus)) return false;
+      for (auto& mv : scaled) mv.second = -mv.second;
+      if (!run(rep, scaled, &minus)) return false;
+      if (f == 1.0)
+        full = plus - minus;
+      else
+        *e = (4.0 * (plus - minus) - 0.5 * full) / 3.0;
+    }
+    return true;
+  };
+  // The runs are independent: each thread works on its own copy of the scene (made on first use,
+  // with the recorded stage solutions), and every result is attributed afterwards in a fixed
+  // order, so the partials do not depend on the number of threads.
+  tbb::enumerable_thread_specific<std::unique_ptr<SceneReplica>> replicas;
+  auto replica = [&]() -> SceneReplica& {
+    std::unique_ptr<SceneReplica>& r = replicas.local();
+    if (!r) r = std::make_unique<SceneReplica>(scene, tape_, false);
+    return *r;
+  };
+  // Runs the jobs (each a set of moves) in parallel: results[k] for jobs[k]; false on the first
+  // failure, with its message in *error.
+  std::vector<Eigen::VectorXd> results;
+  auto runJobs = [&](const std::vector<Moves>& jobs) -> bool {
+    results.assign(jobs.size(), Eigen::VectorXd());
+    std::vector<char> ok(jobs.size(), 0);
+    tbb::parallel_for(size_t(0), jobs.size(), [&](size_t k) {
+      SceneReplica& rep = replica();
+      ok[k] = richardson(rep, jobs[k], &results[k]);
+      if (!ok[k]) results[k].resize(0);
+    });
+    runs_ += 4 * static_cast<int>(jobs.size());
+    for (size_t k = 0; k < jobs.size(); ++k)
+      if (!ok[k]) {
+        for (const std::unique_ptr<SceneReplica>& r : replicas)
+          if (r && !r->error.message.empty()) return Fail(error, r->error.message);
+        return Fail(error, "a run of the step in Inject mode failed");
+      }
+    return true;
+  };
+
+  std::vector<Eigen::Triplet<double>> triplets;
+  std::vector<int> owner(U, -1);
+  bool good = true;
+  // Per group: column or parameter slot j of every mover moved at once; each changed row is
+  // attributed to the mover that reaches it.
+  for (const std::vector<int>& group : members) {
+    if (!good) break;
+    size_t locals = 0, slots = 0;
+    for (int u : group) {
+      locals = std::max(locals, movers[u].directions.size());
+      slots = std::max(slots, movers[u].parameters.size());
+      for (int w : movers[u].reach) owner[w] = u;
+    }
+    const bool alone = group.size() == 1 && movers[group[0]].alone;
+    auto direction = [&](int u, size_t j, bool parameters) -> const Direction* {
+      const std::vector<Direction>& list = parameters ? movers[u].parameters : movers[u].directions;
+      return j < list.size() ? &list[j] : nullptr;
+    };
+    std::vector<Moves> jobs;
+    std::vector<std::pair<size_t, bool>> slot;  // (j, parameters) per job
+    for (bool parameters : {false, true})
+      for (size_t j = 0; j < (parameters ? slots : locals); ++j) {
+        Moves moves;
+        for (int u : group)
+          if (const Direction* d = direction(u, j, parameters))
+            for (const auto& [z, w] : d->move) moves.emplace_back(z, w * d->step);
+        if (moves.empty()) continue;
+        jobs.push_back(std::move(moves));
+        slot.emplace_back(j, parameters);
+      }
+    good = runJobs(jobs);
+    for (size_t k = 0; good && k < jobs.size(); ++k) {
+      const auto [j, parameters] = slot[k];
+      const Eigen::VectorXd& e = results[k];
+      for (int r = 0; r < m; ++r) {
+        if (e[r] == 0.0) continue;
+        const int u = alone ? group[0] : owner[rowUnit[r]];
+        const Direction* d = u < 0 ? nullptr : direction(u, j, parameters);
+        if (!d) {
+          unattributed_ = std::max(unattributed_, std::abs(e[r]) / h);
+          continue;
+        }
+        for (const auto& [z, w] : d->spread) triplets.emplace_back(r, z, w * e[r] / d->step);
+      }
+    }
+    for (int u : group)
+      for (int w : movers[u].reach) owner[w] = -1;
+  }
+  if (good) {
+    std::vector<Moves> jobs;
+    for (int p : aloneParameters) jobs.push_back({{zSize + p, parameterStep[p]}});
+    good = runJobs(jobs);
+    for (size_t k = 0; good && k < jobs.size(); ++k) {
+      const int p = aloneParameters[k];
+      for (int r = 0; r < m; ++r)
+        if (results[k][r] != 0.0)
+          triplets.emplace_back(r, zSize + p, results[k][r] / parameterStep[p]);
+    }
+  }
+  if (!good) return false;
+  partials_.resize(m, zSize + P);
+  partials_.setFromTriplets(triplets.begin(), triplets.end());
+  return true;
+}
+
+Eigen::MatrixXd StepLinearizer::Tangent(const Eigen::MatrixXd& dS, const Eigen::MatrixXd& dTheta) {
+  const int s = tape_.used, nd = numDofs_, ns = stateSize_;
+  Eigen::MatrixXd out(ns, dS.cols());
+  Eigen::VectorXd x(partials_.cols());
+  for (Eigen::Index c = 0; c < dS.cols(); ++c) {
+    x.setZero();
+    x.head(ns) = dS.col(c);
+    if (parameters_ > 0) x.tail(parameters_) = dTheta.col(c);
+    for (int i = 0; i < s && nd > 0; ++i) {
+      const Eigen::VectorXd rho = (partials_ * x).segment(i * nd, nd);
+      x.segment(ns + i * nd, nd) = -tape_.stages[i].lu->Solve(rho);
+    }
+    out.col(c) = (partials_ * x).tail(ns);
+  }
+  return out;
+}
+
+void StepLinearizer::Adjoint(const Eigen::VectorXd& lambda, Eigen::VectorXd* lambdaPrevious,
+                             Eigen::VectorXd* parameterGradient) {
+  const int s = tape_.used, nd = numDofs_, ns = stateSize_;
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(partials_.rows());
+  y.tail(ns) = lambda;
+  for (int i = s - 1; i >= 0 && nd > 0; --i) {
+    const Eigen::VectorXd w = partials_.middleCols(ns + i * nd, nd).transpose() * y;
+    y.segment(i * nd, nd) = -tape_.stages[i].lu->SolveTransposed(w);
+  }
+  *lambdaPrevious = partials_.leftCols(ns).transpose() * y;
+  *parameterGradient = partials_.rightCols(parameters_).transpose() * y;
+}
+
+}  // namespace superdex
