@@ -3,7 +3,6 @@
 #include <tbb/parallel_for.h>
 
 #include "core/contact/broad_phase.h"
-#include "energies/psd_projection.h"
 
 namespace superdex {
 namespace {
@@ -40,10 +39,9 @@ void AppendBlocks(const SmallStencilMatrix& M, const int offs[2], int blocks,
   }
 }
 
-/// Adds a soft pair's counts and energies (SoftPairContact or SoftColliderPairContact) to *st;
-/// returns the energy it adds to the stage value (penalty plus dissipation) [J].
-template <typename PairResult>
-double AddPairStats(const PairResult& r, ContactStats* st) {
+/// Adds a stencil pair's counts and energies to *st; returns the energy it adds to the stage value
+/// (penalty plus dissipation) [J].
+double AddPairStats(const PairStencils& r, ContactStats* st) {
   double energy = 0.0;
   st->minSignedDistance = std::min(st->minSignedDistance, r.minPhi);
   if (r.activeSamples > 0) {
@@ -68,30 +66,6 @@ PenaltyParams PenaltyOf(const PairContactParams& p) {
   pp.eps = p.smoothingHalfDistance;
   pp.delta = p.threshold;
   return pp;
-}
-
-/// Soft stencils are made of 3-dof blocks at offs[b] (−1: no dofs).
-void AddBlocks3(const StencilVector& g, const int* offs, int blocks, Eigen::VectorXd* out) {
-  for (int b = 0; b < blocks; ++b)
-    if (offs[b] >= 0) out->segment<3>(offs[b]) += g.segment<3>(3 * b);
-}
-
-/// Appends the nonzero entries of H (+ J when given; either may be null) block by block.
-void AppendBlocks3(const StencilMatrix* H, const StencilMatrix* J, const int* offs, int blocks,
-                   std::vector<Eigen::Triplet<double>>* triplets) {
-  for (int bi = 0; bi < blocks; ++bi) {
-    if (offs[bi] < 0) continue;
-    for (int bj = 0; bj < blocks; ++bj) {
-      if (offs[bj] < 0) continue;
-      for (int c = 0; c < 3; ++c)
-        for (int r = 0; r < 3; ++r) {
-          double v = 0.0;
-          if (H) v += (*H)(3 * bi + r, 3 * bj + c);
-          if (J) v += (*J)(3 * bi + r, 3 * bj + c);
-          if (v != 0.0) triplets->emplace_back(offs[bi] + r, offs[bj] + c, v);
-        }
-    }
-  }
 }
 
 void AddBlocks(const SmallStencilVector& g, const int offs[2], int blocks, Eigen::VectorXd* out) {
@@ -185,8 +159,12 @@ void ContactPipeline::FindPairs(const std::vector<RigidPose>& poses,
     SoftContactPair p;
     p.soft = s;
     p.collider = b;
-    // A soft actor's collider is None (the only role supported).
-    p.params = CombineContactParams((*softModels_)[s].contact, B.contact, !B.dynamic, true);
+    // The threshold padding applies when A's own collider is None or PointCloud (spec,
+    // penaltyThresholdExtraPadding), not when it is a grid Sdf.
+    const ColliderType aCollider = (*softModels_)[s].collider;
+    p.params = CombineContactParams(
+        (*softModels_)[s].contact, B.contact, !B.dynamic,
+        aCollider == ColliderType::None || aCollider == ColliderType::PointCloud);
     softPairs_.push_back(p);
   };
   auto consider = [&](int a, int b) {
@@ -346,6 +324,37 @@ void ContactPipeline::StepLimits(const std::vector<RigidPose>& poses,
   }
 }
 
+void ContactPipeline::ScatterPair(const PairStencils& r, bool aSoft, int a, bool bSoft, int b,
+                                  const std::vector<int>& dofOffset, const SoftView& soft,
+                                  bool potential, std::vector<Eigen::Triplet<double>>* triplets,
+                                  Eigen::VectorXd* gradient,
+                                  Eigen::VectorXd* dissipationResidual) const {
+  // A node's 3-dof block (−1: a prescribed node).
+  auto node = [&](int actor, int vertex) {
+    const int free = (*softModels_)[actor].freeIndex[vertex];
+    return free < 0 ? -1 : (*soft.dofOffset)[actor] + 3 * free;
+  };
+  for (int e = 0; e < r.count; ++e) {
+    const ContactStencil& st = r.stencils[e];
+    int offs[7];
+    int blocks = 0;
+    if (aSoft) {  // the face's three nodes
+      for (int c = 0; c < 3; ++c) offs[blocks++] = node(a, (*softModels_)[a].faces[st.aFace][c]);
+    } else {      // the rigid body's [δp, δθ]
+      const int o = dofOffset[a];
+      offs[blocks++] = o;
+      offs[blocks++] = o < 0 ? -1 : o + 3;
+    }
+    if (bSoft) {  // the tet's four nodes
+      for (int c = 0; c < 4; ++c) offs[blocks++] = node(b, (*softModels_)[b].rest.tets[st.bTet][c]);
+    } else if ((*models_)[b].dynamic) {
+      offs[blocks++] = dofOffset[b];
+      offs[blocks++] = dofOffset[b] + 3;
+    }
+    ScatterStencil(st, offs, blocks, potential, gradient, dissipationResidual, triplets);
+  }
+}
+
 double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
                                  const std::vector<int>& dofOffset, int order,
                                  PsdProjection projection, Eigen::VectorXd* gradient,
@@ -382,22 +391,18 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
     const RigidPose* bRef = reference ? &(*reference)[cp.collider].last : nullptr;
     EvaluateRigidPairPenalty(A, poses[cp.colliding], B, poses[cp.collider], B.dynamic, pp, order,
                              &r, cp.params.maxAlignmentNormals, aRef, bRef);
-    if (dissipation) {
+    RigidPairDissipation* d = dissipation ? &dissipationResults_[k] : nullptr;
+    if (d) {
       DissipationSetup setup = MakeSetup(cp.params, *dissipation, isotropic);
       setup.slips = SlipUse(SlipPairKind::Rigid, k);
-      RigidPairDissipation& d = dissipationResults_[k];
       const std::vector<RigidStageStart>& start = *stageStart;
       EvaluateRigidPairDissipation(A, poses[cp.colliding], start[cp.colliding], B,
                                    poses[cp.collider], start[cp.collider], B.dynamic, setup, order,
-                                   &d);
-      if (order >= 2 && potential && d.activeSamples > 0) {
-        r.hessian += d.jacobian;
-      }
+                                   d);
     }
-    const bool any = r.activeSamples > 0 ||
-                     (dissipation && potential && dissipationResults_[k].activeSamples > 0);
-    if (order >= 2 && any && projection != PsdProjection::None)
-      ProjectToPsd(&r.hessian, projection == PsdProjection::Abs);
+    if (order >= 2)
+      ProjectContactHessian(r.activeSamples > 0, d && d->activeSamples > 0, potential, projection,
+                            d ? d->jacobian : r.hessian, &r.hessian);
   };
   ForEachPair(pairs_.size(), RigidPairWork() >= kParallelSampleWork, evaluate);
   EndSlips(dissipation, SlipPairKind::Rigid, pairs_.size(), rigidId);
@@ -448,52 +453,21 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
     if (dissipation) setup = MakeSetup(sp.params, *dissipation, isotropic);
     setup.slips = SlipUse(SlipPairKind::SoftOnRigid, k);
     const RigidStageStart* b0 = stageStart ? &(*stageStart)[sp.collider] : nullptr;
-    SoftPairContact& r = softResults_[k];
+    PairStencils& r = softResults_[k];
     EvaluateSoftRigidPair(in, B, poses[sp.collider], b0, B.dynamic, pp,
                           sp.params.maxAlignmentNormals, dissipation ? &setup : nullptr, order, &r);
     if (order < 2) return;
-    for (int f = 0; f < r.numFaces; ++f) {
-      SoftFaceContact& fc = r.faces[f];
-      if (potential && fc.dissipationActive) fc.penaltyHessian += fc.dissipationJacobian;
-      if ((fc.penaltyActive || (potential && fc.dissipationActive)) &&
-          projection != PsdProjection::None)
-        ProjectToPsd(&fc.penaltyHessian, projection == PsdProjection::Abs);
-    }
+    for (int f = 0; f < r.count; ++f) ProjectStencil(potential, projection, &r.stencils[f]);
   };
   ForEachPair(softPairs_.size(), true, evaluateSoft);
   EndSlips(dissipation, SlipPairKind::SoftOnRigid, softPairs_.size(), softId);
   st.candidatePairs += static_cast<int>(softPairs_.size());
   for (size_t k = 0; k < softPairs_.size(); ++k) {
-    const SoftContactPair& sp = softPairs_[k];
-    const SoftPairContact& r = softResults_[k];
-    const SoftBodyModel& A = (*softModels_)[sp.soft];
-    energy += AddPairStats(r, &st);
-    if (order == 0) continue;
-    // The face stencil's dofs: three nodes, then B's [δp, δθ] (dynamic B only).
-    const int softOffset = (*soft->dofOffset)[sp.soft];
-    const int bOffset = dofOffset[sp.collider];
-    const bool bDynamic = models[sp.collider].dynamic;
-    const int blocks = bDynamic ? 5 : 3;
-    for (int f = 0; f < r.numFaces; ++f) {
-      const SoftFaceContact& fc = r.faces[f];
-      int offs[5];
-      for (int a = 0; a < 3; ++a) {
-        const int free = A.freeIndex[A.faces[fc.face][a]];
-        offs[a] = free < 0 ? -1 : softOffset + 3 * free;
-      }
-      if (bDynamic) {
-        offs[3] = bOffset;
-        offs[4] = bOffset + 3;
-      }
-      Eigen::VectorXd* dr = dissipationResidual ? dissipationResidual : gradient;
-      if (fc.penaltyActive) AddBlocks3(fc.penaltyGradient, offs, blocks, gradient);
-      if (fc.dissipationActive) AddBlocks3(fc.dissipationResidual, offs, blocks, dr);
-      if (order < 2) continue;
-      const bool hess = fc.penaltyActive || (potential && fc.dissipationActive);
-      const bool jac = !potential && fc.dissipationActive;
-      AppendBlocks3(hess ? &fc.penaltyHessian : nullptr, jac ? &fc.dissipationJacobian : nullptr,
-                    offs, blocks, triplets);
-    }
+    energy += AddPairStats(softResults_[k], &st);
+    if (order >= 1)
+      ScatterPair(softResults_[k], true, softPairs_[k].soft, false, softPairs_[k].collider,
+                  dofOffset, *soft, potential, order >= 2 ? triplets : nullptr, gradient,
+                  dissipationResidual);
   }
 
   // Samples of rigid and soft actors on soft colliders, one stencil per sample.
@@ -520,14 +494,11 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
     DissipationSetup setup;
     if (dissipation) setup = MakeSetup(sp.params, *dissipation, isotropic);
     setup.slips = SlipUse(SlipPairKind::OnSoft, k);
-    SoftColliderPairContact& r = softColliderResults_[k];
+    PairStencils& r = softColliderResults_[k];
     EvaluatePairOnSoftCollider(a, b, pp, sp.params.maxAlignmentNormals,
                                dissipation ? &setup : nullptr, order, &r);
-    if (order < 2 || projection == PsdProjection::None) return;
-    for (int e = 0; e < r.numEntries; ++e) {
-      SoftColliderEntry& en = r.entries[e];
-      if (!en.dissipation || potential) ProjectToPsd(&en.hessian, projection == PsdProjection::Abs);
-    }
+    if (order < 2) return;
+    for (int e = 0; e < r.count; ++e) ProjectStencil(potential, projection, &r.stencils[e]);
   };
   ForEachPair(softColliderPairs_.size(), true, evaluateOnSoft);
   EndSlips(dissipation, SlipPairKind::OnSoft, softColliderPairs_.size(), onSoftId);
@@ -535,36 +506,11 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
   st.candidatePairs += static_cast<int>(softColliderPairs_.size());
   for (size_t k = 0; k < softColliderPairs_.size(); ++k) {
     const SoftColliderPair& sp = softColliderPairs_[k];
-    const SoftColliderPairContact& r = softColliderResults_[k];
-    energy += AddPairStats(r, &st);
-    if (order == 0) continue;
-    const SoftBodyModel& B = (*softModels_)[sp.collider];
-    const int bOffset = (*soft->dofOffset)[sp.collider];
-    for (int e = 0; e < r.numEntries; ++e) {
-      const SoftColliderEntry& en = r.entries[e];
-      int offs[7];
-      int blocks = 0;
-      if (sp.collidingSoft) {
-        const SoftBodyModel& A = (*softModels_)[sp.colliding];
-        const int aOffset = (*soft->dofOffset)[sp.colliding];
-        for (int c = 0; c < 3; ++c) {
-          const int free = A.freeIndex[A.faces[en.aFace][c]];
-          offs[blocks++] = free < 0 ? -1 : aOffset + 3 * free;
-        }
-      } else {
-        const int o = dofOffset[sp.colliding];
-        offs[blocks++] = o;
-        offs[blocks++] = o < 0 ? -1 : o + 3;
-      }
-      for (int c = 0; c < 4; ++c) {
-        const int free = B.freeIndex[B.rest.tets[en.bTet][c]];
-        offs[blocks++] = free < 0 ? -1 : bOffset + 3 * free;
-      }
-      Eigen::VectorXd* target =
-          en.dissipation && dissipationResidual ? dissipationResidual : gradient;
-      AddBlocks3(en.gradient, offs, blocks, target);
-      if (order >= 2) AppendBlocks3(&en.hessian, nullptr, offs, blocks, triplets);
-    }
+    energy += AddPairStats(softColliderResults_[k], &st);
+    if (order >= 1)
+      ScatterPair(softColliderResults_[k], sp.collidingSoft, sp.colliding, true, sp.collider,
+                  dofOffset, *soft, potential, order >= 2 ? triplets : nullptr, gradient,
+                  dissipationResidual);
   }
   if (stats) *stats = st;
   return energy;
@@ -588,7 +534,7 @@ void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,
       (*records)[k].collider = RigidActor(cp.collider);
     }
   }
-  SoftPairContact scratchSoft;
+  PairStencils scratchSoft;
   for (const SoftContactPair& sp : softPairs_) {
     const PenaltyParams pp = PenaltyOf(sp.params);
     SoftPairInput in;
@@ -608,7 +554,7 @@ void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,
     for (const SoftColliderPair& p : softColliderPairs_)
       locators_[p.collider].Build((*soft->x)[p.collider], (*softModels_)[p.collider].rest.tets);
   }
-  SoftColliderPairContact scratchOnSoft;
+  PairStencils scratchOnSoft;
   for (const SoftColliderPair& sp : softColliderPairs_) {
     const PenaltyParams pp = PenaltyOf(sp.params);
     CollidingInput a;

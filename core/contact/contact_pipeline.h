@@ -138,6 +138,12 @@ class ContactPipeline {
   DissipationSetup MakeSetup(const PairContactParams& params,
                              const DissipationContext& dissipation,
                              bool isotropicFriction) const;
+  /// Scatters a stencil pair's stencils (A colliding: soft face nodes or a rigid body's dofs; B:
+  /// a soft collider's tet nodes or a rigid collider's dofs when dynamic) with ScatterStencil.
+  void ScatterPair(const PairStencils& r, bool aSoft, int a, bool bSoft, int b,
+                   const std::vector<int>& dofOffset, const SoftView& soft, bool potential,
+                   std::vector<Eigen::Triplet<double>>* triplets, Eigen::VectorXd* gradient,
+                   Eigen::VectorXd* dissipationResidual) const;
   // The two sides of a pair on a soft collider (the locators must be built).
   void SoftColliderInputs(const SoftColliderPair& pair, const std::vector<RigidPose>& poses,
                           const std::vector<RigidStageStart>* stageStart, const SoftView& soft,
@@ -156,9 +162,9 @@ class ContactPipeline {
   const std::vector<SoftBodyModel>* softModels_ = nullptr;
   std::vector<int> rigidActor_, softActor_;
   std::vector<SoftContactPair> softPairs_;
-  std::vector<SoftPairContact> softResults_;
+  std::vector<PairStencils> softResults_;
   std::vector<SoftColliderPair> softColliderPairs_;
-  std::vector<SoftColliderPairContact> softColliderResults_;
+  std::vector<PairStencils> softColliderResults_;
   std::vector<TetLocator> locators_, locatorsLast_;  // per soft actor
   std::vector<double> softInflation_;
   std::vector<int> dofs_;  // scratch: a face stencil's global dofs

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/contact/dissipation_kernels.h"
+#include "core/contact/sample_chain.h"
 #include "core/model/rigid_math.h"
 
 namespace superdex {
@@ -43,61 +44,29 @@ bool PullbackThrough(const SoftBodyModel& m, const Eigen::VectorXd& x, int t,
   return true;
 }
 
-/// f(X) chained to the point stencil z = [y, x_0..x_3] (header formulas), weighted by w.
-void PointStencil(const Pullback& pb, const Eigen::Vector3d& gX, const Eigen::Matrix3d* HX,
-                  double w, Vec15* gz, Mat15* Hz) {
+/// The tet pullback's side of the sample chain (core/contact/sample_chain.h): f(X) on the point
+/// stencil z = [y, x_0..x_3] (header formulas), unweighted.
+void TetPullbackStencil(const Pullback& pb, const Eigen::Vector3d& gX, const Eigen::Matrix3d* HX,
+                        PointStencil* out) {
+  out->colliderDofs = 12;
   Eigen::Matrix<double, 3, 15> R;
   R.leftCols<3>().setIdentity();
   for (int a = 0; a < 4; ++a) R.middleCols<3>(3 + 3 * a) = -pb.lambda[a] * Eigen::Matrix3d::Identity();
   const Eigen::Matrix<double, 3, 15> J = pb.Finv * R;
-  *gz = w * J.transpose() * gX;
+  out->g = J.transpose() * gX;
   if (!HX) return;
-  *Hz = w * J.transpose() * (*HX) * J;
-  const Eigen::Vector3d c = w * pb.Finv.transpose() * gX;
+  Mat15& Hz = out->H;
+  Hz = J.transpose() * (*HX) * J;
+  const Eigen::Vector3d c = pb.Finv.transpose() * gX;
   Eigen::Matrix<double, 4, 3> L;
   L.bottomRows<3>() = pb.B;
   L.row(0) = -pb.B.colwise().sum();
   for (int a = 0; a < 4; ++a) {
     const Vec15 u = R.transpose() * L.row(a).transpose();
     // v_a = c at the x_a block: u vᵀ touches only the columns of that block.
-    Hz->middleCols<3>(3 + 3 * a) -= u * c.transpose();
-    Hz->middleRows<3>(3 + 3 * a) -= c * u.transpose();
+    Hz.middleCols<3>(3 + 3 * a) -= u * c.transpose();
+    Hz.middleRows<3>(3 + 3 * a) -= c * u.transpose();
   }
-}
-
-/// How the sample point y moves with A's stencil dofs.
-struct SampleKinematics {
-  bool rigid = true;
-  Eigen::Vector3d r = Eigen::Vector3d::Zero();     // rigid: y − p_A
-  Eigen::Vector3d bary = Eigen::Vector3d::Zero();  // soft: face barycentrics
-  int Dofs() const { return rigid ? 6 : 9; }
-};
-
-/// Maps the point stencil to [A's dofs, B's tet]: y → A by J_y (with the rigid rotation
-/// curvature ½(g rᵀ + r gᵀ) − (g·r) I on δθ_A, g the gradient w.r.t. y), and adds into *g, *H.
-void ChainToStencil(const SampleKinematics& k, const Vec15& gz, const Mat15* Hz, StencilVector* g,
-                    StencilMatrix* H) {
-  const int nA = k.Dofs();
-  Eigen::Matrix<double, 3, 9> Jy = Eigen::Matrix<double, 3, 9>::Zero();
-  if (k.rigid) {
-    Jy.leftCols<3>().setIdentity();
-    Jy.middleCols<3>(3) = -Skew(k.r);
-  } else {
-    for (int a = 0; a < 3; ++a) Jy.middleCols<3>(3 * a) = k.bary[a] * Eigen::Matrix3d::Identity();
-  }
-  const auto JyA = Jy.leftCols(nA);
-  const Eigen::Vector3d gy = gz.head<3>();
-  g->head(nA) += JyA.transpose() * gy;
-  g->segment<12>(nA) += gz.tail<12>();
-  if (!Hz) return;
-  H->topLeftCorner(nA, nA) += JyA.transpose() * Hz->topLeftCorner<3, 3>() * JyA;
-  if (k.rigid)
-    H->block<3, 3>(3, 3) += 0.5 * (gy * k.r.transpose() + k.r * gy.transpose()) -
-                            gy.dot(k.r) * Eigen::Matrix3d::Identity();
-  const Eigen::MatrixXd AB = JyA.transpose() * Hz->topRightCorner<3, 12>();
-  H->block(0, nA, nA, 12) += AB;
-  H->block(nA, 0, 12, nA) += AB.transpose();
-  H->block<12, 12>(nA, nA) += Hz->bottomRightCorner<12, 12>();
 }
 
 Eigen::Vector3d Normalized(const Eigen::Vector3d& v) {
@@ -109,7 +78,7 @@ Eigen::Vector3d Normalized(const Eigen::Vector3d& v) {
 /// ([A's dofs, B's tet]); first-order rigid retraction as in core/contact/rigid_dissipation.cpp. Output:
 /// the residual [A's part, −λ_a F⁻ᵀ g per tet node].
 struct CurrentModeSample {
-  SampleKinematics kin;
+  SamplePointMap kin;
   // A: rigid (p, R, body point and normal) or soft (face nodes, barycentrics)
   Eigen::Vector3d pA, XA, nBody;
   Eigen::Matrix3d RA;
@@ -127,7 +96,7 @@ struct CurrentModeSample {
     const DissipationSetup& s = *setup;
     const int nA = kin.Dofs();
     Vec3<T> y, n, r;
-    if (kin.rigid) {
+    if (kin.kind == SamplePointMap::Kind::Rigid) {
       const Vec3<T> dth(delta[3], delta[4], delta[5]);
       const Mat3<T> R = RA.cast<T>() + SkewT<T>(dth) * RA.cast<T>();
       r = R * XA.cast<T>();
@@ -159,7 +128,7 @@ struct CurrentModeSample {
     NA = NA / sqrt(NA.squaredNorm());
     const Vec3<T> g = CurrentModeDissipationGradient<T>(X, NA, Xbar, field, Yn, X0, s);
     const Vec3<T> ry = Finv.transpose() * g;
-    if (kin.rigid) {
+    if (kin.kind == SamplePointMap::Kind::Rigid) {
       const Vec3<T> tau = r.cross(ry);
       for (int k = 0; k < 3; ++k) {
         out[k] = ry[k];
@@ -177,7 +146,7 @@ struct CurrentModeSample {
 
 /// Everything about one colliding sample at the three configurations.
 struct SamplePoint {
-  SampleKinematics kin;
+  SamplePointMap kin;
   int face = -1;
   int key = 0;  // the sample's index in A's sample list (core/contact/slip_tape.h)
   double weight = 0.0;
@@ -190,17 +159,13 @@ struct SamplePoint {
 void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput& Bin,
                                 const PenaltyParams& penalty, double maxAlignment,
                                 const DissipationSetup* diss, int order,
-                                SoftColliderPairContact* out,
+                                PairStencils* out,
                                 std::vector<ContactSampleRecord>* records) {
   const SoftBodyModel& B = *Bin.model;
   const Eigen::VectorXd& xB = *Bin.x;
   const Eigen::VectorXd& xBn = Bin.xLast ? *Bin.xLast : xB;
   const GridSdf& grid = *B.colliderGrid;
-  out->penaltyValue = out->dissipationValue = 0.0;
-  out->activeSamples = out->dissipativeSamples = 0;
-  out->minPhi = INFINITY;
-  out->maxCoulombRatio = 0.0;
-  out->numEntries = 0;
+  out->Reset();
   const double delta = penalty.delta;
   const bool alignmentTest = std::isfinite(maxAlignment);
   const bool withDissipation = diss && diss->coefficients.Any() && Bin.x0 &&
@@ -214,19 +179,15 @@ void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput
   auto inside = [](const Aabb& b, const Eigen::Vector3d& p) {
     return (p.array() >= b.min.array()).all() && (p.array() <= b.max.array()).all();
   };
-  auto newEntry = [&](int face, int tet, bool dissipation) -> SoftColliderEntry& {
-    if (out->numEntries == static_cast<int>(out->entries.size())) out->entries.emplace_back();
-    SoftColliderEntry& e = out->entries[out->numEntries++];
-    e.aFace = face;
-    e.bTet = tet;
-    e.dissipation = dissipation;
-    e.gradient.setZero(n);
-    if (order >= 2) e.hessian.setZero(n, n);
+  // A kept stencil for one sample's term (penalty, or dissipation).
+  auto newEntry = [&](int face, int tet, bool dissipation) -> ContactStencil& {
+    ContactStencil& e = out->Slot(face, tet, n, order);
+    (dissipation ? e.dissipationActive : e.penaltyActive) = true;
+    out->Keep();
     return e;
   };
 
-  Vec15 gz;
-  Mat15 Hz;
+  PointStencil point;
   auto process = [&](const SamplePoint& sp) {
     const double w = sp.weight;
     const bool nowIn = inside(box, sp.y);
@@ -274,10 +235,10 @@ void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput
           Eigen::Matrix3d HX;
           if (order >= 2)
             HX = W.d2W * field.gradient * field.gradient.transpose() + W.dW * field.hessian;
-          PointStencil(pb, gX, order >= 2 ? &HX : nullptr, w, &gz, &Hz);
-          SoftColliderEntry& e = newEntry(sp.face, pb.tet, false);
-          ChainToStencil(sp.kin, gz, order >= 2 ? &Hz : nullptr, &e.gradient,
-                         order >= 2 ? &e.hessian : nullptr);
+          TetPullbackStencil(pb, gX, order >= 2 ? &HX : nullptr, &point);
+          ContactStencil& e = newEntry(sp.face, pb.tet, false);
+          ChainToActor(sp.kin, point, w, &e.penaltyGradient,
+                       order >= 2 ? &e.penaltyHessian : nullptr);
         }
       }
     }
@@ -312,10 +273,10 @@ void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput
             std::max(out->maxCoulombRatio, D.coulomb.norm() / (ds.coefficients.mu * lambdaHat));
       if (order == 0) return;
       const Eigen::Matrix3d HX = D.hessian / ds.dt;
-      PointStencil(pbc, D.gradient, order >= 2 ? &HX : nullptr, w, &gz, &Hz);
-      SoftColliderEntry& e = newEntry(sp.face, tn, true);
-      ChainToStencil(sp.kin, gz, order >= 2 ? &Hz : nullptr, &e.gradient,
-                     order >= 2 ? &e.hessian : nullptr);
+      TetPullbackStencil(pbc, D.gradient, order >= 2 ? &HX : nullptr, &point);
+      ContactStencil& e = newEntry(sp.face, tn, true);
+      ChainToActor(sp.kin, point, w, &e.dissipationResidual,
+                   order >= 2 ? &e.dissipationJacobian : nullptr);
       return;
     }
     if (!located) return;
@@ -342,9 +303,9 @@ void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput
       out->maxCoulombRatio =
           std::max(out->maxCoulombRatio, D.coulomb.norm() / (ds.coefficients.mu * lambdaHat));
     if (order == 0) return;
-    PointStencil(pb, D.gradient, nullptr, w, &gz, nullptr);
-    SoftColliderEntry& e = newEntry(sp.face, pb.tet, true);
-    ChainToStencil(sp.kin, gz, nullptr, &e.gradient, nullptr);
+    TetPullbackStencil(pb, D.gradient, nullptr, &point);
+    ContactStencil& e = newEntry(sp.face, pb.tet, true);
+    ChainToActor(sp.kin, point, w, &e.dissipationResidual, nullptr);
     if (order < 2) return;
     CurrentModeSample cs;
     cs.kin = sp.kin;
@@ -363,11 +324,11 @@ void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput
       cs.RA = A.pose->R;
       cs.XA = A.pose->R.transpose() * sp.kin.r;
       cs.nBody = A.pose->R.transpose() * sp.n;
-      AddResidualJacobian<18>(cs, w, &e.hessian);
+      AddResidualJacobian<18>(cs, w, &e.dissipationJacobian);
     } else {
       const Eigen::Vector3i& F = A.soft->faces[sp.face];
       for (int a = 0; a < 3; ++a) cs.xs[a] = A.x->segment<3>(3 * F[a]);
-      AddResidualJacobian<21>(cs, w, &e.hessian);
+      AddResidualJacobian<21>(cs, w, &e.dissipationJacobian);
     }
   };
 
@@ -376,11 +337,10 @@ void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput
     const RigidBodyModel& M = *A.rigid;
     const RigidPose& a = *A.pose;
     const RigidPose& an = A.start ? A.start->last : a;
-    sp.kin.rigid = true;
     for (size_t k = 0; k < M.samples.size(); ++k) {
       const SurfaceSample& s = M.samples[k];
       sp.key = static_cast<int>(k);
-      sp.kin.r = a.R * s.X;
+      sp.kin = SamplePointMap::Rigid(a.R * s.X);
       sp.y = a.p + sp.kin.r;
       sp.yn = an.p + an.R * s.X;
       // Cheap rejection: a sample outside both boxes carries nothing.
@@ -396,7 +356,6 @@ void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput
     const SoftBodyModel& M = *A.soft;
     const Eigen::VectorXd& x = *A.x;
     const Eigen::VectorXd& xn = A.xLast ? *A.xLast : x;
-    sp.kin.rigid = false;
     for (size_t f = 0; f < M.faces.size(); ++f) {
       const Eigen::Vector3i& F = M.faces[f];
       Aabb fb;
@@ -411,7 +370,7 @@ void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput
       for (int q = M.faceSampleBegin[f]; q < M.faceSampleBegin[f + 1]; ++q) {
         const SoftSurfaceSample& s = M.samples[q];
         sp.key = q;
-        sp.kin.bary = s.bary;
+        sp.kin = SamplePointMap::Face(s.bary);
         sp.y.setZero();
         sp.yn.setZero();
         sp.y0.setZero();

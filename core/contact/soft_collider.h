@@ -12,9 +12,10 @@
 //   ∇_z f = Rᵀ F⁻ᵀ g,   g = ∂f/∂X
 //   ∇²_z f = Rᵀ F⁻ᵀ H F⁻¹ R − Σ_a (u_a v_aᵀ + v_a u_aᵀ),  u_a = Rᵀ L_aᵀ, v_a = c at x_a, c = F⁻ᵀ g,
 // with L the 4 × 3 matrix of dλ/dr (rows of Ds⁻¹, row 0 minus their sum), r = dy − Σ λ_a dx_a.
-// The point y is then chained to the colliding actor A: a rigid sample y = p_A + R_A X_A (6 dofs,
-// with the rotation curvature of core/contact/rigid_contact.h) or a soft face sample y = Σ b_a x_a
-// (9 dofs). Each active sample contributes one stencil [A's dofs, the 4 tet nodes of B].
+// The point y is then chained to the colliding actor A through its sample's SamplePointMap by
+// the one sample chain (core/contact/sample_chain.h, ChainToActor): a rigid sample y = p_A + R_A X_A
+// (6 dofs, with the rotation's curvature) or a soft face sample y = Σ b_a x_a (9 dofs). Each
+// active sample contributes one stencil [A's dofs, the 4 tet nodes of B].
 //
 // Tet choice per term: the penalty uses the tet containing the current y (the pullback is
 // continuous across tets; its derivative jumps). Stage-start quantities (X⁰ for V_rel, X_n for
@@ -25,6 +26,7 @@
 
 #include <vector>
 
+#include "core/contact/contact_stencil.h"
 #include "core/contact/rigid_contact.h"
 #include "core/contact/rigid_dissipation.h"
 #include "core/model/soft_body.h"
@@ -54,31 +56,14 @@ struct CollidingInput {
   const Eigen::VectorXd* x0 = nullptr;
 };
 
-/// One sample's contribution on [A's dofs (6 rigid | 9 soft face), B's tet (12)].
-struct SoftColliderEntry {
-  int aFace = -1;        ///< soft A: its boundary face; rigid A: −1
-  int bTet = -1;
-  bool dissipation = false;  ///< a dissipation term (else the penalty)
-  StencilVector gradient;    ///< penalty gradient or dissipative residual
-  StencilMatrix hessian;     ///< penalty Hessian, explicit-normals dissipation Hessian, or the
-                             ///< residual-mode dissipation Jacobian (not symmetric)
-};
-
-struct SoftColliderPairContact {
-  double penaltyValue = 0.0, dissipationValue = 0.0;
-  int activeSamples = 0, dissipativeSamples = 0;
-  double minPhi = INFINITY;
-  double maxCoulombRatio = 0.0;
-  std::vector<SoftColliderEntry> entries;  ///< capacity reused
-  int numEntries = 0;
-};
-
 /// Penalty (and, with `dissipation`, the stage-discrete dissipation) of A's samples against the
-/// soft collider B. order 0/1/2 as elsewhere. `records` (order 0) collects active penalty samples.
+/// soft collider B. order 0/1/2 as elsewhere. One stencil per active sample and term (penalty or
+/// dissipation) on [A's dofs (6 rigid | 9 soft face), B's tet (12)], unprojected. `records`
+/// (order 0) collects active penalty samples.
 void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput& B,
                                 const PenaltyParams& penalty, double maxAlignment,
                                 const DissipationSetup* dissipation, int order,
-                                SoftColliderPairContact* out,
+                                PairStencils* out,
                                 std::vector<ContactSampleRecord>* records = nullptr);
 
 }  // namespace superdex

@@ -3,31 +3,12 @@
 #include <cmath>
 
 #include "core/contact/dissipation_kernels.h"
+#include "core/contact/sample_chain.h"
 #include "core/model/rigid_math.h"
 
 namespace superdex {
 namespace {
 using namespace dissipation_kernels;
-
-// A sample point's 12-stencil [p_A, θ_A (unused: r = 0), p_B, θ_B] (6 when B is static) spread
-// onto the face stencil [x_i, x_j, x_k, p_B, θ_B] by the barycentrics b.
-void SpreadGradient(const StencilVector& g, const Eigen::Vector3d& b, bool bDynamic,
-                    StencilVector* out) {
-  for (int a = 0; a < 3; ++a) out->segment<3>(3 * a) += b[a] * g.segment<3>(0);
-  if (bDynamic) out->segment<6>(9) += g.segment<6>(6);
-}
-
-void SpreadHessian(const StencilMatrix& H, const Eigen::Vector3d& b, bool bDynamic,
-                   StencilMatrix* out) {
-  for (int a = 0; a < 3; ++a) {
-    for (int c = 0; c < 3; ++c) out->block<3, 3>(3 * a, 3 * c) += b[a] * b[c] * H.block<3, 3>(0, 0);
-    if (bDynamic) {
-      out->block<3, 6>(3 * a, 9) += b[a] * H.block<3, 6>(0, 6);
-      out->block<6, 3>(9, 3 * a) += b[a] * H.block<6, 3>(6, 0);
-    }
-  }
-  if (bDynamic) out->block<6, 6>(9, 9) += H.block<6, 6>(6, 6);
-}
 
 Eigen::Vector3d Node(const Eigen::VectorXd& x, int i) { return x.segment<3>(3 * i); }
 
@@ -95,16 +76,12 @@ struct SoftCurrentModeSample {
 void EvaluateSoftRigidPair(const SoftPairInput& in, const RigidBodyModel& B, const RigidPose& b,
                            const RigidStageStart* b0, bool bDynamic, const PenaltyParams& penalty,
                            double maxAlignment, const DissipationSetup* diss, int order,
-                           SoftPairContact* out, std::vector<ContactSampleRecord>* records) {
+                           PairStencils* out, std::vector<ContactSampleRecord>* records) {
   const SoftBodyModel& A = *in.model;
   const Eigen::VectorXd& x = *in.x;
   const Eigen::VectorXd& xn = in.xLast ? *in.xLast : x;
   const int n = bDynamic ? 15 : 9;
-  out->penaltyValue = out->dissipationValue = 0.0;
-  out->activeSamples = out->dissipativeSamples = 0;
-  out->minPhi = INFINITY;
-  out->maxCoulombRatio = 0.0;
-  out->numFaces = 0;
+  out->Reset();
   const double delta = penalty.delta;
   const double L = B.collider.lipschitz;
   const Eigen::Matrix3d RBt = b.R.transpose();
@@ -116,9 +93,7 @@ void EvaluateSoftRigidPair(const SoftPairInput& in, const RigidBodyModel& B, con
   const bool explicitNormals = withDissipation && diss->mode == DissipationMode::ExplicitNormals;
   const double m = maxAlignment;
 
-  StencilVector g12;
-  StencilMatrix H12;
-  const int n12 = bDynamic ? 12 : 6;
+  PointStencil point;
   for (size_t f = 0; f < A.faces.size(); ++f) {
     const Eigen::Vector3i& F = A.faces[f];
     const Eigen::Vector3d xs[3] = {Node(x, F[0]), Node(x, F[1]), Node(x, F[2])};
@@ -142,18 +117,7 @@ void EvaluateSoftRigidPair(const SoftPairInput& in, const RigidBodyModel& B, con
     }
     if (!needed) continue;
 
-    if (out->numFaces == static_cast<int>(out->faces.size())) out->faces.emplace_back();
-    SoftFaceContact& fc = out->faces[out->numFaces];
-    fc.face = static_cast<int>(f);
-    fc.penaltyActive = fc.dissipationActive = false;
-    if (order >= 1) {
-      fc.penaltyGradient.setZero(n);
-      fc.dissipationResidual.setZero(n);
-    }
-    if (order >= 2) {
-      fc.penaltyHessian.setZero(n, n);
-      fc.dissipationJacobian.setZero(n, n);
-    }
+    ContactStencil& fc = out->Slot(static_cast<int>(f), -1, n, order);
     const Eigen::Vector3d nA = UnitFaceNormal(xs[0], xs[1], xs[2]);
     const Eigen::Vector3d nAn = UnitFaceNormal(xns[0], xns[1], xns[2]);
     Eigen::Vector3d x0s[3] = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
@@ -196,17 +160,13 @@ void EvaluateSoftRigidPair(const SoftPairInput& in, const RigidBodyModel& B, con
             records->push_back(rec);
           }
           if (order >= 1) {
-            g12.setZero(n12);
-            if (order >= 2) H12.setZero(n12, n12);
             const Eigen::Vector3d gY = W.dW * field.gradient;
             Eigen::Matrix3d HY;
             if (order >= 2)
               HY = W.d2W * field.gradient * field.gradient.transpose() + W.dW * field.hessian;
-            AddFunctionOfPullback(Eigen::Vector3d::Zero(), d, b.R, gY,
-                                  order >= 2 ? &HY : nullptr, bDynamic, s.weight, &g12,
-                                  order >= 2 ? &H12 : nullptr);
-            SpreadGradient(g12, w3, bDynamic, &fc.penaltyGradient);
-            if (order >= 2) SpreadHessian(H12, w3, bDynamic, &fc.penaltyHessian);
+            RigidPullbackStencil(b.R, d, gY, order >= 2 ? &HY : nullptr, bDynamic, &point);
+            ChainToActor(SamplePointMap::Face(w3), point, s.weight, &fc.penaltyGradient,
+                         order >= 2 ? &fc.penaltyHessian : nullptr);
           }
         }
       }
@@ -249,17 +209,13 @@ void EvaluateSoftRigidPair(const SoftPairInput& in, const RigidBodyModel& B, con
         out->maxCoulombRatio =
             std::max(out->maxCoulombRatio, D.coulomb.norm() / (ds.coefficients.mu * lambdaHat));
       if (order == 0) continue;
-      g12.setZero(n12);
-      if (explicitNormals && order >= 2) H12.setZero(n12, n12);
+      const bool hessian = explicitNormals && order >= 2;
       const Eigen::Matrix3d HY = D.hessian / ds.dt;
-      AddFunctionOfPullback(Eigen::Vector3d::Zero(), d, b.R, D.gradient,
-                            explicitNormals && order >= 2 ? &HY : nullptr, bDynamic, s.weight,
-                            &g12, explicitNormals && order >= 2 ? &H12 : nullptr);
-      SpreadGradient(g12, w3, bDynamic, &fc.dissipationResidual);
+      RigidPullbackStencil(b.R, d, D.gradient, hessian ? &HY : nullptr, bDynamic, &point);
+      ChainToActor(SamplePointMap::Face(w3), point, s.weight, &fc.dissipationResidual,
+                   hessian ? &fc.dissipationJacobian : nullptr);
       if (order < 2) continue;
-      if (explicitNormals) {
-        SpreadHessian(H12, w3, bDynamic, &fc.dissipationJacobian);
-      } else {
+      if (!explicitNormals) {
         SoftCurrentModeSample sample;
         for (int a = 0; a < 3; ++a) sample.xs[a] = xs[a];
         sample.bary = w3;
@@ -273,7 +229,7 @@ void EvaluateSoftRigidPair(const SoftPairInput& in, const RigidBodyModel& B, con
         sample.AddJacobian(s.weight, &fc.dissipationJacobian);
       }
     }
-    if (fc.penaltyActive || fc.dissipationActive) ++out->numFaces;
+    if (fc.penaltyActive || fc.dissipationActive) out->Keep();
   }
 }
 

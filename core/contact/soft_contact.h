@@ -2,10 +2,9 @@
 // normal penalty and the stage-discrete dissipation, face by face.
 //
 // Kinematics of one sample on boundary face (i, j, k) with barycentrics b: y = Σ_a b_a x_a (linear
-// in the nodes, so the sample's Jacobian is b_a I per node and carries no curvature). The collider
-// side is the rigid pullback Y = R_Bᵀ(y − p_B) of core/contact/rigid_contact.h; every term is a function
-// f(Y) chained through AddFunctionOfPullback with r = 0 (the sample as a point) and then spread
-// to the face's nodes by b_a. Stencil per face:
+// in the nodes: the sample's SamplePointMap::Face, with no curvature). The collider side is the
+// rigid pullback Y = R_Bᵀ(y − p_B); every term is a function f(Y) chained by the one sample chain
+// (core/contact/sample_chain.h: RigidPullbackStencil, then ChainToActor). Stencil per face:
 //   [x_i, x_j, x_k]               (9 dofs, B static) or
 //   [x_i, x_j, x_k, δp_B, δθ_B]   (15 dofs, B dynamic).
 // Penalty: w W(Φ_B(Y)) [J]. Alignment rejection (s = G_B·N_A > m) uses the deformed unit face
@@ -18,33 +17,12 @@
 
 #include <vector>
 
+#include "core/contact/contact_stencil.h"
 #include "core/contact/rigid_contact.h"
 #include "core/contact/rigid_dissipation.h"
 #include "core/model/soft_body.h"
 
 namespace superdex {
-
-/// One face's contributions on its stencil.
-struct SoftFaceContact {
-  int face = -1;
-  StencilVector penaltyGradient;   ///< [N, N·m]
-  StencilMatrix penaltyHessian;    ///< unprojected
-  StencilVector dissipationResidual;
-  StencilMatrix dissipationJacobian;  ///< ExplicitNormals: Hessian of the dissipation value
-  bool penaltyActive = false;
-  bool dissipationActive = false;
-};
-
-struct SoftPairContact {
-  double penaltyValue = 0.0;       ///< Σ w W [J]
-  double dissipationValue = 0.0;   ///< Δt_i Σ w R [J]
-  int activeSamples = 0;           ///< penalty samples with φ < δ
-  int dissipativeSamples = 0;
-  double minPhi = INFINITY;        ///< [m]
-  double maxCoulombRatio = 0.0;
-  std::vector<SoftFaceContact> faces;  ///< faces with any contribution (capacity reused)
-  int numFaces = 0;                    ///< valid entries of `faces`
-};
 
 /// The soft side of one stage: current positions x, the last actual positions x_n (alignment
 /// and explicit-normals geometry; null: use x) and the stage-start positions x⁰ (dissipation).
@@ -56,11 +34,12 @@ struct SoftPairInput {
 };
 
 /// order: 0 value only, 1 with gradient/residual, 2 with Hessian/Jacobian. `dissipation` null:
-/// penalty only. `records` (order 0 only) collects the active penalty samples with their face.
+/// penalty only. One stencil per face with a contribution (ContactStencil::aFace), unprojected.
+/// `records` (order 0 only) collects the active penalty samples with their face.
 void EvaluateSoftRigidPair(const SoftPairInput& A, const RigidBodyModel& B, const RigidPose& b,
                            const RigidStageStart* b0, bool bDynamic, const PenaltyParams& penalty,
                            double maxAlignment, const DissipationSetup* dissipation, int order,
-                           SoftPairContact* out,
+                           PairStencils* out,
                            std::vector<ContactSampleRecord>* records = nullptr);
 
 }  // namespace superdex
