@@ -171,4 +171,29 @@ void Scene::UnpackState(const Eigen::VectorXd& s) {
   });
 }
 
+Scene::Snapshot Scene::Save() const {
+  return {states_, softStates_, history_, softHistory_, historyTimes_, time_, driver_.GetState()};
+}
+
+void Scene::Restore(const Snapshot& s) {
+  states_ = s.states;
+  softStates_ = s.softStates;
+  history_ = s.history;
+  softHistory_ = s.softHistory;
+  historyTimes_ = s.historyTimes;
+  time_ = s.time;
+  driver_.SetState(s.driver);
+}
+
+void Scene::ClearHistory() {
+  history_.clear();
+  softHistory_.clear();
+  historyTimes_.clear();
+}
+
+int Scene::StageDofOffset(ActorHandle a) const {
+  const ActorRef& r = actors_[a.index];
+  return r.soft ? softDofOffset_[r.local] : dofOffset_[r.local];
+}
+
 }  // namespace superdex

@@ -254,6 +254,14 @@ void ContactPipeline::EndSlips(const DissipationContext* dissipation, SlipPairKi
   }
 }
 
+template <typename Id, typename PairFn>
+void ContactPipeline::SweepPairs(const DissipationContext* dissipation, SlipPairKind kind,
+                                 size_t n, bool parallel, Id id, PairFn&& evaluate) {
+  BeginSlips(dissipation, kind, n, id);
+  ForEachPair(n, parallel, evaluate);
+  EndSlips(dissipation, kind, n, id);
+}
+
 DissipationSetup ContactPipeline::MakeSetup(const PairContactParams& params,
                                             const DissipationContext& dissipation,
                                             bool isotropicFriction) const {
@@ -324,34 +332,37 @@ void ContactPipeline::StepLimits(const std::vector<RigidPose>& poses,
   }
 }
 
-void ContactPipeline::ScatterPair(const PairStencils& r, bool aSoft, int a, bool bSoft, int b,
-                                  const std::vector<int>& dofOffset, const SoftView& soft,
-                                  bool potential, std::vector<Eigen::Triplet<double>>* triplets,
-                                  Eigen::VectorXd* gradient,
-                                  Eigen::VectorXd* dissipationResidual) const {
+void ContactPipeline::ReducePair(const Request& q, const PairStencils& r, bool aSoft, int a,
+                                 bool bSoft, int b, double* energy, ContactStats* st) const {
+  ++st->candidatePairs;
+  *energy += AddPairStats(r, st);
+  if (q.order < 1) return;
+  const SoftView& soft = *q.soft;
+  const std::vector<int>& dofOffset = *q.dofOffset;
   // A node's 3-dof block (−1: a prescribed node).
   auto node = [&](int actor, int vertex) {
     const int free = (*softModels_)[actor].freeIndex[vertex];
     return free < 0 ? -1 : (*soft.dofOffset)[actor] + 3 * free;
   };
   for (int e = 0; e < r.count; ++e) {
-    const ContactStencil& st = r.stencils[e];
+    const ContactStencil& cs = r.stencils[e];
     int offs[7];
     int blocks = 0;
     if (aSoft) {  // the face's three nodes
-      for (int c = 0; c < 3; ++c) offs[blocks++] = node(a, (*softModels_)[a].faces[st.aFace][c]);
+      for (int c = 0; c < 3; ++c) offs[blocks++] = node(a, (*softModels_)[a].faces[cs.aFace][c]);
     } else {      // the rigid body's [δp, δθ]
       const int o = dofOffset[a];
       offs[blocks++] = o;
       offs[blocks++] = o < 0 ? -1 : o + 3;
     }
     if (bSoft) {  // the tet's four nodes
-      for (int c = 0; c < 4; ++c) offs[blocks++] = node(b, (*softModels_)[b].rest.tets[st.bTet][c]);
+      for (int c = 0; c < 4; ++c) offs[blocks++] = node(b, (*softModels_)[b].rest.tets[cs.bTet][c]);
     } else if ((*models_)[b].dynamic) {
       offs[blocks++] = dofOffset[b];
       offs[blocks++] = dofOffset[b] + 3;
     }
-    ScatterStencil(st, offs, blocks, potential, gradient, dissipationResidual, triplets);
+    ScatterStencil(cs, offs, blocks, q.potential, q.gradient, q.dissipationResidual,
+                   q.order >= 2 ? q.triplets : nullptr);
   }
 }
 
@@ -364,23 +375,45 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
                                  Eigen::VectorXd* dissipationResidual,
                                  const std::vector<RigidStageStart>* stageStart,
                                  const SoftView* soft) {
-  const std::vector<RigidBodyModel>& models = *models_;
   FindPairs(poses, dissipation, stageStart, soft);
+  Request q;
+  q.poses = &poses;
+  q.dofOffset = &dofOffset;
+  q.order = order;
+  q.projection = projection;
+  q.gradient = gradient;
+  q.triplets = triplets;
+  q.blocks = blockOut;
+  q.dissipation = dissipation;
+  q.dissipationResidual = dissipationResidual;
+  q.stageStart = stageStart;
+  q.soft = soft;
+  q.potential = !dissipation || dissipation->mode == DissipationMode::ExplicitNormals;
+  // Projected Hessians are the globalization model: the Coulomb term's isotropic majorizer.
+  q.isotropic = q.potential && projection != PsdProjection::None;
+  if (dissipation && dissipation->slips && dissipation->recordSlips) dissipation->slips->Clear();
+  // Each pair kind in parallel over its pairs, then reduced in a fixed order into one sum.
+  double energy = 0.0;
+  ContactStats st;
+  EvaluateRigidPairs(q, &energy, &st);
+  EvaluateSoftPairs(q, &energy, &st);
+  EvaluateOnSoftPairs(q, &energy, &st);
+  if (dissipation && dissipation->slips && dissipation->recordSlips) dissipation->slips->Seal();
+  if (stats) *stats = st;
+  return energy;
+}
+
+void ContactPipeline::EvaluateRigidPairs(const Request& q, double* energy, ContactStats* st) {
+  const std::vector<RigidBodyModel>& models = *models_;
+  const std::vector<RigidPose>& poses = *q.poses;
+  const std::vector<int>& dofOffset = *q.dofOffset;
+  const int order = q.order;
+  const DissipationContext* dissipation = q.dissipation;
+  const bool potential = q.potential;
   results_.resize(pairs_.size());
   dissipationResults_.resize(dissipation ? pairs_.size() : 0);
-  const bool potential = !dissipation || dissipation->mode == DissipationMode::ExplicitNormals;
-  // Projected Hessians are the globalization model: the Coulomb term's isotropic majorizer.
-  const bool isotropic = potential && projection != PsdProjection::None;
-  const std::vector<RigidStageStart>* reference = stageStart;
-  if (dissipation && dissipation->slips && dissipation->recordSlips) dissipation->slips->Clear();
+  const std::vector<RigidStageStart>* reference = q.stageStart;
   const auto rigidId = [&](size_t k) { return std::make_pair(pairs_[k].colliding, pairs_[k].collider); };
-  const auto softId = [&](size_t k) { return std::make_pair(softPairs_[k].soft, softPairs_[k].collider); };
-  const auto onSoftId = [&](size_t k) {
-    const SoftColliderPair& p = softColliderPairs_[k];
-    return std::make_pair(p.collidingSoft ? -1 - p.colliding : p.colliding, p.collider);
-  };
-  BeginSlips(dissipation, SlipPairKind::Rigid, pairs_.size(), rigidId);
-
   auto evaluate = [&](size_t k) {
     const ContactPair& cp = pairs_[k];
     const PenaltyParams pp = PenaltyOf(cp.params);
@@ -393,53 +426,56 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
                              &r, cp.params.maxAlignmentNormals, aRef, bRef);
     RigidPairDissipation* d = dissipation ? &dissipationResults_[k] : nullptr;
     if (d) {
-      DissipationSetup setup = MakeSetup(cp.params, *dissipation, isotropic);
+      DissipationSetup setup = MakeSetup(cp.params, *dissipation, q.isotropic);
       setup.slips = SlipUse(SlipPairKind::Rigid, k);
-      const std::vector<RigidStageStart>& start = *stageStart;
+      const std::vector<RigidStageStart>& start = *q.stageStart;
       EvaluateRigidPairDissipation(A, poses[cp.colliding], start[cp.colliding], B,
                                    poses[cp.collider], start[cp.collider], B.dynamic, setup, order,
                                    d);
     }
     if (order >= 2)
-      ProjectContactHessian(r.activeSamples > 0, d && d->activeSamples > 0, potential, projection,
-                            d ? d->jacobian : r.hessian, &r.hessian);
+      ProjectContactHessian(r.activeSamples > 0, d && d->activeSamples > 0, potential,
+                            q.projection, d ? d->jacobian : r.hessian, &r.hessian);
   };
-  ForEachPair(pairs_.size(), RigidPairWork() >= kParallelSampleWork, evaluate);
-  EndSlips(dissipation, SlipPairKind::Rigid, pairs_.size(), rigidId);
-
+  SweepPairs(dissipation, SlipPairKind::Rigid, pairs_.size(),
+             RigidPairWork() >= kParallelSampleWork, rigidId, evaluate);
   // Fixed-order reduction.
-  double energy = 0.0;
-  ContactStats st;
-  st.candidatePairs = static_cast<int>(pairs_.size());
+  st->candidatePairs += static_cast<int>(pairs_.size());
   for (size_t k = 0; k < pairs_.size(); ++k) {
     const RigidPairPenalty& r = results_[k];
     const int offs[2] = {dofOffset[pairs_[k].colliding], dofOffset[pairs_[k].collider]};
     const int blocks = models[pairs_[k].collider].dynamic ? 2 : 1;
-    st.minSignedDistance = std::min(st.minSignedDistance, r.minPhi);
+    st->minSignedDistance = std::min(st->minSignedDistance, r.minPhi);
     const RigidPairDissipation* d =
         dissipation && dissipationResults_[k].activeSamples > 0 ? &dissipationResults_[k] : nullptr;
     if (r.activeSamples > 0) {
-      ++st.activePairs;
-      st.activeSamples += r.activeSamples;
-      st.energy += r.value;
-      energy += r.value;
-      if (order >= 1) AddBlocks(r.gradient, offs, blocks, gradient);
+      ++st->activePairs;
+      st->activeSamples += r.activeSamples;
+      st->energy += r.value;
+      *energy += r.value;
+      if (order >= 1) AddBlocks(r.gradient, offs, blocks, q.gradient);
     }
     if (d) {
-      st.dissipativeSamples += d->activeSamples;
-      st.dissipation += d->value;
-      st.maxCoulombRatio = std::max(st.maxCoulombRatio, d->maxCoulombRatio);
-      energy += d->value;
+      st->dissipativeSamples += d->activeSamples;
+      st->dissipation += d->value;
+      st->maxCoulombRatio = std::max(st->maxCoulombRatio, d->maxCoulombRatio);
+      *energy += d->value;
       if (order >= 1)
-        AddBlocks(d->residual, offs, blocks, dissipationResidual ? dissipationResidual : gradient);
-      if (order >= 2 && !potential) AppendBlocks(d->jacobian, offs, blocks, blockOut);
+        AddBlocks(d->residual, offs, blocks,
+                  q.dissipationResidual ? q.dissipationResidual : q.gradient);
+      if (order >= 2 && !potential) AppendBlocks(d->jacobian, offs, blocks, q.blocks);
     }
     if (order >= 2 && (r.activeSamples > 0 || (d && potential)))
-      AppendBlocks(r.hessian, offs, blocks, blockOut);
+      AppendBlocks(r.hessian, offs, blocks, q.blocks);
   }
+}
+
+void ContactPipeline::EvaluateSoftPairs(const Request& q, double* energy, ContactStats* st) {
+  const SoftView* soft = q.soft;
+  const DissipationContext* dissipation = q.dissipation;
+  const auto softId = [&](size_t k) { return std::make_pair(softPairs_[k].soft, softPairs_[k].collider); };
   // Soft colliding actors against rigid colliders, face by face.
   softResults_.resize(softPairs_.size());
-  BeginSlips(dissipation, SlipPairKind::SoftOnRigid, softPairs_.size(), softId);
   auto evaluateSoft = [&](size_t k) {
     const SoftContactPair& sp = softPairs_[k];
     const PenaltyParams pp = PenaltyOf(sp.params);
@@ -448,28 +484,32 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
     in.x = &(*soft->x)[sp.soft];
     in.xLast = soft->xLast ? &(*soft->xLast)[sp.soft] : nullptr;
     in.x0 = soft->x0 ? &(*soft->x0)[sp.soft] : nullptr;
-    const RigidBodyModel& B = models[sp.collider];
+    const RigidBodyModel& B = (*models_)[sp.collider];
     DissipationSetup setup;
-    if (dissipation) setup = MakeSetup(sp.params, *dissipation, isotropic);
+    if (dissipation) setup = MakeSetup(sp.params, *dissipation, q.isotropic);
     setup.slips = SlipUse(SlipPairKind::SoftOnRigid, k);
-    const RigidStageStart* b0 = stageStart ? &(*stageStart)[sp.collider] : nullptr;
+    const RigidStageStart* b0 = q.stageStart ? &(*q.stageStart)[sp.collider] : nullptr;
     PairStencils& r = softResults_[k];
-    EvaluateSoftRigidPair(in, B, poses[sp.collider], b0, B.dynamic, pp,
-                          sp.params.maxAlignmentNormals, dissipation ? &setup : nullptr, order, &r);
-    if (order < 2) return;
-    for (int f = 0; f < r.count; ++f) ProjectStencil(potential, projection, &r.stencils[f]);
+    EvaluateSoftRigidPair(in, B, (*q.poses)[sp.collider], b0, B.dynamic, pp,
+                          sp.params.maxAlignmentNormals, dissipation ? &setup : nullptr, q.order,
+                          &r);
+    if (q.order < 2) return;
+    for (int f = 0; f < r.count; ++f) ProjectStencil(q.potential, q.projection, &r.stencils[f]);
   };
-  ForEachPair(softPairs_.size(), true, evaluateSoft);
-  EndSlips(dissipation, SlipPairKind::SoftOnRigid, softPairs_.size(), softId);
-  st.candidatePairs += static_cast<int>(softPairs_.size());
-  for (size_t k = 0; k < softPairs_.size(); ++k) {
-    energy += AddPairStats(softResults_[k], &st);
-    if (order >= 1)
-      ScatterPair(softResults_[k], true, softPairs_[k].soft, false, softPairs_[k].collider,
-                  dofOffset, *soft, potential, order >= 2 ? triplets : nullptr, gradient,
-                  dissipationResidual);
-  }
+  SweepPairs(dissipation, SlipPairKind::SoftOnRigid, softPairs_.size(), true, softId,
+             evaluateSoft);
+  for (size_t k = 0; k < softPairs_.size(); ++k)
+    ReducePair(q, softResults_[k], true, softPairs_[k].soft, false, softPairs_[k].collider, energy,
+               st);
+}
 
+void ContactPipeline::EvaluateOnSoftPairs(const Request& q, double* energy, ContactStats* st) {
+  const SoftView* soft = q.soft;
+  const DissipationContext* dissipation = q.dissipation;
+  const auto onSoftId = [&](size_t k) {
+    const SoftColliderPair& p = softColliderPairs_[k];
+    return std::make_pair(p.collidingSoft ? -1 - p.colliding : p.colliding, p.collider);
+  };
   // Samples of rigid and soft actors on soft colliders, one stencil per sample.
   if (!softColliderPairs_.empty()) {
     const size_t ns = softModels_->size();
@@ -484,36 +524,28 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
     }
   }
   softColliderResults_.resize(softColliderPairs_.size());
-  BeginSlips(dissipation, SlipPairKind::OnSoft, softColliderPairs_.size(), onSoftId);
   auto evaluateOnSoft = [&](size_t k) {
     const SoftColliderPair& sp = softColliderPairs_[k];
     const PenaltyParams pp = PenaltyOf(sp.params);
     CollidingInput a;
     SoftColliderInput b;
-    SoftColliderInputs(sp, poses, stageStart, *soft, &a, &b);
+    SoftColliderInputs(sp, *q.poses, q.stageStart, *soft, &a, &b);
     DissipationSetup setup;
-    if (dissipation) setup = MakeSetup(sp.params, *dissipation, isotropic);
+    if (dissipation) setup = MakeSetup(sp.params, *dissipation, q.isotropic);
     setup.slips = SlipUse(SlipPairKind::OnSoft, k);
     PairStencils& r = softColliderResults_[k];
     EvaluatePairOnSoftCollider(a, b, pp, sp.params.maxAlignmentNormals,
-                               dissipation ? &setup : nullptr, order, &r);
-    if (order < 2) return;
-    for (int e = 0; e < r.count; ++e) ProjectStencil(potential, projection, &r.stencils[e]);
+                               dissipation ? &setup : nullptr, q.order, &r);
+    if (q.order < 2) return;
+    for (int e = 0; e < r.count; ++e) ProjectStencil(q.potential, q.projection, &r.stencils[e]);
   };
-  ForEachPair(softColliderPairs_.size(), true, evaluateOnSoft);
-  EndSlips(dissipation, SlipPairKind::OnSoft, softColliderPairs_.size(), onSoftId);
-  if (dissipation && dissipation->slips && dissipation->recordSlips) dissipation->slips->Seal();
-  st.candidatePairs += static_cast<int>(softColliderPairs_.size());
+  SweepPairs(dissipation, SlipPairKind::OnSoft, softColliderPairs_.size(), true, onSoftId,
+             evaluateOnSoft);
   for (size_t k = 0; k < softColliderPairs_.size(); ++k) {
     const SoftColliderPair& sp = softColliderPairs_[k];
-    energy += AddPairStats(softColliderResults_[k], &st);
-    if (order >= 1)
-      ScatterPair(softColliderResults_[k], sp.collidingSoft, sp.colliding, true, sp.collider,
-                  dofOffset, *soft, potential, order >= 2 ? triplets : nullptr, gradient,
-                  dissipationResidual);
+    ReducePair(q, softColliderResults_[k], sp.collidingSoft, sp.colliding, true, sp.collider,
+               energy, st);
   }
-  if (stats) *stats = st;
-  return energy;
 }
 
 void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,

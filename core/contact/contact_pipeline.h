@@ -129,6 +129,27 @@ class ContactPipeline {
   const std::vector<ContactPair>& Pairs() const { return pairs_; }
 
  private:
+  /// One Evaluate call's arguments, as its pair kinds' evaluations read them.
+  struct Request {
+    const std::vector<RigidPose>* poses = nullptr;
+    const std::vector<int>* dofOffset = nullptr;
+    int order = 0;
+    PsdProjection projection = PsdProjection::None;
+    Eigen::VectorXd* gradient = nullptr;
+    std::vector<Eigen::Triplet<double>>* triplets = nullptr;
+    std::vector<DenseBlock6>* blocks = nullptr;
+    const DissipationContext* dissipation = nullptr;
+    Eigen::VectorXd* dissipationResidual = nullptr;
+    const std::vector<RigidStageStart>* stageStart = nullptr;
+    const SoftView* soft = nullptr;
+    bool potential = true;   ///< no dissipation, or ExplicitNormals
+    bool isotropic = false;  ///< DissipationSetup::isotropicFrictionHessian
+  };
+  /// Each pair kind of Evaluate: its pairs in parallel, then reduced in pair order into *energy
+  /// and *st and scattered into the request's outputs.
+  void EvaluateRigidPairs(const Request& q, double* energy, ContactStats* st);
+  void EvaluateSoftPairs(const Request& q, double* energy, ContactStats* st);
+  void EvaluateOnSoftPairs(const Request& q, double* energy, ContactStats* st);
   void FindPairs(const std::vector<RigidPose>& poses, const DissipationContext* dissipation,
                  const std::vector<RigidStageStart>* stageStart, const SoftView* soft);
   int RigidActor(int i) const { return rigidActor_.empty() ? i : rigidActor_[i]; }
@@ -138,12 +159,11 @@ class ContactPipeline {
   DissipationSetup MakeSetup(const PairContactParams& params,
                              const DissipationContext& dissipation,
                              bool isotropicFriction) const;
-  /// Scatters a stencil pair's stencils (A colliding: soft face nodes or a rigid body's dofs; B:
-  /// a soft collider's tet nodes or a rigid collider's dofs when dynamic) with ScatterStencil.
-  void ScatterPair(const PairStencils& r, bool aSoft, int a, bool bSoft, int b,
-                   const std::vector<int>& dofOffset, const SoftView& soft, bool potential,
-                   std::vector<Eigen::Triplet<double>>* triplets, Eigen::VectorXd* gradient,
-                   Eigen::VectorXd* dissipationResidual) const;
+  /// A stencil pair's reduction: its counts and energies into *st and *energy, and its stencils
+  /// (A colliding: soft face nodes or a rigid body's dofs; B: a soft collider's tet nodes or a
+  /// rigid collider's dofs when dynamic) scattered into the request's outputs (ScatterStencil).
+  void ReducePair(const Request& q, const PairStencils& r, bool aSoft, int a, bool bSoft, int b,
+                  double* energy, ContactStats* st) const;
   // The two sides of a pair on a soft collider (the locators must be built).
   void SoftColliderInputs(const SoftColliderPair& pair, const std::vector<RigidPose>& poses,
                           const std::vector<RigidStageStart>* stageStart, const SoftView& soft,
@@ -185,6 +205,11 @@ class ContactPipeline {
     const std::vector<PairSlipUse>& use = slipLists_[static_cast<int>(kind)].use;
     return use.empty() ? PairSlipUse() : use[k];
   }
+  /// Evaluates n pairs of one kind, evaluate(k) for pair k (in parallel when `parallel`), with
+  /// their slips set up before (BeginSlips) and handed over after (EndSlips).
+  template <typename Id, typename PairFn>
+  void SweepPairs(const DissipationContext* dissipation, SlipPairKind kind, size_t n,
+                  bool parallel, Id id, PairFn&& evaluate);
   /// Recording: hands the buffers to the context's record.
   template <typename Id>
   void EndSlips(const DissipationContext* dissipation, SlipPairKind kind, size_t n, Id id);

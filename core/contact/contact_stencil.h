@@ -7,9 +7,11 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
+#include "energies/contact_dissipation.h"
 #include "energies/psd_projection.h"
 #include "energies/stencil.h"
 #include "optim/stage_problem.h"
@@ -46,6 +48,15 @@ struct PairStencils {
   /// the vectors, 2: also the matrices). It counts only once Keep() is called.
   ContactStencil& Slot(int face, int tet, int n, int order);
   void Keep() { ++count; }
+  /// Counts one dissipative sample of weight w [m²] at step dt [s]: its Δt_i w R [J], and its
+  /// ‖T_C‖/(μ λ̂_n) (with friction).
+  void AddDissipative(double w, double dt, const DissipationDensity& D, double mu,
+                      double lambdaHat) {
+    ++dissipativeSamples;
+    dissipationValue += w * dt * D.R;
+    if (mu > 0.0 && lambdaHat > 0.0)
+      maxCoulombRatio = std::max(maxCoulombRatio, D.coulomb.norm() / (mu * lambdaHat));
+  }
 };
 
 /// The projection rule of every contact stencil's matrix (rigid pairs' fixed-size ones too): in a

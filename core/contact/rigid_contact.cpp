@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/contact/sample_chain.h"
 #include "core/model/rigid_math.h"
 
 namespace superdex {
@@ -240,9 +241,9 @@ void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& a, const
       const Eigen::Vector3d r = a.R * s.X;
       const Eigen::Vector3d d = a.p + r - b.p;
       // W(Φ(Y)): g_Y = W' G, H_Y = W'' G Gᵀ + W' ∇²Φ.
-      const Eigen::Vector3d gY = W.dW * f.gradient;
+      Eigen::Vector3d gY;
       Eigen::Matrix3d HY;
-      if (order >= 2) HY = W.d2W * f.gradient * f.gradient.transpose() + W.dW * f.hessian;
+      PenaltyInPullback(W, f, &gY, order >= 2 ? &HY : nullptr);
       AddFunctionOfPullback(r, d, b.R, gY, nullptr, bDynamic, s.weight, &gradient, nullptr);
       if (order >= 2) sums.Add(Y - YA, gY, HY, s.weight);
     }

@@ -16,9 +16,19 @@
 #include <Eigen/Core>
 
 #include "core/model/sample_map.h"
+#include "energies/normal_penalty.h"
 #include "energies/stencil.h"
+#include "geometry/analytic_sdf.h"
 
 namespace superdex {
+
+/// The penalty density W(Φ_B(Y)) in the collider's point Y [m]: g_Y = W'(φ) ∇Φ [J/m³] and, if
+/// HY is not null, H_Y = W''(φ) ∇Φ ∇Φᵀ + W'(φ) ∇²Φ [J/m⁴], φ = Φ_B(Y) (`field` at Y).
+inline void PenaltyInPullback(const PenaltyDensity& W, const SdfSample& field, Eigen::Vector3d* gY,
+                              Eigen::Matrix3d* HY) {
+  *gY = W.dW * field.gradient;
+  if (HY) *HY = W.d2W * field.gradient * field.gradient.transpose() + W.dW * field.hessian;
+}
 
 /// f on the point stencil [y, q_B]: 3 + colliderDofs entries (q_B: 6 for a dynamic rigid
 /// collider [δp_B, δθ_B], 12 for a soft collider's tet, 0 for a static collider).

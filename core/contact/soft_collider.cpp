@@ -154,41 +154,40 @@ struct SamplePoint {
   Eigen::Vector3d n, nn;      // A's outward normal now and at x_n (unit)
 };
 
-}  // namespace
-
-void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput& Bin,
-                                const PenaltyParams& penalty, double maxAlignment,
-                                const DissipationSetup* diss, int order,
-                                PairStencils* out,
-                                std::vector<ContactSampleRecord>* records) {
-  const SoftBodyModel& B = *Bin.model;
-  const Eigen::VectorXd& xB = *Bin.x;
-  const Eigen::VectorXd& xBn = Bin.xLast ? *Bin.xLast : xB;
-  const GridSdf& grid = *B.colliderGrid;
-  out->Reset();
-  const double delta = penalty.delta;
-  const bool alignmentTest = std::isfinite(maxAlignment);
-  const bool withDissipation = diss && diss->coefficients.Any() && Bin.x0 &&
-                               (A.rigid ? A.start != nullptr : A.x0 != nullptr);
-  const bool explicitNormals = withDissipation && diss->mode == DissipationMode::ExplicitNormals;
-  const int nA = A.rigid ? 6 : 9;
-  const int n = nA + 12;
-  Aabb box = SoftBounds(xB), boxLast = SoftBounds(xBn);
-  box.Inflate(1e-9);
-  boxLast.Inflate(1e-9);
-  auto inside = [](const Aabb& b, const Eigen::Vector3d& p) {
+/// One pair's evaluation on a soft collider: the setup shared by its samples, and per sample the
+/// penalty and the dissipation (header formulas).
+struct OnSoftCollider {
+  OnSoftCollider(const CollidingInput& a, const SoftColliderInput& bin,
+                 const PenaltyParams& penaltyParams, double alignment,
+                 const DissipationSetup* dissipation, int ord, PairStencils* result,
+                 std::vector<ContactSampleRecord>* recs)
+      : A(a), Bin(bin), B(*bin.model), xB(*bin.x), xBn(bin.xLast ? *bin.xLast : *bin.x),
+        grid(*B.colliderGrid), penalty(penaltyParams), maxAlignment(alignment),
+        diss(dissipation), order(ord), out(result), records(recs) {
+    delta = penalty.delta;
+    alignmentTest = std::isfinite(maxAlignment);
+    withDissipation = diss && diss->coefficients.Any() && Bin.x0 &&
+                      (A.rigid ? A.start != nullptr : A.x0 != nullptr);
+    explicitNormals = withDissipation && diss->mode == DissipationMode::ExplicitNormals;
+    nA = A.rigid ? 6 : 9;
+    n = nA + 12;
+    box = SoftBounds(xB);
+    boxLast = SoftBounds(xBn);
+    box.Inflate(1e-9);
+    boxLast.Inflate(1e-9);
+  }
+  static bool inside(const Aabb& b, const Eigen::Vector3d& p) {
     return (p.array() >= b.min.array()).all() && (p.array() <= b.max.array()).all();
-  };
-  // A kept stencil for one sample's term (penalty, or dissipation).
-  auto newEntry = [&](int face, int tet, bool dissipation) -> ContactStencil& {
+  }
+  /// A kept stencil for one sample's term (penalty, or dissipation).
+  ContactStencil& newEntry(int face, int tet, bool dissipation) {
     ContactStencil& e = out->Slot(face, tet, n, order);
     (dissipation ? e.dissipationActive : e.penaltyActive) = true;
     out->Keep();
     return e;
-  };
-
-  PointStencil point;
-  auto process = [&](const SamplePoint& sp) {
+  }
+  /// The sample's penalty (through the tet that contains it now), then its dissipation.
+  void Process(const SamplePoint& sp) {
     const double w = sp.weight;
     const bool nowIn = inside(box, sp.y);
     Pullback pb;
@@ -231,10 +230,9 @@ void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput
           records->push_back(rec);
         }
         if (order >= 1) {
-          const Eigen::Vector3d gX = W.dW * field.gradient;
+          Eigen::Vector3d gX;
           Eigen::Matrix3d HX;
-          if (order >= 2)
-            HX = W.d2W * field.gradient * field.gradient.transpose() + W.dW * field.hessian;
+          PenaltyInPullback(W, field, &gX, order >= 2 ? &HX : nullptr);
           TetPullbackStencil(pb, gX, order >= 2 ? &HX : nullptr, &point);
           ContactStencil& e = newEntry(sp.face, pb.tet, false);
           ChainToActor(sp.kin, point, w, &e.penaltyGradient,
@@ -242,7 +240,13 @@ void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput
         }
       }
     }
-    // --- Dissipation.
+    Dissipation(sp, located, pb, field);
+  }
+  /// The sample's dissipation: explicit normals through the tet that contained it at x_n, the
+  /// current-geometry modes through the current tet (pb, when `located`).
+  void Dissipation(const SamplePoint& sp, bool located, const Pullback& pb,
+                   const SdfSample& field) {
+    const double w = sp.weight;
     if (!withDissipation) return;
     const DissipationSetup& ds = *diss;
     const Eigen::VectorXd& xB0 = *Bin.x0;
@@ -266,11 +270,7 @@ void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput
       const Eigen::Vector3d V = (pbc.X - pb0.X) / ds.dt;
       const DissipationDensity D = EvaluateSampleDissipation(
           lambdaHat, N, V, ds.coefficients, ds.HessianKind(order >= 2), ds.slips, sp.key);
-      ++out->dissipativeSamples;
-      out->dissipationValue += w * ds.dt * D.R;
-      if (ds.coefficients.mu > 0.0)
-        out->maxCoulombRatio =
-            std::max(out->maxCoulombRatio, D.coulomb.norm() / (ds.coefficients.mu * lambdaHat));
+      out->AddDissipative(w, ds.dt, D, ds.coefficients.mu, lambdaHat);
       if (order == 0) return;
       const Eigen::Matrix3d HX = D.hessian / ds.dt;
       TetPullbackStencil(pbc, D.gradient, order >= 2 ? &HX : nullptr, &point);
@@ -297,11 +297,7 @@ void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput
     const Eigen::Vector3d V = (pb.X - pb0.X) / ds.dt;
     const DissipationDensity D = EvaluateSampleDissipation(
         lambdaHat, N, V, ds.coefficients, DissipationHessian::None, ds.slips, sp.key);
-    ++out->dissipativeSamples;
-    out->dissipationValue += w * ds.dt * D.R;
-    if (ds.coefficients.mu > 0.0)
-      out->maxCoulombRatio =
-          std::max(out->maxCoulombRatio, D.coulomb.norm() / (ds.coefficients.mu * lambdaHat));
+    out->AddDissipative(w, ds.dt, D, ds.coefficients.mu, lambdaHat);
     if (order == 0) return;
     TetPullbackStencil(pb, D.gradient, nullptr, &point);
     ContactStencil& e = newEntry(sp.face, pb.tet, true);
@@ -330,8 +326,40 @@ void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput
       for (int a = 0; a < 3; ++a) cs.xs[a] = A.x->segment<3>(3 * F[a]);
       AddResidualJacobian<21>(cs, w, &e.dissipationJacobian);
     }
-  };
+  }
 
+  const CollidingInput& A;
+  const SoftColliderInput& Bin;
+  const SoftBodyModel& B;
+  const Eigen::VectorXd& xB;
+  const Eigen::VectorXd& xBn;
+  const GridSdf& grid;
+  const PenaltyParams& penalty;
+  double maxAlignment;
+  const DissipationSetup* diss;
+  int order;
+  PairStencils* out;
+  std::vector<ContactSampleRecord>* records;
+  double delta = 0.0;
+  bool alignmentTest = false, withDissipation = false, explicitNormals = false;
+  int nA = 0, n = 0;
+  Aabb box, boxLast;
+  PointStencil point;
+};
+
+}  // namespace
+
+void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput& Bin,
+                                const PenaltyParams& penalty, double maxAlignment,
+                                const DissipationSetup* diss, int order,
+                                PairStencils* out,
+                                std::vector<ContactSampleRecord>* records) {
+  out->Reset();
+  OnSoftCollider eval(A, Bin, penalty, maxAlignment, diss, order, out, records);
+  const bool explicitNormals = eval.explicitNormals;
+  const Aabb& box = eval.box;
+  const Aabb& boxLast = eval.boxLast;
+  auto inside = OnSoftCollider::inside;
   SamplePoint sp;
   if (A.rigid) {
     const RigidBodyModel& M = *A.rigid;
@@ -350,7 +378,7 @@ void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput
       sp.nn = an.R * s.normal;
       sp.weight = s.weight;
       sp.face = -1;
-      process(sp);
+      eval.Process(sp);
     }
   } else {
     const SoftBodyModel& M = *A.soft;
@@ -380,7 +408,7 @@ void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput
           sp.y0 += s.bary[k] * (A.x0 ? A.x0->segment<3>(3 * F[k]) : x.segment<3>(3 * F[k]));
         }
         sp.weight = s.weight;
-        process(sp);
+        eval.Process(sp);
       }
     }
   }

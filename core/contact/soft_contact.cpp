@@ -71,6 +71,32 @@ struct SoftCurrentModeSample {
   }
 };
 
+/// Whether a sample of the face (current nodes xs, last xns) can contribute, by bounding spheres
+/// of both faces against B's L-Lipschitz field: the penalty looks at the current face only; with
+/// `dissipation`, explicit normals at the last face, the reconstructed load at the current
+/// distance shifted by the move (φ + G·(Y_n − Y) >= φ − L|Y_n − Y| for every sample).
+bool FaceNeeded(const RigidBodyModel& B, const RigidPose& b, const RigidPose& bn,
+                const Eigen::Vector3d xs[3], const Eigen::Vector3d xns[3], double delta,
+                const DissipationSetup* dissipation) {
+  const double L = B.collider.lipschitz;
+  const Eigen::Matrix3d RBt = b.R.transpose(), RnBt = bn.R.transpose();
+  const Eigen::Vector3d c = (xs[0] + xs[1] + xs[2]) / 3.0;
+  const double rad = std::max({(xs[0] - c).norm(), (xs[1] - c).norm(), (xs[2] - c).norm()});
+  const Eigen::Vector3d cn = (xns[0] + xns[1] + xns[2]) / 3.0;
+  const double radn =
+      std::max({(xns[0] - cn).norm(), (xns[1] - cn).norm(), (xns[2] - cn).norm()});
+  const double phiNow = B.collider.Value(RBt * (c - b.p)) - L * rad;
+  if (phiNow < delta) return true;
+  if (!dissipation) return false;
+  if (dissipation->mode == DissipationMode::ExplicitNormals)
+    return B.collider.Value(RnBt * (cn - bn.p)) - L * radn < delta;
+  if (dissipation->mode == DissipationMode::ReconstructedLoad) {
+    const double shift = (RnBt * (cn - bn.p) - RBt * (c - b.p)).norm() + rad + radn;
+    return phiNow - L * shift < delta;
+  }
+  return false;
+}
+
 }  // namespace
 
 void EvaluateSoftRigidPair(const SoftPairInput& in, const RigidBodyModel& B, const RigidPose& b,
@@ -83,7 +109,6 @@ void EvaluateSoftRigidPair(const SoftPairInput& in, const RigidBodyModel& B, con
   const int n = bDynamic ? 15 : 9;
   out->Reset();
   const double delta = penalty.delta;
-  const double L = B.collider.lipschitz;
   const Eigen::Matrix3d RBt = b.R.transpose();
   // Geometry reference (alignment, explicit normals): B at x_n when a stage start is given.
   const RigidPose& bn = b0 ? b0->last : b;
@@ -98,24 +123,7 @@ void EvaluateSoftRigidPair(const SoftPairInput& in, const RigidBodyModel& B, con
     const Eigen::Vector3i& F = A.faces[f];
     const Eigen::Vector3d xs[3] = {Node(x, F[0]), Node(x, F[1]), Node(x, F[2])};
     const Eigen::Vector3d xns[3] = {Node(xn, F[0]), Node(xn, F[1]), Node(xn, F[2])};
-    // Face culling by bounding spheres (1-Lipschitz up to L): current and reference faces.
-    const Eigen::Vector3d c = (xs[0] + xs[1] + xs[2]) / 3.0;
-    const double rad = std::max({(xs[0] - c).norm(), (xs[1] - c).norm(), (xs[2] - c).norm()});
-    const Eigen::Vector3d cn = (xns[0] + xns[1] + xns[2]) / 3.0;
-    const double radn =
-        std::max({(xns[0] - cn).norm(), (xns[1] - cn).norm(), (xns[2] - cn).norm()});
-    const double phiNow = B.collider.Value(RBt * (c - b.p)) - L * rad;
-    bool needed = phiNow < delta;  // the penalty looks at the current face only
-    if (withDissipation && !needed) {
-      if (explicitNormals) {
-        needed = B.collider.Value(RnBt * (cn - bn.p)) - L * radn < delta;
-      } else if (diss->mode == DissipationMode::ReconstructedLoad) {
-        // φ + G·(Y_n − Y) >= φ − L|Y_n − Y| for every sample of the face.
-        const double shift = (RnBt * (cn - bn.p) - RBt * (c - b.p)).norm() + rad + radn;
-        needed = phiNow - L * shift < delta;
-      }
-    }
-    if (!needed) continue;
+    if (!FaceNeeded(B, b, bn, xs, xns, delta, withDissipation ? diss : nullptr)) continue;
 
     ContactStencil& fc = out->Slot(static_cast<int>(f), -1, n, order);
     const Eigen::Vector3d nA = UnitFaceNormal(xs[0], xs[1], xs[2]);
@@ -160,10 +168,9 @@ void EvaluateSoftRigidPair(const SoftPairInput& in, const RigidBodyModel& B, con
             records->push_back(rec);
           }
           if (order >= 1) {
-            const Eigen::Vector3d gY = W.dW * field.gradient;
+            Eigen::Vector3d gY;
             Eigen::Matrix3d HY;
-            if (order >= 2)
-              HY = W.d2W * field.gradient * field.gradient.transpose() + W.dW * field.hessian;
+            PenaltyInPullback(W, field, &gY, order >= 2 ? &HY : nullptr);
             RigidPullbackStencil(b.R, d, gY, order >= 2 ? &HY : nullptr, bDynamic, &point);
             ChainToActor(SamplePointMap::Face(w3), point, s.weight, &fc.penaltyGradient,
                          order >= 2 ? &fc.penaltyHessian : nullptr);
@@ -202,12 +209,8 @@ void EvaluateSoftRigidPair(const SoftPairInput& in, const RigidBodyModel& B, con
       const DissipationDensity D = EvaluateSampleDissipation(
           lambdaHat, N, V, ds.coefficients, ds.HessianKind(explicitNormals && order >= 2),
           ds.slips, q);
-      ++out->dissipativeSamples;
       fc.dissipationActive = true;
-      out->dissipationValue += s.weight * ds.dt * D.R;
-      if (ds.coefficients.mu > 0.0 && lambdaHat > 0.0)
-        out->maxCoulombRatio =
-            std::max(out->maxCoulombRatio, D.coulomb.norm() / (ds.coefficients.mu * lambdaHat));
+      out->AddDissipative(s.weight, ds.dt, D, ds.coefficients.mu, lambdaHat);
       if (order == 0) continue;
       const bool hessian = explicitNormals && order >= 2;
       const Eigen::Matrix3d HY = D.hessian / ds.dt;

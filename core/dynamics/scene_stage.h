@@ -187,4 +187,24 @@ class SceneStageProblem : public StageProblem {
   double lastMinDetF_ = INFINITY;
 };
 
+/// The data of one stage, from which its problem can be built at any configuration (the stage
+/// driver's solves, and recording policies: core/dynamics/stage_recorder.h).
+struct StageInputs {
+  const std::vector<RigidBodyModel>* models = nullptr;
+  const std::vector<int>* dofOffset = nullptr;
+  int numDofs = 0;
+  const StageTargets* targets = nullptr;
+  Eigen::Vector3d gravity = Eigen::Vector3d::Zero();
+  ContactPipeline* pipeline = nullptr;
+  const SoftStage* soft = nullptr;
+  StageWorkspace* workspace = nullptr;
+  /// The stage's problem at *poses (and *softX, may be null) in the dissipation setting d; its
+  /// Commit moves them.
+  SceneStageProblem Problem(std::vector<RigidPose>* poses, const StageDissipation& d,
+                            std::vector<Eigen::VectorXd>* softX) const {
+    return SceneStageProblem(*models, *dofOffset, numDofs, *targets, gravity, pipeline, poses, d,
+                             soft, softX, workspace);
+  }
+};
+
 }  // namespace superdex

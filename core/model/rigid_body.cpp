@@ -170,25 +170,13 @@ bool RigidCollider::EvaluateBelow(const Eigen::Vector3d& X, double bound, SdfSam
 
 Eigen::Vector3d RigidBodyState::AngularVelocity() const { return Axial(Rdot * R.transpose()); }
 
-bool BuildRigidBody(const RigidActorDesc& d, const std::string& prefix, RigidBodyModel* m,
-                    RigidBodyState* st, Error* error) {
+namespace {
+
+// The shape's validation and mass properties (mass, second moment J about the centre of mass,
+// the centre's offset in the shape frame, local bounds) into *m.
+bool BuildMassProperties(const RigidActorDesc& d, const std::string& prefix, RigidBodyModel* m,
+                         Error* error) {
   const RigidShape& shape = d.shape;
-  *m = RigidBodyModel();
-  m->name = d.name;
-  m->dynamic = d.dynamic;
-  m->shape = shape;
-  m->contact = d.contact;
-  m->requestedCollider = d.colliderType;
-  m->boundaryElementType = d.boundaryElementType;
-  m->contactLayer = d.contactLayer;
-
-  if (std::string msg = Validate(d.contact, prefix + "contact."); !msg.empty())
-    return Fail(error, msg);
-  if (!IsFinite(d.position) || !IsFinite(d.linearVelocity) || !IsFinite(d.angularVelocity))
-    return Fail(error, prefix + "position/velocity: must be finite");
-  if (!(d.orientation.coeffs().allFinite() && d.orientation.norm() > 1e-12))
-    return Fail(error, prefix + "orientation: must be a non-zero finite quaternion");
-
   // Shape, mass properties in the shape frame.
   double mass = 0.0;
   Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
@@ -265,7 +253,15 @@ bool BuildRigidBody(const RigidActorDesc& d, const std::string& prefix, RigidBod
     m->secondMoment = J;
   }
   m->shapeOffset = com;
+  return true;
 
+}
+
+// The collider role (spec: "Collider Representations"): the resolved collider type and its field.
+bool BuildColliderRole(const RigidActorDesc& d, const std::string& prefix, RigidBodyModel* m,
+                       Error* error) {
+  const RigidShape& shape = d.shape;
+  const Eigen::Vector3d com = m->shapeOffset;
   // Collider role.
   RigidCollider& c = m->collider;
   ColliderType want = d.colliderType;
@@ -349,6 +345,33 @@ bool BuildRigidBody(const RigidActorDesc& d, const std::string& prefix, RigidBod
       m->notice = note.str();
     }
   }
+  return true;
+}
+
+}  // namespace
+
+bool BuildRigidBody(const RigidActorDesc& d, const std::string& prefix, RigidBodyModel* m,
+                    RigidBodyState* st, Error* error) {
+  const RigidShape& shape = d.shape;
+  *m = RigidBodyModel();
+  m->name = d.name;
+  m->dynamic = d.dynamic;
+  m->shape = shape;
+  m->contact = d.contact;
+  m->requestedCollider = d.colliderType;
+  m->boundaryElementType = d.boundaryElementType;
+  m->contactLayer = d.contactLayer;
+
+  if (std::string msg = Validate(d.contact, prefix + "contact."); !msg.empty())
+    return Fail(error, msg);
+  if (!IsFinite(d.position) || !IsFinite(d.linearVelocity) || !IsFinite(d.angularVelocity))
+    return Fail(error, prefix + "position/velocity: must be finite");
+  if (!(d.orientation.coeffs().allFinite() && d.orientation.norm() > 1e-12))
+    return Fail(error, prefix + "orientation: must be a non-zero finite quaternion");
+
+  if (!BuildMassProperties(d, prefix, m, error) || !BuildColliderRole(d, prefix, m, error))
+    return false;
+  const Eigen::Vector3d com = m->shapeOffset;
 
   // Colliding role: dynamic rigid actors only (spec: "Default Roles by Actor Type").
   std::vector<SurfaceSample> samples;

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "core/scene.h"
+#include "core/sensitivity/stage_tape.h"
 
 namespace superdex {
 

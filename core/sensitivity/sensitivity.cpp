@@ -279,7 +279,7 @@ bool ForwardSensitivity::Step(double dt, StepReport* report, Error* error) {
   const auto t0 = std::chrono::steady_clock::now();
   const Scene::Snapshot before = scene.Save();
   const Eigen::VectorXd S0 = scene.PackState();
-  const bool ok = scene.StepAndRecord(dt, &tape_, report, error);
+  const bool ok = StepAndRecord(&scene, dt, &tape_, report, error);
   const auto t1 = std::chrono::steady_clock::now();
   stepSeconds_ += std::chrono::duration<double>(t1 - t0).count();
   if (!ok) return false;
@@ -300,10 +300,8 @@ bool ForwardSensitivity::Step(double dt, StepReport* report, Error* error) {
       sc.Restore(before);
       sc.UnpackState(S0 + (sign * e) * dS_.col(j));
       if (model && !SetParameterValue(&sc, p, theta + sign * e, err)) return false;
-      sc.tape_ = &tape;
-      sc.tapeMode_ = Scene::TapeMode::Replay;
-      const bool stepped = sc.Step(dt, nullptr, err);
-      sc.tapeMode_ = Scene::TapeMode::Off;
+      TapeRecorder replay(&tape, TapeRecorder::Mode::Replay);
+      const bool stepped = sc.Step(dt, nullptr, err, &replay);
       if (model) SetParameterValue(&sc, p, theta, nullptr);
       if (!stepped) return false;
       if (sign > 0)

@@ -36,6 +36,7 @@
 #include <vector>
 
 #include "core/scene.h"
+#include "core/sensitivity/stage_tape.h"
 
 namespace superdex {
 

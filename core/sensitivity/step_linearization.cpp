@@ -63,33 +63,29 @@ std::vector<std::vector<int>> ColourMovers(std::vector<Mover>* moversPtr) {
 }
 
 
-}  // namespace
 
-bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
-                               const std::vector<SceneParameter>& parameters, StepReport* report,
-                               Error* error) {
-  Scene& scene = *scenePtr;
-  std::vector<SceneParameter> model;
-  for (size_t j = 0; j < parameters.size(); ++j) {
-    if (parameters[j].IsInitialState()) continue;
-    if (!CheckDifferentiable(scene, parameters[j], static_cast<int>(j), error)) return false;
-    model.push_back(parameters[j]);
-  }
-  const Scene::Snapshot before = scene.Save();
-  const Eigen::VectorXd S0 = scene.PackState();
-  if (!scene.StepAndRecord(dt, &tape_, report, error)) return false;
-  const int s = tape_.used;
-  const int nd = scene.numDofs_;
+// The movers of one recorded step's differences, the unit of each output row (ρ_i rows by dof,
+// S_{n+1} rows by state entry), their colour classes, the model parameters moved alone and every
+// parameter's difference step.
+struct MoverLayout {
+  double h = 0.0;  // the state step of the differences
+  std::vector<Mover> movers;
+  std::vector<int> rowUnit;
+  std::vector<std::vector<int>> members;
+  std::vector<int> aloneParameters;
+  std::vector<double> parameterStep;
+};
+
+MoverLayout LayOutMovers(Scene& scene, const StepTape& tape,
+                         const std::vector<SceneParameter>& model, const Eigen::VectorXd& S0,
+                         double dt) {
+  const int s = tape.used;
+  const int nd = scene.StageDofs();
   const int ns = static_cast<int>(S0.size());
   const int P = static_cast<int>(model.size());
   const int zSize = ns + s * nd;
   const int m = s * nd + ns;
-  stateSize_ = ns;
-  numDofs_ = nd;
-  parameters_ = P;
-  runs_ = 0;
-  unattributed_ = 0.0;
-
+  MoverLayout out;
   // The movers, and the unit of each output row (ρ_i rows by dof, S_{n+1} rows by state entry).
   const int blocks = 1 + scene.HistoryBlocks();
   const int blockSize = ns / blocks;
@@ -125,8 +121,8 @@ bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
     }
   };
   const std::vector<ActorHandle> rigid = scene.RigidActors();
-  for (size_t i = 0; i < scene.models_.size(); ++i) {
-    const RigidBodyModel& body = scene.models_[i];
+  for (size_t i = 0; i < scene.Models().size(); ++i) {
+    const RigidBodyModel& body = scene.Models()[i];
     if (!body.dynamic) continue;
     const int u = static_cast<int>(movers.size());
     Mover mv;
@@ -140,7 +136,7 @@ bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
       addColumns(&mv, base + 15, 9, h / (dt * radius));
     }
     claimRows(u, o, 24);
-    const int dof = scene.dofOffset_[i];
+    const int dof = scene.StageDofOffset(rigid[i]);
     for (int k = 0; k < 6; ++k) dofUnit[dof + k] = u;
     for (int st = 0; st < s; ++st) {
       addColumns(&mv, ns + st * nd + dof, 3, h);
@@ -151,7 +147,7 @@ bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
   }
   const std::vector<ActorHandle> soft = scene.SoftActors();
   for (size_t a = 0; a < soft.size(); ++a) {
-    const SoftBodyModel& body = scene.softModels_[a];
+    const SoftBodyModel& body = scene.SoftModel(soft[a]);
     const int N = body.NumNodes();
     const int o = scene.StateOffset(soft[a]);
     for (int k = 0; k < N; ++k) {
@@ -166,7 +162,7 @@ bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
       const int free = body.freeIndex[k];
       mv.alone = free < 0;
       if (!mv.alone) {
-        const int dof = scene.softDofOffset_[a] + 3 * free;
+        const int dof = scene.StageDofOffset(soft[a]) + 3 * free;
         for (int c = 0; c < 3; ++c) dofUnit[dof + c] = u;
         for (int st = 0; st < s; ++st) {
           addColumns(&mv, ns + st * nd + dof, 3, h);
@@ -181,26 +177,24 @@ bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
   // Reach: the units coupled in any stage's Jacobian (column unit reaches row unit), and itself.
   for (int u = 0; u < U; ++u) movers[u].reach.push_back(u);
   for (int st = 0; st < s; ++st) {
-    const Eigen::SparseMatrix<double>& J = tape_.stages[st].jacobian;
+    const Eigen::SparseMatrix<double>& J = tape.stages[st].jacobian;
     for (int c = 0; c < J.outerSize(); ++c)
       for (Eigen::SparseMatrix<double>::InnerIterator e(J, c); e; ++e)
         movers[dofUnit[c]].reach.push_back(dofUnit[e.row()]);
   }
   const std::vector<std::vector<int>> members = ColourMovers(&movers);
-  colors_ = static_cast<int>(members.size());
 
   // Model parameters of a dynamic rigid actor reach the rows its mover reaches (the pair values
   // of its contacts): they are moved with its colour. Others (static and soft actors') alone.
   std::vector<std::vector<int>> owned(U);
   std::vector<int> aloneParameters;
   {
-    std::vector<int> moverOfRigid(scene.models_.size(), -1);
+    std::vector<int> moverOfActor(scene.NumActors(), -1);  // dynamic rigid actors' movers
     int u = 0;
-    for (size_t i = 0; i < scene.models_.size(); ++i)
-      if (scene.models_[i].dynamic) moverOfRigid[i] = u++;
+    for (size_t i = 0; i < scene.Models().size(); ++i)
+      if (scene.Models()[i].dynamic) moverOfActor[rigid[i].index] = u++;
     for (int p = 0; p < P; ++p) {
-      const Scene::ActorRef& a = scene.actors_[model[p].actor.index];
-      const int mover = a.soft ? -1 : moverOfRigid[a.local];
+      const int mover = moverOfActor[model[p].actor.index];
       if (mover >= 0 && model[p].kind <= SceneParameterKind::FrictionFalloffVel)
         owned[mover].push_back(p);
       else
@@ -213,86 +207,159 @@ bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
     for (int p : owned[u])
       movers[u].parameters.push_back({{{zSize + p, 1.0}}, {{zSize + p, 1.0}}, parameterStep[p]});
 
-  // One run of the step in Inject mode on a replica, with z and the parameters moved by `moves`
-  // (z index, or zSize + parameter index; amount).
+  out.h = h;
+  out.movers = std::move(movers);
+  out.rowUnit = std::move(rowUnit);
+  out.members = members;
+  out.aloneParameters = std::move(aloneParameters);
+  out.parameterStep = std::move(parameterStep);
+  return out;
+}
+
+// Runs of the recorded step in Inject mode, with z and the model parameters moved by a job's moves
+// (z index, or zSize + parameter index; amount), each job one Richardson-extrapolated central
+// difference. The runs are independent: each thread works on its own copy of the scene (made on
+// first use, with the recorded stage solutions), and every result is attributed afterwards in a
+// fixed order, so the partials do not depend on the number of threads.
+class InjectRuns {
+ public:
   using Moves = std::vector<std::pair<int, double>>;
-  auto run = [&](SceneReplica& rep, const Moves& moves, Eigen::VectorXd* y) -> bool {
+  InjectRuns(const Scene& scene, const StepTape& tape, const Scene::Snapshot& before,
+             const Eigen::VectorXd& S0, const std::vector<SceneParameter>& model, double dt)
+      : scene_(scene), tape_(tape), before_(before), S0_(S0), model_(model), dt_(dt),
+        s_(tape.used), nd_(scene.StageDofs()), ns_(static_cast<int>(S0.size())),
+        zSize_(ns_ + s_ * nd_), m_(s_ * nd_ + ns_) {}
+
+  /// Runs the jobs in parallel: (*results)[k] for jobs[k]; false on the first failure, with its
+  /// message in *error. Adds the runs made to *runs.
+  bool RunJobs(const std::vector<Moves>& jobs, std::vector<Eigen::VectorXd>* resultsPtr,
+               int* runs, Error* error) {
+    std::vector<Eigen::VectorXd>& results = *resultsPtr;
+    results.assign(jobs.size(), Eigen::VectorXd());
+    std::vector<char> ok(jobs.size(), 0);
+    tbb::parallel_for(size_t(0), jobs.size(), [&](size_t k) {
+      SceneReplica& rep = Replica();
+      ok[k] = Richardson(rep, jobs[k], &results[k]);
+      if (!ok[k]) results[k].resize(0);
+    });
+    *runs += 4 * static_cast<int>(jobs.size());
+    for (size_t k = 0; k < jobs.size(); ++k)
+      if (!ok[k]) {
+        for (const std::unique_ptr<SceneReplica>& r : replicas_)
+          if (r && !r->error.message.empty()) return Fail(error, r->error.message);
+        return Fail(error, "a run of the step in Inject mode failed");
+      }
+    return true;
+  }
+
+ private:
+  SceneReplica& Replica() {
+    std::unique_ptr<SceneReplica>& r = replicas_.local();
+    if (!r) r = std::make_unique<SceneReplica>(scene_, tape_, false);
+    return *r;
+  }
+
+  // One run on a replica: y = [ρ_0 … ρ_{s−1}, S_{n+1}].
+  bool Run(SceneReplica& rep, const Moves& moves, Eigen::VectorXd* y) const {
     Scene& sc = rep.scene;
-    sc.Restore(before);
-    Eigen::VectorXd S = S0;
-    for (int st = 0; st < s; ++st) rep.tape.stages[st].inject.setZero(nd);
+    sc.Restore(before_);
+    Eigen::VectorXd S = S0_;
+    for (int st = 0; st < s_; ++st) rep.tape.stages[st].inject.setZero(nd_);
     std::vector<std::pair<int, double>> changed;  // parameter, nominal value
     bool valid = true;
     for (const auto& [k, v] : moves) {
-      if (k < ns) {
+      if (k < ns_) {
         S[k] += v;
-      } else if (k < zSize) {
-        rep.tape.stages[(k - ns) / nd].inject[(k - ns) % nd] += v;
+      } else if (k < zSize_) {
+        rep.tape.stages[(k - ns_) / nd_].inject[(k - ns_) % nd_] += v;
       } else if (valid) {
-        const SceneParameter& p = model[k - zSize];
-        changed.emplace_back(k - zSize, ParameterValue(sc, p));
+        const SceneParameter& p = model_[k - zSize_];
+        changed.emplace_back(k - zSize_, ParameterValue(sc, p));
         valid = SetParameterValue(&sc, p, changed.back().second + v, &rep.error);
       }
     }
     sc.UnpackState(S);
     bool stepped = false;
     if (valid) {
-      sc.tape_ = &rep.tape;
-      sc.tapeMode_ = Scene::TapeMode::Inject;
-      stepped = sc.Step(dt, nullptr, &rep.error);
-      sc.tapeMode_ = Scene::TapeMode::Off;
+      TapeRecorder inject(&rep.tape, TapeRecorder::Mode::Inject);
+      stepped = sc.Step(dt_, nullptr, &rep.error, &inject);
     }
-    for (const auto& [p, value] : changed) SetParameterValue(&sc, model[p], value, nullptr);
+    for (const auto& [p, value] : changed) SetParameterValue(&sc, model_[p], value, nullptr);
     if (!stepped) return false;
-    y->resize(m);
-    for (int st = 0; st < s; ++st) y->segment(st * nd, nd) = rep.tape.stages[st].residual;
-    y->tail(ns) = sc.PackState();
+    y->resize(m_);
+    for (int st = 0; st < s_; ++st) y->segment(st * nd_, nd_) = rep.tape.stages[st].residual;
+    y->tail(ns_) = sc.PackState();
     return true;
-  };
+  }
+
   // (4 D(η/2) − D(η))/3 with D(η) = (y(+η) − y(−η))/(2η), times η (divided by each row's η later).
-  auto richardson = [&](SceneReplica& rep, const Moves& moves, Eigen::VectorXd* e) -> bool {
+  bool Richardson(SceneReplica& rep, const Moves& moves, Eigen::VectorXd* e) const {
     Eigen::VectorXd plus, minus, full;
     Moves scaled = moves;
     for (double f : {1.0, 0.5}) {
       for (size_t k = 0; k < moves.size(); ++k) scaled[k].second = f * moves[k].second;
-      if (!run(rep, scaled, &plus)) return false;
+      if (!Run(rep, scaled, &plus)) return false;
       for (auto& mv : scaled) mv.second = -mv.second;
-      if (!run(rep, scaled, &minus)) return false;
+      if (!Run(rep, scaled, &minus)) return false;
       if (f == 1.0)
         full = plus - minus;
       else
         *e = (4.0 * (plus - minus) - 0.5 * full) / 3.0;
     }
     return true;
-  };
-  // The runs are independent: each thread works on its own copy of the scene (made on first use,
-  // with the recorded stage solutions), and every result is attributed afterwards in a fixed
-  // order, so the partials do not depend on the number of threads.
-  tbb::enumerable_thread_specific<std::unique_ptr<SceneReplica>> replicas;
-  auto replica = [&]() -> SceneReplica& {
-    std::unique_ptr<SceneReplica>& r = replicas.local();
-    if (!r) r = std::make_unique<SceneReplica>(scene, tape_, false);
-    return *r;
-  };
-  // Runs the jobs (each a set of moves) in parallel: results[k] for jobs[k]; false on the first
-  // failure, with its message in *error.
+  }
+
+  const Scene& scene_;
+  const StepTape& tape_;
+  const Scene::Snapshot& before_;
+  const Eigen::VectorXd& S0_;
+  const std::vector<SceneParameter>& model_;
+  double dt_;
+  int s_, nd_, ns_, zSize_, m_;
+  tbb::enumerable_thread_specific<std::unique_ptr<SceneReplica>> replicas_;
+};
+
+}  // namespace
+
+bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
+                               const std::vector<SceneParameter>& parameters, StepReport* report,
+                               Error* error) {
+  Scene& scene = *scenePtr;
+  std::vector<SceneParameter> model;
+  for (size_t j = 0; j < parameters.size(); ++j) {
+    if (parameters[j].IsInitialState()) continue;
+    if (!CheckDifferentiable(scene, parameters[j], static_cast<int>(j), error)) return false;
+    model.push_back(parameters[j]);
+  }
+  const Scene::Snapshot before = scene.Save();
+  const Eigen::VectorXd S0 = scene.PackState();
+  if (!StepAndRecord(&scene, dt, &tape_, report, error)) return false;
+  const int s = tape_.used;
+  const int nd = scene.StageDofs();
+  const int ns = static_cast<int>(S0.size());
+  const int P = static_cast<int>(model.size());
+  const int zSize = ns + s * nd;
+  const int m = s * nd + ns;
+  stateSize_ = ns;
+  numDofs_ = nd;
+  parameters_ = P;
+  runs_ = 0;
+  unattributed_ = 0.0;
+
+  MoverLayout layout = LayOutMovers(scene, tape_, model, S0, dt);
+  const double h = layout.h;
+  std::vector<Mover>& movers = layout.movers;
+  const std::vector<int>& rowUnit = layout.rowUnit;
+  const std::vector<std::vector<int>>& members = layout.members;
+  const std::vector<int>& aloneParameters = layout.aloneParameters;
+  const std::vector<double>& parameterStep = layout.parameterStep;
+  const int U = static_cast<int>(movers.size());
+  colors_ = static_cast<int>(members.size());
+  using Moves = InjectRuns::Moves;
+  InjectRuns runs(scene, tape_, before, S0, model, dt);
   std::vector<Eigen::VectorXd> results;
   auto runJobs = [&](const std::vector<Moves>& jobs) -> bool {
-    results.assign(jobs.size(), Eigen::VectorXd());
-    std::vector<char> ok(jobs.size(), 0);
-    tbb::parallel_for(size_t(0), jobs.size(), [&](size_t k) {
-      SceneReplica& rep = replica();
-      ok[k] = richardson(rep, jobs[k], &results[k]);
-      if (!ok[k]) results[k].resize(0);
-    });
-    runs_ += 4 * static_cast<int>(jobs.size());
-    for (size_t k = 0; k < jobs.size(); ++k)
-      if (!ok[k]) {
-        for (const std::unique_ptr<SceneReplica>& r : replicas)
-          if (r && !r->error.message.empty()) return Fail(error, r->error.message);
-        return Fail(error, "a run of the step in Inject mode failed");
-      }
-    return true;
+    return runs.RunJobs(jobs, &results, &runs_, error);
   };
 
   std::vector<Eigen::Triplet<double>> triplets;

@@ -22,9 +22,8 @@ std::string Num(double v) {
   return s.str();
 }
 
-}  // namespace
-
-void BindSoft(py::module_& m) {
+// TetMesh and the functions that make or read one.
+void BindTetMesh(py::module_& m) {
   py::class_<TetMesh, std::shared_ptr<TetMesh>>(
       m, "TetMesh",
       "A tetrahedral mesh [m]: vertices (n, 3) and tets (m, 4) of 0-based vertex indices, every\n"
@@ -138,7 +137,10 @@ void BindSoft(py::module_& m) {
       py::arg("mesh"),
       "(f, 3) int array: the faces that belong to exactly one tet, counter-clockwise seen from\n"
       "outside, ordered by tet, then by local face.");
+}
 
+// NodeConstraint and SoftActorDesc.
+void BindSoftActorDesc(py::module_& m) {
   py::class_<NodeConstraint>(
       m, "NodeConstraint",
       "Nodes of a soft actor whose positions are prescribed: pinned at their initial positions\n"
@@ -213,6 +215,13 @@ void BindSoft(py::module_& m) {
       .def_readwrite("contact_layer", &SoftActorDesc::contactLayer)
       .def_readwrite("constraints", &SoftActorDesc::constraints,
                      "list of NodeConstraint (a copy: assign a whole list)");
+}
+
+}  // namespace
+
+void BindSoft(py::module_& m) {
+  BindTetMesh(m);
+  BindSoftActorDesc(m);
 }
 
 }  // namespace superdex::python

@@ -75,10 +75,13 @@ TEST_CASE("the sample chain matches finite differences for every map and rigid c
         StencilVector g = StencilVector::Zero(n);
         StencilMatrix H = StencilMatrix::Zero(n, n);
         ChainToActor(map, point, w, &g, &H);
+        // Step 1e-4: central-difference truncation O(h²) and round-off O(ε/h²) both near 1e-8.
         const test::DerivativeCheck c = test::CheckDerivatives(
-            [&](const Eigen::VectorXd& q) { return w * field.Value(Y(q)); }, g, H, 1e-5);
-        INFO("trial " << trial << ", map " << kind << (bDynamic ? ", dynamic B" : ", static B"));
-        CHECK(c.gradientError < 1e-8);
+            [&](const Eigen::VectorXd& q) { return w * field.Value(Y(q)); }, g, H, 1e-4);
+        INFO("trial " << trial << ", map " << kind << (bDynamic ? ", dynamic B" : ", static B")
+                      << ": gradient error " << c.gradientError << ", Hessian error "
+                      << c.hessianError);
+        CHECK(c.gradientError < 1e-7);
         CHECK(c.hessianError < 1e-6);
         CHECK((H - H.transpose()).norm() <= 1e-14 * H.norm());
         if (kind != 0) continue;

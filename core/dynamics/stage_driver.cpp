@@ -1,0 +1,256 @@
+#include "core/dynamics/stage_driver.h"
+
+#include <algorithm>
+#include <string>
+
+#include "core/dynamics/warm_start.h"
+#include "energies/rigid_inertia.h"
+#include "optim/ceres_stage_solver.h"
+#include "optim/ipopt_stage_solver.h"
+#include "optim/residual_newton.h"
+
+namespace superdex {
+namespace {
+
+// Adds sign × the work counters and times of one solve to another's statistics.
+void AddSolverWork(const SolverStats& from, SolverStats* to, int sign = 1) {
+  to->iterations += sign * from.iterations;
+  to->lineSearchSteps += sign * from.lineSearchSteps;
+  to->regularizations += sign * from.regularizations;
+  to->limitedSteps += sign * from.limitedSteps;
+  to->assemblySeconds += sign * from.assemblySeconds;
+  to->factorizationSeconds += sign * from.factorizationSeconds;
+  to->lineSearchSeconds += sign * from.lineSearchSeconds;
+  to->krylovIterations += sign * from.krylovIterations;
+  to->krylovFallbacks += sign * from.krylovFallbacks;
+}
+
+// Replaces the work counters and times of *to by those of `from` (the rest of *to stays).
+void CopySolverWork(const SolverStats& from, SolverStats* to) {
+  const SolverStats own = *to;
+  AddSolverWork(own, to, -1);
+  AddSolverWork(from, to);
+}
+
+}  // namespace
+
+SolverStats StageDriver::Solve(const SceneSettings& settings, const StageScene& scene, double dt,
+                               const std::vector<RigidBodyState>& start,
+                               const std::vector<RigidPose>& last, std::vector<RigidPose>* poses,
+                               ContactStats* contact, const SoftStage* soft,
+                               std::vector<Eigen::VectorXd>* softX, double predictTime,
+                               StageRecorder* recorder) {
+  const std::vector<RigidBodyModel>& models = *scene.models;
+  StageTargets& targets = targets_;
+  targets.dt = dt;
+  targets.pHat.resize(models.size());
+  targets.RHat.resize(models.size());
+  for (size_t i = 0; i < models.size(); ++i) {
+    targets.pHat[i] = start[i].p + dt * start[i].v;
+    targets.RHat[i] = start[i].R + dt * start[i].Rdot;
+  }
+  targets.start.resize(models.size());
+  for (size_t i = 0; i < models.size(); ++i) {
+    RigidStageStart& s = targets.start[i];
+    s.p = start[i].p;
+    s.R = start[i].R;
+    s.Rinv = start[i].R.inverse();
+    s.last = last[i];
+  }
+  StageDissipation dissipation;
+  dissipation.enabled = scene.hasDissipation;
+  if (dissipation.enabled) {
+    dissipation.mode = ModeOf(settings.eval);
+    dissipation.fadeFriction = settings.eval.fadeFriction;
+  }
+  StageInputs inputs;
+  inputs.models = scene.models;
+  inputs.dofOffset = scene.dofOffset;
+  inputs.numDofs = scene.numDofs;
+  inputs.targets = &targets;
+  inputs.gravity = settings.gravity;
+  inputs.pipeline = scene.pipeline;
+  inputs.soft = soft;
+  inputs.workspace = &workspace_;
+  SolverStats st;
+  if (recorder && recorder->Supplies()) {
+    recorder->Supply(inputs, dissipation, poses, softX);
+    st.status = StageStatus::Converged;
+    return st;
+  }
+  const bool recording = recorder && recorder->Records();
+  // Tried where the last stage had no active contact sample: where it had, contact usually
+  // persists, and the check (a value-only contact evaluation) made a sliding box's run 16 %
+  // longer for nothing. A stage that leaves contact is solved by Newton, the next one tried again.
+  if (settings.closedFormFreeStages && settings.stageSolver == StageSolverKind::Newton &&
+      !scene.hasSoft && !recording && !state_.lastStageInContact &&
+      FreeStage(settings, scene, dissipation, poses, &st, contact)) {
+    state_.lastPotentialIterations = 0;  // a local stage: the next warm start may try the exact Hessian
+    return st;
+  }
+  SceneStageProblem problem = inputs.Problem(poses, dissipation, softX);
+  // The warm start (Newton only: Ipopt and Ceres check the cold stage). Kept cold: (1) scenes with
+  // soft actors: soft nodes are not predicted, and a soft collider's stages are only piecewise
+  // smooth (its deformed grid SDF's gradient jumps across tet and cell faces), so that at
+  // tolerances near round-off Newton ends in the iteration cap from some starts, cold or warm
+  // alike. (2) Recorded steps (sensitivities, adjoint): their derivatives are evaluated at the
+  // recorded solution, which a start reaches only to the solver's tolerance (docs/solver.md).
+  const bool warm = settings.stageSolver == StageSolverKind::Newton && predictTime > 0.0 &&
+                    settings.warmStart && !scene.hasSoft && !recording;
+  if (warm) {
+    const std::vector<std::vector<RigidBodyState>>& history = *scene.history;
+    const std::vector<double>& historyTimes = *scene.historyTimes;
+    const bool one = !history.empty() && !historyTimes.empty();
+    PredictStagePoses(models, *scene.states, one ? &history[0] : nullptr,
+                      one ? scene.time - historyTimes[0] : 0.0, predictTime, start, dt,
+                      &predicted_);
+    TangentStep(*scene.dofOffset, scene.numDofs, *poses, predicted_, &warmStep_);
+    const bool two = history.size() >= 2 && historyTimes.size() >= 2;
+    SteadyMotion(models, *scene.states, one ? &history[0] : nullptr,
+                 one ? scene.time - historyTimes[0] : 0.0, two ? &history[1] : nullptr,
+                 two ? historyTimes[0] - historyTimes[1] : 0.0, settings.gravity, &steady_);
+    WarmStart(problem, *scene.dofOffset, steady_, &warmStep_, &warmScratch_,
+              settings.solver.stepTolerance * dt);
+  }
+  switch (settings.stageSolver) {
+    case StageSolverKind::Newton:
+      if (problem.IsPotential()) {
+        NewtonStart hint;
+        hint.exactHessian = warm && state_.lastPotentialIterations <= kLocalStageIterations;
+        st = MinimizeNewton(problem, settings.solver, dt, symmetric_.get(), &newton_, hint);
+        state_.lastPotentialIterations =
+            warm && st.status == StageStatus::Converged ? st.iterations : kNoLocalStage;
+        break;
+      }
+      if (SolveResidual(settings, inputs, problem, dissipation, dt, poses, softX, contact,
+                        recorder, &st))
+        return st;
+      break;
+    case StageSolverKind::Ipopt:
+      st = MinimizeIpopt(problem, IpoptStageParams());
+      break;
+    case StageSolverKind::Ceres:
+      st = SolveCeres(problem, CeresStageParams());
+      break;
+  }
+  *contact = problem.LastContactStats();
+  state_.lastStageInContact = InContact(*contact);
+  if (recording) recorder->Record(inputs, dissipation, *poses, softX);
+  return st;
+}
+
+bool StageDriver::SolveResidual(const SceneSettings& settings, const StageInputs& inputs,
+                                SceneStageProblem& problem, const StageDissipation& dissipation,
+                                double dt, std::vector<RigidPose>* poses,
+                                std::vector<Eigen::VectorXd>* softX, ContactStats* contact,
+                                StageRecorder* recorder, SolverStats* result) {
+  // Residual modes: Newton on r has only the merit ½‖r‖² to globalize with, which is badly scaled
+  // where stiff contacts and friction meet (landing and settling contacts: ~20 iterations with many
+  // backtracks on a sphere pile). A stage that starts from the explicit-normals minimizer (a
+  // potential, globalized by projected Newton) needs only the local residual iterations. That
+  // costs about one iteration more on easy stages, so it is switched on whenever a residual-first
+  // stage takes more than kResidualFirstIterations iterations, for kExplicitFirstStages stages,
+  // then the residual-first start is tried again; each further such probe that fails doubles the
+  // run (up to kMaxExplicitFirstStages), one that succeeds resets it. Either start converges to
+  // the same residual root; the start needs no more accuracy than the distance between the two
+  // roots, so that its minimization stops at a gradient kStartRelativeGradient of its initial
+  // one. If the residual solve fails, the explicit-normals minimizer, continued to full accuracy,
+  // is the fallback (docs/solver.md).
+  constexpr int kResidualFirstIterations = 8;
+  constexpr int kMaxExplicitFirstStages = 320;
+  constexpr double kStartRelativeGradient = 1e-2;
+  SolverStats& st = *result;
+  std::vector<RigidPose>& guess = guess_;
+  guess = *poses;
+  const std::vector<Eigen::VectorXd> softGuess = softX ? *softX : std::vector<Eigen::VectorXd>();
+  StageDissipation potential = dissipation;
+  potential.mode = DissipationMode::ExplicitNormals;
+  ContactStats explicitContact;
+  auto minimizeExplicit = [&](const NonlinearSolverParams& params) {  // from *poses, *softX
+    SceneStageProblem stage = inputs.Problem(poses, potential, softX);
+    const SolverStats out = MinimizeNewton(stage, params, dt, symmetric_.get(), &newton_);
+    explicitContact = stage.LastContactStats();
+    return out;
+  };
+  const bool explicitFirst = state_.explicitFirstStages > 0;
+  if (explicitFirst) --state_.explicitFirstStages;
+  SolverStats first;  // the explicit-normals solve that gave the start (explicitFirst)
+  bool haveExplicit = false;
+  std::vector<Eigen::VectorXd> softExplicit;
+  if (explicitFirst) {
+    NonlinearSolverParams start = settings.solver;
+    start.relativeTolerance = std::max(start.relativeTolerance, kStartRelativeGradient);
+    first = minimizeExplicit(start);
+    haveExplicit = first.status == StageStatus::Converged;
+    if (haveExplicit) {
+      explicitSolution_ = *poses;
+      if (softX) softExplicit = *softX;
+    } else {
+      *poses = guess;
+      if (softX) *softX = softGuess;
+    }
+  }
+  st = SolveResidualNewton(problem, settings.solver, dt, unsymmetric_.get(), &newton_);
+  if (!explicitFirst) {
+    if (st.status != StageStatus::Converged || st.iterations > kResidualFirstIterations) {
+      state_.explicitFirstStages = state_.explicitFirstRun;
+      state_.explicitFirstRun = std::min(2 * state_.explicitFirstRun, kMaxExplicitFirstStages);
+    } else {
+      state_.explicitFirstRun = kExplicitFirstStages;
+    }
+  }
+  AddSolverWork(first, &st);
+  if (st.status == StageStatus::Converged) return false;
+  // Fallback: the explicit-normals minimizer to full accuracy (from the start it gave, or from the
+  // stage's guess); the report carries its outcome and the work of every solve of the stage.
+  SolverStats work = st;
+  *poses = haveExplicit ? explicitSolution_ : guess;
+  if (softX) *softX = haveExplicit ? softExplicit : softGuess;
+  const SolverStats outcome = minimizeExplicit(settings.solver);
+  AddSolverWork(outcome, &work);
+  const std::string why = st.Message();
+  st = outcome;
+  CopySolverWork(work, &st);
+  st.message = "residual solve failed (" + why + "); stage re-solved with explicit normals" +
+               (outcome.status == StageStatus::Converged ? "" : ": " + outcome.Message());
+  st.fallback = true;
+  *contact = explicitContact;
+  state_.lastStageInContact = InContact(*contact);
+  if (recorder && recorder->Records()) recorder->Record(inputs, potential, *poses, softX);
+  return true;
+}
+
+bool StageDriver::FreeStage(const SceneSettings& settings, const StageScene& scene,
+                            const StageDissipation& dissipation, std::vector<RigidPose>* poses,
+                            SolverStats* stats, ContactStats* contact) {
+  const std::vector<RigidBodyModel>& models = *scene.models;
+  const std::vector<int>& dofOffset = *scene.dofOffset;
+  const StageTargets& targets = targets_;
+  std::vector<RigidPose>& free = free_;
+  free = *poses;
+  for (size_t i = 0; i < models.size(); ++i) {
+    if (dofOffset[i] < 0) continue;
+    const RigidInertiaMinimum x = MinimizeRigidInertia(
+        models[i].secondMoment, targets.pHat[i], targets.RHat[i], targets.dt, settings.gravity);
+    // A non-finite target (a state gone bad) is left to Newton, which reports it.
+    if (!x.p.allFinite() || !x.R.allFinite()) return false;
+    free[i] = {x.p, x.R};
+  }
+  // The contact terms as SceneStageProblem evaluates them there (value only): each pair adds its
+  // value, gradient and residual only through samples it counts active.
+  const DissipationContext context = ContextOf(dissipation, targets.dt);
+  ContactStats found;
+  scene.pipeline->Evaluate(free, dofOffset, 0, PsdProjection::None, nullptr, nullptr, nullptr,
+                           &found, dissipation.enabled ? &context : nullptr, nullptr,
+                           targets.start.empty() ? nullptr : &targets.start);
+  if (InContact(found)) return false;
+  poses->swap(free);
+  *contact = found;
+  *stats = SolverStats();
+  stats->status = StageStatus::Converged;
+  stats->passed.what = "closed-form free stage (no active contact sample)";
+  stats->closedForm = true;
+  return true;
+}
+
+}  // namespace superdex
