@@ -64,9 +64,10 @@ bool Scene::SetSoftMaterial(ActorHandle a, double youngsModulus, double density,
   if (!ValidHandle(*this, a, error)) return false;
   if (!actors_[a.index].soft) return Fail(error, "actor: " + ActorName(a) + " is not soft");
   SoftBodyModel& m = softModels_[actors_[a.index].local];
-  if (std::string msg = ValidateElasticMaterial(youngsModulus, m.material.poissonRatio, density);
-      !msg.empty())
-    return Fail(error, "material." + msg);
+  SoftMaterial changed = m.material;
+  changed.youngsModulus = youngsModulus;
+  changed.density = density;
+  if (std::string msg = Validate(changed, "material."); !msg.empty()) return Fail(error, msg);
   const double scale = density / m.material.density;
   m.material.youngsModulus = youngsModulus;
   m.material.density = density;

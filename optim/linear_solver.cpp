@@ -540,39 +540,17 @@ Eigen::VectorXd UnsymmetricSolver::SolveTransposed(const Eigen::VectorXd& b) {
   return Eigen::VectorXd::Constant(b.size(), std::numeric_limits<double>::quiet_NaN());
 }
 
-const char* ToString(LinearSolverKind kind) {
-  switch (kind) {
-    case LinearSolverKind::Auto: return "auto";
-    case LinearSolverKind::Direct: return "direct";
-    case LinearSolverKind::Iterative: return "iterative";
-  }
-  return "?";
-}
+namespace {
+constexpr EnumName<LinearSolverKind> kLinearSolverKinds[] = {
+    {LinearSolverKind::Auto, "auto", "iterative from 3000 unknowns up, direct below"},
+    {LinearSolverKind::Direct, "direct", "sparse Cholesky / LU on every system"},
+    {LinearSolverKind::Iterative, "iterative", "block-Jacobi CG / BiCGSTAB, direct fallback"}};
+}  // namespace
 
-bool ParseLinearSolverKind(const std::string& name, LinearSolverKind* kind) {
-  for (LinearSolverKind k :
-       {LinearSolverKind::Auto, LinearSolverKind::Direct, LinearSolverKind::Iterative})
-    if (name == ToString(k)) {
-      *kind = k;
-      return true;
-    }
-  return false;
-}
+EnumNames<LinearSolverKind> NamesOf(LinearSolverKind) { return kLinearSolverKinds; }
 
 std::string Validate(const LinearSolverSettings& s) {
-  // The stream is built only for a message: this runs before every stage solve.
-  const bool kindOk = s.kind == LinearSolverKind::Auto || s.kind == LinearSolverKind::Direct ||
-                      s.kind == LinearSolverKind::Iterative;
-  const bool toleranceOk = s.tolerance > 0.0 && s.tolerance < 1.0;
-  if (kindOk && toleranceOk && s.maxIterations >= 1) return std::string();
-  std::ostringstream m;
-  if (!kindOk)
-    m << "linear_solver: must be auto, direct or iterative, got " << static_cast<int>(s.kind);
-  else if (!toleranceOk)
-    m << "linear_tolerance: must be in (0, 1), got " << s.tolerance;
-  else
-    m << "linear_max_iterations: must be >= 1, got " << s.maxIterations;
-  return m.str();
+  return ValidateFields(kLinearSolverFields, s);
 }
 
 }  // namespace superdex

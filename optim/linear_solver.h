@@ -8,6 +8,8 @@
 #include <memory>
 #include <string>
 
+#include "optim/field_table.h"
+
 namespace superdex {
 
 /// How a stage's linear systems are solved.
@@ -23,9 +25,11 @@ enum class LinearSolverKind {
   /// `maxIterations` falls back to Direct.
   Iterative,
 };
-const char* ToString(LinearSolverKind kind);
-/// "auto", "direct" or "iterative"; false for anything else.
-bool ParseLinearSolverKind(const std::string& name, LinearSolverKind* kind);
+/// "auto", "direct", "iterative".
+EnumNames<LinearSolverKind> NamesOf(LinearSolverKind);
+inline bool ParseLinearSolverKind(const std::string& name, LinearSolverKind* kind) {
+  return Parse(name, kind);
+}
 
 /// Auto uses the iterative solvers from this many unknowns up (1000 rigid bodies = 6000).
 constexpr Eigen::Index kAutoIterativeUnknowns = 3000;
@@ -41,8 +45,16 @@ struct LinearSolverSettings {
     return kind == o.kind && tolerance == o.tolerance && maxIterations == o.maxIterations;
   }
 };
-/// "" if valid, else "<field>: <rule>, got <value>" with the scene file's names (linear_solver,
-/// linear_tolerance, linear_max_iterations).
+/// The fields (optim/field_table.h), named as the scene file's settings.solver keys.
+inline constexpr auto kLinearSolverFields = std::make_tuple(
+    MakeField("linear_solver", &LinearSolverSettings::kind, "", NoRule(),
+              "how each Newton iteration solves its linear system"),
+    MakeField("linear_tolerance", &LinearSolverSettings::tolerance, "-", InOpen(0, 1),
+              "Krylov relative residual tolerance"),
+    MakeField("linear_max_iterations", &LinearSolverSettings::maxIterations, "",
+              AtLeast(1, 100000000), "Krylov iterations before the direct fallback"));
+
+/// "" if valid, else "<field>: <rule>, got <value>" (kLinearSolverFields).
 std::string Validate(const LinearSolverSettings& settings);
 
 /// What the last solve did.

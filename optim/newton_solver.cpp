@@ -68,16 +68,6 @@ void FindDiagonal(SparseMatrix* H, std::vector<Eigen::Index>* diagonal) {
   }
 }
 
-template <typename T>
-std::string Rule(const char* field, const char* rule, T value) {
-  std::ostringstream s;
-  s << field << ": " << rule << ", got " << value;
-  return s.str();
-}
-
-bool NonNegative(double x) { return std::isfinite(x) && x >= 0.0; }
-bool InOpenUnitInterval(double x) { return x > 0.0 && x < 1.0; }
-
 }  // namespace
 
 std::string Format(const ConvergenceTest& test) {
@@ -100,36 +90,21 @@ std::string Format(const ConvergenceTest& test) {
   return s;
 }
 
-const char* ToString(StageStatus status) {
-  switch (status) {
-    case StageStatus::Converged: return "Converged";
-    case StageStatus::Stopped: return "Stopped";
-    case StageStatus::Diverged: return "Diverged";
-  }
-  return "Unknown";
-}
+namespace {
+constexpr EnumName<LineSearchKind> kLineSearches[] = {
+    {LineSearchKind::Armijo, "Armijo", "backtracking until the Armijo condition holds"},
+    {LineSearchKind::None, "None", "full Newton steps"}};
+constexpr EnumName<StageStatus> kStatuses[] = {
+    {StageStatus::Converged, "Converged", "a convergence test passed"},
+    {StageStatus::Stopped, "Stopped", "the iteration cap was reached first"},
+    {StageStatus::Diverged, "Diverged", "non-finite values, or no step the line search accepts"}};
+}  // namespace
+
+EnumNames<LineSearchKind> NamesOf(LineSearchKind) { return kLineSearches; }
+EnumNames<StageStatus> NamesOf(StageStatus) { return kStatuses; }
 
 std::string Validate(const NonlinearSolverParams& p) {
-  // Field names are those of the scene file ("settings.solver.<name>"), so that a message can be
-  // prefixed with the path of the offending key.
-  if (p.maxIterations < 1) return Rule("max_iterations", "must be >= 1", p.maxIterations);
-  if (!NonNegative(p.absoluteTolerance))
-    return Rule("absolute_tolerance", "must be >= 0", p.absoluteTolerance);
-  if (!NonNegative(p.relativeTolerance))
-    return Rule("relative_tolerance", "must be >= 0", p.relativeTolerance);
-  if (!NonNegative(p.stepTolerance)) return Rule("step_tolerance", "must be >= 0", p.stepTolerance);
-  if (p.lineSearch != LineSearchKind::Armijo && p.lineSearch != LineSearchKind::None)
-    return Rule("line_search", "must be Armijo or None", static_cast<int>(p.lineSearch));
-  if (p.psdProjection != PsdProjection::None && p.psdProjection != PsdProjection::Clamp &&
-      p.psdProjection != PsdProjection::Abs)
-    return Rule("psd_projection", "must be None, Clamp or Abs", static_cast<int>(p.psdProjection));
-  if (!InOpenUnitInterval(p.armijoConstant))
-    return Rule("armijo_constant", "must be in (0, 1)", p.armijoConstant);
-  if (!InOpenUnitInterval(p.backtrackFactor))
-    return Rule("backtrack_factor", "must be in (0, 1)", p.backtrackFactor);
-  if (p.maxLineSearchSteps < 1)
-    return Rule("max_line_search_steps", "must be >= 1", p.maxLineSearchSteps);
-  return Validate(p.linear);
+  return ValidateFields(kNonlinearSolverFields, p);
 }
 
 std::string ValidateSolverInput(const NonlinearSolverParams& params, double timeScale) {

@@ -71,7 +71,8 @@ enum class StageStatus {
   Stopped,    ///< the iteration cap was reached first
   Diverged,   ///< non-finite values, or no step the line search accepts
 };
-const char* ToString(StageStatus status);
+EnumNames<LineSearchKind> NamesOf(LineSearchKind);
+EnumNames<StageStatus> NamesOf(StageStatus);
 
 /// Settings of the nonlinear stage solver. Units: `timeScale` passed to the solver is the stage's
 /// time step Δt_i [s]; a step d is converted to a velocity by StepNorm(d) / Δt_i [m/s].
@@ -91,6 +92,32 @@ struct NonlinearSolverParams {
   /// The linear solves (optim/linear_solver.h); Auto: Krylov from 3000 unknowns up.
   LinearSolverSettings linear{LinearSolverKind::Auto};
 };
+
+/// The fields (optim/field_table.h), named as the scene file's settings.solver keys, in the
+/// order of validation.
+inline constexpr auto kNonlinearSolverFields = std::tuple_cat(
+    std::make_tuple(
+        MakeField("max_iterations", &NonlinearSolverParams::maxIterations, "",
+                  AtLeast(1, 1000000), "Newton iterations before the stage is Stopped"),
+        MakeField("absolute_tolerance", &NonlinearSolverParams::absoluteTolerance, "J",
+                  NonNegativeRule(), "converged when the Newton decrement 1/2 g^T H^-1 g is <= this"),
+        MakeField("relative_tolerance", &NonlinearSolverParams::relativeTolerance, "-",
+                  NonNegativeRule(), "... or when the gradient's max norm is <= this times the first"),
+        MakeField("step_tolerance", &NonlinearSolverParams::stepTolerance, "m/s",
+                  NonNegativeRule(), "... or when the step over the stage's time step is <= this"),
+        MakeField("line_search", &NonlinearSolverParams::lineSearch, "", NoRule(),
+                  "Armijo backtracking, or None: full Newton steps"),
+        MakeField("psd_projection", &NonlinearSolverParams::psdProjection, "", NoRule(),
+                  "how local Hessians are made positive semi-definite"),
+        MakeField("armijo_constant", &NonlinearSolverParams::armijoConstant, "-", InOpen(0, 1),
+                  "c in the Armijo condition"),
+        MakeField("backtrack_factor", &NonlinearSolverParams::backtrackFactor, "-", InOpen(0, 1),
+                  "the step length's factor on each rejected trial"),
+        MakeField("max_line_search_steps", &NonlinearSolverParams::maxLineSearchSteps, "",
+                  AtLeast(1, 1000000), "rejected trials before the stage is Diverged"),
+        MakeField("part_line_search", &NonlinearSolverParams::partLineSearch, "", NoRule(),
+                  "one step length per independent part of a stage (bodies no contact joins)")),
+    LiftFields(&NonlinearSolverParams::linear, kLinearSolverFields));
 
 /// The convergence test a solve passed, formatted only on demand (SolverStats::Message): once per
 /// stage, formatting it cost 9 % of a free-flight step of the drop.
@@ -187,10 +214,8 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
                            NewtonWorkspace* work = nullptr, NewtonStart start = {});
 
 /// Validates the parameters; returns an empty string if valid, else a message for the first
-/// invalid field in declaration order, named as in the scene file:
-/// "<field>: <rule>, got <value>", e.g. "max_iterations: must be >= 1, got 0". Rules: maxIterations
-/// >= 1; the three tolerances finite and >= 0; 0 < armijoConstant < 1; 0 < backtrackFactor < 1;
-/// maxLineSearchSteps >= 1; the enums hold a named value; then Validate(linear).
+/// invalid field of kNonlinearSolverFields: "<field>: <rule>, got <value>", e.g.
+/// "max_iterations: must be >= 1, got 0".
 std::string Validate(const NonlinearSolverParams& params);
 
 /// The input checks every stage solver makes first: "" if valid, else "invalid parameters: ..."

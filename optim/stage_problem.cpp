@@ -1,6 +1,14 @@
 #include "optim/stage_problem.h"
 
 namespace superdex {
+namespace {
+constexpr EnumName<PsdProjection> kProjections[] = {
+    {PsdProjection::None, "None", "exact Hessian (may be indefinite)"},
+    {PsdProjection::Clamp, "Clamp", "negative eigenvalues set to zero"},
+    {PsdProjection::Abs, "Abs", "negative eigenvalues replaced by their absolute value"}};
+}  // namespace
+
+EnumNames<PsdProjection> NamesOf(PsdProjection) { return kProjections; }
 
 // A problem without a residual interface reports an empty residual; the residual solvers refuse it.
 void StageProblem::Residual(const Eigen::VectorXd&, Eigen::VectorXd* r) { r->resize(0); }

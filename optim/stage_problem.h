@@ -8,6 +8,8 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include "optim/field_table.h"
+
 namespace superdex {
 
 /// How local (per-element) Hessians are made positive semi-definite before assembly. A projected
@@ -18,7 +20,8 @@ enum class PsdProjection {
   None,   ///< exact Hessian (may be indefinite)
   Clamp,  ///< negative eigenvalues set to zero
   Abs,    ///< negative eigenvalues replaced by their absolute value
-};
+};EnumNames<PsdProjection> NamesOf(PsdProjection);
+
 
 /// How the objective of one evaluation splits into independent parts (StageProblem::LastSplit).
 /// The dofs are grouped into units (a rigid body's six); f is the sum of the units' shares, and

@@ -281,16 +281,15 @@ class AdjointCostFunction : public ceres::FirstOrderFunction {
 
 }  // namespace
 
-const char* ToString(FitMethod method) {
-  return method == FitMethod::Lbfgs ? "lbfgs" : "lm";
-}
+namespace {
+constexpr EnumName<FitMethod> kFitMethods[] = {
+    {FitMethod::LevenbergMarquardt, "lm",
+     "Levenberg-Marquardt, Jacobian from forward sensitivities, standard errors (for a few "
+     "parameters)"},
+    {FitMethod::Lbfgs, "lbfgs", "L-BFGS with adjoint gradients (for many parameters)"}};
+}  // namespace
 
-bool ParseFitMethod(const std::string& name, FitMethod* method) {
-  if (name == "lm") *method = FitMethod::LevenbergMarquardt;
-  else if (name == "lbfgs") *method = FitMethod::Lbfgs;
-  else return false;
-  return true;
-}
+EnumNames<FitMethod> NamesOf(FitMethod) { return kFitMethods; }
 
 bool ComputeTrajectoryGradient(const SceneFile& file, const ObservedTrajectory& observed,
                                const FitOptions& options, TrajectoryGradient* result,

@@ -41,9 +41,10 @@ enum class FitMethod {
   /// errors.
   Lbfgs,
 };
-const char* ToString(FitMethod method);
-/// "lm" or "lbfgs"; false for anything else.
-bool ParseFitMethod(const std::string& name, FitMethod* method);
+EnumNames<FitMethod> NamesOf(FitMethod);  ///< "lm", "lbfgs"
+inline bool ParseFitMethod(const std::string& name, FitMethod* method) {
+  return Parse(name, method);
+}
 
 struct FitOptions {
   std::vector<std::string> parameters;  ///< "ACTOR.NAME"

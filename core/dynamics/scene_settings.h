@@ -15,8 +15,9 @@ namespace superdex {
 /// potential stages, residual Newton otherwise); Ipopt (potential stages only) and Ceres (every
 /// stage) are independent checks for small scenes (dense, at most 600 degrees of freedom).
 enum class StageSolverKind { Newton, Ipopt, Ceres };
-const char* ToString(StageSolverKind kind);
-/// "newton", "ipopt" or "ceres" (also the CamelCase names); false for anything else.
+EnumNames<StageSolverKind> NamesOf(StageSolverKind);  ///< "newton", "ipopt", "ceres"
+/// A name of NamesOf(StageSolverKind), or one with its first letter capitalized ("Newton");
+/// false for anything else.
 bool ParseStageSolver(const std::string& name, StageSolverKind* kind);
 
 struct SceneSettings {

@@ -1,47 +1,25 @@
 #include "core/model/collider_params.h"
 
 #include <cmath>
-#include <sstream>
 
 namespace superdex {
 namespace {
 
-template <typename T>
-std::string Rule(const std::string& prefix, const char* field, const char* rule, T value) {
-  std::ostringstream s;
-  s << prefix << field << ": " << rule << ", got " << value;
-  return s.str();
-}
-
-bool Positive(double x) { return std::isfinite(x) && x > 0.0; }
+constexpr EnumName<GridSdfResolutionMode> kResolutionModes[] = {
+    {GridSdfResolutionMode::MeanEdgeLength, "MeanEdgeLength", "the shape mesh's mean edge length"},
+    {GridSdfResolutionMode::BoundingExtent, "BoundingExtent",
+     "the longest side of the shape's bounding box, divided by 64"}};
 
 }  // namespace
 
-const char* ToString(GridSdfResolutionMode mode) {
-  return mode == GridSdfResolutionMode::MeanEdgeLength ? "MeanEdgeLength" : "BoundingExtent";
-}
+EnumNames<GridSdfResolutionMode> NamesOf(GridSdfResolutionMode) { return kResolutionModes; }
 
 std::string Validate(const GridSdfParams& p, const std::string& prefix) {
-  if (p.resolutionMode != GridSdfResolutionMode::MeanEdgeLength &&
-      p.resolutionMode != GridSdfResolutionMode::BoundingExtent)
-    return Rule(prefix, "resolution_mode", "must be MeanEdgeLength or BoundingExtent",
-                static_cast<int>(p.resolutionMode));
-  if (!Positive(p.resolutionDelta))
-    return Rule(prefix, "resolution_delta", "must be > 0", p.resolutionDelta);
-  if (p.minGridResolution < 2)
-    return Rule(prefix, "min_grid_resolution", "must be >= 2", p.minGridResolution);
-  if (!(std::isfinite(p.boundaryPaddingDist) && p.boundaryPaddingDist >= 0.0))
-    return Rule(prefix, "boundary_padding_dist", "must be >= 0", p.boundaryPaddingDist);
-  return "";
+  return ValidateFields(kGridSdfFields, p, prefix);
 }
 
 std::string Validate(const PointCloudColliderParams& p, const std::string& prefix) {
-  if (!Positive(p.radius)) return Rule(prefix, "radius", "must be > 0", p.radius);
-  if (!Positive(p.selfContactExclusionRatio))
-    return Rule(prefix, "self_contact_exclusion_ratio", "must be > 0", p.selfContactExclusionRatio);
-  if (!Positive(p.spatialHashLoadFactor))
-    return Rule(prefix, "spatial_hash_load_factor", "must be > 0", p.spatialHashLoadFactor);
-  return "";
+  return ValidateFields(kPointCloudColliderFields, p, prefix);
 }
 
 std::shared_ptr<GridSdf> BuildGridSdf(const TriangleMesh& mesh,

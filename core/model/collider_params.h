@@ -9,9 +9,11 @@
 #include <optional>
 #include <string>
 
+#include "core/model/enums.h"
 #include "geometry/grid_sdf.h"
 #include "geometry/quadrature.h"
 #include "geometry/triangle_mesh.h"
+#include "optim/field_table.h"
 
 namespace superdex {
 
@@ -20,28 +22,51 @@ enum class GridSdfResolutionMode {
   MeanEdgeLength,   ///< the shape mesh's mean edge length
   BoundingExtent,   ///< the longest side of the shape's bounding box, divided by 64
 };
+EnumNames<GridSdfResolutionMode> NamesOf(GridSdfResolutionMode);
 
 /// Grid SDF construction (spec: "Collider Representations").
+/// Fields: kGridSdfFields.
 struct GridSdfParams {
   GridSdfResolutionMode resolutionMode = GridSdfResolutionMode::MeanEdgeLength;
-  double resolutionDelta = 1.0;      ///< voxel size = resolutionDelta × reference length [-], > 0
-  int minGridResolution = 16;        ///< minimum voxel count per axis, >= 2
-  double boundaryPaddingDist = 0.01; ///< grid extension beyond the shape bounds [m], >= 0
+  double resolutionDelta = 1.0;  ///< voxel size = resolutionDelta × reference length
+  int minGridResolution = 16;
+  double boundaryPaddingDist = 0.01;
 };
 
-/// Point-cloud colliders (spec: "PointCloudColliderParams"); defaults are the spec's.
+inline constexpr auto kGridSdfFields = std::make_tuple(
+    MakeField("resolution_mode", &GridSdfParams::resolutionMode, "", NoRule(),
+              "Reference length for the voxel size"),
+    MakeField("resolution_delta", &GridSdfParams::resolutionDelta, "-", PositiveRule(),
+              "Voxel size as a multiple of the reference length"),
+    MakeField("min_grid_resolution", &GridSdfParams::minGridResolution, "", AtLeast(2, 4096),
+              "Minimum voxel count per axis"),
+    MakeField("boundary_padding_dist", &GridSdfParams::boundaryPaddingDist, "m", NonNegativeRule(),
+              "Grid extension beyond the shape bounds"));
+
+/// Point-cloud colliders (spec: "PointCloudColliderParams"); defaults are the spec's. Fields:
+/// kPointCloudColliderFields.
 struct PointCloudColliderParams {
-  double radius = 0.01;                     ///< interaction range L_B [m], > 0
-  double selfContactExclusionRatio = 1.5;   ///< r [-], > 0
-  double spatialHashLoadFactor = 0.0625;    ///< [-], > 0
+  double radius = 0.01;  ///< L_B
+  double selfContactExclusionRatio = 1.5;
+  double spatialHashLoadFactor = 0.0625;
   bool selfContact = false;
-  /// Quadrature-based collider discretization for surfaces; otherwise mesh nodes.
   std::optional<ActorBoundaryElementType> colliderTriangleElementType;
 };
 
-const char* ToString(GridSdfResolutionMode mode);
+inline constexpr auto kPointCloudColliderFields = std::make_tuple(
+    MakeField("radius", &PointCloudColliderParams::radius, "m", PositiveRule(),
+              "Interaction range L_B"),
+    MakeField("self_contact_exclusion_ratio", &PointCloudColliderParams::selfContactExclusionRatio,
+              "-", PositiveRule(), "Self-contact exclusion ratio r"),
+    MakeField("spatial_hash_load_factor", &PointCloudColliderParams::spatialHashLoadFactor, "-",
+              PositiveRule(), "Load factor of the collision-detection spatial hash"),
+    MakeField("self_contact", &PointCloudColliderParams::selfContact, "", NoRule(),
+              "Whether to enable self-contact"),
+    MakeField("collider_triangle_element_type",
+              &PointCloudColliderParams::colliderTriangleElementType, "", NoRule(),
+              "Quadrature-based collider discretization for surfaces; none: the mesh nodes"));
 
-/// "" when valid, else "<prefix><snake_case field>: <rule>, got <value>".
+/// "" when valid, else "<prefix><snake_case field>: must be <rule>, got <value>".
 std::string Validate(const GridSdfParams& params, const std::string& prefix = "");
 std::string Validate(const PointCloudColliderParams& params, const std::string& prefix = "");
 

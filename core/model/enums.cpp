@@ -1,72 +1,41 @@
 #include "core/model/enums.h"
 
-#include <array>
-#include <utility>
-
 namespace superdex {
 namespace {
 
-template <typename E, size_t N>
-using Table = std::array<std::pair<E, const char*>, N>;
-
-constexpr Table<ColliderType, 8> kColliderTypes{{{ColliderType::Auto, "Auto"},
-                                                 {ColliderType::None, "None"},
-                                                 {ColliderType::Sphere, "Sphere"},
-                                                 {ColliderType::Box, "Box"},
-                                                 {ColliderType::Plane, "Plane"},
-                                                 {ColliderType::Mesh, "Mesh"},
-                                                 {ColliderType::Sdf, "Sdf"},
-                                                 {ColliderType::PointCloud, "PointCloud"}}};
-constexpr Table<IntegrationMethod, 8> kMethods{
-    {{IntegrationMethod::BackwardEuler, "BackwardEuler"},
-     {IntegrationMethod::BDF2, "BDF2"},
-     {IntegrationMethod::BDF3, "BDF3"},
-     {IntegrationMethod::DIRK22, "DIRK22"},
-     {IntegrationMethod::DIRK23, "DIRK23"},
-     {IntegrationMethod::DIRK33, "DIRK33"},
-     {IntegrationMethod::SymplecticDIRK12, "SymplecticDIRK12"},
-     {IntegrationMethod::SymplecticDIRK22, "SymplecticDIRK22"}}};
-constexpr Table<ActorBoundaryElementType, 6> kElements{
-    {{ActorBoundaryElementType::P1Q1, "P1Q1"},
-     {ActorBoundaryElementType::P1Q3, "P1Q3"},
-     {ActorBoundaryElementType::P1Q6, "P1Q6"},
-     {ActorBoundaryElementType::ExperimentalP1Q7, "ExperimentalP1Q7"},
-     {ActorBoundaryElementType::ExperimentalP1Q12, "ExperimentalP1Q12"},
-     {ActorBoundaryElementType::ExperimentalP1Q16, "ExperimentalP1Q16"}}};
-
-template <typename E, size_t N>
-const char* Name(const Table<E, N>& t, E v) {
-  for (const auto& [e, name] : t)
-    if (e == v) return name;
-  return "?";
-}
-template <typename E, size_t N>
-bool Find(const Table<E, N>& t, const std::string& s, E* v) {
-  for (const auto& [e, name] : t)
-    if (s == name) {
-      *v = e;
-      return true;
-    }
-  return false;
-}
-template <typename E, size_t N>
-std::string Names(const Table<E, N>& t) {
-  std::string out;
-  for (const auto& [e, name] : t) out += (out.empty() ? "" : ", ") + std::string(name);
-  return out;
-}
+constexpr EnumName<ColliderType> kColliderTypes[] = {
+    {ColliderType::Auto, "Auto", "by actor and shape: analytic for sphere, box, plane"},
+    {ColliderType::None, "None", "no collider role (the actor may still collide)"},
+    {ColliderType::Sphere, "Sphere"},
+    {ColliderType::Box, "Box"},
+    {ColliderType::Plane, "Plane"},
+    {ColliderType::Mesh, "Mesh"},
+    {ColliderType::Sdf, "Sdf"},
+    {ColliderType::PointCloud, "PointCloud"}};
+constexpr EnumName<IntegrationMethod> kMethods[] = {
+    {IntegrationMethod::BackwardEuler, "BackwardEuler", "order 1, L-stable"},
+    {IntegrationMethod::BDF2, "BDF2", "order 2, A-stable (default)"},
+    {IntegrationMethod::BDF3, "BDF3", "order 3"},
+    {IntegrationMethod::DIRK22, "DIRK22", "order 2, L-stable"},
+    {IntegrationMethod::DIRK23, "DIRK23", "order 3, A-stable"},
+    {IntegrationMethod::DIRK33, "DIRK33", "order 3, L-stable"},
+    {IntegrationMethod::SymplecticDIRK12, "SymplecticDIRK12", "implicit midpoint"},
+    {IntegrationMethod::SymplecticDIRK22, "SymplecticDIRK22", "order 2, symplectic"}};
+constexpr EnumName<ActorBoundaryElementType> kElements[] = {
+    {ActorBoundaryElementType::P1Q1, "P1Q1", "1 point, exact for degree 1"},
+    {ActorBoundaryElementType::P1Q3, "P1Q3", "3 points, degree 2 (default)"},
+    {ActorBoundaryElementType::P1Q6, "P1Q6", "6 points, degree 4"},
+    {ActorBoundaryElementType::ExperimentalP1Q7, "ExperimentalP1Q7", "7 points, degree 5"},
+    {ActorBoundaryElementType::ExperimentalP1Q12, "ExperimentalP1Q12", "12 points, degree 6"},
+    {ActorBoundaryElementType::ExperimentalP1Q16, "ExperimentalP1Q16", "16 points, degree 8"}};
+constexpr EnumName<IncludeNestedActors> kNested[] = {{IncludeNestedActors::No, "No"},
+                                                     {IncludeNestedActors::Yes, "Yes"}};
 
 }  // namespace
 
-const char* ToString(ColliderType v) { return Name(kColliderTypes, v); }
-const char* ToString(IntegrationMethod v) { return Name(kMethods, v); }
-const char* ToString(ActorBoundaryElementType v) { return Name(kElements, v); }
-const char* ToString(IncludeNestedActors v) { return v == IncludeNestedActors::Yes ? "Yes" : "No"; }
-bool Parse(const std::string& s, ColliderType* v) { return Find(kColliderTypes, s, v); }
-bool Parse(const std::string& s, IntegrationMethod* v) { return Find(kMethods, s, v); }
-bool Parse(const std::string& s, ActorBoundaryElementType* v) { return Find(kElements, s, v); }
-std::string AllNames(ColliderType) { return Names(kColliderTypes); }
-std::string AllNames(IntegrationMethod) { return Names(kMethods); }
-std::string AllNames(ActorBoundaryElementType) { return Names(kElements); }
+EnumNames<ColliderType> NamesOf(ColliderType) { return kColliderTypes; }
+EnumNames<IntegrationMethod> NamesOf(IntegrationMethod) { return kMethods; }
+EnumNames<ActorBoundaryElementType> NamesOf(ActorBoundaryElementType) { return kElements; }
+EnumNames<IncludeNestedActors> NamesOf(IncludeNestedActors) { return kNested; }
 
 }  // namespace superdex

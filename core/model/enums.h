@@ -4,6 +4,7 @@
 #include <string>
 
 #include "geometry/quadrature.h"
+#include "optim/field_table.h"
 
 namespace superdex {
 
@@ -26,19 +27,10 @@ enum class IntegrationMethod {
 /// Whether actor-pair filtering applies to nested actors too (spec: "Contact Filtering").
 enum class IncludeNestedActors { No, Yes };
 
-const char* ToString(ColliderType v);
-const char* ToString(IntegrationMethod v);
-const char* ToString(ActorBoundaryElementType v);
-const char* ToString(IncludeNestedActors v);
-
-/// Parses the exact enum name (e.g. "BDF2", "P1Q3"). Returns false if unknown.
-bool Parse(const std::string& s, ColliderType* v);
-bool Parse(const std::string& s, IntegrationMethod* v);
-bool Parse(const std::string& s, ActorBoundaryElementType* v);
-
-/// "A, B, C": every valid name, for error messages.
-std::string AllNames(ColliderType);
-std::string AllNames(IntegrationMethod);
-std::string AllNames(ActorBoundaryElementType);
+/// The name tables (optim/field_table.h: ToString, Parse, AllNames work through them).
+EnumNames<ColliderType> NamesOf(ColliderType);
+EnumNames<IntegrationMethod> NamesOf(IntegrationMethod);
+EnumNames<ActorBoundaryElementType> NamesOf(ActorBoundaryElementType);
+EnumNames<IncludeNestedActors> NamesOf(IncludeNestedActors);
 
 }  // namespace superdex

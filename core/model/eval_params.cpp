@@ -1,17 +1,19 @@
 #include "core/model/eval_params.h"
 
 namespace superdex {
+namespace {
 
-const char* ToString(DissipationMode mode) {
-  switch (mode) {
-    case DissipationMode::ExplicitNormals: return "ExplicitNormals";
-    case DissipationMode::ReconstructedLoad: return "ReconstructedLoad";
-    case DissipationMode::ImplicitLoad: return "ImplicitLoad";
-  }
-  return "Unknown";
-}
+constexpr EnumName<DissipationMode> kModes[] = {
+    {DissipationMode::ExplicitNormals, "ExplicitNormals"},
+    {DissipationMode::ReconstructedLoad, "ReconstructedLoad"},
+    {DissipationMode::ImplicitLoad, "ImplicitLoad"}};
+
+}  // namespace
+
+EnumNames<DissipationMode> NamesOf(DissipationMode) { return kModes; }
 
 std::string Validate(const ExperimentalEvalParams& p, const std::string& prefix) {
+  if (std::string m = ValidateFields(kExperimentalEvalFields, p, prefix); !m.empty()) return m;
   if (p.explicitNormals && p.implicitNormalForceForDissipation)
     return prefix +
            "explicit_normals, implicit_normal_force_for_dissipation: the combination "

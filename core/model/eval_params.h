@@ -3,12 +3,14 @@
 
 #include <string>
 
+#include "optim/field_table.h"
+
 namespace superdex {
 
 /// The three supported dissipation evaluations (ExperimentalEvalParams), by the stage's
 /// incremental-potential status: ExplicitNormals is an exact potential, the other two are not.
 enum class DissipationMode { ExplicitNormals, ReconstructedLoad, ImplicitLoad };
-const char* ToString(DissipationMode mode);
+EnumNames<DissipationMode> NamesOf(DissipationMode);
 
 /// | explicitNormals | implicitNormalForceForDissipation | incremental-potential status        |
 /// | true            | false                             | exact gradient of Δt_i R_i          |
@@ -16,10 +18,19 @@ const char* ToString(DissipationMode mode);
 /// | false           | true                              | not a potential (residual solve)    |
 /// | true            | true                              | unsupported (Validate refuses it)   |
 struct ExperimentalEvalParams {
-  bool explicitNormals = false;                  ///< stage-start normals, alignment, plane, load
-  bool implicitNormalForceForDissipation = false;///< current normal load scales dissipation
-  bool fadeFriction = true;                      ///< alignment-based attenuation a = (m−s)/(m+1)
+  bool explicitNormals = false;
+  bool implicitNormalForceForDissipation = false;
+  bool fadeFriction = true;
 };
+
+inline constexpr auto kExperimentalEvalFields = std::make_tuple(
+    MakeField("explicit_normals", &ExperimentalEvalParams::explicitNormals, "", NoRule(),
+              "Stage-start normals, alignment, friction plane and load"),
+    MakeField("implicit_normal_force_for_dissipation",
+              &ExperimentalEvalParams::implicitNormalForceForDissipation, "", NoRule(),
+              "Scale dissipation by the current normal load"),
+    MakeField("fade_friction", &ExperimentalEvalParams::fadeFriction, "", NoRule(),
+              "Alignment-based attenuation a = (m − s)/(m + 1) of dissipation"));
 
 /// "" when supported; otherwise a message naming the fields and the rule.
 std::string Validate(const ExperimentalEvalParams& params, const std::string& prefix = "");

@@ -25,15 +25,10 @@ std::string Num(double v) {
   return s.str();
 }
 
-const char* ShapeName(RigidShapeKind k) {
-  switch (k) {
-    case RigidShapeKind::Sphere: return "sphere";
-    case RigidShapeKind::Box: return "box";
-    case RigidShapeKind::Mesh: return "mesh";
-    case RigidShapeKind::Plane: return "plane";
-  }
-  return "?";
-}
+constexpr EnumName<RigidShapeKind> kShapeKinds[] = {{RigidShapeKind::Sphere, "sphere"},
+                                                    {RigidShapeKind::Box, "box"},
+                                                    {RigidShapeKind::Mesh, "mesh"},
+                                                    {RigidShapeKind::Plane, "plane"}};
 
 // Samples on the exact sphere: flat icosphere quadrature points projected radially, weights scaled
 // by the area ratio of the central projection, dA_sphere = r² cos(angle)/|X_flat|² dA_flat.
@@ -132,6 +127,8 @@ bool SameNode(const SampleNode& a, const SampleNode& b) {
 }
 
 }  // namespace
+
+EnumNames<RigidShapeKind> NamesOf(RigidShapeKind) { return kShapeKinds; }
 
 SdfSample RigidCollider::Evaluate(const Eigen::Vector3d& X) const {
   switch (type) {
@@ -265,7 +262,7 @@ bool BuildColliderRole(const RigidActorDesc& d, const std::string& prefix, Rigid
   // Collider role.
   RigidCollider& c = m->collider;
   ColliderType want = d.colliderType;
-  const char* shapeName = ShapeName(shape.kind);
+  const char* shapeName = ToString(shape.kind);
   if (want == ColliderType::Auto) {
     switch (shape.kind) {
       case RigidShapeKind::Sphere: want = ColliderType::Sphere; break;

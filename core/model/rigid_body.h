@@ -28,6 +28,7 @@ struct RigidPose {
 };
 
 enum class RigidShapeKind { Sphere, Box, Mesh, Plane };
+EnumNames<RigidShapeKind> NamesOf(RigidShapeKind);  ///< "sphere", "box", "mesh", "plane"
 
 /// Geometry of a rigid actor in its own frame. Sphere and Box are centred at the frame origin.
 /// A Plane (static actors only) is the half space {X : n·X <= 0} of its frame. A Mesh is a closed,

@@ -21,15 +21,9 @@ Eigen::Vector3d NodeConstraint::Displacement(double t) const {
   return path.back().second;
 }
 
-namespace {
-
-std::string Num(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
+std::string Validate(const SoftMaterial& material, const std::string& prefix) {
+  return ValidateFields(kSoftMaterialFields, material, prefix);
 }
-
-}  // namespace
 
 bool BuildSoftBody(const SoftActorDesc& d, const std::string& prefix, SoftBodyModel* m,
                    SoftBodyState* st, Error* error) {
@@ -37,13 +31,7 @@ bool BuildSoftBody(const SoftActorDesc& d, const std::string& prefix, SoftBodyMo
   const std::string source = d.meshSource.empty() ? "mesh" : d.meshSource;
   std::string message;
   if (!ValidateTetMesh(*d.mesh, source, &message)) return Fail(error, prefix + "mesh: " + message);
-  if (std::string e = ValidateElasticMaterial(d.material.youngsModulus, d.material.poissonRatio,
-                                              d.material.density);
-      !e.empty())
-    return Fail(error, prefix + e);
-  if (!(std::isfinite(d.material.stiffnessDamping) && d.material.stiffnessDamping >= 0))
-    return Fail(error, prefix + "stiffness_damping: must be >= 0 and finite, got " +
-                           Num(d.material.stiffnessDamping));
+  if (std::string e = Validate(d.material, prefix); !e.empty()) return Fail(error, e);
   if (std::string e = Validate(d.contact, prefix + "contact."); !e.empty()) return Fail(error, e);
   if (!d.position.allFinite() || !d.linearVelocity.allFinite() ||
       !d.orientation.coeffs().allFinite() || d.orientation.norm() < 1e-12)

@@ -23,11 +23,25 @@ namespace superdex {
 /// Bulk material of a soft actor. Restitution of a soft body comes from its bulk (spec:
 /// "Friction and Damping"): `stiffnessDamping` β adds the Rayleigh dissipation R = β/2 vᵀ K v.
 struct SoftMaterial {
-  double youngsModulus = 1e5;    ///< E [Pa], > 0
-  double poissonRatio = 0.3;     ///< ν [-], in (−1, 0.5)
-  double density = 1000.0;       ///< ρ [kg/m³], > 0
-  double stiffnessDamping = 0.0; ///< β [s], >= 0
+  double youngsModulus = 1e5;     ///< E
+  double poissonRatio = 0.3;      ///< ν
+  double density = 1000.0;        ///< ρ
+  double stiffnessDamping = 0.0;  ///< β
 };
+
+inline constexpr auto kSoftMaterialFields = std::make_tuple(
+    MakeField("youngs_modulus", &SoftMaterial::youngsModulus, "Pa",
+              PositiveRule().Worded("finite and > 0"), "Young's modulus E"),
+    MakeField("poisson_ratio", &SoftMaterial::poissonRatio, "-", InOpen(-1, 0.5),
+              "Poisson's ratio ν"),
+    MakeField("density", &SoftMaterial::density, "kg/m^3", PositiveRule().Worded("finite and > 0"),
+              "Density ρ"),
+    MakeField("stiffness_damping", &SoftMaterial::stiffnessDamping, "s",
+              NonNegativeRule().Worded(">= 0 and finite"),
+              "Rayleigh stiffness damping β (dissipation R = β/2 vᵀ K v)"));
+
+/// "" when valid, else "<prefix><snake_case field>: must be <rule>, got <value>".
+std::string Validate(const SoftMaterial& material, const std::string& prefix = "");
 
 /// A set of nodes whose positions are prescribed: pinned (held at their initial positions) or
 /// driven along a piecewise-linear path of displacements from the initial positions.
