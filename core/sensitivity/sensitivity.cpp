@@ -15,42 +15,41 @@
 namespace superdex {
 namespace {
 
-struct KindName {
+// The parameters that can be differentiated: contact and material ones by their field (named by
+// kContactParamsFields and kSoftMaterialFields), the initial-state ones by name.
+struct KindRow {
   SceneParameterKind kind;
-  const char* name;
+  double ContactParams::*contact = nullptr;
+  double SoftMaterial::*material = nullptr;
+  const char* name = nullptr;
 };
-constexpr KindName kKinds[] = {
-    {SceneParameterKind::PenaltyCoefficient, "penalty_coefficient"},
-    {SceneParameterKind::CoulombFrictionCoefficient, "coulomb_friction_coefficient"},
-    {SceneParameterKind::ViscousFrictionCoefficient, "viscous_friction_coefficient"},
-    {SceneParameterKind::NormalViscousDampingCoefficient, "normal_viscous_damping_coefficient"},
-    {SceneParameterKind::FrictionFalloffVel, "friction_falloff_vel"},
-    {SceneParameterKind::YoungsModulus, "youngs_modulus"},
-    {SceneParameterKind::Density, "density"},
-    {SceneParameterKind::Position, "position"},
-    {SceneParameterKind::Velocity, "velocity"},
-    {SceneParameterKind::AngularVelocity, "angular_velocity"},
+constexpr KindRow kKinds[] = {
+    {SceneParameterKind::PenaltyCoefficient, &ContactParams::penaltyCoefficient},
+    {SceneParameterKind::CoulombFrictionCoefficient, &ContactParams::coulombFrictionCoefficient},
+    {SceneParameterKind::ViscousFrictionCoefficient, &ContactParams::viscousFrictionCoefficient},
+    {SceneParameterKind::NormalViscousDampingCoefficient,
+     &ContactParams::normalViscousDampingCoefficient},
+    {SceneParameterKind::FrictionFalloffVel, &ContactParams::frictionFalloffVel},
+    {SceneParameterKind::YoungsModulus, nullptr, &SoftMaterial::youngsModulus},
+    {SceneParameterKind::Density, nullptr, &SoftMaterial::density},
+    {SceneParameterKind::Position, nullptr, nullptr, "position"},
+    {SceneParameterKind::Velocity, nullptr, nullptr, "velocity"},
+    {SceneParameterKind::AngularVelocity, nullptr, nullptr, "angular_velocity"},
 };
 
-const char* NameOf(SceneParameterKind kind) {
-  for (const KindName& k : kKinds)
-    if (k.kind == kind) return k.name;
-  return "?";
+const KindRow& RowOf(SceneParameterKind kind) {
+  for (const KindRow& k : kKinds)
+    if (k.kind == kind) return k;
+  return kKinds[0];
 }
 
-double* ContactField(ContactParams* c, SceneParameterKind kind) {
-  switch (kind) {
-    case SceneParameterKind::PenaltyCoefficient: return &c->penaltyCoefficient;
-    case SceneParameterKind::CoulombFrictionCoefficient: return &c->coulombFrictionCoefficient;
-    case SceneParameterKind::ViscousFrictionCoefficient: return &c->viscousFrictionCoefficient;
-    case SceneParameterKind::NormalViscousDampingCoefficient:
-      return &c->normalViscousDampingCoefficient;
-    case SceneParameterKind::FrictionFalloffVel: return &c->frictionFalloffVel;
-    default: return nullptr;
-  }
+const char* NameOf(const KindRow& k) {
+  if (k.contact) return FieldName(kContactParamsFields, k.contact);
+  if (k.material) return FieldName(kSoftMaterialFields, k.material);
+  return k.name;
 }
 
-bool IsContactKind(SceneParameterKind k) { return k <= SceneParameterKind::FrictionFalloffVel; }
+bool IsContactKind(SceneParameterKind k) { return RowOf(k).contact != nullptr; }
 
 }  // namespace
 
@@ -73,14 +72,14 @@ bool ParseSceneParameter(const Scene& scene, const std::string& text, SceneParam
     name = name.substr(0, dot2);
   }
   bool found = false;
-  for (const KindName& k : kKinds)
-    if (name == k.name) {
+  for (const KindRow& k : kKinds)
+    if (name == NameOf(k)) {
       p->kind = k.kind;
       found = true;
     }
   if (!found) {
     std::string all;
-    for (const KindName& k : kKinds) all += std::string(all.empty() ? "" : ", ") + k.name;
+    for (const KindRow& k : kKinds) all += std::string(all.empty() ? "" : ", ") + NameOf(k);
     return Fail(error, "parameter '" + text + "': unknown name '" + name + "'; one of " + all);
   }
   const bool soft = scene.IsSoft(p->actor);
@@ -103,17 +102,22 @@ bool ParseSceneParameter(const Scene& scene, const std::string& text, SceneParam
   return true;
 }
 
+std::string SceneParameterNames() {
+  std::string all;
+  for (const KindRow& k : kKinds)
+    all += std::string(all.empty() ? "" : ", ") + NameOf(k) +
+           (k.kind >= SceneParameterKind::Position ? ".x|y|z" : "");
+  return all;
+}
+
 std::string ToString(const Scene& scene, const SceneParameter& p) {
-  std::string s = scene.ActorName(p.actor) + "." + NameOf(p.kind);
+  std::string s = scene.ActorName(p.actor) + "." + NameOf(RowOf(p.kind));
   if (p.IsInitialState()) s += std::string(".") + char('x' + p.component);
   return s;
 }
 
 double ParameterValue(const Scene& scene, const SceneParameter& p) {
-  if (IsContactKind(p.kind)) {
-    ContactParams c = scene.GetContactParams(p.actor);
-    return *ContactField(&c, p.kind);
-  }
+  if (IsContactKind(p.kind)) return scene.GetContactParams(p.actor).*RowOf(p.kind).contact;
   if (p.kind == SceneParameterKind::YoungsModulus)
     return scene.SoftModel(p.actor).material.youngsModulus;
   if (p.kind == SceneParameterKind::Density) return scene.SoftModel(p.actor).material.density;
@@ -133,7 +137,7 @@ double ParameterValue(const Scene& scene, const SceneParameter& p) {
 bool SetParameterValue(Scene* scene, const SceneParameter& p, double value, Error* error) {
   if (IsContactKind(p.kind)) {
     ContactParams c = scene->GetContactParams(p.actor);
-    *ContactField(&c, p.kind) = value;
+    c.*RowOf(p.kind).contact = value;
     return scene->SetContactParams(p.actor, c, error);
   }
   if (p.kind == SceneParameterKind::YoungsModulus || p.kind == SceneParameterKind::Density) {

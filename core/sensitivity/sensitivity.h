@@ -53,9 +53,8 @@ enum class SceneParameterKind {
   AngularVelocity,               ///< rigid: initial angular velocity, one component [rad/s]
 };
 
-/// One differentiable parameter: "ACTOR.NAME" with NAME one of penalty_coefficient,
-/// coulomb_friction_coefficient, viscous_friction_coefficient,
-/// normal_viscous_damping_coefficient, friction_falloff_vel, youngs_modulus, density, or
+/// One differentiable parameter: "ACTOR.NAME" with NAME one of SceneParameterNames(): the contact
+/// and material kinds by their field names (kContactParamsFields, kSoftMaterialFields), or
 /// position.x|y|z, velocity.x|y|z, angular_velocity.x|y|z (the initial state).
 struct SceneParameter {
   ActorHandle actor;
@@ -68,6 +67,8 @@ struct SceneParameter {
 bool ParseSceneParameter(const Scene& scene, const std::string& text, SceneParameter* parameter,
                          Error* error);
 std::string ToString(const Scene& scene, const SceneParameter& parameter);
+/// "penalty_coefficient, ..., angular_velocity.x|y|z": every NAME, for help and messages.
+std::string SceneParameterNames();
 /// The parameter's current value (for initial-state kinds: of the current state).
 double ParameterValue(const Scene& scene, const SceneParameter& parameter);
 /// Sets the value (validated as the actor's description is). Initial-state kinds change the
