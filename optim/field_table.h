@@ -156,7 +156,9 @@ constexpr Rule NonNegativeRule() { return {Rule::NonNegative}; }
 constexpr Rule InClosed(double lo, double hi) { return {Rule::Closed, lo, hi}; }
 constexpr Rule InOpen(double lo, double hi) { return {Rule::Open, lo, hi}; }
 /// An integer >= lo; a scene file also refuses values above fileMax.
-constexpr Rule AtLeast(int lo, long long fileMax) { return {Rule::AtLeast, double(lo), 0.0, fileMax}; }
+constexpr Rule AtLeast(int lo, long long fileMax) {
+  return {Rule::AtLeast, double(lo), 0.0, fileMax};
+}
 
 // ---------------------------------------------------------------------------------------------
 // Fields. A table is a std::tuple of Field rows (MakeField), one per parameter, in the order of

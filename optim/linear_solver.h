@@ -48,7 +48,7 @@ struct LinearSolverSettings {
 /// The fields (optim/field_table.h), named as the scene file's settings.solver keys.
 inline constexpr auto kLinearSolverFields = std::make_tuple(
     MakeField("linear_solver", &LinearSolverSettings::kind, "", NoRule(),
-              "how each Newton iteration solves its linear system"),
+              "How each Newton iteration solves its linear system"),
     MakeField("linear_tolerance", &LinearSolverSettings::tolerance, "-", InOpen(0, 1),
               "Krylov relative residual tolerance"),
     MakeField("linear_max_iterations", &LinearSolverSettings::maxIterations, "",

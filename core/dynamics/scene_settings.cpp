@@ -23,7 +23,8 @@ EnumNames<StageSolverKind> NamesOf(StageSolverKind) { return kStageSolvers; }
 
 bool ParseStageSolver(const std::string& name, StageSolverKind* kind) {
   std::string lower = name;
-  if (!lower.empty()) lower[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(lower[0])));
+  if (!lower.empty())
+    lower[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(lower[0])));
   return Parse(lower, kind);
 }
 
