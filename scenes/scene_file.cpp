@@ -1,5 +1,7 @@
 #include "scenes/scene_file.h"
 
+#include <algorithm>
+#include <climits>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -118,34 +120,38 @@ E Enum(const json& obj, const std::string& path, const char* key, E def) {
   return e;
 }
 
+// Reads the fields of a parameter table (optim/field_table.h) from the object j: the keys are the
+// rows' names, an absent key keeps the value in *out, any other key is refused. The rules are
+// checked where the struct is validated (Validate, Scene::Add...Actor), except integers' range.
+template <typename Table, typename Class>
+void ReadFields(const json& j, const std::string& path, const Table& table, Class* out) {
+  std::set<std::string> known;
+  ForEachField(table, [&](const auto& f) { known.insert(f.name); });
+  CheckObject(j, path, known);
+  ForEachField(table, [&](const auto& f) {
+    using T = typename std::decay_t<decltype(f)>::ValueType;
+    T& v = f.Of(*out);
+    if constexpr (std::is_same_v<T, bool>) {
+      v = Bool(j, path, f.name, v);
+    } else if constexpr (std::is_enum_v<T>) {
+      v = Enum(j, path, f.name, v);
+    } else if constexpr (std::is_same_v<T, int>) {
+      const int lo = f.rule.kind == Rule::AtLeast ? static_cast<int>(f.rule.lo) : INT_MIN;
+      const int hi = f.rule.fileMax > 0
+                         ? static_cast<int>(std::min<long long>(f.rule.fileMax, INT_MAX))
+                         : INT_MAX;
+      v = Integer(j, path, f.name, v, lo, hi);
+    } else if constexpr (std::is_same_v<T, double>) {
+      v = Number(j, path, f.name, v);
+    } else {
+      static_assert(sizeof(T) == 0, "no scene-file reader for this field type");
+    }
+  });
+}
+
 ContactParams ReadContact(const json& j, const std::string& path) {
   ContactParams c;
-  CheckObject(j, path,
-              {"penalty_coefficient", "penalty_smoothing_half_distance", "penalty_threshold_default",
-               "penalty_threshold_extra_padding", "friction_with_collider_normal",
-               "max_alignment_normals", "viscous_friction_coefficient",
-               "coulomb_friction_coefficient", "friction_falloff_vel",
-               "normal_viscous_damping_coefficient", "distance_error_bound",
-               "colliding_penalty_length_scale"});
-  c.penaltyCoefficient = Number(j, path, "penalty_coefficient", c.penaltyCoefficient);
-  c.penaltySmoothingHalfDistance =
-      Number(j, path, "penalty_smoothing_half_distance", c.penaltySmoothingHalfDistance);
-  c.penaltyThresholdDefault = Number(j, path, "penalty_threshold_default", c.penaltyThresholdDefault);
-  c.penaltyThresholdExtraPadding =
-      Number(j, path, "penalty_threshold_extra_padding", c.penaltyThresholdExtraPadding);
-  c.frictionWithColliderNormal =
-      Bool(j, path, "friction_with_collider_normal", c.frictionWithColliderNormal);
-  c.maxAlignmentNormals = Number(j, path, "max_alignment_normals", c.maxAlignmentNormals);
-  c.viscousFrictionCoefficient =
-      Number(j, path, "viscous_friction_coefficient", c.viscousFrictionCoefficient);
-  c.coulombFrictionCoefficient =
-      Number(j, path, "coulomb_friction_coefficient", c.coulombFrictionCoefficient);
-  c.frictionFalloffVel = Number(j, path, "friction_falloff_vel", c.frictionFalloffVel);
-  c.normalViscousDampingCoefficient =
-      Number(j, path, "normal_viscous_damping_coefficient", c.normalViscousDampingCoefficient);
-  c.distanceErrorBound = Number(j, path, "distance_error_bound", c.distanceErrorBound);
-  c.collidingPenaltyLengthScale =
-      Number(j, path, "colliding_penalty_length_scale", c.collidingPenaltyLengthScale);
+  ReadFields(j, path, kContactParamsFields, &c);
   return c;
 }
 
@@ -207,15 +213,7 @@ Eigen::Quaterniond ReadOrientation(const json& j, const std::string& path) {
 
 GridSdfParams ReadGridSdf(const json& g, const std::string& gp) {
   GridSdfParams d;
-  CheckObject(g, gp, {"resolution_mode", "resolution_delta", "min_grid_resolution",
-                      "boundary_padding_dist"});
-  const std::string mode = String(g, gp, "resolution_mode", std::string("MeanEdgeLength"));
-  if (mode == "MeanEdgeLength") d.resolutionMode = GridSdfResolutionMode::MeanEdgeLength;
-  else if (mode == "BoundingExtent") d.resolutionMode = GridSdfResolutionMode::BoundingExtent;
-  else Throw(Join(gp, "resolution_mode"), "unknown value \"" + mode + "\" (expected one of: MeanEdgeLength, BoundingExtent)");
-  d.resolutionDelta = Number(g, gp, "resolution_delta", d.resolutionDelta);
-  d.minGridResolution = Integer(g, gp, "min_grid_resolution", d.minGridResolution, 2, 4096);
-  d.boundaryPaddingDist = Number(g, gp, "boundary_padding_dist", d.boundaryPaddingDist);
+  ReadFields(g, gp, kGridSdfFields, &d);
   if (std::string m = Validate(d, gp + "."); !m.empty()) throw LoadError{m};
   return d;
 }
@@ -356,15 +354,8 @@ void ReadSoftActor(const json& a, const std::string& path, const std::string& ba
   d.name = String(a, path, "name");
   if (!a.contains("mesh")) Throw(Join(path, "mesh"), "missing required field");
   d.mesh = ReadTetMeshSpec(a.at("mesh"), Join(path, "mesh"), baseDir, &d.meshSource);
-  if (a.contains("material")) {
-    const json& m = a.at("material");
-    const std::string mp = Join(path, "material");
-    CheckObject(m, mp, {"youngs_modulus", "poisson_ratio", "density", "stiffness_damping"});
-    d.material.youngsModulus = Number(m, mp, "youngs_modulus", d.material.youngsModulus);
-    d.material.poissonRatio = Number(m, mp, "poisson_ratio", d.material.poissonRatio);
-    d.material.density = Number(m, mp, "density", d.material.density);
-    d.material.stiffnessDamping = Number(m, mp, "stiffness_damping", d.material.stiffnessDamping);
-  }
+  if (a.contains("material"))
+    ReadFields(a.at("material"), Join(path, "material"), kSoftMaterialFields, &d.material);
   d.position = Vector<3>(a, path, "position", Eigen::Vector3d::Zero());
   d.orientation = ReadOrientation(a, path);
   d.linearVelocity = Vector<3>(a, path, "velocity", Eigen::Vector3d::Zero());
@@ -555,51 +546,17 @@ bool LoadSceneText(const std::string& text, const std::string& baseDir, SceneFil
       settings.warmStart = Bool(s, "settings", "warm_start", settings.warmStart);
       settings.closedFormFreeStages = Bool(s, "settings", "closed_form_free_stages",
                                            settings.closedFormFreeStages);
-      if (s.contains("solver")) {
-        const json& v = s.at("solver");
-        const std::string p = "settings.solver";
-        CheckObject(v, p, {"max_iterations", "absolute_tolerance", "relative_tolerance",
-                           "step_tolerance", "line_search", "psd_projection", "linear_solver",
-                           "linear_tolerance", "linear_max_iterations"});
-        NonlinearSolverParams& n = settings.solver;
-        n.maxIterations = Integer(v, p, "max_iterations", n.maxIterations, 1, 1000000);
-        n.absoluteTolerance = Number(v, p, "absolute_tolerance", n.absoluteTolerance);
-        n.relativeTolerance = Number(v, p, "relative_tolerance", n.relativeTolerance);
-        n.stepTolerance = Number(v, p, "step_tolerance", n.stepTolerance);
-        const std::string ls = String(v, p, "line_search", std::string("Armijo"));
-        if (ls == "Armijo") n.lineSearch = LineSearchKind::Armijo;
-        else if (ls == "None") n.lineSearch = LineSearchKind::None;
-        else Throw(p + ".line_search", "unknown value \"" + ls + "\" (expected one of: Armijo, None)");
-        const std::string pp = String(v, p, "psd_projection", std::string("Clamp"));
-        if (pp == "Clamp") n.psdProjection = PsdProjection::Clamp;
-        else if (pp == "Abs") n.psdProjection = PsdProjection::Abs;
-        else if (pp == "None") n.psdProjection = PsdProjection::None;
-        else Throw(p + ".psd_projection", "unknown value \"" + pp + "\" (expected one of: None, Clamp, Abs)");
-        const std::string lk = String(v, p, "linear_solver", std::string("auto"));
-        if (!ParseLinearSolverKind(lk, &n.linear.kind))
-          Throw(p + ".linear_solver",
-                "unknown value \"" + lk + "\" (expected one of: auto, direct, iterative)");
-        n.linear.tolerance = Number(v, p, "linear_tolerance", n.linear.tolerance);
-        if (!(n.linear.tolerance > 0.0 && n.linear.tolerance < 1.0))
-          Throw(p + ".linear_tolerance", "must be in (0, 1)");
-        n.linear.maxIterations =
-            Integer(v, p, "linear_max_iterations", n.linear.maxIterations, 1, 100000000);
-      }
+      if (s.contains("solver"))
+        ReadFields(s.at("solver"), "settings.solver", kNonlinearSolverFields, &settings.solver);
       if (s.contains("stage_solver")) {
         const std::string name = String(s, "settings", "stage_solver", std::string("newton"));
         if (!ParseStageSolver(name, &settings.stageSolver))
-          Throw("settings.stage_solver",
-                "unknown value \"" + name + "\" (expected one of: newton, ipopt, ceres)");
+          Throw("settings.stage_solver", "unknown value \"" + name + "\" (expected one of: " +
+                                             AllNames(settings.stageSolver) + ")");
       }
-      if (s.contains("experimental_eval_params")) {
-        const json& v = s.at("experimental_eval_params");
-        const std::string p = "settings.experimental_eval_params";
-        CheckObject(v, p, {"explicit_normals", "implicit_normal_force_for_dissipation", "fade_friction"});
-        settings.eval.explicitNormals = Bool(v, p, "explicit_normals", false);
-        settings.eval.implicitNormalForceForDissipation =
-            Bool(v, p, "implicit_normal_force_for_dissipation", false);
-        settings.eval.fadeFriction = Bool(v, p, "fade_friction", true);
-      }
+      if (s.contains("experimental_eval_params"))
+        ReadFields(s.at("experimental_eval_params"), "settings.experimental_eval_params",
+                   kExperimentalEvalFields, &settings.eval);
     }
     if (std::string m = Validate(settings, "settings."); !m.empty()) throw LoadError{m};
     out->scene = std::make_unique<Scene>(settings);

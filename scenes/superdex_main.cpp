@@ -4,6 +4,7 @@
 //   superdex fit SCENE.json --observed TRAJ.jsonl --params ACTOR.NAME,... [--dt S]
 //                [--method lm|lbfgs] [--max-iterations N] [--out FITTED.json]
 //   superdex gradient SCENE.json --observed TRAJ.jsonl --params ACTOR.NAME,... [--dt S]
+//   superdex params --markdown     (every parameter table; docs/parameters.md is its output)
 // Exit codes: 0 success; 2 invalid input (scene file, options); 3 a stage did not converge
 // (Stopped or Diverged) or the fit did not converge; 4 a scene expectation failed.
 #include <CLI/CLI.hpp>
@@ -15,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scenes/fit.h"
+#include "scenes/parameter_docs.h"
 #include "scenes/runner.h"
 
 namespace {
@@ -58,6 +60,25 @@ bool LoadFitInput(const std::string& scenePath, const std::string& observedPath,
   if (!superdex::LoadSceneFile(scenePath, file, &error) ||
       !superdex::ReadObservedTrajectory(observedPath, observed, &error)) {
     std::cerr << "error: " << error.message << "\n";
+    return false;
+  }
+  return true;
+}
+
+// Parses an enum option's value and applies it; false (message printed) on a bad value or a
+// refusal.
+template <typename E, typename Apply>
+bool SetFromOption(const char* option, const std::string& value,
+                   bool (*parse)(const std::string&, E*), Apply apply) {
+  E v;
+  superdex::Error error;
+  if (!parse(value, &v)) {
+    std::cerr << "error: " << option << ": unknown value \"" << value
+              << "\" (expected one of: " << superdex::AllNames(v) << ")\n";
+    return false;
+  }
+  if (!apply(v, &error)) {
+    std::cerr << "error: " << option << ": " << error.message << "\n";
     return false;
   }
   return true;
@@ -143,16 +164,18 @@ int main(int argc, char** argv) {
   run->add_option("--dt", dt, "Time step [s] (overrides settings.dt)");
   run->add_option("--duration", duration, "Simulated time [s] (overrides settings.duration)");
   run->add_option("--integrator", integrator,
-                  "IntegrationMethod (overrides settings.integrator): BackwardEuler, BDF2, "
-                  "SymplecticDIRK12");
+                  "IntegrationMethod (overrides settings.integrator): " +
+                      superdex::AllNames(superdex::IntegrationMethod()));
   run->add_option("--out", out, "Trajectory file (JSON Lines); overrides output.path");
   std::string vtk;
   run->add_option("--vtk", vtk, "Directory for VTK frames (surfaces with contact tractions); "
                                 "overrides output.vtk");
   std::string solver;
   run->add_option("--solver", solver,
-                  "Stage solver (overrides settings.stage_solver): newton, ipopt (potential "
-                  "stages only), ceres; the last two are dense checks for small scenes");
+                  "Stage solver (overrides settings.stage_solver): " +
+                      superdex::AllNames(superdex::StageSolverKind()) +
+                      "; ipopt (potential stages only) and ceres are dense checks for small "
+                      "scenes");
   run->add_flag("--quiet", quiet, "No progress bar");
   CLI::App* fit = app.add_subcommand(
       "fit", "Fit scene parameters to an observed trajectory (Ceres on the centres of mass: "
@@ -172,20 +195,20 @@ int main(int argc, char** argv) {
                     "actors' p)")
         ->required();
     sub->add_option("--params", fitParams,
-                    "Parameters ACTOR.NAME, comma-separated: penalty_coefficient, "
-                    "coulomb_friction_coefficient, viscous_friction_coefficient, "
-                    "normal_viscous_damping_coefficient, friction_falloff_vel, youngs_modulus, "
-                    "density, position.x|y|z, velocity.x|y|z, angular_velocity.x|y|z")
+                    "Parameters ACTOR.NAME, comma-separated: " + superdex::SceneParameterNames())
         ->required()
         ->delimiter(',');
     sub->add_option("--dt", fitDt, "Time step [s] (overrides settings.dt)");
   }
-  fit->add_option("--method", fitMethod,
-                  "lm: Levenberg-Marquardt, Jacobian from forward sensitivities, standard errors "
-                  "(default; for a few parameters); lbfgs: L-BFGS with adjoint gradients (for "
-                  "many parameters)");
+  std::string methods;
+  for (const auto& n : superdex::NamesOf(superdex::FitMethod()))
+    methods += (methods.empty() ? "" : "; ") + std::string(n.name) + ": " + n.doc;
+  fit->add_option("--method", fitMethod, methods + " (default lm)");
   fit->add_option("--max-iterations", maxIterations, "Solver iterations (default 50)");
   fit->add_option("--out", fitOut, "Write the fitted values as JSON");
+  CLI::App* params = app.add_subcommand(
+      "params", "Print every parameter table: names, types, units, defaults and rules");
+  params->add_flag("--markdown", "As markdown, the only format (docs/parameters.md is this output)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -193,13 +216,17 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : 2;
   }
 
+  if (params->parsed()) {
+    superdex::PrintParameterMarkdown(std::cout);
+    return 0;
+  }
   if (gradient->parsed())
     return RunGradient(fitScene, observedPath, fitParams, gradient->count("--dt") ? fitDt : 0.0);
   if (fit->parsed()) {
     superdex::FitMethod method;
     if (!superdex::ParseFitMethod(fitMethod, &method)) {
       std::cerr << "error: --method: unknown value \"" << fitMethod
-                << "\" (expected one of: lm, lbfgs)\n";
+                << "\" (expected one of: " << superdex::AllNames(method) << ")\n";
       return 2;
     }
     return RunFit(fitScene, observedPath, fitParams, fit->count("--dt") ? fitDt : 0.0, method,
@@ -216,30 +243,15 @@ int main(int argc, char** argv) {
   if (run->count("--duration")) options.duration = duration;
   if (run->count("--out")) options.out = out;
   if (run->count("--vtk")) options.vtk = vtk;
-  if (run->count("--integrator")) {
-    superdex::IntegrationMethod m;
-    if (!superdex::Parse(integrator, &m)) {
-      std::cerr << "error: --integrator: unknown value \"" << integrator
-                << "\" (expected one of: " << superdex::AllNames(m) << ")\n";
-      return 2;
-    }
-    if (!file.scene->SetIntegrator(m, &error)) {
-      std::cerr << "error: --integrator: " << error.message << "\n";
-      return 2;
-    }
-  }
-  if (run->count("--solver")) {
-    superdex::StageSolverKind kind;
-    if (!superdex::ParseStageSolver(solver, &kind)) {
-      std::cerr << "error: --solver: unknown value \"" << solver
-                << "\" (expected one of: newton, ipopt, ceres)\n";
-      return 2;
-    }
-    if (!file.scene->SetStageSolver(kind, &error)) {
-      std::cerr << "error: --solver: " << error.message << "\n";
-      return 2;
-    }
-  }
+  superdex::Scene& scene = *file.scene;
+  if (run->count("--integrator") &&
+      !SetFromOption<superdex::IntegrationMethod>("--integrator", integrator, superdex::Parse,
+                     [&](auto m, superdex::Error* e) { return scene.SetIntegrator(m, e); }))
+    return 2;
+  if (run->count("--solver") &&
+      !SetFromOption<superdex::StageSolverKind>("--solver", solver, superdex::ParseStageSolver,
+                     [&](auto k, superdex::Error* e) { return scene.SetStageSolver(k, e); }))
+    return 2;
   for (const auto& n : file.scene->Notices()) std::cerr << "note: " << n << "\n";
 
   ProgressBar bar(!quiet);

@@ -3,9 +3,11 @@
 #include <catch2/catch.hpp>
 #include <cstdlib>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <sys/wait.h>
 
+#include "scenes/parameter_docs.h"
 #include "scenes/runner.h"
 #include "scenes/scene_file.h"
 
@@ -85,7 +87,7 @@ TEST_CASE("scene file: each defect gives one error with its JSON path", "[scenes
         "iterative)");
   CHECK(LoadError(Replace(kGood, R"("duration": 0.01})",
                           R"("duration": 0.01, "solver": {"linear_tolerance": 1}})")) ==
-        "settings.solver.linear_tolerance: must be in (0, 1)");
+        "settings.solver.linear_tolerance: must be in (0, 1), got 1");
   CHECK(LoadError(Replace(kGood, R"("duration": 0.01})",
                           R"("duration": 0.01, "solver": {"linear_solver": "iterative", "linear_tolerance": 1e-6, "linear_max_iterations": 50}})")) ==
         "<loaded>");
@@ -264,4 +266,16 @@ TEST_CASE("scene file: an open mesh used as a collider names the file and the de
   REQUIRE(LoadSceneText(text(closed, "Sdf"), ".", &f, &e));
   for (const auto& n : f.scene->Notices()) reported |= n.find("MiB") != std::string::npos;
   CHECK(reported);
+}
+
+TEST_CASE("docs/parameters.md is the output of superdex params --markdown", "[scenes][docs]") {
+  std::ostringstream generated;
+  PrintParameterMarkdown(generated);
+  std::ifstream in(std::string(SUPERDEX_SOURCE_DIR) + "/docs/parameters.md");
+  REQUIRE(in);
+  std::stringstream file;
+  file << in.rdbuf();
+  INFO("regenerate it: superdex params --markdown > docs/parameters.md");
+  CHECK(file.str() == generated.str());
+  CHECK(RunCli("params --markdown") == 0);
 }
