@@ -169,12 +169,12 @@ void BindSoftActorDesc(py::module_& m) {
                ")";
       });
 
-  py::class_<SoftActorDesc>(
+  py::class_<SoftActorDesc> desc(
       m, "SoftActorDesc",
       "What a soft (tet FEM) actor is made from. The tet mesh is the rest shape in its own\n"
       "frame; position and orientation place it in the world; every free node starts with\n"
-      "linear_velocity. Units: m, m/s, Pa, kg/m^3. Validated by Scene.add_soft_actor.")
-      .def(py::init([](const std::string& name, const std::shared_ptr<TetMesh>& mesh,
+      "linear_velocity. Units: m, m/s, Pa, kg/m^3. Validated by Scene.add_soft_actor.");
+  desc.def(py::init([](const std::string& name, const std::shared_ptr<TetMesh>& mesh,
                        const SoftMaterial& material) {
              SoftActorDesc d;
              d.name = name;
@@ -190,19 +190,9 @@ void BindSoftActorDesc(py::module_& m) {
           "TetMesh (rest shape, shared, not copied until the actor is added) or None")
       .def_readwrite("mesh_source", &SoftActorDesc::meshSource,
                      "the mesh's file or generator, for messages")
-      .def_readwrite("position", &SoftActorDesc::position, "mesh frame origin [m]")
-      .def_property(
-          "orientation",
-          [](const SoftActorDesc& d) {
-            return Eigen::Vector4d(d.orientation.x(), d.orientation.y(), d.orientation.z(),
-                                   d.orientation.w());
-          },
-          [](SoftActorDesc& d, const Eigen::Vector4d& q) {
-            if (!(q.norm() > 0)) throw py::value_error("orientation: must be a non-zero quaternion");
-            d.orientation = Eigen::Quaterniond(q[3], q[0], q[1], q[2]).normalized();
-          },
-          "quaternion [x, y, z, w] of the mesh frame")
-      .def_readwrite("linear_velocity", &SoftActorDesc::linearVelocity,
+      .def_readwrite("position", &SoftActorDesc::position, "mesh frame origin [m]");
+  DefOrientation(desc, "quaternion [x, y, z, w] of the mesh frame");
+  desc.def_readwrite("linear_velocity", &SoftActorDesc::linearVelocity,
                      "initial velocity of every free node [m/s]")
       .def_readwrite("material", &SoftActorDesc::material, "SoftMaterial")
       .def_readwrite("contact", &SoftActorDesc::contact, "ContactParams")

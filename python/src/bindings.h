@@ -5,6 +5,7 @@
 #include <pybind11/pybind11.h>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <string>
 #include <vector>
 
@@ -14,12 +15,34 @@ namespace py = pybind11;
 
 void BindParams(py::module_& m);
 void BindSoft(py::module_& m);
-void BindScene(py::module_& m);
+void BindScene(py::module_& m);  // calls the five below, then binds Scene and SceneFile
+void BindRigidShape(py::module_& m);
+void BindRigidActorDesc(py::module_& m);
+void BindSceneSettings(py::module_& m);
+void BindStepReport(py::module_& m);
+void BindActor(py::module_& m);
 void BindFit(py::module_& m);
 
 /// Raises ValueError(message) when message is not empty.
 inline void CheckValue(const std::string& message) {
   if (!message.empty()) throw py::value_error(message);
+}
+
+/// The property `orientation` of an actor description: a quaternion [x, y, z, w], normalized on
+/// assignment (ValueError for a zero one).
+template <typename Desc>
+void DefOrientation(py::class_<Desc>& c, const char* doc) {
+  c.def_property(
+      "orientation",
+      [](const Desc& d) {
+        return Eigen::Vector4d(d.orientation.x(), d.orientation.y(), d.orientation.z(),
+                               d.orientation.w());
+      },
+      [](Desc& d, const Eigen::Vector4d& q) {
+        if (!(q.norm() > 0)) throw py::value_error("orientation: must be a non-zero quaternion");
+        d.orientation = Eigen::Quaterniond(q[3], q[0], q[1], q[2]).normalized();
+      },
+      doc);
 }
 
 /// Rows of fixed-size Eigen vectors as an (n, N) numpy array (a copy).

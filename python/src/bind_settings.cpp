@@ -1,0 +1,174 @@
+// Rigid shapes and descriptions, scene settings and step reports.
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <optional>
+
+#include "bindings.h"
+#include "core/scene.h"
+#include "geometry/mesh_io.h"
+#include "geometry/triangle_mesh.h"
+
+namespace superdex::python {
+namespace {
+
+// A shape of the kind with RigidShape's defaults (the surface resolution too, unless given).
+RigidShape MakeShape(RigidShapeKind kind, std::optional<int> surfaceResolution = std::nullopt) {
+  RigidShape s;
+  s.kind = kind;
+  if (surfaceResolution) s.surfaceResolution = *surfaceResolution;
+  return s;
+}
+
+}  // namespace
+
+void BindRigidShape(py::module_& m) {
+  py::class_<RigidShape>(m, "RigidShape",
+                         "Geometry of a rigid actor in its own frame; make one with sphere(), "
+                         "box(), plane() or mesh().")
+      .def_static(
+          "sphere",
+          [](double radius, int resolution) {
+            RigidShape s = MakeShape(RigidShapeKind::Sphere, resolution);
+            s.radius = radius;
+            return s;
+          },
+          py::arg("radius"), py::arg("surface_resolution") = 3,
+          "A sphere of the given radius [m]; surface_resolution icosphere subdivisions (0-7).")
+      .def_static(
+          "box",
+          [](const Eigen::Vector3d& size, int resolution) {
+            RigidShape box = MakeShape(RigidShapeKind::Box, resolution);
+            box.halfExtents = 0.5 * size;
+            return box;
+          },
+          py::arg("size"), py::arg("surface_resolution") = 2,
+          "A box of edge lengths size = [x, y, z] [m]; surface_resolution cells per edge.")
+      .def_static(
+          "plane",
+          [](const Eigen::Vector3d& normal) {
+            RigidShape s = MakeShape(RigidShapeKind::Plane);
+            s.planeNormal = normal;
+            return s;
+          },
+          py::arg("normal") = Eigen::Vector3d::UnitZ(),
+          "The half space below the plane through the actor's position (static actors only).")
+      .def_static(
+          "mesh",
+          [](const std::string& path, double scale) {
+            auto mesh = std::make_shared<TriangleMesh>();
+            std::string error;
+            if (!ReadMeshFile(path, mesh.get(), &error)) throw py::value_error(error);
+            for (auto& x : mesh->vertices) x *= scale;
+            RigidShape s = MakeShape(RigidShapeKind::Mesh);
+            s.mesh = mesh;
+            s.meshSource = path;
+            return s;
+          },
+          py::arg("path"), py::arg("scale") = 1.0, "A closed triangle mesh read from an OBJ, OFF, STL or PLY file.")
+      .def_property_readonly("kind", [](const RigidShape& s) { return std::string(ToString(s.kind)); });
+}
+
+void BindRigidActorDesc(py::module_& m) {
+  py::class_<RigidActorDesc> desc(m, "RigidActorDesc",
+                                  "What a rigid actor is made from. Units: kg, m, m/s, rad/s.");
+  desc.def(py::init([](const std::string& name, const RigidShape& shape, bool dynamic) {
+             RigidActorDesc d;
+             d.name = name;
+             d.shape = shape;
+             d.dynamic = dynamic;
+             return d;
+           }),
+           py::arg("name"), py::arg("shape"), py::arg("dynamic") = true)
+      .def_readwrite("name", &RigidActorDesc::name)
+      .def_readwrite("dynamic", &RigidActorDesc::dynamic)
+      .def_readwrite("shape", &RigidActorDesc::shape)
+      .def_readwrite("density", &RigidActorDesc::density, "[kg/m^3], used without mass")
+      .def_readwrite("mass", &RigidActorDesc::mass, "[kg] or None (then from density)")
+      .def_readwrite("position", &RigidActorDesc::position, "shape frame origin [m]");
+  DefOrientation(desc, "quaternion [x, y, z, w]");
+  desc.def_readwrite("velocity", &RigidActorDesc::linearVelocity, "of the centre of mass [m/s]")
+      .def_readwrite("angular_velocity", &RigidActorDesc::angularVelocity, "world frame [rad/s]")
+      .def_readwrite("contact", &RigidActorDesc::contact, "ContactParams")
+      .def_readwrite("collider_type", &RigidActorDesc::colliderType)
+      .def_readwrite("boundary_element_type", &RigidActorDesc::boundaryElementType)
+      .def_readwrite("contact_layer", &RigidActorDesc::contactLayer)
+      .def_readwrite("grid_sdf", &RigidActorDesc::gridSdf, "GridSdfParams for an Sdf collider");
+}
+
+void BindSceneSettings(py::module_& m) {
+  py::class_<NonlinearSolverParams>(m, "NonlinearSolverParams", "Stage solver settings.")
+      .def(py::init<>())
+      .def_readwrite("max_iterations", &NonlinearSolverParams::maxIterations)
+      .def_readwrite("absolute_tolerance", &NonlinearSolverParams::absoluteTolerance,
+                     "Newton decrement tolerance [J]. Default 1e-12.")
+      .def_readwrite("relative_tolerance", &NonlinearSolverParams::relativeTolerance,
+                     "gradient reduction tolerance [-]. Default 1e-10.")
+      .def_readwrite("step_tolerance", &NonlinearSolverParams::stepTolerance,
+                     "step velocity tolerance [m/s]. Default 1e-9.")
+      .def_readwrite("part_line_search", &NonlinearSolverParams::partLineSearch,
+                     "one line-search step length per independent part of a stage (bodies no "
+                     "contact joins). Default True.")
+      .def_property(
+          "linear_solver",
+          [](const NonlinearSolverParams& p) { return std::string(ToString(p.linear.kind)); },
+          [](NonlinearSolverParams& p, const std::string& name) {
+            if (!ParseLinearSolverKind(name, &p.linear.kind))
+              throw py::value_error("linear_solver: unknown value \"" + name +
+                                    "\" (expected one of: auto, direct, iterative)");
+          },
+          "'auto' (default: Krylov from 3000 unknowns up), 'direct' or 'iterative'.")
+      .def_property(
+          "linear_tolerance", [](const NonlinearSolverParams& p) { return p.linear.tolerance; },
+          [](NonlinearSolverParams& p, double t) { p.linear.tolerance = t; },
+          "Krylov relative residual tolerance, in (0, 1). Default 1e-8.")
+      .def_property(
+          "linear_max_iterations",
+          [](const NonlinearSolverParams& p) { return p.linear.maxIterations; },
+          [](NonlinearSolverParams& p, int n) { p.linear.maxIterations = n; },
+          "Krylov iterations before the direct fallback. Default 500.");
+
+  py::class_<SceneSettings>(m, "SceneSettings", "Scene-wide settings.")
+      .def(py::init<>())
+      .def_readwrite("gravity", &SceneSettings::gravity, "[m/s^2]. Default [0, 0, -9.81].")
+      .def_readwrite("integrator", &SceneSettings::integrator, "Default IntegrationMethod.BDF2.")
+      .def_readwrite("solver", &SceneSettings::solver)
+      .def_readwrite("experimental_eval_params", &SceneSettings::eval)
+      .def_readwrite("warm_start", &SceneSettings::warmStart,
+                     "Newton stage solves of rigid bodies start from the motion's prediction "
+                     "(the last step's acceleration continued). Default True.")
+      .def_readwrite("closed_form_free_stages", &SceneSettings::closedFormFreeStages,
+                     "A Newton stage with no contact sample active at the minimizer of inertia "
+                     "and gravity is solved in closed form (0 Newton iterations). Default True.")
+      .def_property(
+          "stage_solver", [](const SceneSettings& s) { return std::string(ToString(s.stageSolver)); },
+          [](SceneSettings& s, const std::string& name) {
+            if (!ParseStageSolver(name, &s.stageSolver))
+              throw py::value_error("stage_solver: unknown value \"" + name +
+                                    "\" (expected one of: " + AllNames(s.stageSolver) + ")");
+          },
+          "'newton' (default), 'ipopt' (potential stages) or 'ceres'.");
+}
+
+void BindStepReport(py::module_& m) {
+  py::class_<StepReport>(m, "StepReport", "What one step did.")
+      .def_readonly("time", &StepReport::time)
+      .def_readonly("dt", &StepReport::dt)
+      .def_readonly("stages", &StepReport::stages)
+      .def_readonly("newton_iterations", &StepReport::newtonIterations)
+      .def_readonly("free_stages", &StepReport::freeStages,
+                    "Stages solved in closed form (no active contact sample).")
+      .def_property_readonly("status", [](const StepReport& r) { return ToString(r.status); })
+      .def_readonly("message", &StepReport::message)
+      .def_property_readonly("active_samples", [](const StepReport& r) { return r.contact.activeSamples; })
+      .def_property_readonly("min_signed_distance",
+                             [](const StepReport& r) { return r.contact.minSignedDistance; })
+      .def_readonly("max_coulomb_ratio", &StepReport::maxCoulombRatio)
+      .def_readonly("min_det_f", &StepReport::minDetF,
+                    "smallest det F over the soft tets at the end of the step (<= 0: an inverted "
+                    "tet); inf without soft actors")
+      .def_readonly("wall_seconds", &StepReport::wallSeconds);
+}
+
+}  // namespace superdex::python
