@@ -5,19 +5,12 @@
 #include <Eigen/LU>
 #include <Eigen/SVD>
 #include <cmath>
-#include <sstream>
 
 namespace superdex {
 namespace {
 
 using Matrix9d = Eigen::Matrix<double, 9, 9>;
 using Vector9d = Eigen::Matrix<double, 9, 1>;
-
-std::string Rule(const char* field, const char* rule, double value) {
-  std::ostringstream s;
-  s << field << ": " << rule << ", got " << value;
-  return s.str();
-}
 
 /// λ' = λ + 5/6 μ (paper §3.5); μ' = 4/3 μ is written out where it appears.
 double LambdaPrime(const LameParameters& p) { return p.lambda + (5.0 / 6.0) * p.mu; }
@@ -156,16 +149,6 @@ LameParameters LameFromYoungPoisson(double youngsModulus, double poissonRatio) {
   p.mu = E / (2.0 * (1.0 + nu));
   p.lambda = E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
   return p;
-}
-
-std::string ValidateElasticMaterial(double youngsModulus, double poissonRatio, double density) {
-  if (!(std::isfinite(youngsModulus) && youngsModulus > 0.0))
-    return Rule("youngs_modulus", "must be finite and > 0", youngsModulus);
-  if (!(poissonRatio > -1.0 && poissonRatio < 0.5))
-    return Rule("poisson_ratio", "must be in (-1, 0.5)", poissonRatio);
-  if (!(std::isfinite(density) && density > 0.0))
-    return Rule("density", "must be finite and > 0", density);
-  return "";
 }
 
 double StableNeoHookeanEnergyDensity(const Eigen::Matrix3d& F, const LameParameters& p) {

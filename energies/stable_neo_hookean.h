@@ -57,13 +57,8 @@ struct LameParameters {
 };
 
 /// μ = E/(2(1+ν)), λ = Eν/((1+ν)(1−2ν)) [Pa] from Young's modulus E [Pa] and Poisson's ratio ν
-/// [-]. Valid for E > 0, −1 < ν < 1/2 (see ValidateElasticMaterial).
+/// [-]. Valid for E > 0, −1 < ν < 1/2 (core/model/soft_body.h: kSoftMaterialFields).
 LameParameters LameFromYoungPoisson(double youngsModulus, double poissonRatio);
-
-/// "" if the material is admissible, else "<field>: <rule>, got <value>" for the first violated
-/// rule: youngs_modulus finite and > 0 [Pa]; poisson_ratio in (−1, 0.5) [-]; density finite and
-/// > 0 [kg/m³].
-std::string ValidateElasticMaterial(double youngsModulus, double poissonRatio, double density);
 
 /// Ψ(F) [J/m³] (header comment). Any F, also J <= 0.
 double StableNeoHookeanEnergyDensity(const Eigen::Matrix3d& F, const LameParameters& p);

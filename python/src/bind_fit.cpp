@@ -150,6 +150,13 @@ void BindFit(py::module_& m) {
         return s + (r.converged ? "" : " (not converged)") + ">";
       });
 
+  static const std::string fitDoc =
+      "Fits parameters ('ACTOR.NAME', NAME one of " + SceneParameterNames() + ") of a\n"
+      "loaded scene file (left unchanged) to observed centres of mass: a trajectory file\n"
+      "(`observed`), or `times` (K,) [s] with `positions` {actor name: (K, 3) array [m], NaN\n"
+      "rows unobserved}. Times must fall on the step grid. method 'lm': Levenberg-Marquardt\n"
+      "with forward sensitivities and standard errors (a few parameters); 'lbfgs': L-BFGS with\n"
+      "adjoint gradients (many parameters, no standard errors). Returns a FitResult.";
   m.def(
       "fit",
       [](const SceneFile& file, const std::vector<std::string>& parameters,
@@ -160,8 +167,12 @@ void BindFit(py::module_& m) {
         options.parameters = parameters;
         options.dt = dt;
         options.maxIterations = maxIterations;
-        if (!ParseFitMethod(method, &options.method))
-          throw py::value_error("method: must be 'lm' or 'lbfgs', got '" + method + "'");
+        if (!ParseFitMethod(method, &options.method)) {
+          std::string names;
+          for (const EnumName<FitMethod>& n : NamesOf(FitMethod()))
+            names += std::string(names.empty() ? "'" : "' or '") + n.name;
+          throw py::value_error("method: must be " + names + "', got '" + method + "'");
+        }
         FitResult r;
         Error e;
         bool ok;
@@ -175,14 +186,7 @@ void BindFit(py::module_& m) {
       py::arg("scene_file"), py::arg("parameters"), py::arg("observed") = py::none(),
       py::arg("times") = py::none(), py::arg("positions") = py::none(),
       py::arg("dt") = py::none(), py::arg("max_iterations") = 50, py::arg("method") = "lm",
-      "Fits parameters ('ACTOR.NAME': penalty_coefficient, coulomb_friction_coefficient,\n"
-      "viscous_friction_coefficient, normal_viscous_damping_coefficient, friction_falloff_vel,\n"
-      "youngs_modulus, density, position.x|y|z, velocity.x|y|z, angular_velocity.x|y|z) of a\n"
-      "loaded scene file (left unchanged) to observed centres of mass: a trajectory file\n"
-      "(`observed`), or `times` (K,) [s] with `positions` {actor name: (K, 3) array [m], NaN\n"
-      "rows unobserved}. Times must fall on the step grid. method 'lm': Levenberg-Marquardt\n"
-      "with forward sensitivities and standard errors (a few parameters); 'lbfgs': L-BFGS with\n"
-      "adjoint gradients (many parameters, no standard errors). Returns a FitResult.");
+      fitDoc.c_str());
 
   py::class_<TrajectoryGradient>(m, "TrajectoryGradient",
                                  "The outcome of superdex.trajectory_gradient.")

@@ -1,8 +1,9 @@
 // Enums and parameter types of the spec, with snake_case properties that validate on assignment.
+// Both come from the C++ tables (optim/field_table.h): an enum's names, a struct's fields.
 #include <pybind11/stl.h>
 
-#include <cmath>
-#include <sstream>
+#include <list>
+#include <string>
 
 #include "bindings.h"
 #include "core/model/collider_params.h"
@@ -11,194 +12,192 @@
 #include "core/model/eval_params.h"
 #include "core/model/soft_body.h"
 #include "energies/contact_dissipation.h"
-#include "energies/stable_neo_hookean.h"
+#include "optim/newton_solver.h"
 
 namespace superdex::python {
 namespace {
 
-// The rules BuildSoftBody applies to a soft actor's material (core/model/soft_body.cpp), so that a bad
-// value is refused where it is assigned, with the same message.
-std::string Validate(const SoftMaterial& m) {
-  std::string e = ValidateElasticMaterial(m.youngsModulus, m.poissonRatio, m.density);
-  if (e.empty() && !(std::isfinite(m.stiffnessDamping) && m.stiffnessDamping >= 0)) {
-    std::ostringstream s;
-    s << "stiffness_damping: must be >= 0 and finite, got " << m.stiffnessDamping;
-    e = s.str();
-  }
-  return e;
+// The enums bound as Python enums. A field of another enum type (linear_solver, line_search,
+// psd_projection) is a property holding the value's name as a string.
+template <typename E>
+constexpr bool kPythonEnum = false;
+template <>
+constexpr bool kPythonEnum<ColliderType> = true;
+template <>
+constexpr bool kPythonEnum<ActorBoundaryElementType> = true;
+template <>
+constexpr bool kPythonEnum<IntegrationMethod> = true;
+template <>
+constexpr bool kPythonEnum<IncludeNestedActors> = true;
+template <>
+constexpr bool kPythonEnum<GridSdfResolutionMode> = true;
+
+template <typename E>
+void BindEnum(py::module_& m, const char* name, const char* doc) {
+  static_assert(kPythonEnum<E>);
+  py::enum_<E> e(m, name, doc);
+  for (const EnumName<E>& n : NamesOf(E())) e.value(n.name, n.value, *n.doc ? n.doc : nullptr);
 }
 
-// A property that validates the whole object after the assignment and rolls back on failure.
-template <typename Class, typename T>
-void Field(py::class_<Class>& c, const char* name, T Class::*member, const char* doc) {
-  c.def_property(
-      name, [member](const Class& p) { return p.*member; },
-      [member](Class& p, T v) {
-        Class q = p;
-        q.*member = v;
-        CheckValue(Validate(q));
-        p = q;
-      },
-      doc);
+// Docstrings live as long as the module (pybind11 keeps the pointers).
+const char* Keep(std::string s) {
+  static std::list<std::string> kept;
+  return kept.emplace_back(std::move(s)).c_str();
+}
+
+template <typename T>
+std::string PythonValueText(const T& v) {
+  if constexpr (std::is_same_v<T, bool>) return v ? "True" : "False";
+  else if constexpr (std::is_same_v<T, std::optional<ActorBoundaryElementType>>)
+    return v ? ValueText(*v) : "None";
+  else return ValueText(v);
+}
+
+// "<doc> [<unit>], <rule>. Default <value>."
+template <typename F>
+const char* DocOf(const F& f) {
+  std::string d = f.doc;
+  if (*f.unit) d += std::string(" [") + f.unit + "]";
+  if (const std::string rule = f.rule.Text(); !rule.empty()) d += ", " + rule;
+  return Keep(d + ". Default " + PythonValueText(f.Default()) + ".");
+}
+
+// The value a Python object gives the field: names for enums bound as strings.
+template <typename F>
+auto FromPython(const F& f, const py::handle& value) {
+  using T = typename F::ValueType;
+  if constexpr (std::is_enum_v<T> && !kPythonEnum<T>) {
+    const std::string name = value.cast<std::string>();
+    T v;
+    if (!Parse(name, &v))
+      throw py::value_error(std::string(f.name) + ": unknown value \"" + name +
+                            "\" (expected one of: " + AllNames(T()) + ")");
+    return v;
+  } else {
+    try {
+      return value.cast<T>();
+    } catch (const py::cast_error&) {
+      throw py::type_error(std::string(f.name) + ": must be " + py::type_id<T>() + ", got " +
+                           py::str(py::type::of(value).attr("__name__")).cast<std::string>());
+    }
+  }
+}
+
+template <typename F>
+py::object ToPython(const F& f, const typename F::ClassType& p) {
+  using T = typename F::ValueType;
+  if constexpr (std::is_enum_v<T> && !kPythonEnum<T>) return py::str(ToString(f.Of(p)));
+  else return py::cast(f.Of(p));
+}
+
+// Per row a property that validates the whole object after the assignment and rolls back on
+// failure; a constructor taking the fields positionally (in table order) or by name; a repr.
+template <typename Class, typename Table>
+void BindFields(py::class_<Class>& c, const Table& table) {
+  ForEachField(table, [&](const auto& f) {
+    c.def_property(
+        f.name, [f](const Class& p) { return ToPython(f, p); },
+        [f](Class& p, const py::object& value) {
+          Class q = p;
+          f.Of(q) = FromPython(f, value);
+          CheckValue(Validate(q));
+          p = q;
+        },
+        DocOf(f));
+  });
+  const char* className = Keep(py::str(c.attr("__name__")).cast<std::string>());
+  c.def(py::init([table, className](const py::args& args, const py::kwargs& kwargs) {
+    Class p;
+    size_t position = 0, named = 0;
+    ForEachField(table, [&](const auto& f) {
+      const bool byName = kwargs.contains(f.name);
+      if (position < args.size() && byName)
+        throw py::type_error(std::string(className) + "() got multiple values for '" + f.name +
+                             "'");
+      if (position < args.size()) f.Of(p) = FromPython(f, args[position]);
+      if (byName) f.Of(p) = FromPython(f, kwargs[f.name]), ++named;
+      ++position;
+    });
+    if (args.size() > position)
+      throw py::type_error(std::string(className) + "() takes at most " +
+                           std::to_string(position) + " positional arguments");
+    if (named != kwargs.size()) {
+      for (const auto& item : kwargs) {
+        const std::string key = py::str(item.first);
+        bool known = false;
+        ForEachField(table, [&](const auto& f) { known |= key == f.name; });
+        if (!known)
+          throw py::type_error(std::string(className) + "() got an unexpected keyword argument '" +
+                               key + "'");
+      }
+    }
+    CheckValue(Validate(p));
+    return p;
+  }));
+  c.def("__repr__", [table, className](const Class& p) {
+    std::string s = std::string(className) + "(";
+    bool first = true;
+    ForEachField(table, [&](const auto& f) {
+      s += (first ? "" : ", ") + std::string(f.name) + "=" + PythonValueText(f.Of(p));
+      first = false;
+    });
+    return s + ")";
+  });
+}
+
+template <typename Class, typename Table>
+void BindParamsClass(py::module_& m, const char* name, const char* doc, const Table& table) {
+  py::class_<Class> c(m, name, doc);
+  BindFields(c, table);
 }
 
 }  // namespace
 
 void BindParams(py::module_& m) {
-  py::enum_<ColliderType>(m, "ColliderType",
-                          "How an actor supplies its distance field (spec: Collider "
-                          "Representations). PointCloud is not implemented yet; soft actors "
-                          "accept None, Sdf and Auto. `None` is a Python keyword: write "
-                          "getattr(ColliderType, 'None').")
-      .value("Auto", ColliderType::Auto, "by actor and shape: analytic for sphere, box, plane")
-      .value("None", ColliderType::None, "no collider role (the actor may still collide)")
-      .value("Sphere", ColliderType::Sphere)
-      .value("Box", ColliderType::Box)
-      .value("Plane", ColliderType::Plane)
-      .value("Mesh", ColliderType::Mesh)
-      .value("Sdf", ColliderType::Sdf)
-      .value("PointCloud", ColliderType::PointCloud);
-  py::enum_<ActorBoundaryElementType>(m, "ActorBoundaryElementType",
-                                      "Surface quadrature rule per boundary triangle.")
-      .value("P1Q1", ActorBoundaryElementType::P1Q1, "1 point, exact for degree 1")
-      .value("P1Q3", ActorBoundaryElementType::P1Q3, "3 points, degree 2 (default)")
-      .value("P1Q6", ActorBoundaryElementType::P1Q6, "6 points, degree 4")
-      .value("ExperimentalP1Q7", ActorBoundaryElementType::ExperimentalP1Q7, "7 points, degree 5")
-      .value("ExperimentalP1Q12", ActorBoundaryElementType::ExperimentalP1Q12, "12 points, degree 6")
-      .value("ExperimentalP1Q16", ActorBoundaryElementType::ExperimentalP1Q16, "16 points, degree 8");
-  py::enum_<IntegrationMethod>(m, "IntegrationMethod",
-                               "Time integrators; every stage is an incremental-potential stage.")
-      .value("BackwardEuler", IntegrationMethod::BackwardEuler, "order 1, L-stable")
-      .value("BDF2", IntegrationMethod::BDF2, "order 2, A-stable (default)")
-      .value("BDF3", IntegrationMethod::BDF3, "order 3")
-      .value("DIRK22", IntegrationMethod::DIRK22, "order 2, L-stable")
-      .value("DIRK23", IntegrationMethod::DIRK23, "order 3, A-stable")
-      .value("DIRK33", IntegrationMethod::DIRK33, "order 3, L-stable")
-      .value("SymplecticDIRK12", IntegrationMethod::SymplecticDIRK12, "implicit midpoint")
-      .value("SymplecticDIRK22", IntegrationMethod::SymplecticDIRK22, "order 2, symplectic");
-  py::enum_<IncludeNestedActors>(m, "IncludeNestedActors",
-                                 "Whether actor-pair filtering also applies to nested actors.")
-      .value("No", IncludeNestedActors::No)
-      .value("Yes", IncludeNestedActors::Yes);
-  py::enum_<GridSdfResolutionMode>(m, "GridSdfResolutionMode",
-                                   "Reference length that sizes a grid SDF's voxels.")
-      .value("MeanEdgeLength", GridSdfResolutionMode::MeanEdgeLength)
-      .value("BoundingExtent", GridSdfResolutionMode::BoundingExtent);
+  BindEnum<ColliderType>(m, "ColliderType",
+                         "How an actor supplies its distance field (spec: Collider "
+                         "Representations). PointCloud is not implemented yet; soft actors "
+                         "accept None, Sdf and Auto. `None` is a Python keyword: write "
+                         "getattr(ColliderType, 'None').");
+  BindEnum<ActorBoundaryElementType>(m, "ActorBoundaryElementType",
+                                     "Surface quadrature rule per boundary triangle.");
+  BindEnum<IntegrationMethod>(m, "IntegrationMethod",
+                              "Time integrators; every stage is an incremental-potential stage.");
+  BindEnum<IncludeNestedActors>(m, "IncludeNestedActors",
+                                "Whether actor-pair filtering also applies to nested actors.");
+  BindEnum<GridSdfResolutionMode>(m, "GridSdfResolutionMode",
+                                  "Reference length that sizes a grid SDF's voxels.");
 
-  py::class_<ContactParams> cp(m, "ContactParams",
-                               "Contact response of one actor (spec: ContactParams). Every "
-                               "assignment is validated; a bad value raises ValueError naming "
-                               "the field and the rule.");
-  cp.def(py::init<>());
-  Field(cp, "penalty_coefficient", &ContactParams::penaltyCoefficient,
-        "Penalty coefficient k [Pa/m], > 0. Default 1e9.");
-  Field(cp, "penalty_smoothing_half_distance", &ContactParams::penaltySmoothingHalfDistance,
-        "Smoothing half-width eps of the ramp [m], > 0. Default 0.005.");
-  Field(cp, "penalty_threshold_default", &ContactParams::penaltyThresholdDefault,
-        "Contact threshold delta at which the penalty activates [m]. Default 0.001.");
-  Field(cp, "penalty_threshold_extra_padding", &ContactParams::penaltyThresholdExtraPadding,
-        "Extra delta when the colliding actor uses None or PointCloud [m], >= 0. Default 0.");
-  Field(cp, "friction_with_collider_normal", &ContactParams::frictionWithColliderNormal,
-        "Split on the collider-field direction N_B (True) or -N_A. Default True.");
-  Field(cp, "max_alignment_normals", &ContactParams::maxAlignmentNormals,
-        "Maximum normal alignment m in [-1, 1]; contact rejected when s > m. Default 0.");
-  Field(cp, "viscous_friction_coefficient", &ContactParams::viscousFrictionCoefficient,
-        "Tangential viscous friction coefficient c_t [s/m], >= 0. Default 0.");
-  Field(cp, "coulomb_friction_coefficient", &ContactParams::coulombFrictionCoefficient,
-        "Coulomb friction coefficient mu [-], >= 0. Default 0.5.");
-  Field(cp, "friction_falloff_vel", &ContactParams::frictionFalloffVel,
-        "Falloff velocity V_f of the regularized Coulomb ramp [m/s], > 0. Default 0.01.");
-  Field(cp, "normal_viscous_damping_coefficient", &ContactParams::normalViscousDampingCoefficient,
-        "Normal viscous damping coefficient c_n [s/m], >= 0 (Hunt-Crossley restitution). "
-        "Default 0.");
-  Field(cp, "distance_error_bound", &ContactParams::distanceErrorBound,
-        "Experimental: extra collider bounding-volume padding [m], >= 0. Default 0.");
-  Field(cp, "colliding_penalty_length_scale", &ContactParams::collidingPenaltyLengthScale,
-        "Experimental: penalty correction scale for lower-dimensional colliding manifolds [m], "
-        "> 0; taken from the colliding actor. Default 1.");
-  cp.def("__repr__", [](const ContactParams& p) {
-    return "ContactParams(penalty_coefficient=" + std::to_string(p.penaltyCoefficient) +
-           ", coulomb_friction_coefficient=" + std::to_string(p.coulombFrictionCoefficient) +
-           ", normal_viscous_damping_coefficient=" +
-           std::to_string(p.normalViscousDampingCoefficient) + ", ...)";
-  });
-
-  py::class_<ExperimentalEvalParams> ep(
+  const char* validated = " Every assignment is validated; a bad value raises ValueError naming "
+                          "the field and the rule.";
+  BindParamsClass<ContactParams>(
+      m, "ContactParams",
+      Keep(std::string("Contact response of one actor (spec: ContactParams).") + validated),
+      kContactParamsFields);
+  BindParamsClass<ExperimentalEvalParams>(
       m, "ExperimentalEvalParams",
       "Time levels of the dissipative terms (spec: Stage-Discrete Dissipation).\n"
       "explicit_normals=True: stage-start normals and load; the dissipation is an exact\n"
       "potential (stages are minimizations). False (default): current geometry with the\n"
       "stage-start load reconstructed; not a potential (residual solve). The combination\n"
-      "(explicit_normals=True, implicit_normal_force_for_dissipation=True) is refused.");
-  ep.def(py::init<>());
-  Field(ep, "explicit_normals", &ExperimentalEvalParams::explicitNormals,
-        "Stage-start normals, alignment, friction plane and load. Default False.");
-  Field(ep, "implicit_normal_force_for_dissipation",
-        &ExperimentalEvalParams::implicitNormalForceForDissipation,
-        "Scale dissipation by the current normal load. Default False.");
-  Field(ep, "fade_friction", &ExperimentalEvalParams::fadeFriction,
-        "Alignment-based attenuation a = (m - s)/(m + 1) of dissipation. Default True.");
-
-  py::class_<GridSdfParams> gp(m, "GridSdfParams",
-                               "Grid SDF construction for Sdf colliders (RigidActorDesc.grid_sdf, "
-                               "SoftActorDesc.grid_sdf).");
-  gp.def(py::init<>());
-  Field(gp, "resolution_mode", &GridSdfParams::resolutionMode,
-        "Reference length for the voxel size. Default MeanEdgeLength.");
-  Field(gp, "resolution_delta", &GridSdfParams::resolutionDelta,
-        "Voxel size as a multiple of the reference length [-], > 0. Default 1.");
-  Field(gp, "min_grid_resolution", &GridSdfParams::minGridResolution,
-        "Minimum voxel count per axis, >= 2. Default 16.");
-  Field(gp, "boundary_padding_dist", &GridSdfParams::boundaryPaddingDist,
-        "Grid extension beyond the shape bounds [m], >= 0. Default 0.01.");
-
-  py::class_<SoftMaterial> sm(m, "SoftMaterial",
-                              "Bulk material of a soft actor (stable neo-Hookean). Every assignment "
-                              "is validated; a bad value raises ValueError naming the field and "
-                              "the rule.");
-  sm.def(py::init([](double youngsModulus, double poissonRatio, double density,
-                     double stiffnessDamping) {
-           SoftMaterial s;
-           s.youngsModulus = youngsModulus;
-           s.poissonRatio = poissonRatio;
-           s.density = density;
-           s.stiffnessDamping = stiffnessDamping;
-           CheckValue(Validate(s));
-           return s;
-         }),
-         py::arg("youngs_modulus") = SoftMaterial().youngsModulus,
-         py::arg("poisson_ratio") = SoftMaterial().poissonRatio,
-         py::arg("density") = SoftMaterial().density,
-         py::arg("stiffness_damping") = SoftMaterial().stiffnessDamping);
-  Field(sm, "youngs_modulus", &SoftMaterial::youngsModulus,
-        "Young's modulus E [Pa], finite and > 0. Default 1e5.");
-  Field(sm, "poisson_ratio", &SoftMaterial::poissonRatio,
-        "Poisson's ratio nu [-], in (-1, 0.5). Default 0.3.");
-  Field(sm, "density", &SoftMaterial::density,
-        "Density rho [kg/m^3], finite and > 0. Default 1000.");
-  Field(sm, "stiffness_damping", &SoftMaterial::stiffnessDamping,
-        "Rayleigh stiffness damping beta [s], >= 0 (dissipation R = beta/2 v^T K v). Default 0.");
-  sm.def("__repr__", [](const SoftMaterial& s) {
-    std::ostringstream o;
-    o << "SoftMaterial(youngs_modulus=" << s.youngsModulus << ", poisson_ratio=" << s.poissonRatio
-      << ", density=" << s.density << ", stiffness_damping=" << s.stiffnessDamping << ")";
-    return o.str();
-  });
-
-  py::class_<PointCloudColliderParams> pc(
+      "(explicit_normals=True, implicit_normal_force_for_dissipation=True) is refused.",
+      kExperimentalEvalFields);
+  BindParamsClass<GridSdfParams>(m, "GridSdfParams",
+                                 "Grid SDF construction for Sdf colliders (RigidActorDesc.grid_sdf, "
+                                 "SoftActorDesc.grid_sdf).",
+                                 kGridSdfFields);
+  BindParamsClass<SoftMaterial>(
+      m, "SoftMaterial",
+      Keep(std::string("Bulk material of a soft actor (stable neo-Hookean).") + validated),
+      kSoftMaterialFields);
+  BindParamsClass<PointCloudColliderParams>(
       m, "PointCloudColliderParams",
-      "Point-cloud collider parameters (the PointCloud collider is not implemented yet).");
-  pc.def(py::init<>());
-  Field(pc, "radius", &PointCloudColliderParams::radius,
-        "Interaction range L_B [m], > 0. Default 0.01.");
-  Field(pc, "self_contact_exclusion_ratio", &PointCloudColliderParams::selfContactExclusionRatio,
-        "Self-contact exclusion ratio r [-], > 0. Default 1.5.");
-  Field(pc, "spatial_hash_load_factor", &PointCloudColliderParams::spatialHashLoadFactor,
-        "Load factor of the collision-detection spatial hash [-], > 0. Default 0.0625.");
-  Field(pc, "self_contact", &PointCloudColliderParams::selfContact,
-        "Whether to enable self-contact. Default False.");
-  Field(pc, "collider_triangle_element_type", &PointCloudColliderParams::colliderTriangleElementType,
-        "Optional quadrature-based collider discretization for surfaces; None uses mesh nodes.");
+      "Point-cloud collider parameters (the PointCloud collider is not implemented yet).",
+      kPointCloudColliderFields);
+  BindParamsClass<NonlinearSolverParams>(
+      m, "NonlinearSolverParams",
+      Keep(std::string("Stage solver settings (scene files: settings.solver).") + validated),
+      kNonlinearSolverFields);
 
   m.def("hunt_crossley_damping_from_restitution", &HuntCrossleyDampingFromRestitution,
         py::arg("e"), py::arg("v"),

@@ -98,37 +98,6 @@ void BindRigidActorDesc(py::module_& m) {
 }
 
 void BindSceneSettings(py::module_& m) {
-  py::class_<NonlinearSolverParams>(m, "NonlinearSolverParams", "Stage solver settings.")
-      .def(py::init<>())
-      .def_readwrite("max_iterations", &NonlinearSolverParams::maxIterations)
-      .def_readwrite("absolute_tolerance", &NonlinearSolverParams::absoluteTolerance,
-                     "Newton decrement tolerance [J]. Default 1e-12.")
-      .def_readwrite("relative_tolerance", &NonlinearSolverParams::relativeTolerance,
-                     "gradient reduction tolerance [-]. Default 1e-10.")
-      .def_readwrite("step_tolerance", &NonlinearSolverParams::stepTolerance,
-                     "step velocity tolerance [m/s]. Default 1e-9.")
-      .def_readwrite("part_line_search", &NonlinearSolverParams::partLineSearch,
-                     "one line-search step length per independent part of a stage (bodies no "
-                     "contact joins). Default True.")
-      .def_property(
-          "linear_solver",
-          [](const NonlinearSolverParams& p) { return std::string(ToString(p.linear.kind)); },
-          [](NonlinearSolverParams& p, const std::string& name) {
-            if (!ParseLinearSolverKind(name, &p.linear.kind))
-              throw py::value_error("linear_solver: unknown value \"" + name +
-                                    "\" (expected one of: auto, direct, iterative)");
-          },
-          "'auto' (default: Krylov from 3000 unknowns up), 'direct' or 'iterative'.")
-      .def_property(
-          "linear_tolerance", [](const NonlinearSolverParams& p) { return p.linear.tolerance; },
-          [](NonlinearSolverParams& p, double t) { p.linear.tolerance = t; },
-          "Krylov relative residual tolerance, in (0, 1). Default 1e-8.")
-      .def_property(
-          "linear_max_iterations",
-          [](const NonlinearSolverParams& p) { return p.linear.maxIterations; },
-          [](NonlinearSolverParams& p, int n) { p.linear.maxIterations = n; },
-          "Krylov iterations before the direct fallback. Default 500.");
-
   py::class_<SceneSettings>(m, "SceneSettings", "Scene-wide settings.")
       .def(py::init<>())
       .def_readwrite("gravity", &SceneSettings::gravity, "[m/s^2]. Default [0, 0, -9.81].")

@@ -142,17 +142,6 @@ TEST_CASE("stable neo-Hookean: Lame parameters and material validation", "[soft]
   CHECK(q.mu == 1.0);
   CHECK(q.lambda == 0.0);
 
-  const double inf = std::numeric_limits<double>::infinity();
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  CHECK(ValidateElasticMaterial(1e6, 0.3, 1000.0).empty());
-  CHECK(ValidateElasticMaterial(1e6, -0.99, 1000.0).empty());
-  CHECK(ValidateElasticMaterial(1e6, 0.499, 1000.0).empty());
-  for (double E : {0.0, -1.0, inf, nan})
-    CHECK(ValidateElasticMaterial(E, 0.3, 1000.0).rfind("youngs_modulus:", 0) == 0);
-  for (double nu : {0.5, -1.0, 0.7, nan, inf})
-    CHECK(ValidateElasticMaterial(1e6, nu, 1000.0).rfind("poisson_ratio:", 0) == 0);
-  for (double rho : {0.0, -5.0, inf, nan})
-    CHECK(ValidateElasticMaterial(1e6, 0.3, rho).rfind("density:", 0) == 0);
 }
 
 TEST_CASE("stable neo-Hookean: tet element construction", "[soft]") {
