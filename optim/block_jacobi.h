@@ -3,8 +3,8 @@
 // diagonal blocks of a sparse matrix, one block per rigid body (its six dofs, translation and
 // rotation, which its contacts couple) and one per point of R³ (a soft node).
 //
-// The layout is SetLeadingSixBlocks(k): dofs [0, 6k) form k blocks of 6, the rest blocks of 3
-// (optim/stage_problem.h: StageProblem::LeadingSixDofBlocks). k = 0 gives 3×3 blocks throughout.
+// The layout is SetLayout(DofBlockLayout{k}) (optim/block_layout.h; StageProblem::BlockLayout):
+// dofs [0, 6k) form k blocks of 6, the rest blocks of 3. k = 0 gives 3×3 blocks throughout.
 // Where the layout does not fit the matrix (6k > n, or n − 6k not a multiple of 3) every block is
 // 1×1 (plain Jacobi).
 //
@@ -17,6 +17,8 @@
 #include <Eigen/SparseCore>
 #include <vector>
 
+#include "optim/block_layout.h"
+
 namespace superdex {
 
 class BlockJacobi {
@@ -27,8 +29,10 @@ class BlockJacobi {
   using Matrix6 = Eigen::Matrix<double, 6, 6>;
 
   BlockJacobi() = default;
-  /// The layout of the next factorizations (see the file comment); k >= 0.
-  void SetLeadingSixBlocks(int k) { leadingSix_ = k > 0 ? k : 0; }
+  /// The layout of the next factorizations (see the file comment).
+  void SetLayout(const DofBlockLayout& layout) {
+    leadingSix_ = layout.blocksOfSix > 0 ? layout.blocksOfSix : 0;
+  }
 
   template <typename MatrixType>
   BlockJacobi& analyzePattern(const MatrixType&) {

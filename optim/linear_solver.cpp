@@ -112,8 +112,6 @@ struct SymmetricSolver::Impl {
   bool ldltAnalyzed = false;     // ldlt holds a valid analysis of the stored pattern
   BackendKind backend = BackendKind::None;
   SparseMatrix compressed;       // scratch copy when the caller passes an uncompressed matrix
-  LinearSolverSettings settings;
-  LinearSolveInfo info;
   // Conjugate gradients: the matrix, its block-Jacobi preconditioner, the iteration's vectors.
   SparseMatrix matrix;
   BlockJacobi preconditioner;
@@ -190,8 +188,9 @@ bool SymmetricSolver::Factorize(const Eigen::SparseMatrix<double>& H) {
   }
   // A non-finite entry cannot be factorized meaningfully by either backend.
   if (!Eigen::Map<const Eigen::VectorXd>(A->valuePtr(), A->nonZeros()).allFinite()) return false;
-  if (UseIterative(s.settings, A->rows()) && A->rows() > kDenseLimit) {
+  if (UseIterative(settings_, A->rows()) && A->rows() > kDenseLimit) {
     s.matrix = *A;
+    s.preconditioner.SetLayout(layout_);
     s.preconditioner.compute(s.matrix);
     if (!s.preconditioner.PositiveDefinite()) return false;  // neither is the matrix
     s.op.Set(s.matrix);
@@ -219,14 +218,6 @@ bool SymmetricSolver::Factorize(const Eigen::SparseMatrix<double>& H) {
   return false;
 }
 
-void SymmetricSolver::SetSettings(const LinearSolverSettings& settings) {
-  impl_->settings = settings;
-}
-
-void SymmetricSolver::SetLeadingSixBlocks(int k) { impl_->preconditioner.SetLeadingSixBlocks(k); }
-
-const LinearSolveInfo& SymmetricSolver::LastSolve() const { return impl_->info; }
-
 Eigen::VectorXd SymmetricSolver::Solve(const Eigen::VectorXd& b) const {
   Eigen::VectorXd x;
   Solve(b, &x);
@@ -235,13 +226,13 @@ Eigen::VectorXd SymmetricSolver::Solve(const Eigen::VectorXd& b) const {
 
 void SymmetricSolver::Solve(const Eigen::VectorXd& b, Eigen::VectorXd* out) const {
   Impl& s = *impl_;
-  s.info = LinearSolveInfo();
+  info_ = LinearSolveInfo();
   Eigen::VectorXd& x = *out;
   if (s.backend == BackendKind::Pcg) {
     // Preconditioned conjugate gradients (M: the block-Jacobi blocks of H), x₀ = 0.
     const Eigen::Index n = b.size();
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    s.info.iterative = true;
+    info_.iterative = true;
     x.setZero(n);
     const double bNorm = b.norm();
     if (bNorm == 0.0) return;
@@ -249,12 +240,12 @@ void SymmetricSolver::Solve(const Eigen::VectorXd& b, Eigen::VectorXd* out) cons
     s.preconditioner.Apply(s.r, &s.z);
     s.p = s.z;
     double rz = s.r.dot(s.z);
-    const double stop = s.settings.tolerance * bNorm;
-    for (int k = 0; k < s.settings.maxIterations; ++k) {
+    const double stop = settings_.tolerance * bNorm;
+    for (int k = 0; k < settings_.maxIterations; ++k) {
       s.q.resize(n);
       s.op.Multiply(s.p.data(), s.q.data());  // q = H p, as Eigen's product forms it, in parallel
       const double curvature = s.p.dot(s.q);
-      s.info.iterations = k + 1;
+      info_.iterations = k + 1;
       // pᵀHp <= 0: H is not positive definite (what a failed Cholesky reports).
       if (!(curvature > 0.0)) {
         x.setConstant(nan);
@@ -270,7 +261,7 @@ void SymmetricSolver::Solve(const Eigen::VectorXd& b, Eigen::VectorXd* out) cons
       rz = rzNext;
     }
     // Not converged: the direct solve of the same matrix.
-    s.info.fellBack = true;
+    info_.fellBack = true;
     if (!s.SamePattern(s.matrix)) s.StorePattern(s.matrix);
     if (s.FactorizeCholmod(s.matrix)) {
       x = s.cholmod.solve(b);
@@ -380,8 +371,6 @@ struct UnsymmetricSolver::Impl {
   // UMFPACK's solve reads the matrix again (iterative refinement) and Eigen's wrapper keeps a
   // reference to it: the solver owns a copy, so that factors outlive the caller's matrix.
   SparseMatrix matrix;
-  LinearSolverSettings settings;
-  LinearSolveInfo info;
   bool iterative = false;  // the last Factorize prepared BiCGSTAB, not the LU
   bool luValid = false;    // lu holds the factors of `matrix`
   // BiCGSTAB (optim/bicgstab.h) on the matrix's parallel products, block-Jacobi preconditioned.
@@ -472,26 +461,17 @@ bool UnsymmetricSolver::Factorize(const Eigen::SparseMatrix<double>& J) {
   s.matrix = J;
   s.matrix.makeCompressed();
   s.luValid = false;
-  s.iterative = UseIterative(s.settings, J.rows());
+  s.iterative = UseIterative(settings_, J.rows());
   if (s.iterative) {
     if (!Eigen::Map<const Eigen::VectorXd>(s.matrix.valuePtr(), s.matrix.nonZeros()).allFinite())
       return false;
     s.op.Set(s.matrix);
+    s.preconditioner.SetLayout(layout_);
     s.preconditioner.compute(s.matrix);
     return true;
   }
   return s.FactorizeLu();
 }
-
-void UnsymmetricSolver::SetSettings(const LinearSolverSettings& settings) {
-  impl_->settings = settings;
-}
-
-void UnsymmetricSolver::SetLeadingSixBlocks(int k) {
-  impl_->preconditioner.SetLeadingSixBlocks(k);
-}
-
-const LinearSolveInfo& UnsymmetricSolver::LastSolve() const { return impl_->info; }
 
 const char* UnsymmetricSolver::Backend() const {
   const Impl& s = *impl_;
@@ -508,21 +488,21 @@ Eigen::VectorXd UnsymmetricSolver::Solve(const Eigen::VectorXd& b) {
 
 void UnsymmetricSolver::Solve(const Eigen::VectorXd& b, Eigen::VectorXd* out) {
   Impl& s = *impl_;
-  s.info = LinearSolveInfo();
+  info_ = LinearSolveInfo();
   Eigen::VectorXd& x = *out;
   if (s.dense) {
     x = s.denseLu.solve(b);
     return;
   }
   if (s.iterative && !s.luValid) {
-    s.info.iterative = true;
+    info_.iterative = true;
     // From x = 0, converged when the relative residual estimate is within the tolerance.
-    const BiCgStabResult result = SolveBiCgStab(s.op, s.preconditioner, b, s.settings.tolerance,
-                                                s.settings.maxIterations, &x, &s.krylov);
-    s.info.iterations = result.iterations;
-    if (result.relativeResidual <= s.settings.tolerance && x.allFinite()) return;
+    const BiCgStabResult result = SolveBiCgStab(s.op, s.preconditioner, b, settings_.tolerance,
+                                                settings_.maxIterations, &x, &s.krylov);
+    info_.iterations = result.iterations;
+    if (result.relativeResidual <= settings_.tolerance && x.allFinite()) return;
     // Not converged, or broken down: the LU of the same matrix (kept for further solves).
-    s.info.fellBack = true;
+    info_.fellBack = true;
     if (!s.FactorizeLu()) {
       x.setConstant(b.size(), std::numeric_limits<double>::quiet_NaN());
       return;
@@ -533,7 +513,7 @@ void UnsymmetricSolver::Solve(const Eigen::VectorXd& b, Eigen::VectorXd* out) {
 
 Eigen::VectorXd UnsymmetricSolver::SolveTransposed(const Eigen::VectorXd& b) {
   Impl& s = *impl_;
-  s.info = LinearSolveInfo();
+  info_ = LinearSolveInfo();
   if (s.dense) return s.denseLu.transpose().solve(b);
   Eigen::VectorXd x;
   if ((s.luValid || s.FactorizeLu()) && s.SolveLu(b, &x, true)) return x;

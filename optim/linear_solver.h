@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "optim/block_layout.h"
 #include "optim/field_table.h"
 
 namespace superdex {
@@ -64,20 +65,34 @@ struct LinearSolveInfo {
   bool fellBack = false;      ///< it did not converge and the direct solve was used
 };
 
+/// What both solvers below share: the settings, the block layout of the Krylov solves'
+/// preconditioner, the last solve's report. Not copyable (a solver owns its factors).
+class LinearSolverBase {
+ public:
+  LinearSolverBase(const LinearSolverBase&) = delete;
+  LinearSolverBase& operator=(const LinearSolverBase&) = delete;
+
+  /// Direct by default.
+  void SetSettings(const LinearSolverSettings& settings) { settings_ = settings; }
+  /// The Krylov solves' block-Jacobi layout (optim/block_jacobi.h); blocks of 3 by default.
+  void SetBlockLayout(const DofBlockLayout& layout) { layout_ = layout; }
+  const LinearSolveInfo& LastSolve() const { return info_; }
+
+ protected:
+  LinearSolverBase() = default;
+  ~LinearSolverBase() = default;
+
+  LinearSolverSettings settings_;
+  DofBlockLayout layout_;
+  mutable LinearSolveInfo info_;  // written by the solves (SymmetricSolver's are const)
+};
+
 /// Solves H x = b for symmetric H (full storage, compressed column). Keeps the symbolic analysis
 /// while the sparsity pattern stays the same between calls.
-class SymmetricSolver {
+class SymmetricSolver : public LinearSolverBase {
  public:
   SymmetricSolver();
   ~SymmetricSolver();
-  SymmetricSolver(const SymmetricSolver&) = delete;
-  SymmetricSolver& operator=(const SymmetricSolver&) = delete;
-
-  /// Direct by default.
-  void SetSettings(const LinearSolverSettings& settings);
-  /// The Krylov solves' block-Jacobi layout (optim/block_jacobi.h): unknowns [0, 6k) form k
-  /// blocks of 6 (rigid bodies), the rest blocks of 3. 0 by default.
-  void SetLeadingSixBlocks(int k);
 
   /// Factorizes H (only its lower triangle is read). Returns false if H is not positive definite
   /// for both backends, is empty or non-square, or has non-finite entries. Iterative: keeps a copy
@@ -94,7 +109,6 @@ class SymmetricSolver {
   /// "dense" (<= 48 unknowns), "cholmod", "ldlt" or "pcg": the backend of the last
   /// factorization; "none" if it failed.
   const char* Backend() const;
-  const LinearSolveInfo& LastSolve() const;
 
  private:
   struct Impl;
@@ -105,17 +119,10 @@ class SymmetricSolver {
 /// strategy and a METIS ordering (stage Jacobians are structurally symmetric and nearly symmetric
 /// in value), a dense partial-pivoting LU up to 48 unknowns. Keeps the symbolic analysis while
 /// the sparsity pattern stays the same between calls.
-class UnsymmetricSolver {
+class UnsymmetricSolver : public LinearSolverBase {
  public:
   UnsymmetricSolver();
   ~UnsymmetricSolver();
-  UnsymmetricSolver(const UnsymmetricSolver&) = delete;
-  UnsymmetricSolver& operator=(const UnsymmetricSolver&) = delete;
-
-  /// Direct by default.
-  void SetSettings(const LinearSolverSettings& settings);
-  /// As SymmetricSolver::SetLeadingSixBlocks.
-  void SetLeadingSixBlocks(int k);
 
   /// Factorizes J. Returns false if J is (numerically) singular. Iterative: keeps a copy of J and
   /// the block-Jacobi preconditioner; false only for non-finite entries.
@@ -132,7 +139,6 @@ class UnsymmetricSolver {
   /// 40 flops per factor entry: contact graphs; UMFPACK where the factors fill in: tet meshes),
   /// "bicgstab" (iterative, not fallen back): the backend of the last factorization or solve.
   const char* Backend() const;
-  const LinearSolveInfo& LastSolve() const;
 
  private:
   struct Impl;

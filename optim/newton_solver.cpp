@@ -147,7 +147,7 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
   if (!solverCache) ownSolver = std::make_unique<SymmetricSolver>();
   SymmetricSolver& solver = solverCache ? *solverCache : *ownSolver;
   solver.SetSettings(params.linear);
-  solver.SetLeadingSixBlocks(problem.LeadingSixDofBlocks());
+  solver.SetBlockLayout(problem.BlockLayout());
 
   if (n == 0) {
     Clock::time_point t0 = Clock::now();

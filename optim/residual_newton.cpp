@@ -70,7 +70,7 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
   if (!solver) ownSolver = std::make_unique<UnsymmetricSolver>();
   UnsymmetricSolver& lu = solver ? *solver : *ownSolver;
   lu.SetSettings(params.linear);
-  lu.SetLeadingSixBlocks(problem.LeadingSixDofBlocks());
+  lu.SetBlockLayout(problem.BlockLayout());
   if (n == 0) {
     st.status = StageStatus::Converged;
     st.message = "no degrees of freedom";

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include "optim/block_layout.h"
 #include "optim/field_table.h"
 
 namespace superdex {
@@ -122,10 +123,9 @@ class StageProblem {
   /// A norm of a step in length units [m], used for the step convergence test. Default: max-norm.
   virtual double StepNorm(const Eigen::VectorXd& d) const { return d.lpNorm<Eigen::Infinity>(); }
 
-  /// The dof layout the Krylov solves' block-Jacobi preconditioner follows (optim/block_jacobi.h):
-  /// dofs [0, 6k) are k bodies of six coupled dofs (a rigid body's translation and rotation), the
-  /// rest points of R³. Default 0: blocks of 3 throughout.
-  virtual int LeadingSixDofBlocks() const { return 0; }
+  /// The diagonal blocks of the dofs (optim/block_layout.h), which the Krylov solves'
+  /// block-Jacobi preconditioner inverts. Default: blocks of 3 throughout.
+  virtual DofBlockLayout BlockLayout() const { return {}; }
 };
 
 }  // namespace superdex

@@ -336,18 +336,18 @@ bool SceneStageProblem::LimitStep(Eigen::VectorXd* d) {
   return changed;
 }
 
-int SceneStageProblem::LeadingSixDofBlocks() const {
+DofBlockLayout SceneStageProblem::BlockLayout() const {
   // Bodies in dof order: offsets 0, 6, 12, … without gaps (else no 6-blocks are claimed).
-  int k = 0;
+  DofBlockLayout layout;
   int expected = 0;
   for (size_t i = 0; i < models_.size(); ++i) {
     const int o = dofOffset_[i];
     if (o < 0) continue;
-    if (o != expected) return 0;
-    ++k;
+    if (o != expected) return DofBlockLayout();
+    ++layout.blocksOfSix;
     expected += 6;
   }
-  return k;
+  return layout;
 }
 
 double SceneStageProblem::StepNorm(const Eigen::VectorXd& d) const {
