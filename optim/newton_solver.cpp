@@ -13,6 +13,7 @@
 
 #include "optim/forcing_term.h"
 #include "optim/linear_solver.h"
+#include "optim/regularized_solve.h"
 
 namespace superdex {
 namespace {
@@ -28,45 +29,6 @@ double SecondsSince(Clock::time_point t) {
 /// |f(s ⊕ αd) − f(s)| <= kRoundoffBand |f(s)| cannot be told apart from f(s) in double precision
 /// once f is a sum of many terms.
 constexpr double kRoundoffBand = 1e-14;
-/// Diagonal shifts tried after the unshifted factorization fails: τ_k = τ_0 10^k, k < this.
-constexpr int kMaxShiftRetries = 12;
-/// First shift relative to the Hessian's scale: τ_0 = kInitialShift max_i |H_ii|.
-constexpr double kInitialShift = 1e-8;
-
-/// Makes every diagonal entry of H structurally present (explicit zeros where missing), so that
-/// H and H + τI share one sparsity pattern and the symbolic analysis is kept. Fills diagonal[k]
-/// with the index of H_kk in H.valuePtr().
-void FindDiagonal(SparseMatrix* H, std::vector<Eigen::Index>* diagonal) {
-  const Eigen::Index n = H->outerSize();
-  diagonal->assign(n, -1);
-  bool missing = false;
-  for (int pass = 0; pass < 2; ++pass) {
-    missing = false;
-    for (Eigen::Index k = 0; k < n; ++k) {
-      using Index = SparseMatrix::StorageIndex;
-      const Index* begin = H->innerIndexPtr() + H->outerIndexPtr()[k];
-      const Index* end = H->innerIndexPtr() + H->outerIndexPtr()[k + 1];
-      const Index* it = std::lower_bound(begin, end, static_cast<Index>(k));
-      if (it != end && *it == k) {
-        (*diagonal)[k] = it - H->innerIndexPtr();
-      } else {
-        missing = true;
-      }
-    }
-    if (!missing) return;
-    // Rebuild with explicit zeros on the missing diagonal entries (setFromTriplets keeps zeros).
-    std::vector<Eigen::Triplet<double>> triplets;
-    triplets.reserve(H->nonZeros() + n);
-    for (Eigen::Index k = 0; k < n; ++k) {
-      for (SparseMatrix::InnerIterator e(*H, k); e; ++e)
-        triplets.emplace_back(e.row(), e.col(), e.value());
-      if ((*diagonal)[k] < 0) triplets.emplace_back(k, k, 0.0);
-    }
-    SparseMatrix rebuilt(H->rows(), H->cols());
-    rebuilt.setFromTriplets(triplets.begin(), triplets.end());
-    *H = std::move(rebuilt);
-  }
-}
 
 }  // namespace
 
@@ -139,10 +101,9 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
   d.resize(n);
   step.resize(n);
   limited.resize(n);
-  SparseMatrix &H = w.matrix, &shifted = w.shifted, &HTrial = w.trialMatrix;
+  SparseMatrix &H = w.matrix, &HTrial = w.trialMatrix;
   bool evaluated = false;  // f, g, H already hold the current state's (from an accepted trial)
   double evaluatedValue = 0.0;
-  std::vector<Eigen::Index>& diagonal = w.diagonal;
   std::unique_ptr<SymmetricSolver> ownSolver;  // only without a cached solver
   if (!solverCache) ownSolver = std::make_unique<SymmetricSolver>();
   SymmetricSolver& solver = solverCache ? *solverCache : *ownSolver;
@@ -231,52 +192,17 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
     H.makeCompressed();
     if (!Eigen::Map<const Eigen::VectorXd>(H.valuePtr(), H.nonZeros()).allFinite())
       return diverge("non-finite Hessian entry at iteration " + std::to_string(it + 1));
-    FindDiagonal(&H, &diagonal);  // keeps the pattern of H and H + τI identical
-    bool ok = false;
     if (st.finalGradientNorm == 0.0) {
       d.setZero();  // an exact stationary point: nothing to solve (g·d = 0 is no descent failure)
-      ok = true;
-    } else if (exact && tryExact) {
-      ok = true;  // the exact Hessian's direction, solved above
-    } else if (solver.Factorize(H)) {
-      SolveNegated(solver, g, &d, &st);
-      ok = d.allFinite() && g.dot(d) < 0.0;
-    }
-    if (!ok) {
-      ++st.regularizations;
-      double scale = 0.0;
-      for (Eigen::Index k = 0; k < n; ++k)
-        scale = std::max(scale, std::abs(H.valuePtr()[diagonal[k]]));
-      if (scale == 0.0) scale = Eigen::Map<const Eigen::VectorXd>(H.valuePtr(), H.nonZeros())
-                                    .lpNorm<Eigen::Infinity>();
-      if (scale == 0.0) scale = 1.0;
-      // Gershgorin: τ >= max_i (Σ_{j≠i} |H_ij| − H_ii) + scale makes H + τI strictly diagonally
-      // dominant with a positive diagonal, hence positive definite. Tried after the ladder.
-      Eigen::VectorXd offDiagonal = Eigen::VectorXd::Zero(n);
-      for (Eigen::Index k = 0; k < H.outerSize(); ++k)
-        for (SparseMatrix::InnerIterator e(H, k); e; ++e)
-          if (e.row() != e.col()) offDiagonal[e.row()] += std::abs(e.value());
-      double gershgorin = 0.0;
-      for (Eigen::Index k = 0; k < n; ++k)
-        gershgorin = std::max(gershgorin, offDiagonal[k] - H.valuePtr()[diagonal[k]]);
-      gershgorin += scale;
-
-      shifted = H;
-      double tau = kInitialShift * scale;
-      for (int r = 0; r <= kMaxShiftRetries && !ok; ++r, tau *= 10.0) {
-        if (r == kMaxShiftRetries) tau = std::max(tau, gershgorin);
-        for (Eigen::Index k = 0; k < n; ++k)
-          shifted.valuePtr()[diagonal[k]] = H.valuePtr()[diagonal[k]] + tau;
-        if (solver.Factorize(shifted)) {
-          SolveNegated(solver, g, &d, &st);
-          ok = d.allFinite() && g.dot(d) < 0.0;
-        }
-      }
-      if (!ok) {
+    } else if (!(exact && tryExact)) {  // else: the exact Hessian's direction, solved above
+      const RegularizedSolve rs = SolveRegularized(solver, &H, g, ShiftGoal::Descent, &d,
+                                                   &w.shifted, &w.diagonal, &st);
+      if (!rs.solved) {
         st.factorizationSeconds += SecondsSince(t0);
         std::ostringstream s;
         s << "no descent direction at iteration " << it + 1
-          << ": the Hessian stays singular or indefinite with diagonal shifts up to " << tau / 10.0;
+          << ": the Hessian stays singular or indefinite with diagonal shifts up to "
+          << rs.lastShift;
         return diverge(s.str());
       }
     }

@@ -11,7 +11,7 @@
 //      1000-sphere pile); with the exact Hessian it is quadratic again.
 //   2. d = −H̃⁻¹ g with H̃ = H if it factorizes (CHOLMOD, LDLᵀ fallback) and g·d < 0; otherwise
 //      H̃ = H + τI with τ = 1e-8 max_i |H_ii|, 1e-7 max_i |H_ii|, ... (×10, 12 retries), then one
-//      last shift large enough for diagonal dominance (Gershgorin). The first τ that gives a
+//      last shift large enough for diagonal dominance (Gershgorin; optim/regularized_solve.h). The first τ that gives a
 //      positive definite H̃ and a descent direction is taken; SolverStats::regularizations counts
 //      the iterations that needed a shift. If none works → Diverged.
 //   3. Convergence tests, in this order, on d before stepping (the first that passes is named in
@@ -159,24 +159,6 @@ struct SolverStats {
   /// Why it stopped: `message`, or the passed convergence test formatted.
   std::string Message() const { return message.empty() && passed.what ? Format(passed) : message; }
 };
-
-/// *x = H⁻¹ b by solver.Solve (a SymmetricSolver or UnsymmetricSolver), adding its Krylov
-/// iterations and fallbacks to *stats.
-template <typename LinearSolver>
-void SolveCounted(LinearSolver& solver, const Eigen::VectorXd& b, Eigen::VectorXd* x,
-                  SolverStats* stats) {
-  solver.Solve(b, x);
-  stats->krylovIterations += solver.LastSolve().iterations;
-  stats->krylovFallbacks += solver.LastSolve().fellBack ? 1 : 0;
-}
-
-/// d = −H⁻¹ b (the Newton direction) into the preallocated d.
-template <typename LinearSolver>
-void SolveNegated(LinearSolver& solver, const Eigen::VectorXd& b, Eigen::VectorXd* d,
-                  SolverStats* stats) {
-  SolveCounted(solver, b, d, stats);
-  *d = -*d;
-}
 
 /// The vectors and matrices a Newton solve works in (MinimizeNewton, SolveResidualNewton), kept
 /// by a caller that solves stage after stage so that none is allocated again once the sizes

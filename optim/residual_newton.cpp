@@ -2,6 +2,7 @@
 
 #include "optim/forcing_term.h"
 #include "optim/linear_solver.h"
+#include "optim/regularized_solve.h"
 
 #include <algorithm>
 #include <chrono>
@@ -19,30 +20,10 @@ double SecondsSince(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
 
-constexpr int kMaxShiftRetries = 12;
-constexpr double kInitialShift = 1e-8;
 constexpr double kRoundoffBand = 1e-14;
 constexpr double kStagnantDecrease = 1e-6;
 constexpr int kStagnantIterations = 3;
 constexpr double kQuadraticContraction = 1e-4;  // θ ratio of a full step in the quadratic regime
-
-/// Adds explicit zeros on the diagonal so that J and J + τI share one pattern (Eigen keeps the
-/// explicit zeros of a sum's union pattern).
-void CompleteDiagonal(SparseMatrix* J) {
-  J->makeCompressed();
-  bool complete = J->rows() == J->cols();
-  using Index = SparseMatrix::StorageIndex;
-  for (Eigen::Index k = 0; complete && k < J->outerSize(); ++k) {
-    const Index* begin = J->innerIndexPtr() + J->outerIndexPtr()[k];
-    const Index* end = J->innerIndexPtr() + J->outerIndexPtr()[k + 1];
-    complete = std::binary_search(begin, end, static_cast<Index>(k));
-  }
-  if (complete) return;  // every diagonal entry already stored (the usual case)
-  SparseMatrix I(J->rows(), J->cols());
-  I.setIdentity();
-  *J = *J + 0.0 * I;
-  J->makeCompressed();
-}
 
 }  // namespace
 
@@ -64,7 +45,7 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
   Eigen::VectorXd &r = w.gradient, &rTrial = w.trialGradient, &d = w.direction, &step = w.step;
   d.resize(n);
   step.resize(n);
-  SparseMatrix &J = w.matrix, &JTrial = w.trialMatrix, &shifted = w.shifted;
+  SparseMatrix &J = w.matrix, &JTrial = w.trialMatrix;
   bool evaluated = false;  // r and J already hold the current state's (from an accepted trial)
   std::unique_ptr<UnsymmetricSolver> ownSolver;  // only without a cached solver
   if (!solver) ownSolver = std::make_unique<UnsymmetricSolver>();
@@ -117,30 +98,11 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
     J.makeCompressed();
     if (!Eigen::Map<const Eigen::VectorXd>(J.valuePtr(), J.nonZeros()).allFinite())
       return diverge("non-finite Jacobian entry at iteration " + std::to_string(it + 1));
-    CompleteDiagonal(&J);
-    bool ok = false;
-    if (lu.Factorize(J)) {
-      SolveNegated(lu, r, &d, &st);
-      ok = d.allFinite();
-    }
-    if (!ok) {
-      ++st.regularizations;
-      double scale = 0.0;
-      for (Eigen::Index k = 0; k < n; ++k) scale = std::max(scale, std::abs(J.coeff(k, k)));
-      if (scale == 0.0) scale = 1.0;
-      double tau = kInitialShift * scale;
-      for (int k = 0; k < kMaxShiftRetries && !ok; ++k, tau *= 10.0) {
-        shifted = J;
-        for (Eigen::Index i = 0; i < n; ++i) shifted.coeffRef(i, i) += tau;
-        if (lu.Factorize(shifted)) {
-          SolveNegated(lu, r, &d, &st);
-          ok = d.allFinite();
-        }
-      }
-      if (!ok) {
-        st.factorizationSeconds += SecondsSince(t0);
-        return diverge("singular Jacobian at iteration " + std::to_string(it + 1));
-      }
+    const RegularizedSolve rs = SolveRegularized(lu, &J, r, ShiftGoal::Nonsingular, &d,
+                                                 &w.shifted, &w.diagonal, &st);
+    if (!rs.solved) {
+      st.factorizationSeconds += SecondsSince(t0);
+      return diverge("singular Jacobian at iteration " + std::to_string(it + 1));
     }
     st.factorizationSeconds += SecondsSince(t0);
     st.iterations = it + 1;
