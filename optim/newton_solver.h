@@ -1,17 +1,15 @@
-// Projected Newton with a backtracking (Armijo) line search.
+// Projected Newton with a backtracking (Armijo) line search. See docs/solver.md; the notes and
+// measurements behind these rules: docs/optim-notes.md.
 //
 // Each iteration k at state s_k:
 //   1. f, g, H ← problem.Evaluate (local Hessians projected as params.psdProjection says).
 //      Non-finite f or g (or H) → Diverged.
-//      Adaptive projection: after an iteration whose full step was accepted (α = 1, the local
-//      regime) the next one assembles the exact Hessian (no projection); if that is not positive
-//      definite or gives no descent direction, the iteration is re-assembled projected. Near a
-//      minimum the clamped negative curvature (e.g. the geometric stiffness −λ ∇²Φ of contact)
-//      made the projected iteration converge only linearly (rate ≈ 1/2 measured on the
-//      1000-sphere pile); with the exact Hessian it is quadratic again.
+//      Adaptive projection: after an iteration whose full step was accepted (α = 1) the next one
+//      assembles the exact Hessian (no projection); if that is not positive definite or gives no
+//      descent direction, the iteration is re-assembled projected.
 //   2. d = −H̃⁻¹ g with H̃ = H if it factorizes (CHOLMOD, LDLᵀ fallback) and g·d < 0; otherwise
-//      H̃ = H + τI with τ = 1e-8 max_i |H_ii|, 1e-7 max_i |H_ii|, ... (×10, 12 retries), then one
-//      last shift large enough for diagonal dominance (Gershgorin; optim/regularized_solve.h). The first τ that gives a
+//      H̃ = H + τI on the shift ladder of optim/regularized_solve.h (ShiftGoal::Descent: τ =
+//      1e-8 max_i |H_ii| ×10, 12 times, then one Gershgorin shift). The first τ that gives a
 //      positive definite H̃ and a descent direction is taken; SolverStats::regularizations counts
 //      the iterations that needed a shift. If none works → Diverged.
 //   3. Convergence tests, in this order, on d before stepping (the first that passes is named in
@@ -25,45 +23,38 @@
 //      Converged. A correction whose promised decrease |g·d| is itself inside the round-off band
 //      (<= 1e-14 |f(s)|: f cannot resolve it) is committed without evaluating f(s ⊕ d), and
 //      SolverStats::finalValue stays f(s).
-//   4. Trust region and step limit: d' = d shortened blockwise by problem.TrustStep (a rigid body's
-//      correction moves no point within its radius more than a quarter of that radius,
-//      core/dynamics/scene_stage.h), then by problem.LimitStep (contact: no sample's depth more than
-//      doubles in one step, core/contact/rigid_contact.h). d' is used in place of d; where a part's d'
-//      is no descent direction for its share (the blockwise shortening broke the coupled Newton
-//      direction of bodies in contact), that part takes d_P scaled by the smallest fraction its
-//      dofs were shortened to, and so does the whole step if g·d' >= 0 remains (never the
-//      unshortened d: its bodies would move past the bounds). An iteration on a limited step is
-//      not a full step for the adaptive projection. Skipped with LineSearchKind::None and on
+//   4. Step shortening: d' = d shortened blockwise by problem.TrustStep, then by
+//      problem.LimitStep (optim/stage_problem.h). Where a part's d' is no descent direction for
+//      its share, that part takes d_P scaled by the smallest fraction its dofs were shortened to,
+//      and so does the whole step if g·d' >= 0 remains (LineSearch::KeepDescent; never the
+//      unshortened d, which would pass the bounds). An iteration on a shortened step is not a
+//      full step for the adaptive projection. Skipped with LineSearchKind::None and on
 //      exact-Hessian iterations.
-//      Line search (Armijo): α = 1, 1·β, 1·β², ... (β = backtrackFactor); accept the first α with
-//        f(s ⊕ αd) <= f(s) + c α g·d                                  (c = armijoConstant)
-//      or, as a round-off band, |f(s ⊕ αd) − f(s)| <= 1e-14 |f(s)| while the predicted change
-//      α|g·d| (≈ α‖d‖²_H̃: the step is tiny in the Hessian norm) is also <= 1e-14 |f(s)|, i.e. when
-//      f cannot resolve the decrease any more. Non-finite trial values are rejections. After
-//      maxLineSearchSteps rejections → Diverged. LineSearchKind::None takes α = 1 (Diverged only if
-//      f(s ⊕ d) is not finite). s ← s ⊕ αd. The unshortened full step's trial is evaluated with
-//      its gradient and exact Hessian where the problem offers EvaluateAtStep (equal bit for bit
-//      to step 1 after the commit): when it is accepted, step 1 of the next iteration is skipped.
-//      Where the problem splits into independent parts (StageProblem::LastSplit, e.g. bodies
-//      that no contact joins) and partLineSearch is set, each part gets its own α, tested on its
-//      own share of f (optim/part_line_search.h); a part whose direction is no descent for its
-//      share stays put. The next iteration tries the exact Hessian only if every part took α = 1.
+//      Line search on f (optim/line_search.h, Merit::Potential): α = 1, β, β², ...
+//      (β = backtrackFactor); accept the first α with
+//        f(s ⊕ αd') <= f(s) + c α g·d'                                  (c = armijoConstant)
+//      or the round-off band: |f(s ⊕ αd') − f(s)| <= 1e-14 |f(s)| while the predicted change
+//      α|g·d'| is also <= 1e-14 |f(s)|. Non-finite trial values are rejections. After
+//      maxLineSearchSteps rejections → Diverged. LineSearchKind::None takes α = 1 (Diverged only
+//      if f(s ⊕ d) is not finite). s ← s ⊕ αd'. The unshortened full step's trial is evaluated
+//      with its gradient and exact Hessian where the problem offers EvaluateAtStep (equal bit for
+//      bit to step 1 after the commit): when it is accepted, step 1 of the next iteration is
+//      skipped. Where the problem splits into independent parts (StageProblem::LastSplit) and
+//      partLineSearch is set, each part gets its own α, tested on its own share of f
+//      (optim/part_line_search.h); a part whose direction is no descent for its share stays put.
+//      The next iteration tries the exact Hessian only if every part took α = 1.
 //   After maxIterations iterations without convergence → Stopped (the last step is committed but
 //   not tested: Stopped is reported even if it happened to reach the minimum).
 #pragma once
 
 #include <string>
+#include <vector>
 
+#include "optim/line_search.h"
 #include "optim/linear_solver.h"
-#include "optim/part_line_search.h"
 #include "optim/stage_problem.h"
 
 namespace superdex {
-
-enum class LineSearchKind {
-  Armijo,  ///< backtracking until f(s ⊕ αd) <= f(s) + c α g·d
-  None,    ///< full Newton steps
-};
 
 /// How a stage solve ended.
 enum class StageStatus {
@@ -74,20 +65,20 @@ enum class StageStatus {
 EnumNames<LineSearchKind> NamesOf(LineSearchKind);
 EnumNames<StageStatus> NamesOf(StageStatus);
 
-/// Settings of the nonlinear stage solver. Units: `timeScale` passed to the solver is the stage's
-/// time step Δt_i [s]; a step d is converted to a velocity by StepNorm(d) / Δt_i [m/s].
+/// Settings of the nonlinear stage solver. Units: `timeScale` passed to the solver [s] converts a
+/// step d to a velocity, StepNorm(d) / timeScale [m/s].
 struct NonlinearSolverParams {
   int maxIterations = 100;            ///< Newton iterations before status Stopped
   double absoluteTolerance = 1e-12;   ///< converged when ½ g^T H^-1 g (Newton decrement) <= this [J]
   double relativeTolerance = 1e-10;   ///< ... or when ‖g‖∞ <= relativeTolerance * ‖g_0‖∞ [-]
-  double stepTolerance = 1e-9;        ///< ... or when StepNorm(d)/Δt_i <= this [m/s]
+  double stepTolerance = 1e-9;        ///< ... or when StepNorm(d)/timeScale <= this [m/s]
   LineSearchKind lineSearch = LineSearchKind::Armijo;
   PsdProjection psdProjection = PsdProjection::Clamp;
   double armijoConstant = 1e-4;       ///< c in the Armijo condition
   double backtrackFactor = 0.5;       ///< α ← factor α on each rejected trial
   int maxLineSearchSteps = 40;        ///< trials before the stage is declared Diverged
   /// Line search by independent parts where the problem splits (optim/part_line_search.h): each
-  /// part of the stage gets its own step length. False: one step length for all dofs.
+  /// part gets its own step length. False: one step length for all dofs.
   bool partLineSearch = true;
   /// The linear solves (optim/linear_solver.h); Auto: Krylov from 3000 unknowns up.
   LinearSolverSettings linear{LinearSolverKind::Auto};
@@ -121,8 +112,8 @@ inline constexpr auto kNonlinearSolverFields = std::tuple_cat(
                   "One step length per independent part of a stage (bodies no contact joins)")),
     LiftFields(&NonlinearSolverParams::linear, kLinearSolverFields));
 
-/// The convergence test a solve passed, formatted only on demand (SolverStats::Message): once per
-/// stage, formatting it cost 9 % of a free-flight step of the drop.
+/// The convergence test a solve passed, formatted only on demand (SolverStats::Message; why:
+/// docs/optim-notes.md).
 struct ConvergenceTest {
   const char* what = nullptr;  ///< null: no test passed
   double value = 0.0;
@@ -142,7 +133,7 @@ struct SolverStats {
   int lineSearchSteps = 0;             ///< rejected line-search trials, summed over iterations
   int regularizations = 0;             ///< times the Hessian needed a diagonal shift
   int limitedSteps = 0;                ///< iterations that took the problem's shortened step
-                                       ///< (StageProblem::LimitStep)
+                                       ///< (StageProblem::TrustStep, LimitStep)
   double initialGradientNorm = 0.0;    ///< ‖g‖∞ at the first iterate
   double finalGradientNorm = 0.0;      ///< ‖g‖∞ at the last evaluated iterate
   double finalDecrement = 0.0;         ///< ½ g^T H^-1 g at the last iteration [J]
@@ -167,7 +158,7 @@ struct NewtonWorkspace {
   Eigen::VectorXd gradient, direction, step, limited, trialGradient;
   Eigen::SparseMatrix<double> matrix, shifted, trialMatrix;
   std::vector<Eigen::Index> diagonal;
-  PartLineSearch parts;
+  LineSearch search;
   /// Newton iterations of the last solve on this workspace that converged in its main loop;
   /// -1 when the last solve ended otherwise (its Krylov forcing term's start: optim/forcing_term.h).
   int lastConvergedIterations = -1;
@@ -178,15 +169,12 @@ struct NewtonWorkspace {
 struct NewtonStart {
   /// Assemble the exact Hessian at the first iteration, as the adaptive projection does after a
   /// full step (step 1 above; projected again if it is not positive definite or gives no descent
-  /// direction). For a start the caller expects in the local regime, e.g. a warm start after a
-  /// stage that converged in a few full steps: there the projected first iteration only reduced
-  /// the Newton decrement about 5× (the sliding incline's friction, whose projected model raises
-  /// the curvature along the slip), and the stage took one iteration more.
+  /// direction). For a start the caller expects in the local regime (docs/optim-notes.md).
   bool exactHessian = false;
 };
 
 /// Minimizes the problem from its current state. The problem is left at the last accepted iterate.
-/// `timeScale` > 0 is the stage time step Δt_i [s] used by the step test. Invalid `params` (see
+/// `timeScale` > 0 [s] scales the step test. Invalid `params` (see
 /// Validate) or `timeScale` give Diverged with the reason, without touching the problem.
 /// `iterations` counts the Newton directions computed: a quadratic takes 2 (the step, then the
 /// iteration whose decrement test passes).

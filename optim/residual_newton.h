@@ -1,11 +1,12 @@
-// Newton's method on a residual that is not a gradient (the dissipation modes without an
-// incremental potential, spec: "Stage-Discrete Dissipation").
+// Newton's method on a residual r that is not a gradient. See docs/solver.md; the notes and
+// measurements behind these rules: docs/optim-notes.md.
 //
 // Each iteration k at state s_k:
 //   1. r, J ← problem.EvaluateResidual (J = ∂r/∂δ, not symmetric). Non-finite → Diverged.
-//   2. d = −J⁻¹ r with a sparse LU (UMFPACK; symbolic analysis kept while the pattern holds; a
-//      dense partial-pivoting LU up to 48 unknowns). If J
-//      is singular, J + τI with τ = 1e-8 max|J_ii| ×10 up to 12 times; none works → Diverged.
+//   2. d = −J⁻¹ r with a sparse LU (KLU or UMFPACK; symbolic analysis kept while the pattern
+//      holds; a dense partial-pivoting LU up to 48 unknowns). If J is singular, J + τI on the
+//      shift ladder of optim/regularized_solve.h (ShiftGoal::Nonsingular: τ = 1e-8 max|J_ii|
+//      ×10, 12 times); none works → Diverged.
 //   3. Convergence tests on d before stepping, as the minimizer's (same parameters and units):
 //        a. ½ |r·d| <= absoluteTolerance  [J]  (the Newton decrement's analogue)
 //        b. ‖r‖∞ <= relativeTolerance ‖r_0‖∞
@@ -13,32 +14,23 @@
 //      On success the step d is still taken: unchecked when the previous iteration's full step
 //      (α = 1) cut θ by 1e-4 or more (‖r‖ by 100×: the quadratic regime, where Newton's step
 //      lowers θ further), otherwise only if θ(s ⊕ d) <= θ(s), which costs one residual
-//      evaluation (SolverStats then reports ‖r‖ at s ⊕ d; unchecked, at s). Measured on the
-//      sliding incline (default mode, BDF2, Δt = 0.1): that check was 13 % of the stage solve.
-//   4. Trust region: where problem.TrustStep shortens d (a rigid body's correction bounded by a
-//      quarter of its radius, core/dynamics/scene_stage.h), the line search starts each part at α_P = the
-//      smallest fraction any of its dofs was shortened to (the whole step without parts), along
-//      Newton's own direction, so the merit test below stays exact. Measured on the 1000-sphere
-//      pile (default mode, 0.3 s): Δt = 2e-2 32.7 → 29.9 iterations per step, stages re-solved
-//      with explicit normals 7 → 1, rejected trials 1673 → 442; Δt = 1e-2 12.13 → 12.00. The
-//      contact step limit (LimitStep) is not used here.
-//      Line search on the merit θ(s) = ½‖r(s)‖²: α = φ, φβ, φβ², ... (φ = 1 where the trust
-//      region did not shorten d) until
+//      evaluation (SolverStats then reports ‖r‖ at s ⊕ d; unchecked, at s).
+//   4. Trust region: where problem.TrustStep shortens d blockwise, the line search starts each
+//      part at α_P = the smallest fraction any of its dofs was shortened to (the whole step
+//      without parts), along Newton's own direction, so the merit test below stays exact.
+//      problem.LimitStep is not used here.
+//      Line search on the merit θ(s) = ½‖r(s)‖² (optim/line_search.h, Merit::ResidualSquared):
+//      α = φ, φβ, φβ², ... (φ = 1 where the trust region did not shorten d) until
 //        θ(s ⊕ αd) <= (1 − 2cα) θ(s)   (c = armijoConstant; d is a descent direction of θ with
 //      slope −2θ because J d = −r), or |θ(s ⊕ αd) − θ(s)| within round-off of θ(s) while
-//      α‖d‖ is negligible. maxLineSearchSteps rejections → Diverged. The full step's trial is
-//      evaluated with its Jacobian where the problem offers EvaluateResidualAtStep (equal bit for bit
-//      to step 1 after the commit): when it is accepted, step 1 of the next iteration is skipped.
+//      α ½|r·d| is too. maxLineSearchSteps rejections → Diverged. The first trial is evaluated
+//      with its Jacobian where the problem offers EvaluateResidualAtStep (equal bit for bit to
+//      step 1 after the commit): when it is accepted, step 1 of the next iteration is skipped.
 //      With partLineSearch, independent parts (StageProblem::LastSplit) get their own α, tested
 //      on their own θ_P (optim/part_line_search.h); steps 3 and 5 then read the smallest α.
 //   5. Stagnation: three iterations in a row whose accepted step was cut to α <= β^10 and lowered
-//      θ by less than 1e-6 θ → Diverged at once (a residual without a nearby root or with a kink
-//      where Newton's direction stops helping; the caller's fallback then takes over). Measured
-//      on a box set on another box sliding at 1 m/s (Δt = 1e-2): its failing stage took 24
-//      instead of 39 Newton iterations and 140 instead of 592 rejected trials to reach the
-//      fallback, 1.9 instead of 6.1 ms; on the 1000-sphere pile (2 s, Δt = 1e-2) it ends the two
-//      landing stages that fall back either way sooner (rejected trials over the run 2055 → 1380);
-//      the other shipped scenes and a 75-sphere pile never trigger it.
+//      θ by less than 1e-6 θ → Diverged at once (a residual without a nearby root, or with a kink
+//      where Newton's direction stops helping: the caller's fallback then takes over).
 //   Iteration cap → Stopped.
 #pragma once
 
