@@ -1,16 +1,9 @@
 // Block-Jacobi preconditioner for the Krylov solves of optim/linear_solver.cpp (our conjugate
 // gradients and Eigen's BiCGSTAB, whose preconditioner interface it follows): the inverses of the
-// diagonal blocks of a sparse matrix, one block per rigid body (its six dofs, translation and
-// rotation, which its contacts couple) and one per point of R³ (a soft node).
-//
-// The layout is SetLayout(DofBlockLayout{k}) (optim/block_layout.h; StageProblem::BlockLayout):
-// dofs [0, 6k) form k blocks of 6, the rest blocks of 3. k = 0 gives 3×3 blocks throughout.
-// Where the layout does not fit the matrix (6k > n, or n − 6k not a multiple of 3) every block is
-// 1×1 (plain Jacobi).
-//
-// Measured on the 1000-sphere pile (6000 unknowns, first 0.3 s, BDF2 default mode, Krylov solves):
-// 129 iterations per solve with 3×3 blocks (a body's translation and rotation apart), 94 with its
-// 6×6 block.
+// diagonal blocks of a sparse matrix, as a DofBlockLayout gives them (optim/block_layout.h):
+// blocks of 6 dofs first, then blocks of 3 (StageProblem::BlockLayout). Where the layout does not
+// fit the matrix (6k > n, or n − 6k not a multiple of 3) every block is 1×1 (plain Jacobi).
+// Measurements: docs/optim-notes.md.
 #pragma once
 
 #include <Eigen/Core>

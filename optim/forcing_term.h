@@ -16,16 +16,8 @@
 // gradients from x = 0 give one for any iteration count (SPD preconditioner), and η < 1 gives
 // F·J d <= −(1 − η)‖F‖² for the residual's merit ½‖F‖².
 //
-// Measured (1000-sphere pile, BDF2 default mode, Δt = 1e-2, 6000 unknowns, Krylov solves): Krylov
-// iterations per Newton solve 94 → 16 over the full 2 s, Newton iterations per step 11.85 → 12.69,
-// wall time 84.6 → 69.5 s per simulated second. η_max = 0.01 / 0.3 / 0.5 over the first 0.3 s: 50.0
-// / 47.2 / 54.3 s/s against 40.9 with 0.1 (56.3 with exact solves); η_0 = floor at every stage:
-// 49.3 against 41.2 s/s. The 10k-tet soft ball (6303 unknowns, through its impact), wall s per
-// simulated second with exact Krylov solves → η_0 = η_max always → the rule here: default mode at
-// Δt = 1e-3 (stages of about 3 Newton iterations) 67.8 → 77.0 → 63.5, at Δt = 1e-2 19.1 → 14.4 →
-// 17.3; explicit normals at 1e-3 66.0 → 62.1 (the rule), at 1e-2 15.2 → 12.9 (the rule). A
-// threshold of 3 iterations kept the Δt = 1e-3 stages loose (their inexact first step makes them
-// take 4) and slow (85.6).
+// See docs/solver.md; measurements behind η_max, η_0 and kTightStartIterations:
+// docs/optim-notes.md.
 #pragma once
 
 namespace superdex {

@@ -1,6 +1,7 @@
 // Sparse linear solves of the stage solvers: direct (CHOLMOD Cholesky, supernodal or simplicial by
-// CHOLMOD's rule, with Eigen's SimplicialLDLT as fallback; UMFPACK LU) or Krylov (block-Jacobi-
-// preconditioned conjugate gradients; BiCGSTAB) with the direct solve as fallback.
+// CHOLMOD's rule, with Eigen's SimplicialLDLT as fallback; KLU or UMFPACK LU) or Krylov (block-
+// Jacobi-preconditioned conjugate gradients; BiCGSTAB) with the direct solve as fallback.
+// See docs/solver.md; measurements behind the choices: docs/optim-notes.md.
 #pragma once
 
 #include <Eigen/Core>
@@ -15,10 +16,7 @@ namespace superdex {
 
 /// How a stage's linear systems are solved.
 enum class LinearSolverKind {
-  /// Iterative from kAutoIterativeUnknowns unknowns up, Direct below. Measured on resting heaps of
-  /// spheres (bench/bench_scaling.cpp): the direct factors of a 3D contact graph fill in
-  /// superlinearly (1000 → 4000 spheres: 2× the time per active sample), while the Krylov solves
-  /// take 10–60 iterations there (the mass term M/Δt² keeps the stage well conditioned).
+  /// Iterative from kAutoIterativeUnknowns unknowns up, Direct below (docs/optim-notes.md).
   Auto,
   Direct,     ///< sparse Cholesky (symmetric) / LU (unsymmetric) on every system
   /// Block-Jacobi-preconditioned (optim/block_jacobi.h) conjugate gradients (symmetric) / BiCGSTAB
@@ -32,7 +30,7 @@ inline bool ParseLinearSolverKind(const std::string& name, LinearSolverKind* kin
   return Parse(name, kind);
 }
 
-/// Auto uses the iterative solvers from this many unknowns up (1000 rigid bodies = 6000).
+/// Auto uses the iterative solvers from this many unknowns up.
 constexpr Eigen::Index kAutoIterativeUnknowns = 3000;
 
 struct LinearSolverSettings {
@@ -116,8 +114,8 @@ class SymmetricSolver : public LinearSolverBase {
 };
 
 /// Solves J x = b for a general square J (compressed column): UMFPACK LU with the symmetric
-/// strategy and a METIS ordering (stage Jacobians are structurally symmetric and nearly symmetric
-/// in value), a dense partial-pivoting LU up to 48 unknowns. Keeps the symbolic analysis while
+/// strategy and a METIS ordering (for structurally symmetric matrices, nearly symmetric in value),
+/// or KLU (Backend), a dense partial-pivoting LU up to 48 unknowns. Keeps the symbolic analysis while
 /// the sparsity pattern stays the same between calls.
 class UnsymmetricSolver : public LinearSolverBase {
  public:
@@ -136,8 +134,8 @@ class UnsymmetricSolver : public LinearSolverBase {
   /// Factorize prepared the iterative solver); all NaN if J is singular.
   Eigen::VectorXd SolveTransposed(const Eigen::VectorXd& b);
   /// "dense" (<= 48 unknowns), "klu" or "umfpack" (KLU where its analysis estimates fewer than
-  /// 40 flops per factor entry: contact graphs; UMFPACK where the factors fill in: tet meshes),
-  /// "bicgstab" (iterative, not fallen back): the backend of the last factorization or solve.
+  /// 40 flops per factor entry, UMFPACK where the factors fill in), "bicgstab" (iterative, not
+  /// fallen back): the backend of the last factorization or solve.
   const char* Backend() const;
 
  private:

@@ -60,7 +60,7 @@ void PartLineSearch::StartMinimization(const Eigen::VectorXd& g, const Eigen::Ve
   for (Eigen::Index k = 0; k < dir.size(); ++k)
     slope_[partOfUnit_[base_.unitOfDof[k]]] += g[k] * dir[k];
   // g·d < 0 overall does not make every part's g_P·d_P negative (an indefinite exact Hessian, or
-  // a step the problem shortened body by body): such a part stays where it is this iteration.
+  // a step the problem shortened blockwise): such a part stays where it is this iteration.
   for (int p = 0; p < parts_; ++p)
     if (!(slope_[p] < 0.0)) {
       alpha_[p] = 0.0;

@@ -1,23 +1,20 @@
-// A line search by the independent parts of a stage (StageProblem::LastSplit).
+// A line search by the independent parts of a stage (StageProblem::LastSplit), the by-parts mode
+// of optim/line_search.h.
 //
 // Where no term couples two groups of dofs, the objective splits, f = Σ_P f_P, and so does
 // Newton's direction (the Hessian, or the residual's Jacobian, is block diagonal over the parts).
-// One step length for all parts lets a single part that needs a short step (a body landing on a
-// pile) cut every other part's step as well, and the whole stage then converges only linearly.
-// Here each part P of the base state s — a connected component of the units joined by terms
-// nonzero at s — gets its own step length α_P. The trial s ⊕ Σ_P α_P d_P is evaluated once for
-// all parts; parts joined by a term nonzero at the trial form one group G, tested on its share:
+// One step length for all parts lets a single part that needs a short step cut every other
+// part's step as well. Here each part P of the base state s — a connected component of the units
+// joined by terms nonzero at s — gets its own step length α_P. The trial s ⊕ Σ_P α_P d_P is
+// evaluated once for all parts; parts joined by a term nonzero at the trial form one group G,
+// tested on its share:
 //   minimization:  f_G(trial) <= f_G(s) + c Σ_{P∈G} α_P g_P·d_P
 //   residual:      θ_G(trial) <= θ_G(s) − 2c Σ_{P∈G} α_P θ_P(s),   θ = ½‖r‖² over G's dofs
 // (f_G(s) = Σ_{P∈G} f_P(s): the parts were uncoupled at s), or the round-off band: the group's
 // change and its predicted change both within the band. Every part of a failing group has α_P
 // cut by β, and the trial is evaluated again until every group passes; an accepted trial lowers
 // f (θ) by the sum of its groups' decreases, as a single Armijo step would.
-// Measured (Newton iterations per step, mean, one step length → by parts; BDF2, Δt = 1e-2, default
-// mode unless named): four separate 75-sphere piles 11.99 → 10.86 (explicit normals 9.87 → 8.91);
-// one 75-sphere pile 9.64 → 9.19 (7.88 → 7.59); the 1000-sphere pile's first 0.6 s 19.18 → 18.07
-// (rejected trials 1135 → 899, fallbacks 2 → 1); stack, pyramid, drop and incline unchanged (one
-// part, or parts that never need a cut).
+// See docs/solver.md; measurements: docs/optim-notes.md.
 #pragma once
 
 #include <vector>
@@ -47,11 +44,11 @@ class PartLineSearch {
   void StartMinimization(const Eigen::VectorXd& g, const Eigen::VectorXd& dir);
   void StartResidual(const Eigen::VectorXd& r, const Eigen::VectorXd& dir);
 
-  /// A Newton step the problem shortened body by body (StageProblem::TrustStep, LimitStep):
-  /// where a part's shortened step `limited` is no descent direction for its share
-  /// (g_P·l_P >= 0: the shortening broke the coupled Newton direction of bodies in contact), the
-  /// part takes its Newton direction d_P scaled by the smallest fraction the shortening applied
-  /// to its dofs, a descent direction that respects every body's bound.
+  /// A Newton step the problem shortened blockwise (StageProblem::TrustStep, LimitStep): where a
+  /// part's shortened step `limited` is no descent direction for its share (g_P·l_P >= 0: the
+  /// shortening broke the coupled Newton direction of its blocks), the part takes its Newton
+  /// direction d_P scaled by the smallest fraction the shortening applied to its dofs, a descent
+  /// direction that respects every block's bound.
   void ShortenByParts(const Eigen::VectorXd& g, const Eigen::VectorXd& d, Eigen::VectorXd* limited);
 
   /// After StartResidual: α_P ← min(α_P, φ_P), φ_P the smallest fraction the shortening

@@ -1,5 +1,6 @@
 // The abstract problem the stage solvers work on: a scalar objective over a manifold of states,
-// stepped by tangent vectors. optim/ knows nothing of physics.
+// stepped by tangent vectors. optim/ knows nothing of physics: what the core's stage problem puts
+// behind these hooks is in docs/optim-notes.md.
 #pragma once
 
 #include <utility>
@@ -15,8 +16,7 @@ namespace superdex {
 
 /// How local (per-element) Hessians are made positive semi-definite before assembly. A projected
 /// Hessian is a model for globalization, not the exact one: a problem may also replace a convex
-/// term's exact Hessian by a majorizing one there (the contact pipeline does for Coulomb friction,
-/// energies/contact_dissipation.h: DissipationHessian::Isotropic). None asks for the exact Hessian.
+/// term's exact Hessian by a majorizing one there. None asks for the exact Hessian.
 enum class PsdProjection {
   None,   ///< exact Hessian (may be indefinite)
   Clamp,  ///< negative eigenvalues set to zero
@@ -25,7 +25,7 @@ enum class PsdProjection {
 
 
 /// How the objective of one evaluation splits into independent parts (StageProblem::LastSplit).
-/// The dofs are grouped into units (a rigid body's six); f is the sum of the units' shares, and
+/// The dofs are grouped into units (e.g. a block of dofs); f is the sum of the units' shares, and
 /// the only terms that couple units are those listed in `joins`: every term that was nonzero at
 /// that state and involves two units. Units not linked through `joins` were independent there:
 /// f's Hessian (the residual's Jacobian) has no entry between them.
@@ -37,7 +37,7 @@ struct StageSplit {
 };
 
 /// An objective f over states s of a manifold. The problem keeps a current state s; a tangent step
-/// d in R^n moves it by the problem's retraction s ⊕ d (for a rigid body p += dp, R = exp(dθ) R).
+/// d in R^n moves it by the problem's retraction s ⊕ d (s + d on a vector space).
 class StageProblem {
  public:
   virtual ~StageProblem() = default;
@@ -102,17 +102,15 @@ class StageProblem {
   }
 
   /// Newton's global phase: may shorten the step d blockwise where the problem knows that its
-  /// local model is unreliable (e.g. a contact about to be crossed far deeper than the model
+  /// local model is unreliable (e.g. a constraint about to be crossed far deeper than the model
   /// sees). Returns true if d was changed. The solvers use the shortened step only when it is
   /// still a descent direction, and test convergence on the unshortened one. Default: no change.
   virtual bool LimitStep(Eigen::VectorXd* /*d*/) { return false; }
 
   /// Newton's trust region: may shorten a Newton correction d blockwise so that no part of the
-  /// state moves farther in one iteration than the problem's local models can be trusted (e.g. a
-  /// rigid body by more than a fraction of its own size, across which a contact's distance field
-  /// may kink or a thin collider may be crossed). Applied before LimitStep, to Newton corrections
-  /// only (a warm start, the motion's own prediction, is not a correction). Returns true if d was
-  /// changed; the solvers then treat the step as LimitStep's. Default: no change.
+  /// state moves farther in one iteration than the problem's local models can be trusted.
+  /// Applied before LimitStep, to Newton corrections only (not to a warm start). Returns true if
+  /// d was changed; the solvers then treat the step as LimitStep's. Default: no change.
   virtual bool TrustStep(Eigen::VectorXd* /*d*/) { return false; }
 
   /// The split (above) of the evaluation just made — Value, Evaluate, EvaluateAtStep, Residual,
@@ -120,7 +118,7 @@ class StageProblem {
   /// default): the problem does not split, and the solvers treat it as one part.
   virtual bool LastSplit(StageSplit* /*split*/) { return false; }
 
-  /// A norm of a step in length units [m], used for the step convergence test. Default: max-norm.
+  /// A norm of a step [m], used for the step convergence test. Default: max-norm.
   virtual double StepNorm(const Eigen::VectorXd& d) const { return d.lpNorm<Eigen::Infinity>(); }
 
   /// The diagonal blocks of the dofs (optim/block_layout.h), which the Krylov solves'

@@ -1,7 +1,7 @@
 // Sparse assembly from triplets that keeps the pattern between calls.
 //
 // A Newton solve assembles its Hessian or Jacobian from the same (row, col) sequence at most
-// iterations while the contact pairs and their stencils stay. When the sequence equals the
+// iterations while the problem's coupling terms and their stencils stay. When the sequence equals the
 // previous call's, the values are scattered into the previous pattern through a stored slot per
 // triplet (no sort, no transposition, no allocation; the slots are found the first time a
 // sequence comes back). A different sequence whose entries are exactly the stored pattern's (each
@@ -13,11 +13,11 @@
 //
 // With SetKeepSuperset(true), a sequence whose entries are a large enough subset of the stored
 // pattern's (at least kSupersetFill of them) is scattered into it too, the entries it misses set
-// to explicit zeros: the same values, a pattern that stays while contacts come and go (a pile's
-// flickering contacts rebuilt it at 42 % of its assemblies). Krylov solves give the same
+// to explicit zeros: the same values, a pattern that stays while coupling terms come and go
+// (docs/optim-notes.md). Krylov solves give the same
 // iterates with or without explicit zeros; a sparse factorization may order differently.
 //
-// Dense 6 × 6 blocks (a rigid contact pair's stencil blocks) may be passed as blocks rather than
+// Dense 6 × 6 blocks (e.g. a stencil's blocks of six dofs) may be passed as blocks rather than
 // as 36 triplets each: one (row, col) and one slot per block column instead of 36 of each, half
 // the memory traffic. They count as their 36 triplets (column by column, rows in order) standing
 // in the triplet sequence before index `blockPosition`.
