@@ -600,25 +600,41 @@ EnergyReport Scene::Energies() {
   return e;
 }
 
-Eigen::Vector3d Scene::TotalLinearMomentum() const {
+namespace {
+
+// Σ over dynamic rigid bodies of rigid(model, state) plus Σ over soft nodes of m_a node(x_a, v_a).
+template <typename Rigid, typename Node>
+Eigen::Vector3d SumOverBodies(const std::vector<RigidBodyModel>& models,
+                              const std::vector<RigidBodyState>& states,
+                              const std::vector<SoftBodyModel>& softModels,
+                              const std::vector<SoftBodyState>& softStates, Rigid rigid,
+                              Node node) {
   Eigen::Vector3d L = Eigen::Vector3d::Zero();
-  for (size_t i = 0; i < models_.size(); ++i)
-    if (models_[i].dynamic) L += LinearMomentum(models_[i], states_[i]);
-  for (size_t s = 0; s < softModels_.size(); ++s)
-    for (int a = 0; a < softModels_[s].NumNodes(); ++a)
-      L += softModels_[s].nodeMass[a] * softStates_[s].v.segment<3>(3 * a);
+  for (size_t i = 0; i < models.size(); ++i)
+    if (models[i].dynamic) L += rigid(models[i], states[i]);
+  for (size_t s = 0; s < softModels.size(); ++s)
+    for (int a = 0; a < softModels[s].NumNodes(); ++a)
+      L += softModels[s].nodeMass[a] *
+           node(softStates[s].x.segment<3>(3 * a), softStates[s].v.segment<3>(3 * a));
   return L;
 }
 
+}  // namespace
+
+Eigen::Vector3d Scene::TotalLinearMomentum() const {
+  return SumOverBodies(
+      models_, states_, softModels_, softStates_,
+      [](const RigidBodyModel& m, const RigidBodyState& st) { return LinearMomentum(m, st); },
+      [](const Eigen::Vector3d&, const Eigen::Vector3d& v) -> Eigen::Vector3d { return v; });
+}
+
 Eigen::Vector3d Scene::TotalAngularMomentum() const {
-  Eigen::Vector3d L = Eigen::Vector3d::Zero();
-  for (size_t i = 0; i < models_.size(); ++i)
-    if (models_[i].dynamic) L += AngularMomentum(models_[i], states_[i]);
-  for (size_t s = 0; s < softModels_.size(); ++s)
-    for (int a = 0; a < softModels_[s].NumNodes(); ++a)
-      L += softModels_[s].nodeMass[a] *
-           softStates_[s].x.segment<3>(3 * a).cross(softStates_[s].v.segment<3>(3 * a));
-  return L;
+  return SumOverBodies(
+      models_, states_, softModels_, softStates_,
+      [](const RigidBodyModel& m, const RigidBodyState& st) { return AngularMomentum(m, st); },
+      [](const Eigen::Vector3d& x, const Eigen::Vector3d& v) -> Eigen::Vector3d {
+        return x.cross(v);
+      });
 }
 
 std::vector<std::string> Scene::Notices() const {

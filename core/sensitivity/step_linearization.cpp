@@ -64,6 +64,19 @@ std::vector<std::vector<int>> ColourMovers(std::vector<Mover>* moversPtr) {
 
 
 
+// The sizes of one recorded step's linearization: s stages of nd dofs, a packed state of ns
+// entries, P model parameters; z = [S_n, δ_0 … δ_{s−1}] has zSize entries, the outputs
+// [ρ_0 … ρ_{s−1}, S_{n+1}] m.
+struct StepSizes {
+  int s, nd, ns, P, zSize, m;
+};
+
+StepSizes SizesOf(const Scene& scene, const StepTape& tape, const Eigen::VectorXd& S0,
+                  const std::vector<SceneParameter>& model) {
+  const int s = tape.used, nd = scene.StageDofs(), ns = static_cast<int>(S0.size());
+  return {s, nd, ns, static_cast<int>(model.size()), ns + s * nd, s * nd + ns};
+}
+
 // The movers of one recorded step's differences, the unit of each output row (ρ_i rows by dof,
 // S_{n+1} rows by state entry), their colour classes, the model parameters moved alone and every
 // parameter's difference step.
@@ -79,12 +92,8 @@ struct MoverLayout {
 MoverLayout LayOutMovers(Scene& scene, const StepTape& tape,
                          const std::vector<SceneParameter>& model, const Eigen::VectorXd& S0,
                          double dt) {
-  const int s = tape.used;
-  const int nd = scene.StageDofs();
-  const int ns = static_cast<int>(S0.size());
-  const int P = static_cast<int>(model.size());
-  const int zSize = ns + s * nd;
-  const int m = s * nd + ns;
+  const StepSizes z = SizesOf(scene, tape, S0, model);
+  const int s = z.s, nd = z.nd, ns = z.ns, P = z.P, zSize = z.zSize, m = z.m;
   MoverLayout out;
   // The movers, and the unit of each output row (ρ_i rows by dof, S_{n+1} rows by state entry).
   const int blocks = 1 + scene.HistoryBlocks();
@@ -334,12 +343,8 @@ bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
   const Scene::Snapshot before = scene.Save();
   const Eigen::VectorXd S0 = scene.PackState();
   if (!StepAndRecord(&scene, dt, &tape_, report, error)) return false;
-  const int s = tape_.used;
-  const int nd = scene.StageDofs();
-  const int ns = static_cast<int>(S0.size());
-  const int P = static_cast<int>(model.size());
-  const int zSize = ns + s * nd;
-  const int m = s * nd + ns;
+  const StepSizes z = SizesOf(scene, tape_, S0, model);
+  const int nd = z.nd, ns = z.ns, P = z.P, zSize = z.zSize, m = z.m;
   stateSize_ = ns;
   numDofs_ = nd;
   parameters_ = P;

@@ -78,9 +78,8 @@ ObservedTrajectory Observed(const SceneFile& file, const std::optional<std::stri
   throw py::value_error(e.message);
 }
 
-}  // namespace
-
-void BindFit(py::module_& m) {
+// ForwardSensitivity.
+void BindForwardSensitivity(py::module_& m) {
   py::class_<PySensitivity>(
       m, "ForwardSensitivity",
       "Forward sensitivities dS/dθ carried along a simulation (core/sensitivity/sensitivity.h): each stage\n"
@@ -128,7 +127,10 @@ void BindFit(py::module_& m) {
           "state_jacobian", [](const PySensitivity& s) { return s.sens.StateJacobian(); },
           "dS/dθ, (state size, P): rows as the scene's packed state")
       .def_readonly("parameters", &PySensitivity::names);
+}
 
+// FitResult, TrajectoryGradient, fit() and gradient().
+void BindFitting(py::module_& m) {
   py::class_<FitResult>(m, "FitResult", "The outcome of superdex.fit.")
       .def_readonly("names", &FitResult::names)
       .def_readonly("initial", &FitResult::initial)
@@ -230,6 +232,13 @@ void BindFit(py::module_& m) {
       "The fitting cost ½ Σ ‖c_a(t_k) − ĉ_a(t_k)‖² of superdex.fit at the scene file's values\n"
       "and its gradient in `parameters`, by one simulation and one adjoint pass (its cost does\n"
       "not grow with the number of initial-state parameters). Returns a TrajectoryGradient.");
+}
+
+}  // namespace
+
+void BindFit(py::module_& m) {
+  BindForwardSensitivity(m);
+  BindFitting(m);
 }
 
 }  // namespace superdex::python
