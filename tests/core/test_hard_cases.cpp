@@ -123,7 +123,7 @@ TEST_CASE("hard case: a 20 m/s sphere does not tunnel through a 1 cm static plat
   CHECK(scene.State({1}).v.z() > 0.0);    // bounced
   // (−φ inside a box is at most its half thickness, 5 mm here: the bounce is the criterion.)
   // The impact's residual solve fails once and that stage is re-solved with explicit normals
-  // (README, hard cases): this case keeps the fallback path (Scene::SolveStage) exercised.
+  // (docs/benchmarks.md, hard cases): this case keeps the fallback path (StageDriver) exercised.
   CHECK(o.fallbacks >= 1);
 }
 
