@@ -69,11 +69,21 @@ bool Scene::SetStageSolver(StageSolverKind kind, Error* error) {
   return true;
 }
 
+bool Scene::ValidParent(ActorHandle parent, Error* error) const {
+  return parent.index < NumActors() ||
+         Fail(error, "parent: invalid actor handle " + std::to_string(parent.index));
+}
+
+ActorHandle Scene::Register(bool soft, int local, const std::string& layer, ActorHandle parent) {
+  filter_.AddActor(layer, parent.index);
+  actors_.push_back({soft, local});
+  prepared_ = false;
+  ClearHistory();
+  return {NumActors() - 1};
+}
+
 ActorHandle Scene::AddRigidActor(const RigidActorDesc& desc, Error* error, ActorHandle parent) {
-  if (parent.index >= NumActors()) {
-    Fail(error, "parent: invalid actor handle " + std::to_string(parent.index));
-    return {};
-  }
+  if (!ValidParent(parent, error)) return {};
   RigidBodyModel model;
   RigidBodyState state;
   if (!BuildRigidBody(desc, "", &model, &state, error)) return {};
@@ -85,31 +95,22 @@ ActorHandle Scene::AddRigidActor(const RigidActorDesc& desc, Error* error, Actor
       shared = ShareSamples(models_[it->second], &model);
     if (!shared) sampleSets_.emplace(hash, static_cast<int>(models_.size()));
   }
-  filter_.AddActor(desc.contactLayer, parent.index);
-  actors_.push_back({false, static_cast<int>(models_.size())});
+  const int local = static_cast<int>(models_.size());
   models_.push_back(std::move(model));
-  states_.push_back(state);
-  prepared_ = false;
-  ClearHistory();
-  return {NumActors() - 1};
+  step_.states.push_back(state);
+  return Register(false, local, desc.contactLayer, parent);
 }
 
 ActorHandle Scene::AddSoftActor(const SoftActorDesc& desc, Error* error, ActorHandle parent) {
-  if (parent.index >= NumActors()) {
-    Fail(error, "parent: invalid actor handle " + std::to_string(parent.index));
-    return {};
-  }
+  if (!ValidParent(parent, error)) return {};
   SoftBodyModel model;
   SoftBodyState state;
   if (!BuildSoftBody(desc, "", &model, &state, error)) return {};
-  filter_.AddActor(desc.contactLayer, parent.index);
-  actors_.push_back({true, static_cast<int>(softModels_.size())});
+  const int local = static_cast<int>(softModels_.size());
   softModels_.push_back(std::move(model));
   softInitial_.push_back(state.x);
-  softStates_.push_back(std::move(state));
-  prepared_ = false;
-  ClearHistory();
-  return {NumActors() - 1};
+  step_.softStates.push_back(std::move(state));
+  return Register(true, local, desc.contactLayer, parent);
 }
 
 std::vector<ActorHandle> Scene::RigidActors() const {
@@ -121,19 +122,19 @@ std::vector<ActorHandle> Scene::RigidActors() const {
 
 Eigen::Vector3d Scene::CenterOfMass(ActorHandle a) const {
   const ActorRef& r = actors_[a.index];
-  if (!r.soft) return states_[r.local].p;
+  if (!r.soft) return step_.states[r.local].p;
   const SoftBodyModel& m = softModels_[r.local];
   Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (int i = 0; i < m.NumNodes(); ++i) c += m.nodeMass[i] * softStates_[r.local].x.segment<3>(3 * i);
+  for (int i = 0; i < m.NumNodes(); ++i) c += m.nodeMass[i] * step_.softStates[r.local].x.segment<3>(3 * i);
   return c / m.mass;
 }
 
 Eigen::Vector3d Scene::CenterOfMassVelocity(ActorHandle a) const {
   const ActorRef& r = actors_[a.index];
-  if (!r.soft) return states_[r.local].v;
+  if (!r.soft) return step_.states[r.local].v;
   const SoftBodyModel& m = softModels_[r.local];
   Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (int i = 0; i < m.NumNodes(); ++i) c += m.nodeMass[i] * softStates_[r.local].v.segment<3>(3 * i);
+  for (int i = 0; i < m.NumNodes(); ++i) c += m.nodeMass[i] * step_.softStates[r.local].v.segment<3>(3 * i);
   return c / m.mass;
 }
 
@@ -233,7 +234,7 @@ bool Scene::SetState(ActorHandle a, const RigidBodyState& state, Error* error) {
   if ((state.R.transpose() * state.R - Eigen::Matrix3d::Identity()).norm() > 1e-9 ||
       state.R.determinant() <= 0)
     return Fail(error, "state.R: must be a rotation matrix");
-  states_[actors_[a.index].local] = state;
+  step_.states[actors_[a.index].local] = state;
   ClearHistory();
   return true;
 }
@@ -261,8 +262,8 @@ void Scene::Prepare() {
 }
 
 std::vector<Eigen::VectorXd> Scene::CurrentSoftPositions() const {
-  std::vector<Eigen::VectorXd> x(softStates_.size());
-  for (size_t s = 0; s < softStates_.size(); ++s) x[s] = softStates_[s].x;
+  std::vector<Eigen::VectorXd> x(step_.softStates.size());
+  for (size_t s = 0; s < step_.softStates.size(); ++s) x[s] = step_.softStates[s].x;
   return x;
 }
 
@@ -294,7 +295,7 @@ double Scene::MinDetF() const {
   double minDet = INFINITY;
   for (size_t s = 0; s < softModels_.size(); ++s) {
     double md = INFINITY;
-    ElasticEnergy(softModels_[s], softStates_[s].x, &md);
+    ElasticEnergy(softModels_[s], step_.softStates[s].x, &md);
     minDet = std::min(minDet, md);
   }
   return minDet;
@@ -307,8 +308,8 @@ std::vector<RigidPose> Scene::CurrentPoses() const {
 }
 
 void Scene::CurrentPoses(std::vector<RigidPose>* poses) const {
-  poses->resize(states_.size());
-  for (size_t i = 0; i < states_.size(); ++i) (*poses)[i] = {states_[i].p, states_[i].R};
+  poses->resize(step_.states.size());
+  for (size_t i = 0; i < step_.states.size(); ++i) (*poses)[i] = {step_.states[i].p, step_.states[i].R};
 }
 
 void Scene::SolveStage(double dt, const std::vector<RigidBodyState>& start,
@@ -322,10 +323,10 @@ void Scene::SolveStage(double dt, const std::vector<RigidBodyState>& start,
   scene.pipeline = &pipeline_;
   scene.hasSoft = !softModels_.empty();
   scene.hasDissipation = hasDissipation_;
-  scene.states = &states_;
-  scene.history = &history_;
-  scene.historyTimes = &historyTimes_;
-  scene.time = time_;
+  scene.states = &step_.states;
+  scene.history = &step_.history;
+  scene.historyTimes = &step_.historyTimes;
+  scene.time = step_.time;
   ContactStats contact;
   const SolverStats st = driver_.Solve(settings_, scene, dt, start, last, poses, &contact, soft,
                                        softX, predictTime, recorder_);
@@ -347,9 +348,9 @@ bool Scene::Step(double h, StepReport* report, Error* error, StageRecorder* reco
   if (recorder_) recorder_->BeginStep();
   CurrentPoses(&buffers_.poses);
   buffers_.stepStart = buffers_.poses;
-  buffers_.next = states_;
+  buffers_.next = step_.states;
   StepWork w{buffers_.poses, buffers_.stepStart, buffers_.next, CurrentSoftPositions(), {},
-             softStates_, StepReport()};
+             step_.softStates, StepReport()};
   w.softStepStart = w.softX;
   StepReport& rep = w.report;
   rep.dt = h;
@@ -358,28 +359,28 @@ bool Scene::Step(double h, StepReport* report, Error* error, StageRecorder* reco
   // BDF3 starts with DIRK33 steps while its history fills: a Backward Euler start (local error
   // O(h²)) would cap its global order at 2. BDF2 starts with one BDF1 (Backward Euler) step, whose
   // O(h²) local error is within BDF2's own global order.
-  const bool bdf3Startup = method == IntegrationMethod::BDF3 && history_.size() < 2;
+  const bool bdf3Startup = method == IntegrationMethod::BDF3 && step_.history.size() < 2;
   if (IsMultistep(method) && !bdf3Startup)
     StepBdf(h, method, &w);
   else
     StepDirk(h, bdf3Startup ? IntegrationMethod::DIRK33 : method, &w);
   // History for the multistep methods: x_{n}, x_{n−1} with their times.
-  if (history_.size() < 2) {
-    history_.insert(history_.begin(), states_);
-    softHistory_.insert(softHistory_.begin(), softStates_);
-    historyTimes_.insert(historyTimes_.begin(), time_);
+  if (step_.history.size() < 2) {
+    step_.history.insert(step_.history.begin(), step_.states);
+    step_.softHistory.insert(step_.softHistory.begin(), step_.softStates);
+    step_.historyTimes.insert(step_.historyTimes.begin(), step_.time);
   } else {  // the oldest entry's storage takes the current state
-    std::swap(history_[0], history_[1]);
-    std::swap(softHistory_[0], softHistory_[1]);
-    std::swap(historyTimes_[0], historyTimes_[1]);
-    history_[0] = states_;
-    softHistory_[0] = softStates_;
-    historyTimes_[0] = time_;
+    std::swap(step_.history[0], step_.history[1]);
+    std::swap(step_.softHistory[0], step_.softHistory[1]);
+    std::swap(step_.historyTimes[0], step_.historyTimes[1]);
+    step_.history[0] = step_.states;
+    step_.softHistory[0] = step_.softStates;
+    step_.historyTimes[0] = step_.time;
   }
-  states_.swap(w.next);  // next keeps the former state's storage for the next step
-  softStates_ = std::move(w.softNext);
-  time_ += h;
-  rep.time = time_;
+  step_.states.swap(w.next);  // next keeps the former state's storage for the next step
+  step_.softStates = std::move(w.softNext);
+  step_.time += h;
+  rep.time = step_.time;
   const bool supplied = recorder_ && recorder_->Supplies();
   recorder_ = nullptr;
   if (supplied) {  // the state only
@@ -398,28 +399,28 @@ void Scene::StepBdf(double h, IntegrationMethod method, StepWork* work) {
   auto& [poses, stepStart, next, softX, softStepStart, softNext, rep] = *work;
   const size_t n = models_.size(), ns = softModels_.size();
   // BDF-k with variable steps.
-  const int k = std::min<int>(BdfSteps(method), static_cast<int>(history_.size()) + 1);
+  const int k = std::min<int>(BdfSteps(method), static_cast<int>(step_.history.size()) + 1);
   std::vector<double>& times = buffers_.bdfTimes;
-  times.assign({time_ + h, time_});
-  for (int j = 0; j + 1 < k; ++j) times.push_back(historyTimes_[j]);
+  times.assign({step_.time + h, step_.time});
+  for (int j = 0; j + 1 < k; ++j) times.push_back(step_.historyTimes[j]);
   std::vector<double>& weights = buffers_.bdfWeights;
   const double dt = BdfCoefficients(times, &weights);
   std::vector<RigidBodyState>& start = buffers_.start;
   start.resize(n);
   for (size_t i = 0; i < n; ++i) {
-    start[i] = Affine(weights[0], states_[i], 0.0, states_[i]);
-    for (int j = 1; j < k; ++j) start[i] = Affine(1.0, start[i], weights[j], history_[j - 1][i]);
+    start[i] = Affine(weights[0], step_.states[i], 0.0, step_.states[i]);
+    for (int j = 1; j < k; ++j) start[i] = Affine(1.0, start[i], weights[j], step_.history[j - 1][i]);
   }
   std::vector<SoftBodyState> softStart(ns);
   for (size_t s = 0; s < ns; ++s) {
-    softStart[s].x = weights[0] * softStates_[s].x;
-    softStart[s].v = weights[0] * softStates_[s].v;
+    softStart[s].x = weights[0] * step_.softStates[s].x;
+    softStart[s].v = weights[0] * step_.softStates[s].v;
     for (int j = 1; j < k; ++j) {
-      softStart[s].x += weights[j] * softHistory_[j - 1][s].x;
-      softStart[s].v += weights[j] * softHistory_[j - 1][s].v;
+      softStart[s].x += weights[j] * step_.softHistory[j - 1][s].x;
+      softStart[s].v += weights[j] * step_.softHistory[j - 1][s].v;
     }
   }
-  ApplyConstraints(time_ + h, &softX);
+  ApplyConstraints(step_.time + h, &softX);
   const SoftStage soft = MakeSoftStage(dt, softStart, softStepStart);
   SolveStage(dt, start, stepStart, &poses, &soft, &softX, h, &rep);
   for (size_t s = 0; s < ns; ++s) {
@@ -459,7 +460,7 @@ void Scene::StepDirk(double h, IntegrationMethod method, StepWork* work) {
   std::vector<Eigen::VectorXd> softLast = softStepStart;
   for (int st = 0; st < T.stages; ++st) {
     std::vector<RigidBodyState>& start = buffers_.start;
-    start = states_;
+    start = step_.states;
     for (size_t i = 0; i < n; ++i)
       for (int j = 0; j < st; ++j) {
         const double c = h * T.a[st][j];
@@ -468,7 +469,7 @@ void Scene::StepDirk(double h, IntegrationMethod method, StepWork* work) {
         start[i].v += c * VK[j][i].v;
         start[i].Rdot += c * VK[j][i].Rdot;
       }
-    std::vector<SoftBodyState> softStart = softStates_;
+    std::vector<SoftBodyState> softStart = step_.softStates;
     double cStage = 0.0;  // the stage's abscissa c_i = Σ_j a_ij
     for (int j = 0; j <= st; ++j) cStage += T.a[st][j];
     for (size_t s = 0; s < ns; ++s)
@@ -480,7 +481,7 @@ void Scene::StepDirk(double h, IntegrationMethod method, StepWork* work) {
     const double dt = h * T.a[st][st];
     // Dissipation geometry: the last configuration the bodies occupied (x_n, then Q_{i−1}).
     const std::vector<RigidPose>& last = st == 0 ? stepStart : Q[st - 1];
-    ApplyConstraints(time_ + cStage * h, &softX);
+    ApplyConstraints(step_.time + cStage * h, &softX);
     const SoftStage soft = MakeSoftStage(dt, softStart, softLast);
     SolveStage(dt, start, last, &poses, &soft, &softX, cStage * h, &rep);
     Q[st] = poses;
@@ -513,7 +514,7 @@ void Scene::StepDirk(double h, IntegrationMethod method, StepWork* work) {
   }
   for (size_t i = 0; i < n; ++i) {
     if (!models_[i].dynamic) continue;
-    const RigidBodyState& s = states_[i];
+    const RigidBodyState& s = step_.states[i];
     RigidBodyState end = s;  // q_n + h Σ b_i V_i, v_n + h Σ b_i K_i
     Eigen::Vector3d spin = SpinMomentum(s.R, s.Rdot, models_[i].secondMoment);
     for (int st = 0; st < T.stages; ++st) {
@@ -533,7 +534,7 @@ void Scene::StepDirk(double h, IntegrationMethod method, StepWork* work) {
     next[i].Rdot = end.Rdot + Skew(WorldInertia(next[i].R, J).ldlt().solve(missing)) * next[i].R;
   }
   for (size_t s = 0; s < ns; ++s) {
-    softNext[s] = softStates_[s];
+    softNext[s] = step_.softStates[s];
     for (int st = 0; st < T.stages; ++st) {
       softNext[s].x += h * T.b[st] * softVK[st][s].x;
       softNext[s].v += h * T.b[st] * softVK[st][s].v;
@@ -542,7 +543,7 @@ void Scene::StepDirk(double h, IntegrationMethod method, StepWork* work) {
   // Prescribed nodes sit exactly on their path at the step's end.
   std::vector<Eigen::VectorXd> endX(ns);
   for (size_t s = 0; s < ns; ++s) endX[s] = softNext[s].x;
-  ApplyConstraints(time_ + h, &endX);
+  ApplyConstraints(step_.time + h, &endX);
   for (size_t s = 0; s < ns; ++s) softNext[s].x = endX[s];
 }
 
@@ -586,15 +587,15 @@ EnergyReport Scene::Energies() {
   EnergyReport e;
   for (size_t i = 0; i < models_.size(); ++i) {
     if (!models_[i].dynamic) continue;
-    e.kinetic += KineticEnergy(models_[i], states_[i]);
-    e.gravity += -models_[i].mass * settings_.gravity.dot(states_[i].p);
+    e.kinetic += KineticEnergy(models_[i], step_.states[i]);
+    e.gravity += -models_[i].mass * settings_.gravity.dot(step_.states[i].p);
   }
   for (size_t s = 0; s < softModels_.size(); ++s) {
     const SoftBodyModel& m = softModels_[s];
-    e.kinetic += KineticEnergy(m, softStates_[s]);
+    e.kinetic += KineticEnergy(m, step_.softStates[s]);
     for (int i = 0; i < m.NumNodes(); ++i)
-      e.gravity += -m.nodeMass[i] * settings_.gravity.dot(softStates_[s].x.segment<3>(3 * i));
-    e.elastic += ElasticEnergy(m, softStates_[s].x, nullptr);
+      e.gravity += -m.nodeMass[i] * settings_.gravity.dot(step_.softStates[s].x.segment<3>(3 * i));
+    e.elastic += ElasticEnergy(m, step_.softStates[s].x, nullptr);
   }
   e.contact = ContactState().energy;
   return e;
@@ -623,14 +624,14 @@ Eigen::Vector3d SumOverBodies(const std::vector<RigidBodyModel>& models,
 
 Eigen::Vector3d Scene::TotalLinearMomentum() const {
   return SumOverBodies(
-      models_, states_, softModels_, softStates_,
+      models_, step_.states, softModels_, step_.softStates,
       [](const RigidBodyModel& m, const RigidBodyState& st) { return LinearMomentum(m, st); },
       [](const Eigen::Vector3d&, const Eigen::Vector3d& v) -> Eigen::Vector3d { return v; });
 }
 
 Eigen::Vector3d Scene::TotalAngularMomentum() const {
   return SumOverBodies(
-      models_, states_, softModels_, softStates_,
+      models_, step_.states, softModels_, step_.softStates,
       [](const RigidBodyModel& m, const RigidBodyState& st) { return AngularMomentum(m, st); },
       [](const Eigen::Vector3d& x, const Eigen::Vector3d& v) -> Eigen::Vector3d {
         return x.cross(v);

@@ -14,6 +14,7 @@
 #include "core/dynamics/stage_driver.h"
 #include "core/dynamics/stage_recorder.h"
 #include "core/dynamics/step_report.h"
+#include "core/dynamics/step_state.h"
 #include "core/model/enums.h"
 #include "core/model/error.h"
 #include "core/model/eval_params.h"
@@ -67,24 +68,26 @@ class Scene {
   /// be null): the stages' recording policy (core/dynamics/stage_recorder.h; sensitivities).
   bool Step(double dt, StepReport* report, Error* error, StageRecorder* recorder = nullptr);
 
-  double Time() const { return time_; }
+  double Time() const { return step_.time; }
   /// Every actor, rigid and soft; handles index this range in the order of creation.
   int NumActors() const { return static_cast<int>(actors_.size()); }
   bool IsSoft(ActorHandle a) const { return actors_[a.index].soft; }
   /// Rigid actors (a must be one).
   const RigidBodyModel& Model(ActorHandle a) const { return models_[actors_[a.index].local]; }
-  const RigidBodyState& State(ActorHandle a) const { return states_[actors_[a.index].local]; }
+  const RigidBodyState& State(ActorHandle a) const {
+    return step_.states[actors_[a.index].local];
+  }
   /// Soft actors (a must be one).
   const SoftBodyModel& SoftModel(ActorHandle a) const {
     return softModels_[actors_[a.index].local];
   }
   const SoftBodyState& SoftState(ActorHandle a) const {
-    return softStates_[actors_[a.index].local];
+    return step_.softStates[actors_[a.index].local];
   }
   /// The rigid actors' models and states, in creation order among rigid actors; RigidActors()[i]
   /// is the handle of Models()[i].
   const std::vector<RigidBodyModel>& Models() const { return models_; }
-  const std::vector<RigidBodyState>& States() const { return states_; }
+  const std::vector<RigidBodyState>& States() const { return step_.states; }
   std::vector<ActorHandle> RigidActors() const;
   /// Centre of mass [m] and its velocity [m/s] of any actor (soft: of the lumped node masses).
   Eigen::Vector3d CenterOfMass(ActorHandle a) const;
@@ -113,7 +116,7 @@ class Scene {
   /// lumped masses follow. Poisson's ratio and stiffness damping are kept.
   bool SetSoftMaterial(ActorHandle a, double youngsModulus, double density, Error* error);
   /// Whether the scene holds multistep history (any step since the last state change).
-  bool HasStepHistory() const { return !history_.empty(); }
+  bool HasStepHistory() const { return !step_.history.empty(); }
   /// The smallest V_f over the actors [m/s].
   double MinFrictionFalloffVel() const;
   /// The actor of that name (invalid handle if none).
@@ -146,15 +149,9 @@ class Scene {
   /// One-time notes about the scene (e.g. a collider type not supported yet).
   std::vector<std::string> Notices() const;
 
-  /// The scene's state at a point of its run (actors' states, multistep history, time and the
-  /// stage policy's state), to return to it (checkpointing; the adjoint's replays).
+  /// A point of the run with the stage policy's state, to return to (checkpoints, replays).
   struct Snapshot {
-    std::vector<RigidBodyState> states;
-    std::vector<SoftBodyState> softStates;
-    std::vector<std::vector<RigidBodyState>> history;
-    std::vector<std::vector<SoftBodyState>> softHistory;
-    std::vector<double> historyTimes;
-    double time = 0.0;
+    StepState step;
     StageDriver::State driver;
   };
   Snapshot Save() const;
@@ -185,25 +182,28 @@ class Scene {
     std::vector<SoftBodyState> softNext;
     StepReport report;
   };
-  // One step of h [s]: a variable-step BDF step (with the last states of history_), or the DIRK
+  // One step of h [s]: a variable-step BDF step (with the states of step_.history), or the DIRK
   // method's stages (core/dynamics/integrators.h), from x_n to the end states in *work.
   void StepBdf(double h, IntegrationMethod method, StepWork* work);
   void StepDirk(double h, IntegrationMethod method, StepWork* work);
   // The packed-state layout: calls visit(block, offset, actor ref, actor index) for every dynamic
-  // actor in each of the first `blocks` blocks (block 0: the current state, b >= 1: history_[b−1]).
+  // actor in each of the first `blocks` blocks (0: the current state, b >= 1: step_.history[b−1]).
   template <typename Visit>
   void VisitStateLayout(int blocks, Visit&& visit) const;
   // 1 + the history blocks that hold a state.
   int FilledStateBlocks() const;
 
   void ClearHistory();
+  bool ValidParent(ActorHandle parent, Error* error) const;  // no parent, or an existing actor
+  // Enters an actor held at `local` of its kind's arrays into the actor list and the filter.
+  ActorHandle Register(bool soft, int local, const std::string& layer, ActorHandle parent);
   void Prepare();
   std::vector<RigidPose> CurrentPoses() const;
   void CurrentPoses(std::vector<RigidPose>* poses) const;
   std::vector<Eigen::VectorXd> CurrentSoftPositions() const;
   struct ActorRef {
     bool soft = false;
-    int local = 0;  ///< index into models_/states_ or softModels_/softStates_
+    int local = 0;  ///< index into models_, step_.states or softModels_, step_.softStates
   };
   // Soft stage data: targets from the stage start, geometry from the last configuration.
   SoftStage MakeSoftStage(double dt, const std::vector<SoftBodyState>& start,
@@ -217,17 +217,11 @@ class Scene {
   std::vector<RigidBodyModel> models_;
   /// SamplesHash → indices into models_ of the distinct sample sets so far (ShareSamples).
   std::unordered_multimap<std::size_t, int> sampleSets_;
-  std::vector<RigidBodyState> states_;
   std::vector<SoftBodyModel> softModels_;
-  std::vector<SoftBodyState> softStates_;
   std::vector<Eigen::VectorXd> softInitial_;  // positions at creation (node constraints)
   std::vector<ActorRef> actors_;
   std::vector<int> softDofOffset_;
-  std::vector<std::vector<SoftBodyState>> softHistory_;
-  // Multistep history: history_[j] = state at step n−1−j, at time historyTimes_[j] (at most 2).
-  std::vector<std::vector<RigidBodyState>> history_;
-  std::vector<double> historyTimes_;
-  double time_ = 0.0;
+  StepState step_;  // what a step advances
   // Storage of Step and SolveStage kept from step to step, so that a rigid step does not allocate
   // once it has run (scratch: every use overwrites it first).
   struct StepBuffers {

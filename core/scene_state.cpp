@@ -41,7 +41,7 @@ bool Scene::SetSoftState(ActorHandle a, const SoftBodyState& state, Error* error
     return Fail(error, "state: x and v need " + std::to_string(n) + " entries (3 per node)");
   if (!state.x.allFinite() || !state.v.allFinite())
     return Fail(error, "state: x and v must be finite");
-  softStates_[actors_[a.index].local] = state;
+  step_.softStates[actors_[a.index].local] = state;
   ClearHistory();
   return true;
 }
@@ -128,19 +128,19 @@ int Scene::StateSize() {
 }
 
 int Scene::FilledStateBlocks() const {
-  return 1 + std::min(HistoryBlocks(), static_cast<int>(history_.size()));
+  return 1 + std::min(HistoryBlocks(), static_cast<int>(step_.history.size()));
 }
 
 Eigen::VectorXd Scene::PackState() {
   Eigen::VectorXd s = Eigen::VectorXd::Zero(StateSize());
   VisitStateLayout(FilledStateBlocks(), [&](int b, int o, const ActorRef& r, int) {
     if (r.soft) {
-      const SoftBodyState& st = b == 0 ? softStates_[r.local] : softHistory_[b - 1][r.local];
+      const SoftBodyState& st = b == 0 ? step_.softStates[r.local] : step_.softHistory[b - 1][r.local];
       const int n = static_cast<int>(st.x.size());
       s.segment(o, n) = st.x;
       s.segment(o + n, n) = st.v;
     } else {
-      PackRigid(b == 0 ? states_[r.local] : history_[b - 1][r.local], s.data() + o);
+      PackRigid(b == 0 ? step_.states[r.local] : step_.history[b - 1][r.local], s.data() + o);
     }
   });
   return s;
@@ -162,34 +162,27 @@ Eigen::VectorXd Scene::PackedVelocityMask() {
 void Scene::UnpackState(const Eigen::VectorXd& s) {
   VisitStateLayout(FilledStateBlocks(), [&](int b, int o, const ActorRef& r, int) {
     if (r.soft) {
-      SoftBodyState& st = b == 0 ? softStates_[r.local] : softHistory_[b - 1][r.local];
+      SoftBodyState& st = b == 0 ? step_.softStates[r.local] : step_.softHistory[b - 1][r.local];
       const int n = static_cast<int>(st.x.size());
       st.x = s.segment(o, n);
       st.v = s.segment(o + n, n);
     } else {
-      UnpackRigid(s.data() + o, b == 0 ? &states_[r.local] : &history_[b - 1][r.local]);
+      UnpackRigid(s.data() + o, b == 0 ? &step_.states[r.local] : &step_.history[b - 1][r.local]);
     }
   });
 }
 
-Scene::Snapshot Scene::Save() const {
-  return {states_, softStates_, history_, softHistory_, historyTimes_, time_, driver_.GetState()};
-}
+Scene::Snapshot Scene::Save() const { return {step_, driver_.GetState()}; }
 
 void Scene::Restore(const Snapshot& s) {
-  states_ = s.states;
-  softStates_ = s.softStates;
-  history_ = s.history;
-  softHistory_ = s.softHistory;
-  historyTimes_ = s.historyTimes;
-  time_ = s.time;
+  step_ = s.step;
   driver_.SetState(s.driver);
 }
 
 void Scene::ClearHistory() {
-  history_.clear();
-  softHistory_.clear();
-  historyTimes_.clear();
+  step_.history.clear();
+  step_.softHistory.clear();
+  step_.historyTimes.clear();
 }
 
 int Scene::StageDofOffset(ActorHandle a) const {
