@@ -63,10 +63,11 @@ void ChainToActor(const SamplePointMap& map, const PointStencil& point, double w
     if (nB > 0) {
       const Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 12> HyB =
           w * point.H.block(0, 3, 3, nB);
+      const Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 12> KrHyB = Kr * HyB;
       H->block(0, nA, 3, nB) += HyB;
-      H->block(3, nA, 3, nB) += Kr * HyB;
+      H->block(3, nA, 3, nB) += KrHyB;
       H->block(nA, 0, nB, 3) += HyB.transpose();
-      H->block(nA, 3, nB, 3) += (Kr * HyB).transpose();
+      H->block(nA, 3, nB, 3) += KrHyB.transpose();
     }
   } else {
     for (int a = 0; a < map.nodes; ++a) {

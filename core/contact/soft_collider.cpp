@@ -169,8 +169,7 @@ struct OnSoftCollider {
     withDissipation = diss && diss->coefficients.Any() && Bin.x0 &&
                       (A.rigid ? A.start != nullptr : A.x0 != nullptr);
     explicitNormals = withDissipation && diss->mode == DissipationMode::ExplicitNormals;
-    nA = A.rigid ? 6 : 9;
-    n = nA + 12;
+    n = (A.rigid ? 6 : 9) + 12;  // A's dofs, then B's tet
     box = SoftBounds(xB);
     boxLast = SoftBounds(xBn);
     box.Inflate(1e-9);
@@ -342,7 +341,7 @@ struct OnSoftCollider {
   std::vector<ContactSampleRecord>* records;
   double delta = 0.0;
   bool alignmentTest = false, withDissipation = false, explicitNormals = false;
-  int nA = 0, n = 0;
+  int n = 0;  // the stencil's size
   Aabb box, boxLast;
   PointStencil point;
 };

@@ -12,6 +12,9 @@
 namespace superdex {
 namespace {
 
+// Whether a stage's contact statistics show an active sample (penalty or dissipation).
+bool InContact(const ContactStats& c) { return c.activeSamples > 0 || c.dissipativeSamples > 0; }
+
 // Adds sign × the work counters and times of one solve to another's statistics.
 void AddSolverWork(const SolverStats& from, SolverStats* to, int sign = 1) {
   to->iterations += sign * from.iterations;

@@ -35,11 +35,6 @@ struct StageScene {
   double time = 0.0;  ///< t_n [s]
 };
 
-/// Whether a stage's contact statistics show an active sample (penalty or dissipation).
-inline bool InContact(const ContactStats& c) {
-  return c.activeSamples > 0 || c.dissipativeSamples > 0;
-}
-
 class StageDriver {
  public:
   /// Residual modes: stages that start from the explicit-normals minimizer after a slow one.
