@@ -74,9 +74,10 @@ bool Scene::ValidParent(ActorHandle parent, Error* error) const {
          Fail(error, "parent: invalid actor handle " + std::to_string(parent.index));
 }
 
-ActorHandle Scene::Register(bool soft, int local, const std::string& layer, ActorHandle parent) {
+ActorHandle Scene::Register(bool soft, int local, const std::string& layer, ActorHandle parent,
+                            bool kind) {
   filter_.AddActor(layer, parent.index);
-  actors_.push_back({soft, local});
+  actors_.push_back({soft, local, kind});
   prepared_ = false;
   ClearHistory();
   return {NumActors() - 1};
@@ -109,19 +110,32 @@ ActorHandle Scene::AddSoftActor(const SoftActorDesc& desc, Error* error, ActorHa
   const int local = static_cast<int>(softModels_.size());
   softModels_.push_back(std::move(model));
   softInitial_.push_back(state.x);
-  step_.softStates.push_back(std::move(state));
+  // Soft states lead the vector states, the kinds' follow.
+  step_.softStates.insert(step_.softStates.begin() + local, std::move(state));
   return Register(true, local, desc.contactLayer, parent);
+}
+
+ActorHandle Scene::AddActor(std::unique_ptr<ActorKind> actor, Error* error,
+                            const std::string& contactLayer, ActorHandle parent) {
+  if (!ValidParent(parent, error)) return {};
+  if (!actor) return Fail(error, "actor: null"), ActorHandle();
+  if (std::string m = ValidateKind(*actor); !m.empty()) return Fail(error, m), ActorHandle();
+  const int local = static_cast<int>(kinds_.size());
+  step_.softStates.push_back(actor->InitialState());
+  kinds_.push_back(std::move(actor));
+  return Register(false, local, contactLayer, parent, true);
 }
 
 std::vector<ActorHandle> Scene::RigidActors() const {
   std::vector<ActorHandle> out;
   for (int i = 0; i < NumActors(); ++i)
-    if (!actors_[i].soft) out.push_back({i});
+    if (!actors_[i].soft && !actors_[i].kind) out.push_back({i});
   return out;
 }
 
 Eigen::Vector3d Scene::CenterOfMass(ActorHandle a) const {
   const ActorRef& r = actors_[a.index];
+  if (r.kind) return kinds_[r.local]->CenterOfMass(KindStateOf(a));
   if (!r.soft) return step_.states[r.local].p;
   const SoftBodyModel& m = softModels_[r.local];
   Eigen::Vector3d c = Eigen::Vector3d::Zero();
@@ -131,6 +145,7 @@ Eigen::Vector3d Scene::CenterOfMass(ActorHandle a) const {
 
 Eigen::Vector3d Scene::CenterOfMassVelocity(ActorHandle a) const {
   const ActorRef& r = actors_[a.index];
+  if (r.kind) return kinds_[r.local]->CenterOfMassVelocity(KindStateOf(a));
   if (!r.soft) return step_.states[r.local].v;
   const SoftBodyModel& m = softModels_[r.local];
   Eigen::Vector3d c = Eigen::Vector3d::Zero();
@@ -155,7 +170,9 @@ bool ValidHandle(ActorHandle a, int n, const char* field, Error* error) {
 bool Scene::SetContactLayer(ActorHandle actor, const std::string& layer, Error* error) {
   if (!ValidHandle(actor, NumActors(), "actor", error)) return false;
   filter_.SetLayer(actor.index, layer);
-  if (actors_[actor.index].soft) {
+  if (actors_[actor.index].kind) {
+    // the filter holds a kind's layer
+  } else if (actors_[actor.index].soft) {
     softModels_[actors_[actor.index].local].contactLayer = layer;
   } else {
     models_[actors_[actor.index].local].contactLayer = layer;
@@ -248,15 +265,26 @@ void Scene::Prepare() {
       dofOffset_[i] = numDofs_;
       numDofs_ += 6;
     }
-  // Soft free nodes after every rigid dof (the stage's step norm relies on this order).
+  // Soft free nodes after every rigid dof (the stage's step norm relies on this order), then the
+  // kinds' free dofs.
   softDofOffset_.assign(softModels_.size(), 0);
   for (size_t s = 0; s < softModels_.size(); ++s) {
     softDofOffset_[s] = numDofs_;
     numDofs_ += 3 * softModels_[s].numFree;
   }
-  std::vector<int> rigidActor, softActor;
-  for (int i = 0; i < NumActors(); ++i) (actors_[i].soft ? softActor : rigidActor).push_back(i);
-  pipeline_.Configure(&models_, &filter_, &softModels_, rigidActor, softActor);
+  kindPtrs_.clear();
+  kindStageDof_.resize(kinds_.size());
+  for (size_t k = 0; k < kinds_.size(); ++k) {
+    kindPtrs_.push_back(kinds_[k].get());
+    kindStageDof_[k].resize(kinds_[k]->NumDofs());
+    for (int i = 0; i < kinds_[k]->NumDofs(); ++i)
+      kindStageDof_[k][i] = kinds_[k]->IsPrescribed(i) ? -1 : numDofs_++;
+  }
+  std::vector<int> rigidActor, softActor, kindActor;
+  for (int i = 0; i < NumActors(); ++i)
+    (actors_[i].kind ? kindActor : actors_[i].soft ? softActor : rigidActor).push_back(i);
+  pipeline_.Configure(&models_, &filter_, &softModels_, rigidActor, softActor, &kindPtrs_,
+                      kindActor);
   hasDissipation_ = HasDissipation();  // actors' contact parameters are fixed once added
   prepared_ = true;
 }
@@ -267,7 +295,7 @@ std::vector<Eigen::VectorXd> Scene::CurrentSoftPositions() const {
   return x;
 }
 
-SoftStage Scene::MakeSoftStage(double dt, const std::vector<SoftBodyState>& start,
+SoftStage Scene::MakeSoftStage(double dt, double t, const std::vector<SoftBodyState>& start,
                                const std::vector<Eigen::VectorXd>& last) const {
   SoftStage st;
   st.models = &softModels_;
@@ -283,12 +311,31 @@ SoftStage Scene::MakeSoftStage(double dt, const std::vector<SoftBodyState>& star
   st.x0.resize(softModels_.size());
   st.xLast = last;
   for (size_t s = 0; s < softModels_.size(); ++s) st.x0[s] = start[s].x;
+  KindStage& ks = st.kinds;
+  ks.kinds = &kindPtrs_;
+  ks.stageDof = kindStageDof_;
+  ks.data.resize(kinds_.size());
+  ks.q0.resize(kinds_.size());
+  ks.qLast.resize(kinds_.size());
+  for (size_t k = 0; k < kinds_.size(); ++k) {
+    const size_t v = softModels_.size() + k;
+    KindStageData& d = ks.data[k];
+    d.dt = dt;
+    d.time = t;
+    d.gravity = settings_.gravity;
+    d.qHat = start[v].x + dt * start[v].v;
+    d.q0 = start[v].x;
+    d.qLast = last[v];
+    ks.q0[k] = d.q0;
+    ks.qLast[k] = d.qLast;
+  }
   return st;
 }
 
 void Scene::ApplyConstraints(double t, std::vector<Eigen::VectorXd>* x) const {
   for (size_t s = 0; s < softModels_.size(); ++s)
     ApplyNodeConstraints(softModels_[s], softInitial_[s], t, &(*x)[s]);
+  for (size_t k = 0; k < kinds_.size(); ++k) kinds_[k]->Prescribe(t, &(*x)[softModels_.size() + k]);
 }
 
 double Scene::MinDetF() const {
@@ -321,7 +368,7 @@ void Scene::SolveStage(double dt, const std::vector<RigidBodyState>& start,
   scene.dofOffset = &dofOffset_;
   scene.numDofs = numDofs_;
   scene.pipeline = &pipeline_;
-  scene.hasSoft = !softModels_.empty();
+  scene.hasSoft = !step_.softStates.empty();  // soft actors or kinds: no rigid-only shortcuts
   scene.hasDissipation = hasDissipation_;
   scene.states = &step_.states;
   scene.history = &step_.history;
@@ -397,7 +444,7 @@ bool Scene::Step(double h, StepReport* report, Error* error, StageRecorder* reco
 
 void Scene::StepBdf(double h, IntegrationMethod method, StepWork* work) {
   auto& [poses, stepStart, next, softX, softStepStart, softNext, rep] = *work;
-  const size_t n = models_.size(), ns = softModels_.size();
+  const size_t n = models_.size(), ns = step_.softStates.size();  // ns: soft actors and kinds
   // BDF-k with variable steps.
   const int k = std::min<int>(BdfSteps(method), static_cast<int>(step_.history.size()) + 1);
   std::vector<double>& times = buffers_.bdfTimes;
@@ -421,7 +468,7 @@ void Scene::StepBdf(double h, IntegrationMethod method, StepWork* work) {
     }
   }
   ApplyConstraints(step_.time + h, &softX);
-  const SoftStage soft = MakeSoftStage(dt, softStart, softStepStart);
+  const SoftStage soft = MakeSoftStage(dt, step_.time + h, softStart, softStepStart);
   SolveStage(dt, start, stepStart, &poses, &soft, &softX, h, &rep);
   for (size_t s = 0; s < ns; ++s) {
     softNext[s].x = softX[s];
@@ -438,7 +485,7 @@ void Scene::StepBdf(double h, IntegrationMethod method, StepWork* work) {
 
 void Scene::StepDirk(double h, IntegrationMethod method, StepWork* work) {
   auto& [poses, stepStart, next, softX, softStepStart, softNext, rep] = *work;
-  const size_t n = models_.size(), ns = softModels_.size();
+  const size_t n = models_.size(), ns = step_.softStates.size();  // ns: soft actors and kinds
   // DIRK stages in material-point form, with the three rotation rules of core/dynamics/integrators.h.
   const DirkTableau& T = TableauOf(method);
   // Every entry is written at its stage before it is read.
@@ -482,7 +529,7 @@ void Scene::StepDirk(double h, IntegrationMethod method, StepWork* work) {
     // Dissipation geometry: the last configuration the bodies occupied (x_n, then Q_{i−1}).
     const std::vector<RigidPose>& last = st == 0 ? stepStart : Q[st - 1];
     ApplyConstraints(step_.time + cStage * h, &softX);
-    const SoftStage soft = MakeSoftStage(dt, softStart, softLast);
+    const SoftStage soft = MakeSoftStage(dt, step_.time + cStage * h, softStart, softLast);
     SolveStage(dt, start, last, &poses, &soft, &softX, cStage * h, &rep);
     Q[st] = poses;
     for (size_t s = 0; s < ns; ++s) {
@@ -554,10 +601,19 @@ ContactStats Scene::ContactState() {
   SoftView view;
   view.x = &x;
   view.dofOffset = &softDofOffset_;
+  const KindView kinds = CurrentKindView(x);
   CurrentPoses(&buffers_.reportPoses);
   pipeline_.Evaluate(buffers_.reportPoses, dofOffset_, 0, PsdProjection::None, nullptr, nullptr,
-                     nullptr, &st, nullptr, nullptr, nullptr, &view);
+                     nullptr, &st, nullptr, nullptr, nullptr, &view, &kinds);
   return st;
+}
+
+KindView Scene::CurrentKindView(const std::vector<Eigen::VectorXd>& x) const {
+  KindView kinds;
+  kinds.q = &x;
+  kinds.first = static_cast<int>(softModels_.size());
+  kinds.stageDof = &kindStageDof_;
+  return kinds;
 }
 
 std::vector<ContactSampleRecord> Scene::ContactSamples() {
@@ -567,7 +623,8 @@ std::vector<ContactSampleRecord> Scene::ContactSamples() {
   SoftView view;
   view.x = &x;
   view.dofOffset = &softDofOffset_;
-  pipeline_.CollectSamples(CurrentPoses(), &out, &view);
+  const KindView kinds = CurrentKindView(x);
+  pipeline_.CollectSamples(CurrentPoses(), &out, &view, &kinds);
   return out;
 }
 
@@ -597,19 +654,27 @@ EnergyReport Scene::Energies() {
       e.gravity += -m.nodeMass[i] * settings_.gravity.dot(step_.softStates[s].x.segment<3>(3 * i));
     e.elastic += ElasticEnergy(m, step_.softStates[s].x, nullptr);
   }
+  for (size_t k = 0; k < kinds_.size(); ++k) {
+    const KindState& st = step_.softStates[softModels_.size() + k];
+    e.kinetic += kinds_[k]->KineticEnergy(st);
+    e.gravity += kinds_[k]->GravityEnergy(st, settings_.gravity);
+    e.elastic += kinds_[k]->InternalEnergy(st);
+  }
   e.contact = ContactState().energy;
   return e;
 }
 
 namespace {
 
-// Σ over dynamic rigid bodies of rigid(model, state) plus Σ over soft nodes of m_a node(x_a, v_a).
-template <typename Rigid, typename Node>
+// Σ over dynamic rigid bodies of rigid(model, state) plus Σ over soft nodes of m_a node(x_a, v_a)
+// plus Σ over the kinds of kind(actor, state).
+template <typename Rigid, typename Node, typename Kind>
 Eigen::Vector3d SumOverBodies(const std::vector<RigidBodyModel>& models,
                               const std::vector<RigidBodyState>& states,
                               const std::vector<SoftBodyModel>& softModels,
-                              const std::vector<SoftBodyState>& softStates, Rigid rigid,
-                              Node node) {
+                              const std::vector<SoftBodyState>& softStates,
+                              const std::vector<std::shared_ptr<ActorKind>>& kinds, Rigid rigid,
+                              Node node, Kind kind) {
   Eigen::Vector3d L = Eigen::Vector3d::Zero();
   for (size_t i = 0; i < models.size(); ++i)
     if (models[i].dynamic) L += rigid(models[i], states[i]);
@@ -617,6 +682,7 @@ Eigen::Vector3d SumOverBodies(const std::vector<RigidBodyModel>& models,
     for (int a = 0; a < softModels[s].NumNodes(); ++a)
       L += softModels[s].nodeMass[a] *
            node(softStates[s].x.segment<3>(3 * a), softStates[s].v.segment<3>(3 * a));
+  for (size_t k = 0; k < kinds.size(); ++k) L += kind(*kinds[k], softStates[softModels.size() + k]);
   return L;
 }
 
@@ -624,18 +690,20 @@ Eigen::Vector3d SumOverBodies(const std::vector<RigidBodyModel>& models,
 
 Eigen::Vector3d Scene::TotalLinearMomentum() const {
   return SumOverBodies(
-      models_, step_.states, softModels_, step_.softStates,
+      models_, step_.states, softModels_, step_.softStates, kinds_,
       [](const RigidBodyModel& m, const RigidBodyState& st) { return LinearMomentum(m, st); },
-      [](const Eigen::Vector3d&, const Eigen::Vector3d& v) -> Eigen::Vector3d { return v; });
+      [](const Eigen::Vector3d&, const Eigen::Vector3d& v) -> Eigen::Vector3d { return v; },
+      [](const ActorKind& k, const KindState& st) { return k.LinearMomentum(st); });
 }
 
 Eigen::Vector3d Scene::TotalAngularMomentum() const {
   return SumOverBodies(
-      models_, step_.states, softModels_, step_.softStates,
+      models_, step_.states, softModels_, step_.softStates, kinds_,
       [](const RigidBodyModel& m, const RigidBodyState& st) { return AngularMomentum(m, st); },
       [](const Eigen::Vector3d& x, const Eigen::Vector3d& v) -> Eigen::Vector3d {
         return x.cross(v);
-      });
+      },
+      [](const ActorKind& k, const KindState& st) { return k.AngularMomentum(st); });
 }
 
 std::vector<std::string> Scene::Notices() const {
@@ -644,6 +712,9 @@ std::vector<std::string> Scene::Notices() const {
     if (!m.notice.empty()) out.push_back(m.notice);
   for (const auto& m : softModels_)
     if (!m.notice.empty()) out.push_back(m.notice);
+  if (!kinds_.empty() && !softModels_.empty())
+    out.push_back("actors of the generic layer (" + kinds_.front()->KindName() +
+                  ", ...) and soft actors do not touch: that pair is not supported yet");
   return out;
 }
 
@@ -659,6 +730,11 @@ bool Scene::HasDissipation() const {
       }
     for (const auto& m : softModels_)  // soft actors are always dynamic
       if (coefficient(m.contact) > 0) {
+        ++count;
+        ++dynamic;
+      }
+    for (const auto& k : kinds_)  // so are the kinds' actors
+      if (coefficient(k->contact) > 0) {
         ++count;
         ++dynamic;
       }

@@ -15,6 +15,7 @@
 #include "core/dynamics/stage_recorder.h"
 #include "core/dynamics/step_report.h"
 #include "core/dynamics/step_state.h"
+#include "core/model/actor_kind.h"
 #include "core/model/enums.h"
 #include "core/model/error.h"
 #include "core/model/eval_params.h"
@@ -40,6 +41,12 @@ class Scene {
   /// Adds a soft (tet FEM) actor; returns an invalid handle and fills *error on bad input.
   ActorHandle AddSoftActor(const SoftActorDesc& desc, Error* error,
                            ActorHandle parent = ActorHandle());
+  /// Adds an actor of any kind written against the generic actor layer (core/model/actor_kind.h);
+  /// returns an invalid handle and fills *error on bad input (the kind's own Validate, its state
+  /// sizes, sample maps, collider frame and contact parameters).
+  ActorHandle AddActor(std::unique_ptr<ActorKind> actor, Error* error,
+                       const std::string& contactLayer = "default",
+                       ActorHandle parent = ActorHandle());
 
   // --- Contact filtering (spec: "Contact Filtering"; core/contact/contact_filter.h). Each returns false
   // and fills *error for an invalid handle.
@@ -72,18 +79,18 @@ class Scene {
   /// Every actor, rigid and soft; handles index this range in the order of creation.
   int NumActors() const { return static_cast<int>(actors_.size()); }
   bool IsSoft(ActorHandle a) const { return actors_[a.index].soft; }
+  /// Whether a is an actor of the generic layer (AddActor), its kind, and its state (x: its q).
+  bool IsKind(ActorHandle a) const { return actors_[a.index].kind; }
+  const ActorKind& Kind(ActorHandle a) const { return *kinds_[actors_[a.index].local]; }
+  const KindState& KindStateOf(ActorHandle a) const;
+  /// Replaces a kind's state (its NumDofs entries in x and v, finite); clears BDF history.
+  bool SetKindState(ActorHandle a, const KindState& state, Error* error);
   /// Rigid actors (a must be one).
   const RigidBodyModel& Model(ActorHandle a) const { return models_[actors_[a.index].local]; }
-  const RigidBodyState& State(ActorHandle a) const {
-    return step_.states[actors_[a.index].local];
-  }
+  const RigidBodyState& State(ActorHandle a) const;
   /// Soft actors (a must be one).
-  const SoftBodyModel& SoftModel(ActorHandle a) const {
-    return softModels_[actors_[a.index].local];
-  }
-  const SoftBodyState& SoftState(ActorHandle a) const {
-    return step_.softStates[actors_[a.index].local];
-  }
+  const SoftBodyModel& SoftModel(ActorHandle a) const;
+  const SoftBodyState& SoftState(ActorHandle a) const;
   /// The rigid actors' models and states, in creation order among rigid actors; RigidActors()[i]
   /// is the handle of Models()[i].
   const std::vector<RigidBodyModel>& Models() const { return models_; }
@@ -125,7 +132,7 @@ class Scene {
 
   // --- The dynamic state as one vector (core/sensitivity/sensitivity.h differentiates the step map on it).
   // Per dynamic rigid actor p, R (column-major), v, Ṙ (24 entries), per soft actor x then v
-  // (6 per node), in creation order; then, for the multistep methods, the same blocks for each
+  // (6 per node), per kind's actor its x then v, in creation order; then, for the multistep methods, the same blocks for each
   // state of the history a step reads (zeros where the history is not filled yet).
   int StateSize();
   /// First entry of actor a's block in the current state (−1 for a static actor).
@@ -150,15 +157,12 @@ class Scene {
   std::vector<std::string> Notices() const;
 
   /// A point of the run with the stage policy's state, to return to (checkpoints, replays).
-  struct Snapshot {
-    StepState step;
-    StageDriver::State driver;
-  };
+  struct Snapshot { StepState step; StageDriver::State driver; };
   Snapshot Save() const;
   void Restore(const Snapshot& s);
 
   // --- The stage's unknowns (valid once the scene has stepped): 6 per dynamic rigid actor
-  // [δp, δθ], then 3 per free soft node.
+  // [δp, δθ], then 3 per free soft node, then the kinds' free dofs.
   int StageDofs() const { return numDofs_; }
   /// First stage dof of actor a (−1 for a static rigid actor).
   int StageDofOffset(ActorHandle a) const;
@@ -166,22 +170,17 @@ class Scene {
   int HistoryBlocks() const;
 
  private:
+  struct ActorRef {
+    bool soft = false;
+    int local = 0;  ///< index into models_, step_.states; softModels_, step_.softStates; kinds_
+    bool kind = false;
+  };
   // Solves one stage with the stage policy (StageDriver::Solve) and the step's recorder, and
   // accounts it in *rep.
   void SolveStage(double dt, const std::vector<RigidBodyState>& start,
                   const std::vector<RigidPose>& last, std::vector<RigidPose>* poses,
                   const SoftStage* soft, std::vector<Eigen::VectorXd>* softX, double predictTime,
                   StepReport* rep);
-  // The step under way's working data: the rigid poses (the stages' iterate), x_n, the rigid end
-  // state, the soft positions, the soft actors' x_n, the soft end state, and the step's report.
-  struct StepWork {
-    std::vector<RigidPose>& poses;
-    const std::vector<RigidPose>& stepStart;
-    std::vector<RigidBodyState>& next;
-    std::vector<Eigen::VectorXd> softX, softStepStart;
-    std::vector<SoftBodyState> softNext;
-    StepReport report;
-  };
   // One step of h [s]: a variable-step BDF step (with the states of step_.history), or the DIRK
   // method's stages (core/dynamics/integrators.h), from x_n to the end states in *work.
   void StepBdf(double h, IntegrationMethod method, StepWork* work);
@@ -190,27 +189,32 @@ class Scene {
   // actor in each of the first `blocks` blocks (0: the current state, b >= 1: step_.history[b−1]).
   template <typename Visit>
   void VisitStateLayout(int blocks, Visit&& visit) const;
+  // A vector-state actor's index in step_.softStates, and an actor's entries in PackState.
+  int VectorIndex(const ActorRef& r) const;
+  int BlockSize(const ActorRef& r) const;
   // 1 + the history blocks that hold a state.
   int FilledStateBlocks() const;
 
   void ClearHistory();
   bool ValidParent(ActorHandle parent, Error* error) const;  // no parent, or an existing actor
   // Enters an actor held at `local` of its kind's arrays into the actor list and the filter.
-  ActorHandle Register(bool soft, int local, const std::string& layer, ActorHandle parent);
+  ActorHandle Register(bool soft, int local, const std::string& layer, ActorHandle parent,
+                       bool kind = false);
   void Prepare();
   std::vector<RigidPose> CurrentPoses() const;
   void CurrentPoses(std::vector<RigidPose>* poses) const;
   std::vector<Eigen::VectorXd> CurrentSoftPositions() const;
-  struct ActorRef {
-    bool soft = false;
-    int local = 0;  ///< index into models_, step_.states or softModels_, step_.softStates
-  };
-  // Soft stage data: targets from the stage start, geometry from the last configuration.
-  SoftStage MakeSoftStage(double dt, const std::vector<SoftBodyState>& start,
+  // The vector-state actors' stage data (soft, then the kinds' at stage time t [s]): targets from
+  // the stage start, geometry from the last configuration.
+  SoftStage MakeSoftStage(double dt, double t, const std::vector<SoftBodyState>& start,
                           const std::vector<Eigen::VectorXd>& last) const;
-  // Prescribed node positions at time t written into x.
+  // Prescribed node positions (and kinds' prescribed dofs) at time t written into x.
   void ApplyConstraints(double t, std::vector<Eigen::VectorXd>* x) const;
   double MinDetF() const;
+  // The kinds' part of a contact evaluation at the vector states x (soft, then the kinds').
+  KindView CurrentKindView(const std::vector<Eigen::VectorXd>& x) const;
+  // Empty, or why the kind's actor cannot be added.
+  std::string ValidateKind(const ActorKind& kind) const;
 
   SceneSettings settings_;
   std::string settingsError_;  ///< Validate(settings_), kept with every change of settings_
@@ -218,21 +222,16 @@ class Scene {
   /// SamplesHash → indices into models_ of the distinct sample sets so far (ShareSamples).
   std::unordered_multimap<std::size_t, int> sampleSets_;
   std::vector<SoftBodyModel> softModels_;
+  // The generic layer's actors (copies of a scene share them; a changed one is copied first).
+  // Their states follow the soft actors' in step_.softStates.
+  std::vector<std::shared_ptr<ActorKind>> kinds_;
+  std::vector<const ActorKind*> kindPtrs_;           // for the pipeline and the stage
+  std::vector<std::vector<int>> kindStageDof_;       // per kind: stage dof of each local dof
   std::vector<Eigen::VectorXd> softInitial_;  // positions at creation (node constraints)
   std::vector<ActorRef> actors_;
   std::vector<int> softDofOffset_;
-  StepState step_;  // what a step advances
-  // Storage of Step and SolveStage kept from step to step, so that a rigid step does not allocate
-  // once it has run (scratch: every use overwrites it first).
-  struct StepBuffers {
-    std::vector<RigidPose> poses, stepStart, reportPoses;
-    std::vector<RigidBodyState> next, start;
-    std::vector<std::vector<RigidBodyState>> stageSlopes;  // a DIRK step's V_i, K_i per body
-    std::vector<std::vector<Eigen::Vector3d>> stageTorques;
-    std::vector<std::vector<RigidPose>> stagePoses;       // Q_i
-    std::vector<double> bdfTimes, bdfWeights;
-  };
-  StepBuffers buffers_;
+  StepState step_;  // what a step advances (softStates: the soft actors', then the kinds')
+  StepBuffers buffers_;  // Step's storage kept from step to step (core/dynamics/step_state.h)
   // Whether the pipeline is configured for the current actors; a copied scene configures its own
   // (the pipeline holds pointers to the scene's models).
   ResetOnCopy prepared_;

@@ -33,6 +33,22 @@ void UnpackRigid(const double* in, RigidBodyState* s) {
 
 }  // namespace
 
+const RigidBodyState& Scene::State(ActorHandle a) const {
+  return step_.states[actors_[a.index].local];
+}
+
+const SoftBodyModel& Scene::SoftModel(ActorHandle a) const {
+  return softModels_[actors_[a.index].local];
+}
+
+const SoftBodyState& Scene::SoftState(ActorHandle a) const {
+  return step_.softStates[actors_[a.index].local];
+}
+
+const KindState& Scene::KindStateOf(ActorHandle a) const {
+  return step_.softStates[softModels_.size() + actors_[a.index].local];
+}
+
 bool Scene::SetSoftState(ActorHandle a, const SoftBodyState& state, Error* error) {
   if (!ValidHandle(*this, a, error)) return false;
   if (!actors_[a.index].soft) return Fail(error, "actor: " + ActorName(a) + " is not soft");
@@ -46,10 +62,69 @@ bool Scene::SetSoftState(ActorHandle a, const SoftBodyState& state, Error* error
   return true;
 }
 
+std::string Scene::ValidateKind(const ActorKind& kind) const {
+  const std::string name = "actor (" + kind.KindName() + ")";
+  if (std::string m = kind.Validate(); !m.empty()) return m;
+  if (std::string m = Validate(kind.contact, "contact."); !m.empty()) return m;
+  const int n = kind.NumDofs();
+  if (n <= 0) return name + ": NumDofs must be > 0";
+  const KindState s = kind.InitialState();
+  if (s.x.size() != n || s.v.size() != n)
+    return name + ": the initial state needs " + std::to_string(n) + " entries in x and v";
+  if (!s.x.allFinite() || !s.v.allFinite()) return name + ": the initial state must be finite";
+  // Blocks read by the contact assembler: whole 3-dof blocks inside q, prescribed all or none.
+  auto badBlock = [&](int first) {
+    if (first < 0 || first + 3 > n) return true;
+    return kind.IsPrescribed(first) != kind.IsPrescribed(first + 1) ||
+           kind.IsPrescribed(first) != kind.IsPrescribed(first + 2);
+  };
+  for (int k = 0; k < kind.NumSamples(); ++k) {
+    const KindSample ks = kind.Sample(k, s.x);
+    if (ks.map.kind != SamplePointMap::Kind::Nodes || ks.map.nodes < 1 || ks.map.nodes > 4)
+      return name + ": sample " + std::to_string(k) + " needs a Nodes map of 1 to 4 nodes";
+    for (int b = 0; b < ks.map.nodes; ++b)
+      if (badBlock(ks.dof[b]))
+        return name + ": sample " + std::to_string(k) +
+               " reads a dof block outside q or partly prescribed";
+    if (!(ks.weight >= 0.0)) return name + ": sample weights must be >= 0";
+  }
+  if (kind.Collider()) {
+    const KindFrame f = kind.ColliderFrame(s.x);
+    if (f.blocks < 0 || f.blocks > 4) return name + ": the collider frame moves with 0 to 4 blocks";
+    if (!f.F.bottomRows<3>().isZero())
+      return name + ": a collider frame that rotates with the dofs is not supported yet";
+    for (int b = 0; b < f.blocks; ++b)
+      if (badBlock(f.dof[b]))
+        return name + ": the collider frame reads a dof block outside q or partly prescribed";
+  }
+  return {};
+}
+
+bool Scene::SetKindState(ActorHandle a, const KindState& state, Error* error) {
+  if (!ValidHandle(*this, a, error)) return false;
+  if (!actors_[a.index].kind)
+    return Fail(error, "actor: " + ActorName(a) + " is not an actor of the generic layer");
+  const int n = Kind(a).NumDofs();
+  if (state.x.size() != n || state.v.size() != n)
+    return Fail(error, "state: x and v need " + std::to_string(n) + " entries");
+  if (!state.x.allFinite() || !state.v.allFinite())
+    return Fail(error, "state: x and v must be finite");
+  step_.softStates[softModels_.size() + actors_[a.index].local] = state;
+  ClearHistory();
+  return true;
+}
+
 bool Scene::SetContactParams(ActorHandle a, const ContactParams& params, Error* error) {
   if (!ValidHandle(*this, a, error)) return false;
   if (std::string m = Validate(params, "contact."); !m.empty()) return Fail(error, m);
   const ActorRef& r = actors_[a.index];
+  if (r.kind) {  // copied first: scenes copied from this one keep theirs
+    std::shared_ptr<ActorKind> changed = kinds_[r.local]->Clone();
+    changed->contact = params;
+    kinds_[r.local] = std::move(changed);
+    prepared_ = false;
+    return true;
+  }
   (r.soft ? softModels_[r.local].contact : models_[r.local].contact) = params;
   prepared_ = false;  // pair padding and the dissipation flag follow the parameters
   return true;
@@ -57,6 +132,7 @@ bool Scene::SetContactParams(ActorHandle a, const ContactParams& params, Error* 
 
 const ContactParams& Scene::GetContactParams(ActorHandle a) const {
   const ActorRef& r = actors_[a.index];
+  if (r.kind) return kinds_[r.local]->contact;
   return r.soft ? softModels_[r.local].contact : models_[r.local].contact;
 }
 
@@ -81,6 +157,7 @@ double Scene::MinFrictionFalloffVel() const {
   double v = INFINITY;
   for (const RigidBodyModel& m : models_) v = std::min(v, m.contact.frictionFalloffVel);
   for (const SoftBodyModel& m : softModels_) v = std::min(v, m.contact.frictionFalloffVel);
+  for (const auto& k : kinds_) v = std::min(v, k->contact.frictionFalloffVel);
   return v;
 }
 
@@ -92,11 +169,21 @@ ActorHandle Scene::FindActor(const std::string& name) const {
 
 const std::string& Scene::ActorName(ActorHandle a) const {
   const ActorRef& r = actors_[a.index];
+  if (r.kind) return kinds_[r.local]->name;
   return r.soft ? softModels_[r.local].name : models_[r.local].name;
 }
 
 int Scene::HistoryBlocks() const {
   return IsMultistep(settings_.integrator) ? BdfSteps(settings_.integrator) - 1 : 0;
+}
+
+int Scene::VectorIndex(const ActorRef& r) const {
+  return r.kind ? static_cast<int>(softModels_.size()) + r.local : r.local;
+}
+
+int Scene::BlockSize(const ActorRef& r) const {
+  if (r.kind) return 2 * kinds_[r.local]->NumDofs();
+  return r.soft ? 6 * softModels_[r.local].NumNodes() : kRigidBlock;
 }
 
 template <typename Visit>
@@ -105,9 +192,9 @@ void Scene::VisitStateLayout(int blocks, Visit&& visit) const {
   for (int b = 0; b < blocks; ++b)
     for (int i = 0; i < NumActors(); ++i) {
       const ActorRef& r = actors_[i];
-      if (!r.soft && !models_[r.local].dynamic) continue;
+      if (!r.soft && !r.kind && !models_[r.local].dynamic) continue;
       visit(b, offset, r, i);
-      offset += r.soft ? 6 * softModels_[r.local].NumNodes() : kRigidBlock;
+      offset += BlockSize(r);
     }
 }
 
@@ -122,7 +209,7 @@ int Scene::StateOffset(ActorHandle a) {
 int Scene::StateSize() {
   int size = 0;
   VisitStateLayout(1 + HistoryBlocks(), [&](int, int offset, const ActorRef& r, int) {
-    size = offset + (r.soft ? 6 * softModels_[r.local].NumNodes() : kRigidBlock);
+    size = offset + BlockSize(r);
   });
   return size;
 }
@@ -134,8 +221,9 @@ int Scene::FilledStateBlocks() const {
 Eigen::VectorXd Scene::PackState() {
   Eigen::VectorXd s = Eigen::VectorXd::Zero(StateSize());
   VisitStateLayout(FilledStateBlocks(), [&](int b, int o, const ActorRef& r, int) {
-    if (r.soft) {
-      const SoftBodyState& st = b == 0 ? step_.softStates[r.local] : step_.softHistory[b - 1][r.local];
+    if (r.soft || r.kind) {
+      const int v = VectorIndex(r);
+      const SoftBodyState& st = b == 0 ? step_.softStates[v] : step_.softHistory[b - 1][v];
       const int n = static_cast<int>(st.x.size());
       s.segment(o, n) = st.x;
       s.segment(o + n, n) = st.v;
@@ -149,8 +237,8 @@ Eigen::VectorXd Scene::PackState() {
 Eigen::VectorXd Scene::PackedVelocityMask() {
   Eigen::VectorXd mask = Eigen::VectorXd::Zero(StateSize());
   VisitStateLayout(1 + HistoryBlocks(), [&](int, int o, const ActorRef& r, int) {
-    if (r.soft) {
-      const int n = 3 * softModels_[r.local].NumNodes();
+    if (r.soft || r.kind) {
+      const int n = BlockSize(r) / 2;
       mask.segment(o + n, n).setOnes();
     } else {
       mask.segment(o + 12, 12).setOnes();
@@ -161,8 +249,9 @@ Eigen::VectorXd Scene::PackedVelocityMask() {
 
 void Scene::UnpackState(const Eigen::VectorXd& s) {
   VisitStateLayout(FilledStateBlocks(), [&](int b, int o, const ActorRef& r, int) {
-    if (r.soft) {
-      SoftBodyState& st = b == 0 ? step_.softStates[r.local] : step_.softHistory[b - 1][r.local];
+    if (r.soft || r.kind) {
+      const int v = VectorIndex(r);
+      SoftBodyState& st = b == 0 ? step_.softStates[v] : step_.softHistory[b - 1][v];
       const int n = static_cast<int>(st.x.size());
       st.x = s.segment(o, n);
       st.v = s.segment(o + n, n);
@@ -187,6 +276,11 @@ void Scene::ClearHistory() {
 
 int Scene::StageDofOffset(ActorHandle a) const {
   const ActorRef& r = actors_[a.index];
+  if (r.kind) {
+    for (int d : kindStageDof_[r.local])
+      if (d >= 0) return d;
+    return -1;
+  }
   return r.soft ? softDofOffset_[r.local] : dofOffset_[r.local];
 }
 

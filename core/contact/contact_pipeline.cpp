@@ -78,8 +78,21 @@ void AddBlocks(const SmallStencilVector& g, const int offs[2], int blocks, Eigen
 void ContactPipeline::Configure(const std::vector<RigidBodyModel>* models,
                                 const ContactFilter* filter,
                                 const std::vector<SoftBodyModel>* softModels,
-                                std::vector<int> rigidActor, std::vector<int> softActor) {
+                                std::vector<int> rigidActor, std::vector<int> softActor,
+                                const std::vector<const ActorKind*>* kinds,
+                                std::vector<int> kindActor) {
   models_ = models;
+  kinds_ = kinds && !kinds->empty() ? kinds : nullptr;
+  kindActor_ = std::move(kindActor);
+  kindInflation_.clear();
+  if (kinds_)
+    for (const ActorKind* k : *kinds_) {
+      const ContactParams& c = k->contact;
+      kindInflation_.push_back(k->Collider() ? std::max(0.0, c.penaltyThresholdDefault +
+                                                                 c.penaltyThresholdExtraPadding) +
+                                                   c.distanceErrorBound
+                                             : 0.0);
+    }
   filter_ = filter;
   softModels_ = softModels && !softModels->empty() ? softModels : nullptr;
   rigidActor_ = std::move(rigidActor);
@@ -105,11 +118,12 @@ void ContactPipeline::Configure(const std::vector<RigidBodyModel>* models,
 void ContactPipeline::FindPairs(const std::vector<RigidPose>& poses,
                                 const DissipationContext* dissipation,
                                 const std::vector<RigidStageStart>* stageStart,
-                                const SoftView* soft) {
+                                const SoftView* soft, const KindView* kinds) {
   const std::vector<RigidBodyModel>& models = *models_;
   const size_t n = models.size();
   const size_t ns = soft && softModels_ ? softModels_->size() : 0;
-  boxes_.resize(n + ns);
+  const size_t nk = kinds && kinds_ ? kinds_->size() : 0;
+  boxes_.resize(n + ns + nk);
   // Explicit normals retain the stage-start contacts: the boxes sweep from x⁰ to x.
   const bool sweep = dissipation && dissipation->mode == DissipationMode::ExplicitNormals;
   for (size_t i = 0; i < n; ++i) {
@@ -128,10 +142,18 @@ void ContactPipeline::FindPairs(const std::vector<RigidPose>& poses,
     if (soft->xLast) boxes_[n + s].Extend(SoftBounds((*soft->xLast)[s]));
     boxes_[n + s].Inflate(softInflation_[s]);
   }
+  // The generic layer's actors last, swept over x_n as soft actors are.
+  for (size_t k = 0; k < nk; ++k) {
+    const ActorKind& kind = *(*kinds_)[k];
+    boxes_[n + ns + k] = kind.Bounds((*kinds->q)[kinds->first + k]);
+    if (kinds->qLast) boxes_[n + ns + k].Extend(kind.Bounds((*kinds->qLast)[k]));
+    boxes_[n + ns + k].Inflate(kindInflation_[k]);
+  }
   overlapCache_.Find(boxes_, &overlaps_);
   pairs_.clear();
   softPairs_.clear();
   softColliderPairs_.clear();
+  kindPairs_.clear();
   // A on the soft collider B (B's collider is an Sdf grid mapped by its deformation).
   auto considerOnSoft = [&](bool aSoft, int a, int b) {
     const SoftBodyModel& B = (*softModels_)[b];
@@ -181,7 +203,16 @@ void ContactPipeline::FindPairs(const std::vector<RigidPose>& poses,
     p.params = CombineContactParams(A.contact, B.contact, !B.dynamic, noCollider);
     pairs_.push_back(p);
   };
+  const int firstKind = static_cast<int>(n + ns);
   for (const auto& [i, j] : overlaps_) {
+    if (i >= firstKind || j >= firstKind) {  // a kind's actor with a rigid one or another kind's
+      const bool ki = i >= firstKind, kj = j >= firstKind;
+      if ((!ki && i >= static_cast<int>(n)) || (!kj && j >= static_cast<int>(n))) continue;
+      const int a = ki ? i - firstKind : i, b = kj ? j - firstKind : j;
+      ConsiderKindPair(ki, a, kj, b);
+      ConsiderKindPair(kj, b, ki, a);
+      continue;
+    }
     const bool si = i >= static_cast<int>(n), sj = j >= static_cast<int>(n);
     if (!si && !sj) {
       consider(i, j);
@@ -197,6 +228,32 @@ void ContactPipeline::FindPairs(const std::vector<RigidPose>& poses,
       considerOnSoft(true, j - static_cast<int>(n), i - static_cast<int>(n));
     }
   }
+}
+
+void ContactPipeline::ConsiderKindPair(bool aKind, int a, bool bKind, int b) {
+  const std::vector<RigidBodyModel>& models = *models_;
+  if (aKind == bKind && a == b) return;  // self-contact of a kind: not in this layer yet
+  const ActorKind* A = aKind ? (*kinds_)[a] : nullptr;
+  const ActorKind* B = bKind ? (*kinds_)[b] : nullptr;
+  if (aKind ? A->NumSamples() == 0 : !IsColliding(models[a])) return;
+  if (bKind ? B->Collider() == nullptr : !IsCollider(models[b])) return;
+  if (!aKind && !bKind) return;
+  const int actorA = aKind ? kindActor_[a] : RigidActor(a);
+  const int actorB = bKind ? kindActor_[b] : RigidActor(b);
+  if (filter_ && !filter_->Allowed(actorA, actorB)) return;
+  KindPair p;
+  p.aKind = aKind;
+  p.bKind = bKind;
+  p.a = a;
+  p.b = b;
+  const bool aNoCollider =
+      aKind ? A->Collider() == nullptr
+            : (models[a].collider.type == ColliderType::None ||
+               models[a].collider.type == ColliderType::PointCloud);
+  p.params = CombineContactParams(aKind ? A->contact : models[a].contact,
+                                  bKind ? B->contact : models[b].contact,
+                                  !bKind && !models[b].dynamic, aNoCollider);
+  kindPairs_.push_back(p);
 }
 
 void ContactPipeline::SoftColliderInputs(const SoftColliderPair& sp,
@@ -290,7 +347,8 @@ bool ContactPipeline::SplitLastEvaluation(const std::vector<int>& dofOffset,
                                           std::vector<double>* share,
                                           std::vector<std::pair<int, int>>* joins) const {
   const bool withDissipation = !dissipationResults_.empty();
-  if (!softPairs_.empty() || !softColliderPairs_.empty() || results_.size() != pairs_.size() ||
+  if (!softPairs_.empty() || !softColliderPairs_.empty() || !kindPairs_.empty() ||
+      results_.size() != pairs_.size() ||
       (withDissipation && dissipationResults_.size() != pairs_.size()))
     return false;
   for (size_t k = 0; k < pairs_.size(); ++k) {
@@ -337,15 +395,20 @@ void ContactPipeline::ReducePair(const Request& q, const PairStencils& r, bool a
   ++st->candidatePairs;
   *energy += AddPairStats(r, st);
   if (q.order < 1) return;
-  const SoftView& soft = *q.soft;
+  const SoftView* soft = q.soft;
   const std::vector<int>& dofOffset = *q.dofOffset;
   // A node's 3-dof block (−1: a prescribed node).
   auto node = [&](int actor, int vertex) {
     const int free = (*softModels_)[actor].freeIndex[vertex];
-    return free < 0 ? -1 : (*soft.dofOffset)[actor] + 3 * free;
+    return free < 0 ? -1 : (*soft->dofOffset)[actor] + 3 * free;
   };
   for (int e = 0; e < r.count; ++e) {
     const ContactStencil& cs = r.stencils[e];
+    if (cs.blocks > 0) {
+      ScatterStencil(cs, cs.offs, cs.blocks, q.potential, q.gradient, q.dissipationResidual,
+                     q.order >= 2 ? q.triplets : nullptr);
+      continue;
+    }
     int offs[7];
     int blocks = 0;
     if (aSoft) {  // the face's three nodes
@@ -374,8 +437,8 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
                                  const DissipationContext* dissipation,
                                  Eigen::VectorXd* dissipationResidual,
                                  const std::vector<RigidStageStart>* stageStart,
-                                 const SoftView* soft) {
-  FindPairs(poses, dissipation, stageStart, soft);
+                                 const SoftView* soft, const KindView* kinds) {
+  FindPairs(poses, dissipation, stageStart, soft, kinds);
   Request q;
   q.poses = &poses;
   q.dofOffset = &dofOffset;
@@ -388,6 +451,7 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
   q.dissipationResidual = dissipationResidual;
   q.stageStart = stageStart;
   q.soft = soft;
+  q.kinds = kinds;
   q.potential = !dissipation || dissipation->mode == DissipationMode::ExplicitNormals;
   // Projected Hessians are the globalization model: the Coulomb term's isotropic majorizer.
   q.isotropic = q.potential && projection != PsdProjection::None;
@@ -398,6 +462,7 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
   EvaluateRigidPairs(q, &energy, &st);
   EvaluateSoftPairs(q, &energy, &st);
   EvaluateOnSoftPairs(q, &energy, &st);
+  EvaluateKindPairs(q, &energy, &st);
   if (dissipation && dissipation->slips && dissipation->recordSlips) dissipation->slips->Seal();
   if (stats) *stats = st;
   return energy;
@@ -476,6 +541,7 @@ void ContactPipeline::EvaluateSoftPairs(const Request& q, double* energy, Contac
   const auto softId = [&](size_t k) { return std::make_pair(softPairs_[k].soft, softPairs_[k].collider); };
   // Soft colliding actors against rigid colliders, face by face.
   softResults_.resize(softPairs_.size());
+  softSamples_.resize(softPairs_.size());
   auto evaluateSoft = [&](size_t k) {
     const SoftContactPair& sp = softPairs_[k];
     const PenaltyParams pp = PenaltyOf(sp.params);
@@ -484,15 +550,16 @@ void ContactPipeline::EvaluateSoftPairs(const Request& q, double* energy, Contac
     in.x = &(*soft->x)[sp.soft];
     in.xLast = soft->xLast ? &(*soft->xLast)[sp.soft] : nullptr;
     in.x0 = soft->x0 ? &(*soft->x0)[sp.soft] : nullptr;
+    in.dofOffset = (*soft->dofOffset)[sp.soft];
     const RigidBodyModel& B = (*models_)[sp.collider];
     DissipationSetup setup;
     if (dissipation) setup = MakeSetup(sp.params, *dissipation, q.isotropic);
     setup.slips = SlipUse(SlipPairKind::SoftOnRigid, k);
     const RigidStageStart* b0 = q.stageStart ? &(*q.stageStart)[sp.collider] : nullptr;
     PairStencils& r = softResults_[k];
-    EvaluateSoftRigidPair(in, B, (*q.poses)[sp.collider], b0, B.dynamic, pp,
+    EvaluateSoftRigidPair(in, B, (*q.poses)[sp.collider], b0, (*q.dofOffset)[sp.collider], pp,
                           sp.params.maxAlignmentNormals, dissipation ? &setup : nullptr, q.order,
-                          &r);
+                          &softSamples_[k], &r);
     if (q.order < 2) return;
     for (int f = 0; f < r.count; ++f) ProjectStencil(q.potential, q.projection, &r.stencils[f]);
   };
@@ -548,11 +615,56 @@ void ContactPipeline::EvaluateOnSoftPairs(const Request& q, double* energy, Cont
   }
 }
 
+FrameSide ContactPipeline::KindPairSides(const Request& q, const KindPair& kp,
+                                         const DissipationSetup* setup,
+                                         std::vector<PairSample>* samples) const {
+  const KindView& kv = *q.kinds;
+  auto at = [](const std::vector<Eigen::VectorXd>* v, int k) { return v ? &(*v)[k] : nullptr; };
+  FrameSide B;
+  if (kp.bKind) {
+    B = KindFrameSide(*(*kinds_)[kp.b], (*kv.q)[kv.first + kp.b], at(kv.qLast, kp.b),
+                      q.dissipation ? at(kv.q0, kp.b) : nullptr, (*kv.stageDof)[kp.b]);
+  } else {
+    B = RigidFrameSide((*models_)[kp.b], (*q.poses)[kp.b],
+                       q.stageStart ? &(*q.stageStart)[kp.b] : nullptr, (*q.dofOffset)[kp.b]);
+  }
+  if (kp.aKind) {
+    GatherKindSamples(*(*kinds_)[kp.a], (*kv.q)[kv.first + kp.a], at(kv.qLast, kp.a),
+                      q.dissipation ? at(kv.q0, kp.a) : nullptr, (*kv.stageDof)[kp.a], samples);
+  } else {
+    GatherRigidSamples((*models_)[kp.a], (*q.poses)[kp.a],
+                       q.stageStart ? &(*q.stageStart)[kp.a] : nullptr, (*q.dofOffset)[kp.a], B,
+                       kp.params.threshold, setup, samples);
+  }
+  return B;
+}
+
+void ContactPipeline::EvaluateKindPairs(const Request& q, double* energy, ContactStats* st) {
+  const DissipationContext* dissipation = q.dissipation;
+  kindResults_.resize(kindPairs_.size());
+  kindSamples_.resize(kindPairs_.size());
+  auto evaluate = [&](size_t k) {
+    const KindPair& kp = kindPairs_[k];
+    DissipationSetup setup;
+    if (dissipation) setup = MakeSetup(kp.params, *dissipation, q.isotropic);
+    const FrameSide B = KindPairSides(q, kp, dissipation ? &setup : nullptr, &kindSamples_[k]);
+    PairStencils& r = kindResults_[k];
+    EvaluateSamplesOnFrame(kindSamples_[k], B, PenaltyOf(kp.params),
+                           kp.params.maxAlignmentNormals, dissipation ? &setup : nullptr, q.order,
+                           &r);
+    if (q.order < 2) return;
+    for (int e = 0; e < r.count; ++e) ProjectStencil(q.potential, q.projection, &r.stencils[e]);
+  };
+  ForEachPair(kindPairs_.size(), true, evaluate);
+  for (size_t k = 0; k < kindPairs_.size(); ++k)
+    ReducePair(q, kindResults_[k], false, -1, false, -1, energy, st);
+}
+
 void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,
                                      std::vector<ContactSampleRecord>* records,
-                                     const SoftView* soft) {
+                                     const SoftView* soft, const KindView* kinds) {
   const std::vector<RigidBodyModel>& models = *models_;
-  FindPairs(poses, nullptr, nullptr, soft);
+  FindPairs(poses, nullptr, nullptr, soft, kinds);
   records->clear();
   RigidPairPenalty scratch;
   for (const ContactPair& cp : pairs_) {
@@ -567,15 +679,16 @@ void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,
     }
   }
   PairStencils scratchSoft;
+  std::vector<PairSample> softSamples;
   for (const SoftContactPair& sp : softPairs_) {
     const PenaltyParams pp = PenaltyOf(sp.params);
     SoftPairInput in;
     in.model = &(*softModels_)[sp.soft];
     in.x = &(*soft->x)[sp.soft];
     const size_t first = records->size();
-    EvaluateSoftRigidPair(in, models[sp.collider], poses[sp.collider], nullptr,
-                          models[sp.collider].dynamic, pp, sp.params.maxAlignmentNormals, nullptr,
-                          0, &scratchSoft, records);
+    EvaluateSoftRigidPair(in, models[sp.collider], poses[sp.collider], nullptr, -1, pp,
+                          sp.params.maxAlignmentNormals, nullptr, 0, &softSamples, &scratchSoft,
+                          records);
     for (size_t k = first; k < records->size(); ++k) {
       (*records)[k].colliding = softActor_[sp.soft];
       (*records)[k].collider = RigidActor(sp.collider);
@@ -598,6 +711,23 @@ void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,
     for (size_t k = first; k < records->size(); ++k) {
       (*records)[k].colliding = sp.collidingSoft ? softActor_[sp.colliding] : RigidActor(sp.colliding);
       (*records)[k].collider = softActor_[sp.collider];
+    }
+  }
+  Request q;
+  q.poses = &poses;
+  q.kinds = kinds;
+  PairStencils scratchKind;
+  std::vector<PairSample> samples;
+  const std::vector<int> noDofs(models.size(), -1);
+  q.dofOffset = &noDofs;
+  for (const KindPair& kp : kindPairs_) {
+    const FrameSide B = KindPairSides(q, kp, nullptr, &samples);
+    const size_t first = records->size();
+    EvaluateSamplesOnFrame(samples, B, PenaltyOf(kp.params),
+                           kp.params.maxAlignmentNormals, nullptr, 0, &scratchKind, records);
+    for (size_t k = first; k < records->size(); ++k) {
+      (*records)[k].colliding = kp.aKind ? kindActor_[kp.a] : RigidActor(kp.a);
+      (*records)[k].collider = kp.bKind ? kindActor_[kp.b] : RigidActor(kp.b);
     }
   }
 }

@@ -5,10 +5,12 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <memory>
 #include <vector>
 
 #include "core/contact/broad_phase.h"
 #include "core/contact/contact_filter.h"
+#include "core/contact/kind_contact.h"
 #include "core/model/rigid_body.h"
 #include "core/contact/rigid_contact.h"
 #include "core/contact/rigid_dissipation.h"
@@ -74,6 +76,26 @@ struct SoftView {
   const std::vector<int>* dofOffset = nullptr;          ///< per soft actor
 };
 
+/// The actors of the generic layer for one evaluation (core/model/actor_kind.h): per actor k its
+/// q (at (*q)[first + k]: the stage keeps them after the soft actors' positions), its x_n (or
+/// null), its stage start x⁰ (dissipation; or null) and the stage offsets of its local dofs (−1
+/// for a prescribed dof).
+struct KindView {
+  const std::vector<Eigen::VectorXd>* q = nullptr;
+  int first = 0;
+  const std::vector<Eigen::VectorXd>* qLast = nullptr;
+  const std::vector<Eigen::VectorXd>* q0 = nullptr;
+  const std::vector<std::vector<int>>* stageDof = nullptr;
+};
+
+/// Ordered pair of the generic layer (A colliding, B collider; each a rigid body or a kind's
+/// actor, at least one a kind's), evaluated by the one assembler of core/contact/kind_contact.h.
+struct KindPair {
+  bool aKind = false, bKind = false;
+  int a = -1, b = -1;  ///< index into the rigid models or the kinds' actors
+  PairContactParams params;
+};
+
 class ContactPipeline {
  public:
   /// Precomputes per-actor data. `models` must outlive the pipeline's use.
@@ -81,9 +103,12 @@ class ContactPipeline {
   /// `softModels` (may be null) are colliding soft actors. The filter sees actor indices:
   /// rigidActor[i] for rigid model i and softActor[s] for soft model s (empty: rigid model i is
   /// actor i, as in a scene of rigid actors only).
+  /// `kinds` (may be null): the generic layer's actors, seen by the filter as kindActor[k].
   void Configure(const std::vector<RigidBodyModel>* models, const ContactFilter* filter = nullptr,
                  const std::vector<SoftBodyModel>* softModels = nullptr,
-                 std::vector<int> rigidActor = {}, std::vector<int> softActor = {});
+                 std::vector<int> rigidActor = {}, std::vector<int> softActor = {},
+                 const std::vector<const ActorKind*>* kinds = nullptr,
+                 std::vector<int> kindActor = {});
 
   /// Π = Σ over eligible ordered pairs of the penalty energy at the given poses, plus Δt_i Σ w R
   /// when `dissipation` is not null (it then needs `stageStart`, x⁰ and x_n per actor). With
@@ -103,7 +128,7 @@ class ContactPipeline {
                   const DissipationContext* dissipation = nullptr,
                   Eigen::VectorXd* dissipationResidual = nullptr,
                   const std::vector<RigidStageStart>* stageStart = nullptr,
-                  const SoftView* soft = nullptr);
+                  const SoftView* soft = nullptr, const KindView* kinds = nullptr);
 
   /// Step limits of Newton's global phase: (*alpha)[i] <= 1 the largest fraction of rigid body
   /// i's move from `poses` to `trial` that RigidPairStepLimit allows for every pair it is part
@@ -115,7 +140,8 @@ class ContactPipeline {
   /// Every active contact sample at the given poses (serial; for reporting). Records carry actor
   /// indices (see Configure) and, for soft colliding actors, the boundary face.
   void CollectSamples(const std::vector<RigidPose>& poses,
-                      std::vector<ContactSampleRecord>* records, const SoftView* soft = nullptr);
+                      std::vector<ContactSampleRecord>* records, const SoftView* soft = nullptr,
+                      const KindView* kinds = nullptr);
 
   /// The last Evaluate's rigid pairs by body (StageProblem::LastSplit): each pair's penalty and
   /// dissipation values, as Evaluate summed them, added to (*share)[i] of its first dynamic actor
@@ -142,6 +168,7 @@ class ContactPipeline {
     Eigen::VectorXd* dissipationResidual = nullptr;
     const std::vector<RigidStageStart>* stageStart = nullptr;
     const SoftView* soft = nullptr;
+    const KindView* kinds = nullptr;
     bool potential = true;   ///< no dissipation, or ExplicitNormals
     bool isotropic = false;  ///< DissipationSetup::isotropicFrictionHessian
   };
@@ -150,8 +177,15 @@ class ContactPipeline {
   void EvaluateRigidPairs(const Request& q, double* energy, ContactStats* st);
   void EvaluateSoftPairs(const Request& q, double* energy, ContactStats* st);
   void EvaluateOnSoftPairs(const Request& q, double* energy, ContactStats* st);
+  void EvaluateKindPairs(const Request& q, double* energy, ContactStats* st);
   void FindPairs(const std::vector<RigidPose>& poses, const DissipationContext* dissipation,
-                 const std::vector<RigidStageStart>* stageStart, const SoftView* soft);
+                 const std::vector<RigidStageStart>* stageStart, const SoftView* soft,
+                 const KindView* kinds = nullptr);
+  // The generic layer's ordered pair (a, b) when the roles, the filter and the motion allow it.
+  void ConsiderKindPair(bool aKind, int a, bool bKind, int b);
+  // A kind pair's two sides at the request's configuration (samples into *samples).
+  FrameSide KindPairSides(const Request& q, const KindPair& kp, const DissipationSetup* setup,
+                          std::vector<PairSample>* samples) const;
   int RigidActor(int i) const { return rigidActor_.empty() ? i : rigidActor_[i]; }
   /// Samples of the colliding actors over pairs_: whether a sweep pays for parallel workers.
   size_t RigidPairWork() const;
@@ -162,6 +196,8 @@ class ContactPipeline {
   /// A stencil pair's reduction: its counts and energies into *st and *energy, and its stencils
   /// (A colliding: soft face nodes or a rigid body's dofs; B: a soft collider's tet nodes or a
   /// rigid collider's dofs when dynamic) scattered into the request's outputs (ScatterStencil).
+  /// Stencils that carry their own blocks (ContactStencil::blocks > 0: the generic layer's) are
+  /// scattered by those.
   void ReducePair(const Request& q, const PairStencils& r, bool aSoft, int a, bool bSoft, int b,
                   double* energy, ContactStats* st) const;
   // The two sides of a pair on a soft collider (the locators must be built).
@@ -183,11 +219,18 @@ class ContactPipeline {
   std::vector<int> rigidActor_, softActor_;
   std::vector<SoftContactPair> softPairs_;
   std::vector<PairStencils> softResults_;
+  std::vector<std::vector<PairSample>> softSamples_;  // per soft pair (capacity kept)
   std::vector<SoftColliderPair> softColliderPairs_;
   std::vector<PairStencils> softColliderResults_;
   std::vector<TetLocator> locators_, locatorsLast_;  // per soft actor
   std::vector<double> softInflation_;
   std::vector<int> dofs_;  // scratch: a face stencil's global dofs
+  const std::vector<const ActorKind*>* kinds_ = nullptr;
+  std::vector<int> kindActor_;
+  std::vector<double> kindInflation_;
+  std::vector<KindPair> kindPairs_;
+  std::vector<PairStencils> kindResults_;
+  std::vector<std::vector<PairSample>> kindSamples_;  // per pair (capacity kept)
   // Per pair kind (SlipPairKind): the pairs' slip use in the evaluation under way and, when
   // recording, their buffers.
   struct SlipLists {

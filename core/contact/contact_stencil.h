@@ -26,6 +26,10 @@ namespace superdex {
 struct ContactStencil {
   int aFace = -1;  ///< soft A: its boundary face; −1 for a rigid A
   int bTet = -1;   ///< soft collider B: its tet; −1 otherwise
+  /// Pairs of the generic actor layer (core/contact/kind_contact.h): the stencil's 3-dof blocks'
+  /// stage offsets (−1: a block without unknowns), A's then B's.
+  int blocks = 0;
+  int offs[8] = {-1, -1, -1, -1, -1, -1, -1, -1};
   bool penaltyActive = false, dissipationActive = false;
   StencilVector penaltyGradient, dissipationResidual;  ///< [N, N·m]
   StencilMatrix penaltyHessian, dissipationJacobian;

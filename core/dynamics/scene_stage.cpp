@@ -32,7 +32,7 @@ SceneStageProblem::SceneStageProblem(const std::vector<RigidBodyModel>& models,
       pendingStep_(ws_->pendingStep),
       triplets_(ws_->triplets),
       dissipation_(dissipation),
-      soft_(soft && softX && !soft->targets.empty() ? soft : nullptr),
+      soft_(soft && softX && !soft->Empty() ? soft : nullptr),
       softX_(soft_ ? softX : nullptr) {
   trial_.resize(poses->size());  // Retract writes every entry
   if (soft_) {
@@ -79,6 +79,14 @@ void SceneStageProblem::Retract(const Eigen::VectorXd& d, std::vector<RigidPose>
       for (int a = 0; a < m.NumNodes(); ++a)
         if (m.freeIndex[a] >= 0)
           x.segment<3>(3 * a) += d.segment<3>(soft_->dofOffset[s] + 3 * m.freeIndex[a]);
+    }
+    const size_t ns = soft_->targets.size();
+    for (size_t k = 0; k < soft_->kinds.Size(); ++k) {
+      const std::vector<int>& dof = soft_->kinds.stageDof[k];
+      Eigen::VectorXd& q = (*softOut)[ns + k];
+      q = (*softX_)[ns + k];
+      for (size_t i = 0; i < dof.size(); ++i)
+        if (dof[i] >= 0) q[i] += d[dof[i]];
     }
   }
   for (size_t i = 0; i < models_.size(); ++i) {
@@ -145,16 +153,50 @@ double SceneStageProblem::EvaluateAt(const std::vector<RigidPose>& poses,
       minDet = std::min(minDet, md);
     }
     if (minDetF) *minDetF = minDet;
+    value += EvaluateKindTerms(softX, order, projection, gPot);
     view.x = &softX;
     view.xLast = &soft_->xLast;
     view.x0 = &soft_->x0;
     view.dofOffset = &soft_->dofOffset;
   }
   ws_->blockPosition = triplets_.size();
+  KindView kinds;
+  if (soft_ && soft_->kinds.Size() > 0) {
+    kinds.q = &softX;
+    kinds.first = static_cast<int>(soft_->targets.size());
+    kinds.qLast = &soft_->kinds.qLast;
+    kinds.q0 = &soft_->kinds.q0;
+    kinds.stageDof = &soft_->kinds.stageDof;
+  }
   value += contact_->Evaluate(poses, dofOffset_, order, projection, gPot, &triplets_, &ws_->blocks,
                               stats, dissipation_.enabled ? &context_ : nullptr, rDiss,
                               targets_.start.empty() ? nullptr : &targets_.start,
-                              soft_ ? &view : nullptr);
+                              soft_ ? &view : nullptr, kinds.q ? &kinds : nullptr);
+  return value;
+}
+
+double SceneStageProblem::EvaluateKindTerms(const std::vector<Eigen::VectorXd>& softX, int order,
+                                            PsdProjection projection, Eigen::VectorXd* gPot) {
+  const KindStage& ks = soft_->kinds;
+  const size_t ns = soft_->targets.size();
+  double value = 0.0;
+  Eigen::VectorXd& g = ws_->kindGradient;
+  std::vector<Eigen::Triplet<double>>& H = ws_->kindHessian;
+  for (size_t k = 0; k < ks.Size(); ++k) {
+    const ActorKind& kind = *(*ks.kinds)[k];
+    const std::vector<int>& dof = ks.stageDof[k];
+    if (order >= 1) g.setZero(kind.NumDofs());
+    H.clear();
+    value += kind.StageEnergy(ks.data[k], softX[ns + k], order, projection,
+                              order >= 1 ? &g : nullptr, order >= 2 ? &H : nullptr);
+    if (order < 1) continue;
+    for (size_t i = 0; i < dof.size(); ++i)
+      if (dof[i] >= 0) (*gPot)[dof[i]] += g[i];
+    for (const Eigen::Triplet<double>& t : H) {
+      const int r = dof[t.row()], c = dof[t.col()];
+      if (r >= 0 && c >= 0 && t.value() != 0.0) triplets_.emplace_back(r, c, t.value());
+    }
+  }
   return value;
 }
 
@@ -359,8 +401,10 @@ double SceneStageProblem::StepNorm(const Eigen::VectorXd& d) const {
     norm = std::max(norm, d.segment<3>(o).lpNorm<Eigen::Infinity>());
     norm = std::max(norm, d.segment<3>(o + 3).norm() * radius);
   }
-  if (soft_) {
-    const int begin = soft_->dofOffset.front();
+  if (soft_) {  // soft nodes [m] and the kinds' dofs, after every rigid dof
+    int begin = 0;
+    for (size_t i = 0; i < models_.size(); ++i)
+      if (dofOffset_[i] >= 0) begin += 6;
     norm = std::max(norm, d.segment(begin, numDofs_ - begin).lpNorm<Eigen::Infinity>());
   }
   return norm;

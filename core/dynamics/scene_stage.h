@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/contact/contact_pipeline.h"
+#include "core/model/actor_kind.h"
 #include "core/model/soft_terms.h"
 #include "core/model/rigid_body.h"
 #include "optim/stage_problem.h"
@@ -37,12 +38,27 @@ struct StageDissipation {
   bool recordSlips = false;
 };
 
-/// The soft actors of a stage: models, their first dof, and per actor the stage data.
+/// The generic layer's actors of a stage (core/model/actor_kind.h): the kinds, and per actor the
+/// stage offsets of its local dofs (−1 for a prescribed dof), its stage data and copies of its x⁰
+/// and x_n (contact view).
+struct KindStage {
+  const std::vector<const ActorKind*>* kinds = nullptr;
+  std::vector<std::vector<int>> stageDof;
+  std::vector<KindStageData> data;
+  std::vector<Eigen::VectorXd> q0, qLast;
+  size_t Size() const { return data.size(); }
+};
+
+/// The vector-state actors of a stage: the soft actors (models, their first dof, and per actor the
+/// stage data), then the generic layer's actors. The stage's vector iterate (softX) holds the soft
+/// actors' positions, then the kinds' configurations.
 struct SoftStage {
   const std::vector<SoftBodyModel>* models = nullptr;
   std::vector<int> dofOffset;
   std::vector<SoftStageTarget> targets;
   std::vector<Eigen::VectorXd> x0, xLast;  ///< copies of the targets' x⁰ and x_n (contact view)
+  KindStage kinds;
+  bool Empty() const { return targets.empty() && kinds.Size() == 0; }
 };
 
 /// The pipeline's dissipation data for a stage of step dt [s] (ContactPipeline::Evaluate).
@@ -63,6 +79,8 @@ struct StageWorkspace {
   std::vector<DenseBlock6> blocks;         ///< rigid pairs' 6 × 6 blocks (ContactPipeline)
   size_t blockPosition = 0;                ///< where in `triplets` the blocks stand
   std::vector<SoftTermScratch> soft;
+  Eigen::VectorXd kindGradient;                    ///< a kind's local gradient
+  std::vector<Eigen::Triplet<double>> kindHessian; ///< a kind's local Hessian entries
   TripletAssembly hessianAssembly;   ///< Evaluate's Hessians (pattern kept between iterations)
   TripletAssembly jacobianAssembly;  ///< EvaluateResidual's Jacobians
 };
@@ -136,6 +154,10 @@ class SceneStageProblem : public StageProblem {
 
  private:
   double BodyEnergy(size_t i, const RigidPose& pose) const;
+  /// The kinds' stage energies at their configurations in softX (after the soft actors'); order
+  /// >= 1 adds their gradients into *gPot, order 2 their Hessians into triplets_.
+  double EvaluateKindTerms(const std::vector<Eigen::VectorXd>& softX, int order,
+                           PsdProjection projection, Eigen::VectorXd* gPot);
   /// Moves trial_ to s ⊕ d and marks d as the step whose statistics a Commit(d) adopts.
   void BeginTrial(const Eigen::VectorXd& d);
   /// Evaluate's work at the given configuration.

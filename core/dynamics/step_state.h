@@ -1,8 +1,10 @@
-// What a step advances: the actors' states, the multistep history and the time.
+// What a step advances (the actors' states, the multistep history and the time) and the step's
+// working storage.
 #pragma once
 
 #include <vector>
 
+#include "core/dynamics/step_report.h"
 #include "core/model/rigid_body.h"
 #include "core/model/soft_body.h"
 
@@ -18,6 +20,29 @@ struct StepState {
   std::vector<std::vector<SoftBodyState>> softHistory;
   std::vector<double> historyTimes;
   double time = 0.0;
+};
+
+/// The step under way's working data: the rigid poses (the stages' iterate), x_n, the rigid end
+/// state, the vector states' positions (soft actors, then kinds), their x_n, their end state, and
+/// the step's report.
+struct StepWork {
+  std::vector<RigidPose>& poses;
+  const std::vector<RigidPose>& stepStart;
+  std::vector<RigidBodyState>& next;
+  std::vector<Eigen::VectorXd> softX, softStepStart;
+  std::vector<SoftBodyState> softNext;
+  StepReport report;
+};
+
+/// Storage of a scene's steps kept from step to step, so that a rigid step does not allocate once
+/// it has run (scratch: every use overwrites it first).
+struct StepBuffers {
+  std::vector<RigidPose> poses, stepStart, reportPoses;
+  std::vector<RigidBodyState> next, start;
+  std::vector<std::vector<RigidBodyState>> stageSlopes;  ///< a DIRK step's V_i, K_i per body
+  std::vector<std::vector<Eigen::Vector3d>> stageTorques;
+  std::vector<std::vector<RigidPose>> stagePoses;       ///< Q_i
+  std::vector<double> bdfTimes, bdfWeights;
 };
 
 }  // namespace superdex

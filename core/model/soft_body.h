@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/model/vector_state.h"
 #include "core/model/collider_params.h"
 #include "core/model/contact_params.h"
 #include "core/model/enums.h"
@@ -110,10 +111,7 @@ struct SoftBodyModel {
 };
 
 /// Node positions x and velocities v, stacked [x_0; x_1; …] (3n entries) [m], [m/s].
-struct SoftBodyState {
-  Eigen::VectorXd x;
-  Eigen::VectorXd v;
-};
+using SoftBodyState = VectorState;
 
 /// Builds the model and initial state, validating the description (fields named with `prefix`).
 bool BuildSoftBody(const SoftActorDesc& desc, const std::string& prefix, SoftBodyModel* model,

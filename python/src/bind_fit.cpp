@@ -104,11 +104,7 @@ void BindForwardSensitivity(py::module_& m) {
           [](PySensitivity& s, double dt) {
             StepReport r;
             Error e;
-            bool ok;
-            {
-              py::gil_scoped_release release;
-              ok = s.sens.Step(dt, &r, &e);
-            }
+            const bool ok = WithoutGil([&] { return s.sens.Step(dt, &r, &e); });
             if (!ok) {
               if (r.status != StageStatus::Converged) throw std::runtime_error(e.message);
               throw py::value_error(e.message);
@@ -177,11 +173,7 @@ void BindFitting(py::module_& m) {
         }
         FitResult r;
         Error e;
-        bool ok;
-        {
-          py::gil_scoped_release release;
-          ok = FitSceneParameters(file, obs, options, &r, &e);
-        }
+        const bool ok = WithoutGil([&] { return FitSceneParameters(file, obs, options, &r, &e); });
         if (!ok) Raise(e);
         return r;
       },
@@ -218,11 +210,8 @@ void BindFitting(py::module_& m) {
         options.dt = dt;
         TrajectoryGradient g;
         Error e;
-        bool ok;
-        {
-          py::gil_scoped_release release;
-          ok = ComputeTrajectoryGradient(file, obs, options, &g, &e);
-        }
+        const bool ok = WithoutGil(
+            [&] { return ComputeTrajectoryGradient(file, obs, options, &g, &e); });
         if (!ok) Raise(e);
         return g;
       },

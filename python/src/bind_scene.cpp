@@ -76,11 +76,7 @@ py::dict Run(Scene& s, double duration, double dt, int every,
     StepReport r;
     Error e;
     const double h = std::min(dt, duration - (i - 1) * dt);
-    bool ok;
-    {
-      py::gil_scoped_release release;
-      ok = s.Step(h > 1e-12 * dt ? h : dt, &r, &e);
-    }
+    const bool ok = WithoutGil([&] { return s.Step(h > 1e-12 * dt ? h : dt, &r, &e); });
     if (!ok) throw py::value_error(e.message);
     RaiseOnFailure(r);
     if ((i % every == 0 || i == steps) && frame < frames) record();
@@ -214,11 +210,7 @@ void BindSceneClass(py::module_& m) {
           [](Scene& s, double dt, bool check) {
             StepReport r;
             Error e;
-            bool ok;
-            {
-              py::gil_scoped_release release;
-              ok = s.Step(dt, &r, &e);
-            }
+            const bool ok = WithoutGil([&] { return s.Step(dt, &r, &e); });
             if (!ok) throw py::value_error(e.message);
             if (check) RaiseOnFailure(r);
             return r;

@@ -58,11 +58,7 @@ void BindTetMesh(py::module_& m) {
       [](const std::string& path) {
         auto mesh = std::make_shared<TetMesh>();
         std::string error;
-        bool ok;
-        {
-          py::gil_scoped_release release;
-          ok = ReadTetMeshFile(path, mesh.get(), &error);
-        }
+        const bool ok = WithoutGil([&] { return ReadTetMeshFile(path, mesh.get(), &error); });
         if (!ok) throw py::value_error(error);
         return mesh;
       },
@@ -120,11 +116,8 @@ void BindTetMesh(py::module_& m) {
         surface.faces = IndexRowsFromArray<3>(faces, "faces");
         auto mesh = std::make_shared<TetMesh>();
         std::string error;
-        bool ok;
-        {
-          py::gil_scoped_release release;
-          ok = MeshTetsFromSurface(surface, edgeLength, mesh.get(), &error);
-        }
+        const bool ok = WithoutGil(
+            [&] { return MeshTetsFromSurface(surface, edgeLength, mesh.get(), &error); });
         if (!ok) throw py::value_error(error);
         return mesh;
       },

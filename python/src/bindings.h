@@ -23,6 +23,14 @@ void BindStepReport(py::module_& m);
 void BindActor(py::module_& m);
 void BindFit(py::module_& m);
 
+/// Runs call() (the simulator's work: a step, a fit, a mesher) with the GIL released, so that
+/// other Python threads run meanwhile; returns its result.
+template <typename Call>
+auto WithoutGil(Call&& call) {
+  py::gil_scoped_release release;
+  return call();
+}
+
 /// Raises ValueError(message) when message is not empty.
 inline void CheckValue(const std::string& message) {
   if (!message.empty()) throw py::value_error(message);

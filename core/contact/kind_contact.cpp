@@ -1,0 +1,349 @@
+#include "core/contact/kind_contact.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/contact/dissipation_kernels.h"
+#include "core/contact/sample_chain.h"
+#include "core/model/rigid_math.h"
+
+namespace superdex {
+namespace {
+using namespace dissipation_kernels;
+using Jet = ceres::Jet<double, kMaxStencil>;
+
+/// The frame's part of a point stencil RigidPullbackStencil formed on [y, δp_B, δθ_B]: kept for
+/// a rigid frame, dropped for a static one, and for a translating frame mapped to its dofs by
+/// δp_B = F_p δq_B (g_B = F_pᵀ g_p, H_yB = H_yp F_p, H_By = F_pᵀ H_py, H_BB = F_pᵀ H_pp F_p; the
+/// rotation part vanishes with a frame that does not rotate).
+void PullbackOnFrame(const FrameSide& B, const Eigen::Vector3d& d, const Eigen::Vector3d& gY,
+                     const Eigen::Matrix3d* HY, PointStencil* point) {
+  RigidPullbackStencil(B.pose.R, d, gY, HY, B.motion != FrameSide::Motion::Static, point);
+  if (B.motion != FrameSide::Motion::Translation) return;
+  const int m = 3 * B.blocks;
+  const auto Fp = B.Fp.leftCols(m);
+  const Eigen::Vector3d gp = point->g.segment<3>(3);
+  point->colliderDofs = m;
+  point->g.segment(3, m) = Fp.transpose() * gp;
+  if (!HY) return;
+  const Eigen::Matrix3d Hyp = point->H.block<3, 3>(0, 3), Hpy = point->H.block<3, 3>(3, 0);
+  const Eigen::Matrix3d Hpp = point->H.block<3, 3>(3, 3);
+  point->H.block(0, 3, 3, m) = Hyp * Fp;
+  point->H.block(3, 0, m, 3) = Fp.transpose() * Hpy;
+  point->H.block(3, 3, m, m) = Fp.transpose() * Hpp * Fp;
+}
+
+template <typename T>
+Vec3<T> Cross(const Vec3<T>& a, const Vec3<T>& b) {
+  return Vec3<T>(a.y() * b.z() - a.z() * b.y(), a.z() * b.x() - a.x() * b.z(),
+                 a.x() * b.y() - a.y() * b.x());
+}
+
+/// Adds w ∂r/∂δ of one sample's current-mode residual on the pair stencil δ = [δq_A, δq_B], r the
+/// world residual: A's part Jᵀ f (a rigid A: [f; r_A × f]), B's part [−f; −d × f] (rigid) or
+/// F_pᵀ(−f) (translating), f = R_B ∂R/∂V(Y, N_A). Differentiated by forward-mode AD with the
+/// first-order retractions y + δp + δθ × r, R ← (I + [δθ]×) R (exact first derivatives at δ = 0,
+/// the stage's world-torque convention), Y = R_Bᵀ(d − ω × d), N_A = R_Bᵀ(n − ω × n).
+void AddCurrentModeJacobian(const PairSample& s, const FrameSide& B, const SdfSample& field,
+                            const Eigen::Vector3d& Y, const Eigen::Vector3d& Yn,
+                            const Eigen::Vector3d& Y0, const DissipationSetup& ds,
+                            StencilMatrix* J) {
+  const int nA = s.map.Dofs(), nB = B.Dofs(), n = nA + nB;
+  Jet delta[kMaxStencil];
+  for (int i = 0; i < n; ++i) delta[i] = Jet(0.0, i);
+  auto vec = [&](int at) { return Vec3<Jet>(delta[at], delta[at + 1], delta[at + 2]); };
+  const bool rigidA = s.map.kind == SamplePointMap::Kind::Rigid;
+  Vec3<Jet> y = s.y.cast<Jet>(), nw = s.n.cast<Jet>(), rA = s.map.r.cast<Jet>();
+  if (rigidA) {
+    const Vec3<Jet> th = vec(3);
+    rA += Cross<Jet>(th, s.map.r.cast<Jet>());
+    y += vec(0) + Cross<Jet>(th, s.map.r.cast<Jet>());
+    if (s.hasNormal) nw += Cross<Jet>(th, s.n.cast<Jet>());
+  } else {
+    for (int a = 0; a < s.map.nodes; ++a) y += s.map.bary[a] * vec(3 * a);
+    if (s.faceNormal) {  // n = m/|m|, m = (x₁ − x₀) × (x₂ − x₀) of the moved nodes
+      const Vec3<Jet> x0 = s.faceNodes[0].cast<Jet>() + vec(0);
+      const Vec3<Jet> m = Cross<Jet>(s.faceNodes[1].cast<Jet>() + vec(3) - x0,
+                                     s.faceNodes[2].cast<Jet>() + vec(6) - x0);
+      nw = m / sqrt(m.squaredNorm());
+    }
+  }
+  Vec3<Jet> pB = B.pose.p.cast<Jet>(), om = Vec3<Jet>::Zero();
+  if (B.motion == FrameSide::Motion::Rigid) {
+    pB += vec(nA);
+    om = vec(nA + 3);
+  } else if (B.motion == FrameSide::Motion::Translation) {
+    for (int c = 0; c < nB; ++c) pB += B.Fp.col(c).cast<Jet>() * delta[nA + c];
+  }
+  const Mat3<Jet> RBt = B.pose.R.transpose().cast<Jet>();
+  const Vec3<Jet> d = y - pB;
+  const Vec3<Jet> Yj = RBt * (d - Cross<Jet>(om, d));
+  const Vec3<Jet> NA = s.hasNormal ? Vec3<Jet>(RBt * (nw - Cross<Jet>(om, nw))) : Vec3<Jet>::Zero();
+  const Vec3<Jet> g = CurrentModeDissipationGradient<Jet>(Yj, NA, Y, field, Yn, Y0, ds);
+  const Vec3<Jet> fB = B.pose.R.cast<Jet>() * g;
+  const Vec3<Jet> f = fB + Cross<Jet>(om, fB);
+  Jet r[kMaxStencil];
+  if (rigidA) {
+    const Vec3<Jet> tau = Cross<Jet>(rA, f);
+    for (int k = 0; k < 3; ++k) r[k] = f[k], r[3 + k] = tau[k];
+  } else {
+    for (int a = 0; a < s.map.nodes; ++a)
+      for (int k = 0; k < 3; ++k) r[3 * a + k] = s.map.bary[a] * f[k];
+  }
+  if (B.motion == FrameSide::Motion::Rigid) {
+    const Vec3<Jet> tau = -Cross<Jet>(d, f);
+    for (int k = 0; k < 3; ++k) r[nA + k] = -f[k], r[nA + 3 + k] = tau[k];
+  } else if (B.motion == FrameSide::Motion::Translation) {
+    for (int c = 0; c < nB; ++c) r[nA + c] = -(B.Fp.col(c).cast<Jet>().dot(f));
+  }
+  for (int i = 0; i < n; ++i) J->row(i) += s.weight * r[i].v.head(n).transpose();
+}
+
+/// The sample's pullbacks: Y now, Y_n at x_n, and the colliding normal N_A in B's coordinates at
+/// both (zero without a normal).
+struct Pullback {
+  Eigen::Vector3d d, Y, Yn, NA, NAn;
+};
+
+Pullback PullbackOf(const PairSample& s, const FrameSide& B) {
+  Pullback p;
+  const Eigen::Matrix3d RBt = B.pose.R.transpose(), RnBt = B.last.R.transpose();
+  p.d = s.y - B.pose.p;
+  p.Y = RBt * p.d;
+  p.Yn = RnBt * (s.yLast - B.last.p);
+  p.NA = s.hasNormal ? Eigen::Vector3d(RBt * s.n) : Eigen::Vector3d::Zero();
+  p.NAn = s.hasNormal ? Eigen::Vector3d(RnBt * s.nLast) : Eigen::Vector3d::Zero();
+  return p;
+}
+
+/// The penalty of one sample into stencil *st; returns whether it was active.
+bool AddPenalty(const PairSample& s, const FrameSide& B, const Pullback& p, const SdfSample& field,
+                const PenaltyParams& penalty, double m, int order, PairStencils* out,
+                ContactStencil* st, std::vector<ContactSampleRecord>* records) {
+  if (!(field.value < penalty.delta)) return false;
+  if (s.hasNormal && std::isfinite(m)) {
+    const Eigen::Vector3d G = B.hasStart ? B.field->Evaluate(p.Yn).gradient : field.gradient;
+    const Eigen::Vector3d NA = B.hasStart ? p.NAn : p.NA;
+    if (G.dot(NA) > m + kAlignmentRoundoff) return false;
+  }
+  ++out->activeSamples;
+  st->penaltyActive = true;
+  const PenaltyDensity W = NormalPenaltyDensity(field.value, penalty);
+  out->penaltyValue += s.weight * W.W;
+  if (records) {
+    ContactSampleRecord rec;
+    rec.position = s.y;
+    rec.normal = B.pose.R * field.gradient.normalized();
+    rec.phi = field.value;
+    rec.lambdaN = W.lambdaN;
+    rec.traction = W.lambdaN * (B.pose.R * field.gradient);
+    rec.weight = s.weight;
+    rec.face = s.face;
+    records->push_back(rec);
+  }
+  if (order < 1) return true;
+  Eigen::Vector3d gY;
+  Eigen::Matrix3d HY;
+  PointStencil point;
+  PenaltyInPullback(W, field, &gY, order >= 2 ? &HY : nullptr);
+  PullbackOnFrame(B, p.d, gY, order >= 2 ? &HY : nullptr, &point);
+  ChainToActor(s.map, point, s.weight, &st->penaltyGradient,
+               order >= 2 ? &st->penaltyHessian : nullptr);
+  return true;
+}
+
+/// The dissipation of one sample (sample index k, the slip key) into stencil *st.
+void AddDissipation(const PairSample& s, int k, const FrameSide& B, const Pullback& p,
+                    const SdfSample& field, const DissipationSetup& ds, int order,
+                    PairStencils* out, ContactStencil* st) {
+  const bool explicitNormals = ds.mode == DissipationMode::ExplicitNormals;
+  const double m = ds.maxAlignment, delta = ds.penalty.delta;
+  double lambdaHat = 0.0;
+  Eigen::Vector3d N;
+  if (explicitNormals) {
+    const SdfSample f0 = B.field->Evaluate(p.Yn);
+    if (f0.value >= delta) return;
+    const double al = f0.gradient.dot(p.NAn);
+    if (s.hasNormal && al > m + kAlignmentRoundoff) return;
+    lambdaHat = AlignmentFactor(al, ds) * NormalPenaltyDensity(f0.value, ds.penalty).lambdaN;
+    N = SplitDirection(f0.gradient, p.NAn, ds);
+  } else {
+    const double phiLoad = ds.mode == DissipationMode::ImplicitLoad
+                               ? field.value
+                               : field.value + field.gradient.dot(p.Yn - p.Y);
+    if (phiLoad >= delta) return;
+    const double al = field.gradient.dot(p.NA);
+    if (s.hasNormal && al > m + kAlignmentRoundoff) return;
+    lambdaHat = AlignmentFactor(al, ds) * NormalPenaltyDensity(phiLoad, ds.penalty).lambdaN;
+    N = SplitDirection(field.gradient, p.NA, ds);
+  }
+  if (lambdaHat == 0.0) return;
+  const Eigen::Vector3d Y0 = B.start.Rinv * (s.y0 - B.start.p);
+  const Eigen::Vector3d V = (p.Y - Y0) / ds.dt;
+  const bool hessian = explicitNormals && order >= 2;
+  const DissipationDensity D = EvaluateSampleDissipation(
+      lambdaHat, N, V, ds.coefficients, ds.HessianKind(hessian), ds.slips, k);
+  st->dissipationActive = true;
+  out->AddDissipative(s.weight, ds.dt, D, ds.coefficients.mu, lambdaHat);
+  if (order == 0) return;
+  const Eigen::Matrix3d HY = D.hessian / ds.dt;
+  PointStencil point;
+  PullbackOnFrame(B, p.d, D.gradient, hessian ? &HY : nullptr, &point);
+  ChainToActor(s.map, point, s.weight, &st->dissipationResidual,
+               hessian ? &st->dissipationJacobian : nullptr);
+  if (order >= 2 && !explicitNormals)
+    AddCurrentModeJacobian(s, B, field, p.Y, p.Yn, Y0, ds, &st->dissipationJacobian);
+}
+
+/// Fills a stencil's blocks: the sample's, then the frame's.
+void SetBlocks(const PairSample& s, const FrameSide& B, ContactStencil* st) {
+  st->blocks = 0;
+  for (int b = 0; b < s.blocks; ++b) st->offs[st->blocks++] = s.offs[b];
+  if (B.motion == FrameSide::Motion::Rigid) {
+    st->offs[st->blocks++] = B.offs[0];
+    st->offs[st->blocks++] = B.offs[1];
+  } else if (B.motion == FrameSide::Motion::Translation) {
+    for (int b = 0; b < B.blocks; ++b) st->offs[st->blocks++] = B.offs[b];
+  }
+}
+
+}  // namespace
+
+void EvaluateSamplesOnFrame(const std::vector<PairSample>& samples, const FrameSide& B,
+                            const PenaltyParams& penalty, double maxAlignment,
+                            const DissipationSetup* dissipation, int order, PairStencils* out,
+                            std::vector<ContactSampleRecord>* records) {
+  out->Reset();
+  const bool withDissipation = dissipation && dissipation->coefficients.Any() && B.hasStart;
+  // Samples without a colliding normal: no fading, friction split on the collider's normal.
+  DissipationSetup noNormal;
+  if (withDissipation) {
+    noNormal = *dissipation;
+    noNormal.fadeFriction = false;
+    noNormal.frictionWithColliderNormal = true;
+  }
+  ContactStencil* st = nullptr;
+  auto close = [&]() {  // kept when it has a contribution, else its slot is taken again
+    if (st && (st->penaltyActive || st->dissipationActive)) out->Keep();
+    st = nullptr;
+  };
+  for (const PairSample& s : samples) {
+    const int n = s.map.Dofs() + B.Dofs();
+    if (!st || !std::equal(s.offs, s.offs + s.blocks, st->offs) || s.face != st->aFace) {
+      close();
+      st = &out->Slot(s.face, -1, n, order);
+      SetBlocks(s, B, st);
+    }
+    const Pullback p = PullbackOf(s, B);
+    const SdfSample field = B.field->Evaluate(p.Y);
+    out->minPhi = std::min(out->minPhi, field.value);
+    AddPenalty(s, B, p, field, penalty, maxAlignment, order, out, st, records);
+    if (withDissipation)
+      AddDissipation(s, s.key, B, p, field, s.hasNormal ? *dissipation : noNormal, order, out,
+                     st);
+  }
+  close();
+}
+
+void GatherRigidSamples(const RigidBodyModel& A, const RigidPose& a, const RigidStageStart* start,
+                        int aOffset, const FrameSide& B, double delta,
+                        const DissipationSetup* dissipation, std::vector<PairSample>* out) {
+  out->clear();
+  const RigidCollider& field = *B.field;
+  const double L = field.lipschitz;
+  const RigidPose& an = start ? start->last : a;
+  const Eigen::Matrix3d RBt = B.pose.R.transpose(), RnBt = B.last.R.transpose();
+  const bool diss = dissipation && dissipation->coefficients.Any() && start && B.hasStart;
+  const DissipationMode mode = diss ? dissipation->mode : DissipationMode::ImplicitLoad;
+  auto keep = [&](const Eigen::Vector3d& c, double r) {
+    const Eigen::Vector3d Y = RBt * (a.p + a.R * c - B.pose.p);
+    const double phiNow = field.Value(Y) - L * r;
+    if (phiNow < delta) return true;
+    if (!diss || mode == DissipationMode::ImplicitLoad) return false;
+    const Eigen::Vector3d Yn = RnBt * (an.p + an.R * c - B.last.p);
+    if (mode == DissipationMode::ExplicitNormals) return field.Value(Yn) - L * r < delta;
+    return phiNow - L * ((Yn - Y).norm() + 2.0 * r) < delta;  // the reconstructed load's bound
+  };
+  auto visit = [&](int begin, int end) {
+    for (int q = begin; q < end; ++q) {
+      const SurfaceSample& ss = A.samples[q];
+      PairSample s;
+      const Eigen::Vector3d r = a.R * ss.X;
+      s.y = a.p + r;
+      s.yLast = an.p + an.R * ss.X;
+      s.y0 = start ? Eigen::Vector3d(start->p + start->R * ss.X) : s.y;
+      s.hasNormal = true;
+      s.n = a.R * ss.normal;
+      s.nLast = an.R * ss.normal;
+      s.weight = ss.weight;
+      s.map = SamplePointMap::Rigid(r);
+      s.key = q;
+      s.blocks = 2;
+      s.offs[0] = aOffset;
+      s.offs[1] = aOffset < 0 ? -1 : aOffset + 3;
+      out->push_back(s);
+    }
+  };
+  ForEachSampleRange(A, keep, visit);
+}
+
+void GatherKindSamples(const ActorKind& A, const Eigen::VectorXd& q, const Eigen::VectorXd* qLast,
+                       const Eigen::VectorXd* q0, const std::vector<int>& stageDof,
+                       std::vector<PairSample>* out) {
+  out->clear();
+  for (int k = 0; k < A.NumSamples(); ++k) {
+    const KindSample ks = A.Sample(k, q);
+    PairSample s;
+    s.y = ks.y;
+    s.yLast = qLast ? A.Sample(k, *qLast).y : ks.y;
+    s.y0 = q0 ? A.Sample(k, *q0).y : ks.y;
+    s.weight = ks.weight;
+    s.map = ks.map;
+    s.key = k;
+    s.blocks = ks.map.nodes;
+    for (int b = 0; b < s.blocks; ++b) s.offs[b] = stageDof[ks.dof[b]];
+    out->push_back(s);
+  }
+}
+
+FrameSide KindFrameSide(const ActorKind& B, const Eigen::VectorXd& q, const Eigen::VectorXd* qLast,
+                        const Eigen::VectorXd* q0, const std::vector<int>& stageDof) {
+  FrameSide side;
+  const KindFrame f = B.ColliderFrame(q);
+  side.field = B.Collider();
+  side.pose = f.pose;
+  side.last = qLast ? B.ColliderFrame(*qLast).pose : f.pose;
+  if (q0) {
+    const RigidPose p0 = B.ColliderFrame(*q0).pose;
+    side.start.p = p0.p;
+    side.start.R = p0.R;
+    side.start.Rinv = p0.R.transpose();
+    side.start.last = side.last;
+    side.hasStart = true;
+  }
+  side.motion = f.blocks > 0 ? FrameSide::Motion::Translation : FrameSide::Motion::Static;
+  side.blocks = f.blocks;
+  side.Fp.leftCols(3 * f.blocks) = f.F.topLeftCorner(3, 3 * f.blocks);
+  for (int b = 0; b < f.blocks; ++b) side.offs[b] = stageDof[f.dof[b]];
+  return side;
+}
+
+FrameSide RigidFrameSide(const RigidBodyModel& B, const RigidPose& b, const RigidStageStart* start,
+                         int offset) {
+  FrameSide side;
+  side.field = &B.collider;
+  side.pose = b;
+  side.last = start ? start->last : b;
+  if (start) {
+    side.start = *start;
+    side.hasStart = true;
+  }
+  if (B.dynamic && offset >= 0) {
+    side.motion = FrameSide::Motion::Rigid;
+    side.offs[0] = offset;
+    side.offs[1] = offset + 3;
+  }
+  return side;
+}
+
+}  // namespace superdex

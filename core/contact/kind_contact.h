@@ -1,0 +1,100 @@
+// The contact assembler of the generic actor layer: colliding samples of any actor (a kind's
+// samples, or a rigid body's) on a collider field carried by a frame (a rigid body's pose, or a
+// kind's collider frame, core/model/actor_kind.h).
+//
+// Per sample, with the pullback Y = R_Bᵀ(y − p_B) [m] into the frame:
+//   penalty      w W(Φ_B(Y))                                              [J]
+//   dissipation  Δt_i w R(V_rel),  V_rel = (Y − Y⁰)/Δt_i,  Y⁰ = (R⁰_B)⁻¹(y⁰ − p⁰_B)  [J]
+// chained once into the pair stencil [q_A, q_B] (core/contact/sample_chain.h): the frame's side by
+// RigidPullbackStencil (then, for a kind's frame, through its Jacobian F), the colliding side by
+// the sample's SamplePointMap, times the weight w [m²] applied once. In the current-geometry
+// dissipation modes the residual w Jᵀ ∂R/∂V is not a gradient; its Jacobian (with the dependence
+// of the load, the split direction and the colliding normal on the dofs, in the stage's world-
+// torque convention for rigid rotations) is differentiated by forward-mode automatic
+// differentiation of the same residual (kind_contact.cpp). Samples without a colliding normal
+// (a kind's, as a shell's or a particle's) have no alignment rejection and no fading, and split
+// friction on the collider's normal (spec: "Normal/Tangential Split").
+#pragma once
+
+#include <vector>
+
+#include "core/contact/contact_stencil.h"
+#include "core/contact/dissipation_setup.h"
+#include "core/contact/rigid_contact.h"
+#include "core/model/actor_kind.h"
+#include "core/model/rigid_body.h"
+
+namespace superdex {
+
+/// One colliding sample of a pair, world frame, with its stencil blocks (3-dof blocks at stage
+/// offsets; −1 for a block without unknowns).
+struct PairSample {
+  Eigen::Vector3d y = Eigen::Vector3d::Zero();      ///< current point [m]
+  Eigen::Vector3d yLast = Eigen::Vector3d::Zero();  ///< at the last actual configuration x_n
+  Eigen::Vector3d y0 = Eigen::Vector3d::Zero();     ///< at the stage start x⁰ (dissipation)
+  bool hasNormal = false;
+  Eigen::Vector3d n = Eigen::Vector3d::Zero();      ///< unit colliding normal at y (world)
+  Eigen::Vector3d nLast = Eigen::Vector3d::Zero();  ///< at x_n
+  /// The normal is that of the triangle of the map's three nodes, at these current positions
+  /// (a soft face's sample): it moves with the nodes. Otherwise a rigid map's normal turns with
+  /// the body, and a Nodes map has none.
+  bool faceNormal = false;
+  Eigen::Vector3d faceNodes[3];
+  int key = 0;    ///< the sample's index in its actor (the slip tape's key)
+  int face = -1;  ///< a soft actor's boundary face (records)
+  double weight = 0.0;                              ///< w [m²]
+  SamplePointMap map;
+  int blocks = 0;
+  int offs[4] = {-1, -1, -1, -1};
+};
+
+/// The collider side: a field in a frame at the current pose, at x_n and at the stage start.
+struct FrameSide {
+  enum class Motion { Static, Rigid, Translation };
+  const RigidCollider* field = nullptr;
+  RigidPose pose;                          ///< current
+  RigidPose last;                          ///< x_n (the geometry reference)
+  RigidStageStart start;                   ///< x⁰ (dissipation; valid when hasStart)
+  bool hasStart = false;
+  /// Static: no dofs. Rigid: [δp_B, δθ_B] at offs[0], offs[1]. Translation: δp_B = F_p δq_B over
+  /// `blocks` 3-dof blocks.
+  Motion motion = Motion::Static;
+  Eigen::Matrix<double, 3, kMaxFrameDofs> Fp = Eigen::Matrix<double, 3, kMaxFrameDofs>::Zero();
+  int blocks = 0;
+  int offs[4] = {-1, -1, -1, -1};
+  int Dofs() const {
+    return motion == Motion::Static ? 0 : motion == Motion::Rigid ? 6 : 3 * blocks;
+  }
+};
+
+/// Evaluates every sample on the frame's field into stencils: consecutive samples with the same
+/// blocks share one (a rigid body's samples, a soft face's). order 0: value;
+/// 1: gradient and residual; 2: Hessian and Jacobian (unprojected). `dissipation` null: penalty
+/// only. `records` (order 0 only) collects the active penalty samples.
+void EvaluateSamplesOnFrame(const std::vector<PairSample>& samples, const FrameSide& B,
+                            const PenaltyParams& penalty, double maxAlignment,
+                            const DissipationSetup* dissipation, int order, PairStencils* out,
+                            std::vector<ContactSampleRecord>* records = nullptr);
+
+/// The samples of a rigid colliding body A (dofs at aOffset, −1 when static) that can contribute
+/// on B's field: its sample tree culled by B's Lipschitz bound at the current pose and, with
+/// dissipation, at x_n (the modes' load geometry). `start` (may be null): A's x⁰ and x_n.
+void GatherRigidSamples(const RigidBodyModel& A, const RigidPose& a, const RigidStageStart* start,
+                        int aOffset, const FrameSide& B, double delta,
+                        const DissipationSetup* dissipation, std::vector<PairSample>* out);
+
+/// The samples of a kind's actor at q (x_n: qLast, x⁰: q0, either may be null), with the stage
+/// offsets of its local dofs (`stageDof`, −1 for prescribed ones).
+void GatherKindSamples(const ActorKind& A, const Eigen::VectorXd& q, const Eigen::VectorXd* qLast,
+                       const Eigen::VectorXd* q0, const std::vector<int>& stageDof,
+                       std::vector<PairSample>* out);
+
+/// A kind's collider frame as a FrameSide (its F moves the frame by translation only), at q, x_n
+/// (qLast; null: q) and x⁰ (q0; null: no stage start).
+FrameSide KindFrameSide(const ActorKind& B, const Eigen::VectorXd& q, const Eigen::VectorXd* qLast,
+                        const Eigen::VectorXd* q0, const std::vector<int>& stageDof);
+/// A rigid body's pose as a FrameSide (dofs at offset, −1 or !dynamic: static).
+FrameSide RigidFrameSide(const RigidBodyModel& B, const RigidPose& b, const RigidStageStart* start,
+                         int offset);
+
+}  // namespace superdex

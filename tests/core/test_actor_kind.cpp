@@ -1,0 +1,254 @@
+// The generic actor layer (core/model/actor_kind.h) carries a kind written against the interface
+// alone: a point mass defined here, in the test, with one colliding sample (the particle, weight
+// w [m²]) and a sphere field of radius r [m] about it as its collider. No file of core/ knows it.
+//
+// Expectations, independent of the simulator's assembly:
+//   rest on a plane:       w λ_n(φ*) = m g, λ_n the spec's normal load (energies/normal_penalty.h),
+//                          so the particle rests at z = φ*;
+//   two stacked particles: the lower one at z₁ with w λ_n(z₁) = (m₁ + m₂) g, the upper one at
+//                          z₂ = z₁ + r + φ₂: both ordered pairs act (the upper's sample in the
+//                          lower's field, and the lower's sample in the upper's field, at the same
+//                          φ₂ = |x₂ − x₁| − r), so 2 w λ_n(φ₂) = m₂ g;
+//   sliding down a rigid box tilted by θ with friction μ (|v| ≫ V_f): a = g (sin θ − μ cos θ).
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <memory>
+
+#include "core/scene.h"
+#include "scene_builders.h"
+
+using namespace superdex;
+
+namespace {
+
+class PointMass : public ActorKind {
+ public:
+  PointMass(double mass, double area, double radius, const Eigen::Vector3d& x,
+            const Eigen::Vector3d& v)
+      : mass_(mass), area_(area), x_(x), v_(v) {
+    field_.type = ColliderType::Sphere;
+    field_.sphere.radius = radius;
+    field_.boundingRadius = radius;
+    name = "particle";
+  }
+  std::string KindName() const override { return "point mass"; }
+  std::unique_ptr<ActorKind> Clone() const override { return std::make_unique<PointMass>(*this); }
+  int NumDofs() const override { return 3; }
+  KindState InitialState() const override { return {x_, v_}; }
+  std::string Validate() const override {
+    return mass_ > 0 ? std::string() : "point mass: mass must be > 0";
+  }
+  // Φ = m/(2Δt²)|q − q̂|² − m g·q [J].
+  double StageEnergy(const KindStageData& s, const Eigen::VectorXd& q, int order, PsdProjection,
+                     Eigen::VectorXd* g, std::vector<Eigen::Triplet<double>>* H) const override {
+    const double w = mass_ / (s.dt * s.dt);
+    const Eigen::Vector3d e = q - s.qHat;
+    if (order >= 1) *g += w * e - mass_ * s.gravity;
+    if (order >= 2)
+      for (int i = 0; i < 3; ++i) H->emplace_back(i, i, w);
+    return 0.5 * w * e.squaredNorm() - mass_ * s.gravity.dot(q);
+  }
+  double KineticEnergy(const KindState& s) const override {
+    return 0.5 * mass_ * s.v.squaredNorm();
+  }
+  double GravityEnergy(const KindState& s, const Eigen::Vector3d& g) const override {
+    return -mass_ * g.dot(s.x);
+  }
+  Eigen::Vector3d LinearMomentum(const KindState& s) const override { return mass_ * s.v; }
+  Eigen::Vector3d AngularMomentum(const KindState& s) const override {
+    return mass_ * Eigen::Vector3d(s.x).cross(Eigen::Vector3d(s.v));
+  }
+  Eigen::Vector3d CenterOfMass(const KindState& s) const override { return s.x; }
+  Eigen::Vector3d CenterOfMassVelocity(const KindState& s) const override { return s.v; }
+  Aabb Bounds(const Eigen::VectorXd& q) const override {
+    Aabb b;
+    b.Extend(q - Eigen::Vector3d::Constant(field_.sphere.radius));
+    b.Extend(q + Eigen::Vector3d::Constant(field_.sphere.radius));
+    return b;
+  }
+  int NumSamples() const override { return 1; }
+  KindSample Sample(int, const Eigen::VectorXd& q) const override {
+    KindSample s;
+    s.y = q;
+    s.weight = area_;
+    s.map = SamplePointMap::Point();
+    s.dof[0] = 0;
+    return s;
+  }
+  const RigidCollider* Collider() const override { return &field_; }
+  KindFrame ColliderFrame(const Eigen::VectorXd& q) const override {
+    KindFrame f;
+    f.pose.p = q;
+    f.blocks = 1;
+    f.dof[0] = 0;
+    f.F.topLeftCorner<3, 3>().setIdentity();
+    return f;
+  }
+
+ private:
+  double mass_, area_;
+  Eigen::Vector3d x_, v_;
+  RigidCollider field_;
+};
+
+constexpr double kG = 9.81;
+constexpr double kRestTolerance = 1e-7;  // [m], see the first test
+
+// The penetration φ < 0 at which w λ_n(φ) = load [N], by bisection on the monotone λ_n.
+double BalanceDepth(double load, double w, const PenaltyParams& p) {
+  double lo = -p.eps, hi = p.delta;  // λ_n(hi) = 0 < load; λ_n grows as φ falls
+  while (w * NormalPenaltyDensity(lo, p).lambdaN < load) lo *= 2.0;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (w * NormalPenaltyDensity(mid, p).lambdaN < load ? hi : lo) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+// The pair's penalty parameters as the spec combines them for a kind on a static collider (k,
+// from the colliding actor; ε, δ the collider's; δ padded: the particle's collider is a sphere,
+// not None or PointCloud, so no padding).
+PenaltyParams PairPenalty(const ContactParams& a, const ContactParams& b) {
+  PenaltyParams p;
+  p.k = a.penaltyCoefficient;
+  p.eps = b.penaltySmoothingHalfDistance;
+  p.delta = b.penaltyThresholdDefault;
+  return p;
+}
+
+SceneSettings Settings(int mode) {
+  SceneSettings s;
+  s.gravity = Eigen::Vector3d(0, 0, -kG);
+  s.integrator = IntegrationMethod::BackwardEuler;
+  s.eval = test::EvalParamsForMode(mode);
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("a point-mass kind written in a test rests on a plane at the penalty balance",
+          "[core][kind][physics]") {
+  const double m = 0.2, w = 1e-4;
+  Scene scene(Settings(1));
+  Error error;
+  const ActorHandle ground = scene.AddRigidActor(test::StaticGround(1e9, 0.0), &error);
+  REQUIRE(ground.IsValid());
+  auto particle = std::make_unique<PointMass>(m, w, 0.01, Eigen::Vector3d(0.1, -0.2, 0.02),
+                                              Eigen::Vector3d::Zero());
+  particle->contact.penaltyCoefficient = 1e9;
+  const ContactParams pc = particle->contact;
+  const ActorHandle p = scene.AddActor(std::move(particle), &error);
+  REQUIRE(p.IsValid());
+  for (int i = 0; i < 1500; ++i) {
+    StepReport rep;
+    REQUIRE(scene.Step(1e-3, &rep, &error));
+    REQUIRE(rep.status == StageStatus::Converged);
+  }
+  const double zStar = BalanceDepth(m * kG, w, PairPenalty(pc, scene.GetContactParams(ground)));
+  const KindState& s = scene.KindStateOf(p);
+  INFO("rest height " << s.x.z() << " m, balance " << zStar << " m");
+  CHECK(zStar < 0.0);
+  // The stage tolerance (Newton decrement <= 1e-12 J at a stiffness m/Δt² + k w ≈ 3e5 N/m) leaves
+  // ~3e-9 m per step: 1e-7 m (7e-5 of the depth) and 1e-5 m/s bound what it may accumulate.
+  CHECK(std::abs(s.x.z() - zStar) <= kRestTolerance);
+  CHECK(s.x.head<2>().isApprox(Eigen::Vector2d(0.1, -0.2), 1e-12));
+  CHECK(s.v.norm() < 1e-5);
+  CHECK(scene.ContactState().activeSamples == 1);
+  // The reported energies and momentum come from the kind.
+  CHECK(scene.Energies().gravity == Approx(m * kG * s.x.z()).epsilon(1e-12));
+  CHECK(scene.TotalLinearMomentum().norm() < m * 1e-5);
+}
+
+TEST_CASE("two point masses stack: the collider role of a kind (its sphere field) carries one",
+          "[core][kind][physics]") {
+  const double m1 = 0.3, m2 = 0.1, w = 1e-4, r = 0.01;
+  Scene scene(Settings(0));
+  Error error;
+  const ActorHandle ground = scene.AddRigidActor(test::StaticGround(1e9, 0.0), &error);
+  auto lower = std::make_unique<PointMass>(m1, w, r, Eigen::Vector3d(0, 0, 0.001),
+                                           Eigen::Vector3d::Zero());
+  auto upper = std::make_unique<PointMass>(m2, w, r, Eigen::Vector3d(0, 0, 0.0125),
+                                           Eigen::Vector3d::Zero());
+  lower->contact.penaltyCoefficient = upper->contact.penaltyCoefficient = 1e9;
+  const ContactParams pc = lower->contact;
+  const ActorHandle a = scene.AddActor(std::move(lower), &error);
+  const ActorHandle b = scene.AddActor(std::move(upper), &error);
+  REQUIRE((a.IsValid() && b.IsValid()));
+  for (int i = 0; i < 2000; ++i) {
+    StepReport rep;
+    REQUIRE(scene.Step(1e-3, &rep, &error));
+    REQUIRE(rep.status == StageStatus::Converged);
+  }
+  const double z1 = BalanceDepth((m1 + m2) * kG, w, PairPenalty(pc, scene.GetContactParams(ground)));
+  // Both dynamic: k = √(k_A k_B) = k; ε, δ the collider's (equal here); two ordered pairs.
+  const double phi2 = BalanceDepth(0.5 * m2 * kG, w, PairPenalty(pc, pc));
+  const double zA = scene.KindStateOf(a).x.z(), zB = scene.KindStateOf(b).x.z();
+  INFO("lower " << zA << " (expected " << z1 << "), upper " << zB << " (expected "
+                << z1 + r + phi2 << ")");
+  CHECK(std::abs(zA - z1) <= kRestTolerance);
+  CHECK(std::abs(zB - (z1 + r + phi2)) <= kRestTolerance);
+  // The lower particle's sample meets the plane, the upper one's the lower's field.
+  int onPlane = 0, onParticle = 0;
+  for (const ContactSampleRecord& rec : scene.ContactSamples()) {
+    onPlane += rec.colliding == a.index && rec.collider == ground.index;
+    onParticle += rec.colliding == b.index && rec.collider == a.index;
+  }
+  CHECK(onPlane == 1);
+  CHECK(onParticle == 1);
+  CHECK(scene.ContactState().activeSamples == 3);  // the plane's, and both ordered pairs'
+}
+
+TEST_CASE("a point mass slides down a tilted rigid box at g (sin θ − μ cos θ)",
+          "[core][kind][friction][physics]") {
+  const double theta = 20.0 * M_PI / 180.0, mu = 0.2, m = 0.2, w = 1e-4;
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  const Eigen::Vector3d n = R.col(2), down = -R.col(1);  // slope normal, downhill direction
+  for (int mode : {0, 1, 2}) {
+    Scene scene(Settings(mode));
+    Error error;
+    RigidActorDesc box;
+    box.name = "slope";
+    box.dynamic = false;
+    box.shape.kind = RigidShapeKind::Box;
+    box.shape.halfExtents = Eigen::Vector3d(2.0, 2.0, 0.1);
+    box.orientation = Eigen::Quaterniond(R);
+    box.position = -0.1 * n;  // top face through the origin
+    box.contact.coulombFrictionCoefficient = mu;
+    REQUIRE(scene.AddRigidActor(box, &error).IsValid());
+    const PenaltyParams pp = PairPenalty(ContactParams(), ContactParams());
+    const double phi = BalanceDepth(m * kG * std::cos(theta), w, pp);
+    auto particle = std::make_unique<PointMass>(m, w, 0.01, phi * n, 0.5 * down);
+    particle->contact.coulombFrictionCoefficient = mu;
+    const ActorHandle p = scene.AddActor(std::move(particle), &error);
+    REQUIRE(p.IsValid());
+    const double dt = 1e-3;
+    double v1 = 0.0;
+    for (int i = 1; i <= 400; ++i) {
+      StepReport rep;
+      REQUIRE(scene.Step(dt, &rep, &error));
+      REQUIRE(rep.status == StageStatus::Converged);
+      if (i == 100) v1 = scene.KindStateOf(p).v.dot(down);
+    }
+    const double v2 = scene.KindStateOf(p).v.dot(down);
+    const double a = (v2 - v1) / (300 * dt);
+    const double expected = kG * (std::sin(theta) - mu * std::cos(theta));
+    INFO(test::kModeNames[mode] << ": a = " << a << " m/s², expected " << expected);
+    // Friction at |v_t|/V_f >= 50 is μ λ_n to the falloff's 1e-3; the normal load balances gravity.
+    CHECK(std::abs(a - expected) <= 2e-3 * expected);
+    CHECK(std::abs(scene.KindStateOf(p).v.dot(n)) < 1e-6);
+  }
+}
+
+TEST_CASE("an actor kind is validated when added", "[core][kind][validation]") {
+  Scene scene;
+  Error error;
+  auto bad = std::make_unique<PointMass>(-1.0, 1e-4, 0.01, Eigen::Vector3d::Zero(),
+                                         Eigen::Vector3d::Zero());
+  CHECK_FALSE(scene.AddActor(std::move(bad), &error).IsValid());
+  CHECK(error.message.find("mass must be > 0") != std::string::npos);
+  auto badContact = std::make_unique<PointMass>(1.0, 1e-4, 0.01, Eigen::Vector3d::Zero(),
+                                                Eigen::Vector3d::Zero());
+  badContact->contact.penaltyCoefficient = -1.0;
+  CHECK_FALSE(scene.AddActor(std::move(badContact), &error).IsValid());
+  CHECK(error.message.find("contact.penalty_coefficient") != std::string::npos);
+}
