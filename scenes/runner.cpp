@@ -6,6 +6,7 @@
 #include <iomanip>
 
 #include "scenes/trajectory_writer.h"
+#include "scenes/viewer_page.h"
 #include "scenes/vtk_writer.h"
 
 namespace superdex {
@@ -18,9 +19,13 @@ bool RunScene(SceneFile* file, const RunOptions& options, RunSummary* summary, E
   if (!(duration > 0 && std::isfinite(duration))) return Fail(error, "duration: must be > 0");
   RunSummary s;
   s.trajectoryPath = options.out.value_or(file->output.path);
+  if (options.view && s.trajectoryPath.empty())
+    return Fail(error, "--view: the viewer page needs a trajectory (output.path or --out)");
   TrajectoryWriter writer;
   if (!s.trajectoryPath.empty()) {
-    if (!writer.Open(s.trajectoryPath, scene, file->actorNames, dt, error)) return false;
+    TrajectoryOptions content;
+    content.contacts = options.contacts.value_or(file->output.contacts);
+    if (!writer.Open(s.trajectoryPath, scene, file->actorNames, dt, error, content)) return false;
     writer.WriteFrame(scene, 0, nullptr);
   }
   s.vtkDirectory = options.vtk.value_or(file->output.vtk);
@@ -71,6 +76,15 @@ bool RunScene(SceneFile* file, const RunOptions& options, RunSummary* summary, E
   }
   s.simulatedSeconds = scene.Time();
   s.finalEnergy = scene.Energies().Total();
+  if (options.view) {
+    writer.Close();
+    const Clock::time_point t0 = Clock::now();
+    ViewerPageInfo page;
+    if (!WriteViewerPage(s.trajectoryPath, ViewerPagePath(s.trajectoryPath), &page, error))
+      return false;
+    s.viewerPage = page.path;
+    s.viewerSeconds = seconds(t0, Clock::now());
+  }
 
   const SceneExpectations& e = file->expect;
   auto fail = [&](const std::string& m) { s.expectationFailures.push_back(m); };
@@ -152,6 +166,8 @@ void PrintSummary(const SceneFile& file, const RunSummary& s, std::ostream& os) 
      << drift << " J, " << 100.0 * drift / std::max(std::abs(s.initialEnergy), 1e-300)
      << " %)\n";
   if (!s.trajectoryPath.empty()) os << "trajectory        " << s.trajectoryPath << "\n";
+  if (!s.viewerPage.empty())
+    os << "viewer page       " << s.viewerPage << " (open it in a browser)\n";
   if (s.vtkFrames > 0)
     os << "VTK frames        " << s.vtkFrames << " in " << s.vtkDirectory
        << "/ (open the series in ParaView; cell data: traction, pressure)\n";

@@ -14,6 +14,10 @@ struct RunOptions {
   std::optional<double> duration;    ///< overrides settings.duration [s]
   std::optional<std::string> out;    ///< overrides output.path ("" = no file)
   std::optional<std::string> vtk;    ///< overrides output.vtk ("" = no frames)
+  std::optional<bool> contacts;      ///< overrides output.contacts
+  /// At the end, the viewer page next to the trajectory (scenes/viewer_page.h); needs a
+  /// trajectory file.
+  bool view = false;
   /// Called after every step with the step's report and the fraction done in [0, 1].
   std::function<void(const StepReport&, double)> progress;
 };
@@ -37,6 +41,8 @@ struct RunSummary {
   double initialEnergy = 0.0, finalEnergy = 0.0;  ///< total mechanical energy [J]
   std::vector<std::string> expectationFailures;   ///< empty when every expectation holds
   std::string trajectoryPath;
+  std::string viewerPage;    ///< the viewer page written ("" = none)
+  double viewerSeconds = 0.0;  ///< writing it
   std::string vtkDirectory;  ///< where the VTK frames went ("" = none)
   int vtkFrames = 0;
 };

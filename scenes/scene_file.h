@@ -16,6 +16,7 @@ struct OutputSpec {
   int every = 1;         ///< write every n-th step
   std::string vtk;       ///< directory for VTK frames (frame_000000.vtk, ...); empty: none
   int vtkEvery = 10;     ///< a frame every n-th step
+  bool contacts = false; ///< the trajectory frames carry the contact samples (for the viewer)
 };
 
 /// Expected figures of a shipped scene (regression checks run by `superdex run` and the tests).

@@ -1,6 +1,7 @@
 // The `superdex` command-line tool.
 //   superdex run SCENE.json [--dt S] [--duration S] [--integrator NAME] [--solver NAME]
-//                [--out FILE] [--vtk DIR] [--quiet]
+//                [--out FILE] [--vtk DIR] [--contacts] [--view] [--quiet]
+//   superdex view RUN.jsonl [--out PAGE.html]
 //   superdex fit SCENE.json --observed TRAJ.jsonl --params ACTOR.NAME,... [--dt S]
 //                [--method lm|lbfgs] [--max-iterations N] [--out FITTED.json]
 //   superdex gradient SCENE.json --observed TRAJ.jsonl --params ACTOR.NAME,... [--dt S]
@@ -18,6 +19,7 @@
 #include "scenes/fit.h"
 #include "scenes/parameter_docs.h"
 #include "scenes/runner.h"
+#include "scenes/viewer_page.h"
 
 namespace {
 
@@ -151,32 +153,106 @@ int RunFit(const std::string& scenePath, const std::string& observedPath,
   return 0;
 }
 
+
+// The options of `superdex run`.
+struct RunArgs {
+  std::string scene, integrator, out, vtk, solver;
+  double dt = 0.0, duration = 0.0;
+  bool quiet = false, contacts = false, view = false;
+};
+
+CLI::App* AddRunCommand(CLI::App* app, RunArgs* a) {
+  CLI::App* run = app->add_subcommand("run", "Run a scene file and write its trajectory");
+  run->add_option("scene", a->scene, "Scene file (JSON)")->required();
+  run->add_option("--dt", a->dt, "Time step [s] (overrides settings.dt)");
+  run->add_option("--duration", a->duration, "Simulated time [s] (overrides settings.duration)");
+  run->add_option("--integrator", a->integrator,
+                  "IntegrationMethod (overrides settings.integrator): " +
+                      superdex::AllNames(superdex::IntegrationMethod()));
+  run->add_option("--out", a->out, "Trajectory file (JSON Lines); overrides output.path");
+  run->add_option("--vtk", a->vtk, "Directory for VTK frames (surfaces with contact tractions); "
+                                   "overrides output.vtk");
+  run->add_option("--solver", a->solver,
+                  "Stage solver (overrides settings.stage_solver): " +
+                      superdex::AllNames(superdex::StageSolverKind()) +
+                      "; ipopt (potential stages only) and ceres are dense checks for small "
+                      "scenes");
+  run->add_flag("--contacts", a->contacts,
+                "Record the contact samples in the trajectory frames (sets output.contacts)");
+  run->add_flag("--view", a->view,
+                "At the end, write the viewer page next to the trajectory (as `superdex view`)");
+  run->add_flag("--quiet", a->quiet, "No progress bar");
+  return run;
+}
+
+int RunCommand(const RunArgs& a, const CLI::App& run) {
+  superdex::SceneFile file;
+  superdex::Error error;
+  if (!superdex::LoadSceneFile(a.scene, &file, &error)) {
+    std::cerr << "error: " << error.message << "\n";
+    return 2;
+  }
+  superdex::RunOptions options;
+  if (run.count("--dt")) options.dt = a.dt;
+  if (run.count("--duration")) options.duration = a.duration;
+  if (run.count("--out")) options.out = a.out;
+  if (run.count("--vtk")) options.vtk = a.vtk;
+  if (a.contacts) options.contacts = true;
+  options.view = a.view;
+  superdex::Scene& scene = *file.scene;
+  if (run.count("--integrator") &&
+      !SetFromOption<superdex::IntegrationMethod>("--integrator", a.integrator, superdex::Parse,
+                     [&](auto m, superdex::Error* e) { return scene.SetIntegrator(m, e); }))
+    return 2;
+  if (run.count("--solver") &&
+      !SetFromOption<superdex::StageSolverKind>("--solver", a.solver, superdex::ParseStageSolver,
+                     [&](auto k, superdex::Error* e) { return scene.SetStageSolver(k, e); }))
+    return 2;
+  for (const auto& n : file.scene->Notices()) std::cerr << "note: " << n << "\n";
+
+  ProgressBar bar(!a.quiet);
+  options.progress = [&](const StepReport& r, double f) { bar.Update(r, f); };
+  superdex::RunSummary summary;
+  if (!superdex::RunScene(&file, options, &summary, &error)) {
+    std::cerr << "error: " << error.message << "\n";
+    return 2;
+  }
+  superdex::PrintSummary(file, summary, std::cout);
+  if (summary.stopped > 0 || summary.diverged > 0) {
+    std::cerr << "error: " << summary.stopped + summary.diverged
+              << " stages did not converge (see the summary)\n";
+    return 3;
+  }
+  return summary.expectationFailures.empty() ? 0 : 4;
+}
+
+int ViewCommand(const std::string& trajectory, const std::string& out) {
+  superdex::ViewerPageInfo info;
+  superdex::Error error;
+  const std::string page = out.empty() ? superdex::ViewerPagePath(trajectory) : out;
+  if (!superdex::WriteViewerPage(trajectory, page, &info, &error)) {
+    std::cerr << "error: " << error.message << "\n";
+    return 2;
+  }
+  std::printf("viewer page %s: %d frames, %d actors, %ld contact samples, %.2f MB (open it in a "
+              "browser)\n", info.path.c_str(), info.frames, info.actors, info.contactSamples,
+              info.bytes / 1e6);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"superdex: compliant-contact simulation by incremental potentials"};
   app.require_subcommand(1);
-  CLI::App* run = app.add_subcommand("run", "Run a scene file and write its trajectory");
-  std::string scenePath, integrator, out;
-  double dt = 0.0, duration = 0.0;
-  bool quiet = false;
-  run->add_option("scene", scenePath, "Scene file (JSON)")->required();
-  run->add_option("--dt", dt, "Time step [s] (overrides settings.dt)");
-  run->add_option("--duration", duration, "Simulated time [s] (overrides settings.duration)");
-  run->add_option("--integrator", integrator,
-                  "IntegrationMethod (overrides settings.integrator): " +
-                      superdex::AllNames(superdex::IntegrationMethod()));
-  run->add_option("--out", out, "Trajectory file (JSON Lines); overrides output.path");
-  std::string vtk;
-  run->add_option("--vtk", vtk, "Directory for VTK frames (surfaces with contact tractions); "
-                                "overrides output.vtk");
-  std::string solver;
-  run->add_option("--solver", solver,
-                  "Stage solver (overrides settings.stage_solver): " +
-                      superdex::AllNames(superdex::StageSolverKind()) +
-                      "; ipopt (potential stages only) and ceres are dense checks for small "
-                      "scenes");
-  run->add_flag("--quiet", quiet, "No progress bar");
+  RunArgs runArgs;
+  CLI::App* run = AddRunCommand(&app, &runArgs);
+  CLI::App* view = app.add_subcommand(
+      "view", "Write the viewer page of a trajectory: one HTML file next to it (RUN.html) that "
+              "plays the run in a browser, from disk, without a network");
+  std::string viewTrajectory, viewOut;
+  view->add_option("trajectory", viewTrajectory, "Trajectory file (JSON Lines)")->required();
+  view->add_option("--out", viewOut, "The page (default: the trajectory's path with .html)");
   CLI::App* fit = app.add_subcommand(
       "fit", "Fit scene parameters to an observed trajectory (Ceres on the centres of mass: "
              "Levenberg-Marquardt with forward sensitivities, or L-BFGS with adjoint gradients)");
@@ -232,40 +308,6 @@ int main(int argc, char** argv) {
     return RunFit(fitScene, observedPath, fitParams, fit->count("--dt") ? fitDt : 0.0, method,
                   maxIterations, fitOut);
   }
-  superdex::SceneFile file;
-  superdex::Error error;
-  if (!superdex::LoadSceneFile(scenePath, &file, &error)) {
-    std::cerr << "error: " << error.message << "\n";
-    return 2;
-  }
-  superdex::RunOptions options;
-  if (run->count("--dt")) options.dt = dt;
-  if (run->count("--duration")) options.duration = duration;
-  if (run->count("--out")) options.out = out;
-  if (run->count("--vtk")) options.vtk = vtk;
-  superdex::Scene& scene = *file.scene;
-  if (run->count("--integrator") &&
-      !SetFromOption<superdex::IntegrationMethod>("--integrator", integrator, superdex::Parse,
-                     [&](auto m, superdex::Error* e) { return scene.SetIntegrator(m, e); }))
-    return 2;
-  if (run->count("--solver") &&
-      !SetFromOption<superdex::StageSolverKind>("--solver", solver, superdex::ParseStageSolver,
-                     [&](auto k, superdex::Error* e) { return scene.SetStageSolver(k, e); }))
-    return 2;
-  for (const auto& n : file.scene->Notices()) std::cerr << "note: " << n << "\n";
-
-  ProgressBar bar(!quiet);
-  options.progress = [&](const StepReport& r, double f) { bar.Update(r, f); };
-  superdex::RunSummary summary;
-  if (!superdex::RunScene(&file, options, &summary, &error)) {
-    std::cerr << "error: " << error.message << "\n";
-    return 2;
-  }
-  superdex::PrintSummary(file, summary, std::cout);
-  if (summary.stopped > 0 || summary.diverged > 0) {
-    std::cerr << "error: " << summary.stopped + summary.diverged
-              << " stages did not converge (see the summary)\n";
-    return 3;
-  }
-  return summary.expectationFailures.empty() ? 0 : 4;
+  if (view->parsed()) return ViewCommand(viewTrajectory, viewOut);
+  return RunCommand(runArgs, *run);
 }

@@ -1,6 +1,8 @@
 #include "scenes/trajectory_writer.h"
 
 #include <Eigen/Geometry>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
@@ -11,30 +13,96 @@ using json = nlohmann::json;
 
 json Vec(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); }
 
+// v to 7 significant digits (single precision), so that it prints short: the fields added for
+// the viewer (shapes' vertices, soft surfaces, contact samples) are bulk data.
+double Single(double v) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.7g", v);
+  return std::strtod(text, nullptr);
+}
+
+void Push(json* flat, const Eigen::Vector3d& v) {
+  for (int k = 0; k < 3; ++k) flat->push_back(Single(v[k]));
+}
+
+json RigidShapeJson(const RigidBodyModel& m) {
+  const RigidShape& s = m.shape;
+  switch (s.kind) {
+    case RigidShapeKind::Sphere: return {{"type", "sphere"}, {"radius", s.radius}};
+    case RigidShapeKind::Box: return {{"type", "box"}, {"half_extents", Vec(s.halfExtents)}};
+    case RigidShapeKind::Plane: return {{"type", "plane"}, {"normal", Vec(s.planeNormal)}};
+    case RigidShapeKind::Mesh: break;
+  }
+  // Vertices in the body frame (origin at the centre of mass): world = p + R v.
+  json vertices = json::array(), faces = json::array();
+  for (const Eigen::Vector3d& v : s.mesh->vertices) Push(&vertices, v - m.shapeOffset);
+  for (const Eigen::Vector3i& f : s.mesh->faces)
+    for (int k = 0; k < 3; ++k) faces.push_back(f[k]);
+  return {{"type", "mesh"}, {"source", s.meshSource}, {"vertices", vertices}, {"faces", faces}};
+}
+
+// The soft actor's boundary: the nodes its faces use (in first-use order) and the faces as
+// indices into that list.
+json SoftSurfaceJson(const SoftBodyModel& m, std::vector<int>* nodes) {
+  std::vector<int> local(m.NumNodes(), -1);
+  json faces = json::array();
+  for (const Eigen::Vector3i& f : m.faces) {
+    for (int k = 0; k < 3; ++k) {
+      if (local[f[k]] < 0) {
+        local[f[k]] = static_cast<int>(nodes->size());
+        nodes->push_back(f[k]);
+      }
+      faces.push_back(local[f[k]]);
+    }
+  }
+  return {{"nodes", *nodes}, {"faces", faces}};
+}
+
+// The active contact samples as columns: the actor pair (colliding, collider), positions [m],
+// normal tractions [Pa] (> 0 pushing the colliding actor out), forces w_q t_n on the colliding
+// actor [N].
+json ContactsJson(Scene& scene) {
+  json pairs = json::array(), p = json::array(), tn = json::array(), f = json::array();
+  for (const ContactSampleRecord& r : scene.ContactSamples()) {
+    pairs.push_back(r.colliding);
+    pairs.push_back(r.collider);
+    Push(&p, r.position);
+    tn.push_back(Single(r.traction.dot(r.normal)));
+    Push(&f, r.weight * r.traction);
+  }
+  return {{"count", tn.size()}, {"pairs", pairs}, {"p", p}, {"tn", tn}, {"f", f}};
+}
+
 }  // namespace
 
 bool TrajectoryWriter::Open(const std::string& path, const Scene& scene,
-                            const std::vector<std::string>& names, double dt, Error* error) {
+                            const std::vector<std::string>& names, double dt, Error* error,
+                            const TrajectoryOptions& options) {
   std::error_code ec;
   const std::filesystem::path p(path);
   if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path(), ec);
   out_.open(path);
   if (!out_) return Fail(error, "output.path: cannot write \"" + path + "\"");
+  options_ = options;
+  surfaceNodes_.assign(scene.NumActors(), {});
   json h;
   h["format"] = "superdex-trajectory/1";
   h["dt"] = dt;
   h["integrator"] = ToString(scene.Settings().integrator);
   h["gravity"] = Vec(scene.Settings().gravity);
+  h["contacts"] = options.contacts;
   json actors = json::array();
   for (int i = 0; i < scene.NumActors(); ++i) {
     if (scene.IsSoft({i})) {
       const SoftBodyModel& m = scene.SoftModel({i});
       actors.push_back({{"name", names[i]}, {"type", "soft"}, {"dynamic", true}, {"mass", m.mass},
-                        {"nodes", m.NumNodes()}, {"tets", m.rest.NumTets()}});
+                        {"nodes", m.NumNodes()}, {"tets", m.rest.NumTets()},
+                        {"surface", SoftSurfaceJson(m, &surfaceNodes_[i])}});
       continue;
     }
     const RigidBodyModel& m = scene.Model({i});
-    actors.push_back({{"name", names[i]}, {"type", "rigid"}, {"dynamic", m.dynamic}, {"mass", m.mass}});
+    actors.push_back({{"name", names[i]}, {"type", "rigid"}, {"dynamic", m.dynamic},
+                      {"mass", m.mass}, {"shape", RigidShapeJson(m)}});
   }
   h["actors"] = actors;
   out_ << h.dump() << '\n';
@@ -47,8 +115,13 @@ void TrajectoryWriter::WriteFrame(Scene& scene, int step, const StepReport* repo
   f["step"] = step;
   json actors = json::array();
   for (int i = 0; i < scene.NumActors(); ++i) {
-    if (scene.IsSoft({i})) {  // centre of mass and its velocity; the nodes go to VTK frames
-      actors.push_back({{"p", Vec(scene.CenterOfMass({i}))}, {"v", Vec(scene.CenterOfMassVelocity({i}))}});
+    if (scene.IsSoft({i})) {  // centre of mass, its velocity and the boundary nodes
+      json surface = json::array();
+      const Eigen::VectorXd& x = scene.SoftState({i}).x;
+      for (int a : surfaceNodes_[i]) Push(&surface, x.segment<3>(3 * a));
+      actors.push_back({{"p", Vec(scene.CenterOfMass({i}))},
+                        {"v", Vec(scene.CenterOfMassVelocity({i}))},
+                        {"surface", surface}});
       continue;
     }
     const RigidBodyState& s = scene.State({i});
@@ -62,6 +135,7 @@ void TrajectoryWriter::WriteFrame(Scene& scene, int step, const StepReport* repo
   const EnergyReport e = scene.Energies();
   f["energy"] = {{"kinetic", e.kinetic}, {"gravity", e.gravity}, {"contact", e.contact},
                  {"elastic", e.elastic}, {"total", e.Total()}};
+  if (options_.contacts) f["contacts"] = ContactsJson(scene);
   if (report) {
     f["stats"] = {{"newton_iterations", report->newtonIterations},
                   {"line_search_steps", report->lineSearchSteps},
