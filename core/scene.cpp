@@ -14,16 +14,6 @@
 namespace superdex {
 namespace {
 
-// a·x + b·y over every field (poses as matrices: the result's R need not be a rotation).
-RigidBodyState Affine(double a, const RigidBodyState& x, double b, const RigidBodyState& y) {
-  RigidBodyState s;
-  s.p = a * x.p + b * y.p;
-  s.R = a * x.R + b * y.R;
-  s.v = a * x.v + b * y.v;
-  s.Rdot = a * x.Rdot + b * y.Rdot;
-  return s;
-}
-
 int Severity(StageStatus s) {
   return s == StageStatus::Converged ? 0 : s == StageStatus::Stopped ? 1 : 2;
 }
@@ -405,28 +395,14 @@ bool Scene::Step(double h, StepReport* report, Error* error, StageRecorder* reco
 
   // BDF3 starts with DIRK33 steps while its history fills: a Backward Euler start (local error
   // O(h²)) would cap its global order at 2. BDF2 starts with one BDF1 (Backward Euler) step, whose
-  // O(h²) local error is within BDF2's own global order.
+  // O(h²) local error is within BDF2's own global order (core/dynamics/time_stepper.h).
   const bool bdf3Startup = method == IntegrationMethod::BDF3 && step_.history.size() < 2;
   if (IsMultistep(method) && !bdf3Startup)
-    StepBdf(h, method, &w);
+    StepBdf(models_, step_, h, method, *this, &buffers_, &w);
   else
-    StepDirk(h, bdf3Startup ? IntegrationMethod::DIRK33 : method, &w);
-  // History for the multistep methods: x_{n}, x_{n−1} with their times.
-  if (step_.history.size() < 2) {
-    step_.history.insert(step_.history.begin(), step_.states);
-    step_.softHistory.insert(step_.softHistory.begin(), step_.softStates);
-    step_.historyTimes.insert(step_.historyTimes.begin(), step_.time);
-  } else {  // the oldest entry's storage takes the current state
-    std::swap(step_.history[0], step_.history[1]);
-    std::swap(step_.softHistory[0], step_.softHistory[1]);
-    std::swap(step_.historyTimes[0], step_.historyTimes[1]);
-    step_.history[0] = step_.states;
-    step_.softHistory[0] = step_.softStates;
-    step_.historyTimes[0] = step_.time;
-  }
-  step_.states.swap(w.next);  // next keeps the former state's storage for the next step
-  step_.softStates = std::move(w.softNext);
-  step_.time += h;
+    StepDirk(models_, step_, h, bdf3Startup ? IntegrationMethod::DIRK33 : method, *this,
+             &buffers_, &w);
+  EndStep(h, &w, &step_);
   rep.time = step_.time;
   const bool supplied = recorder_ && recorder_->Supplies();
   recorder_ = nullptr;
@@ -440,158 +416,6 @@ bool Scene::Step(double h, StepReport* report, Error* error, StageRecorder* reco
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (report) *report = rep;
   return true;
-}
-
-void Scene::StepBdf(double h, IntegrationMethod method, StepWork* work) {
-  auto& [poses, stepStart, next, softX, softStepStart, softNext, rep] = *work;
-  const size_t n = models_.size(), ns = step_.softStates.size();  // ns: soft actors and kinds
-  // BDF-k with variable steps.
-  const int k = std::min<int>(BdfSteps(method), static_cast<int>(step_.history.size()) + 1);
-  std::vector<double>& times = buffers_.bdfTimes;
-  times.assign({step_.time + h, step_.time});
-  for (int j = 0; j + 1 < k; ++j) times.push_back(step_.historyTimes[j]);
-  std::vector<double>& weights = buffers_.bdfWeights;
-  const double dt = BdfCoefficients(times, &weights);
-  std::vector<RigidBodyState>& start = buffers_.start;
-  start.resize(n);
-  for (size_t i = 0; i < n; ++i) {
-    start[i] = Affine(weights[0], step_.states[i], 0.0, step_.states[i]);
-    for (int j = 1; j < k; ++j) start[i] = Affine(1.0, start[i], weights[j], step_.history[j - 1][i]);
-  }
-  std::vector<SoftBodyState> softStart(ns);
-  for (size_t s = 0; s < ns; ++s) {
-    softStart[s].x = weights[0] * step_.softStates[s].x;
-    softStart[s].v = weights[0] * step_.softStates[s].v;
-    for (int j = 1; j < k; ++j) {
-      softStart[s].x += weights[j] * step_.softHistory[j - 1][s].x;
-      softStart[s].v += weights[j] * step_.softHistory[j - 1][s].v;
-    }
-  }
-  ApplyConstraints(step_.time + h, &softX);
-  const SoftStage soft = MakeSoftStage(dt, step_.time + h, softStart, softStepStart);
-  SolveStage(dt, start, stepStart, &poses, &soft, &softX, h, &rep);
-  for (size_t s = 0; s < ns; ++s) {
-    softNext[s].x = softX[s];
-    softNext[s].v = (softX[s] - softStart[s].x) / dt;
-  }
-  for (size_t i = 0; i < n; ++i) {
-    if (!models_[i].dynamic) continue;
-    next[i].p = poses[i].p;
-    next[i].R = poses[i].R;
-    next[i].v = (poses[i].p - start[i].p) / dt;
-    next[i].Rdot = (poses[i].R - start[i].R) / dt;
-  }
-}
-
-void Scene::StepDirk(double h, IntegrationMethod method, StepWork* work) {
-  auto& [poses, stepStart, next, softX, softStepStart, softNext, rep] = *work;
-  const size_t n = models_.size(), ns = step_.softStates.size();  // ns: soft actors and kinds
-  // DIRK stages in material-point form, with the three rotation rules of core/dynamics/integrators.h.
-  const DirkTableau& T = TableauOf(method);
-  // Every entry is written at its stage before it is read.
-  std::vector<std::vector<RigidBodyState>>& VK = buffers_.stageSlopes;
-  std::vector<std::vector<Eigen::Vector3d>>& torque = buffers_.stageTorques;
-  std::vector<std::vector<RigidPose>>& Q = buffers_.stagePoses;
-  if (VK.size() < static_cast<size_t>(T.stages)) {
-    VK.resize(T.stages);
-    torque.resize(T.stages);
-    Q.resize(T.stages);
-  }
-  for (int st = 0; st < T.stages; ++st) {
-    VK[st].resize(n);
-    torque[st].resize(n);
-  }
-  // Soft nodes: stage slopes (position, velocity) per stage and actor, as for p and v.
-  std::vector<std::vector<SoftBodyState>> softVK(ns ? T.stages : 0,
-                                                 std::vector<SoftBodyState>(ns));
-  std::vector<Eigen::VectorXd> softLast = softStepStart;
-  for (int st = 0; st < T.stages; ++st) {
-    std::vector<RigidBodyState>& start = buffers_.start;
-    start = step_.states;
-    for (size_t i = 0; i < n; ++i)
-      for (int j = 0; j < st; ++j) {
-        const double c = h * T.a[st][j];
-        start[i].p += c * VK[j][i].p;
-        start[i].R += c * VK[j][i].R;
-        start[i].v += c * VK[j][i].v;
-        start[i].Rdot += c * VK[j][i].Rdot;
-      }
-    std::vector<SoftBodyState> softStart = step_.softStates;
-    double cStage = 0.0;  // the stage's abscissa c_i = Σ_j a_ij
-    for (int j = 0; j <= st; ++j) cStage += T.a[st][j];
-    for (size_t s = 0; s < ns; ++s)
-      for (int j = 0; j < st; ++j) {
-        const double c = h * T.a[st][j];
-        softStart[s].x += c * softVK[j][s].x;
-        softStart[s].v += c * softVK[j][s].v;
-      }
-    const double dt = h * T.a[st][st];
-    // Dissipation geometry: the last configuration the bodies occupied (x_n, then Q_{i−1}).
-    const std::vector<RigidPose>& last = st == 0 ? stepStart : Q[st - 1];
-    ApplyConstraints(step_.time + cStage * h, &softX);
-    const SoftStage soft = MakeSoftStage(dt, step_.time + cStage * h, softStart, softLast);
-    SolveStage(dt, start, last, &poses, &soft, &softX, cStage * h, &rep);
-    Q[st] = poses;
-    for (size_t s = 0; s < ns; ++s) {
-      softVK[st][s].x = (softX[s] - softStart[s].x) / dt;
-      softVK[st][s].v = (softVK[st][s].x - softStart[s].v) / dt;
-    }
-    softLast = softX;
-    for (size_t i = 0; i < n; ++i) {
-      RigidBodyState& vk = VK[st][i];
-      vk.p = (poses[i].p - start[i].p) / dt;
-      vk.v = (vk.p - start[i].v) / dt;
-      if (!models_[i].dynamic) {
-        vk.R.setZero();
-        vk.Rdot.setZero();
-        torque[st][i].setZero();
-        continue;
-      }
-      const Eigen::Matrix3d& J = models_[i].secondMoment;
-      const Eigen::Matrix3d& Rq = poses[i].R;
-      const Eigen::Matrix3d V = (poses[i].R - start[i].R) / dt;
-      // The stage's world torque on the body: its stationarity makes the rotational inertia
-      // force K = (V − v⁰)/Δt_i balance it, τ = axial(K J Qᵀ − Q J Kᵀ).
-      const Eigen::Matrix3d Kraw = (V - start[i].Rdot) / dt;
-      torque[st][i] = SpinMomentum(Rq, Kraw, J);
-      // The stage velocity, made tangent to SO(3) at Q with the same spin momentum.
-      vk.R = Skew(WorldInertia(Rq, J).ldlt().solve(SpinMomentum(Rq, V, J))) * Rq;
-      vk.Rdot = (vk.R - start[i].Rdot) / dt;
-    }
-  }
-  for (size_t i = 0; i < n; ++i) {
-    if (!models_[i].dynamic) continue;
-    const RigidBodyState& s = step_.states[i];
-    RigidBodyState end = s;  // q_n + h Σ b_i V_i, v_n + h Σ b_i K_i
-    Eigen::Vector3d spin = SpinMomentum(s.R, s.Rdot, models_[i].secondMoment);
-    for (int st = 0; st < T.stages; ++st) {
-      end.p += h * T.b[st] * VK[st][i].p;
-      end.R += h * T.b[st] * VK[st][i].R;
-      end.v += h * T.b[st] * VK[st][i].v;
-      end.Rdot += h * T.b[st] * VK[st][i].Rdot;
-      spin += h * T.b[st] * torque[st][i];  // L̇ = τ, by the method's own weights
-    }
-    next[i].p = end.p;
-    next[i].v = end.v;
-    next[i].R = T.stifflyAccurate ? Q[T.stages - 1][i].R : NearestRotation(end.R);
-    // Keep the end velocity, corrected along the tangent directions [δω] R so that it carries
-    // exactly the integrated spin momentum.
-    const Eigen::Matrix3d& J = models_[i].secondMoment;
-    const Eigen::Vector3d missing = spin - SpinMomentum(next[i].R, end.Rdot, J);
-    next[i].Rdot = end.Rdot + Skew(WorldInertia(next[i].R, J).ldlt().solve(missing)) * next[i].R;
-  }
-  for (size_t s = 0; s < ns; ++s) {
-    softNext[s] = step_.softStates[s];
-    for (int st = 0; st < T.stages; ++st) {
-      softNext[s].x += h * T.b[st] * softVK[st][s].x;
-      softNext[s].v += h * T.b[st] * softVK[st][s].v;
-    }
-  }
-  // Prescribed nodes sit exactly on their path at the step's end.
-  std::vector<Eigen::VectorXd> endX(ns);
-  for (size_t s = 0; s < ns; ++s) endX[s] = softNext[s].x;
-  ApplyConstraints(step_.time + h, &endX);
-  for (size_t s = 0; s < ns; ++s) softNext[s].x = endX[s];
 }
 
 ContactStats Scene::ContactState() {

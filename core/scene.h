@@ -1,5 +1,6 @@
 // The scene, the front door: owns the actors, their states, the contact filter and pipeline; a
-// step runs the integrator's stages through the stage policy (core/dynamics/stage_driver.h).
+// step is the time stepper's (core/dynamics/time_stepper.h), whose stages the scene solves with
+// the stage policy (core/dynamics/stage_driver.h).
 #pragma once
 
 #include <memory>
@@ -15,6 +16,7 @@
 #include "core/dynamics/stage_recorder.h"
 #include "core/dynamics/step_report.h"
 #include "core/dynamics/step_state.h"
+#include "core/dynamics/time_stepper.h"
 #include "core/model/actor_kind.h"
 #include "core/model/enums.h"
 #include "core/model/error.h"
@@ -30,7 +32,7 @@ struct ActorHandle {
   bool IsValid() const { return index >= 0; }
 };
 
-class Scene {
+class Scene : private StageHost {
  public:
   explicit Scene(const SceneSettings& settings = SceneSettings());
 
@@ -180,11 +182,7 @@ class Scene {
   void SolveStage(double dt, const std::vector<RigidBodyState>& start,
                   const std::vector<RigidPose>& last, std::vector<RigidPose>* poses,
                   const SoftStage* soft, std::vector<Eigen::VectorXd>* softX, double predictTime,
-                  StepReport* rep);
-  // One step of h [s]: a variable-step BDF step (with the states of step_.history), or the DIRK
-  // method's stages (core/dynamics/integrators.h), from x_n to the end states in *work.
-  void StepBdf(double h, IntegrationMethod method, StepWork* work);
-  void StepDirk(double h, IntegrationMethod method, StepWork* work);
+                  StepReport* rep) override;
   // The packed-state layout: calls visit(block, offset, actor ref, actor index) for every dynamic
   // actor in each of the first `blocks` blocks (0: the current state, b >= 1: step_.history[b−1]).
   template <typename Visit>
@@ -207,9 +205,9 @@ class Scene {
   // The vector-state actors' stage data (soft, then the kinds' at stage time t [s]): targets from
   // the stage start, geometry from the last configuration.
   SoftStage MakeSoftStage(double dt, double t, const std::vector<SoftBodyState>& start,
-                          const std::vector<Eigen::VectorXd>& last) const;
+                          const std::vector<Eigen::VectorXd>& last) const override;
   // Prescribed node positions (and kinds' prescribed dofs) at time t written into x.
-  void ApplyConstraints(double t, std::vector<Eigen::VectorXd>* x) const;
+  void ApplyConstraints(double t, std::vector<Eigen::VectorXd>* x) const override;
   double MinDetF() const;
   // The kinds' part of a contact evaluation at the vector states x (soft, then the kinds').
   KindView CurrentKindView(const std::vector<Eigen::VectorXd>& x) const;

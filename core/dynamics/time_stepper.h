@@ -1,0 +1,49 @@
+// The time stepper: one step of h [s] by the scene's integrator (core/dynamics/integrators.h) as
+// a sequence of implicit stages — a variable-step BDF step, or the DIRK method's stages with the
+// three rotation rules for rigid bodies — over the rigid states and the vector states (soft
+// actors, then the generic layer's kinds, combined affinely). The host (the Scene) solves each
+// stage with its stage policy and recorder, and builds the vector states' stage data.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "core/dynamics/scene_stage.h"
+#include "core/dynamics/step_report.h"
+#include "core/dynamics/step_state.h"
+#include "core/model/enums.h"
+#include "core/model/rigid_body.h"
+
+namespace superdex {
+
+/// What a step needs from its host besides the states.
+class StageHost {
+ public:
+  virtual ~StageHost() = default;
+  /// Writes the prescribed node positions (and the kinds' prescribed dofs) at time t [s] into x.
+  virtual void ApplyConstraints(double t, std::vector<Eigen::VectorXd>* x) const = 0;
+  /// The vector-state actors' data for a stage of step dt [s] at time t [s]: targets from the
+  /// stage start, geometry from the last configuration.
+  virtual SoftStage MakeSoftStage(double dt, double t, const std::vector<SoftBodyState>& start,
+                                  const std::vector<Eigen::VectorXd>& last) const = 0;
+  /// Solves one stage (x⁰, v⁰ in `start`, the last configuration `last`) from *poses and
+  /// *softX, which then hold its solution; accounts it in *rep. `predictTime` > 0 (the stage's
+  /// time after t_n [s]) allows the warm start.
+  virtual void SolveStage(double dt, const std::vector<RigidBodyState>& start,
+                          const std::vector<RigidPose>& last, std::vector<RigidPose>* poses,
+                          const SoftStage* soft, std::vector<Eigen::VectorXd>* softX,
+                          double predictTime, StepReport* rep) = 0;
+};
+
+/// A variable-step BDF step of h [s] (the states of step.history) from step's states to the end
+/// states in *work.
+void StepBdf(const std::vector<RigidBodyModel>& models, const StepState& step, double h,
+             IntegrationMethod method, StageHost& host, StepBuffers* buffers, StepWork* work);
+/// The DIRK method's stages from step's states to the end states in *work.
+void StepDirk(const std::vector<RigidBodyModel>& models, const StepState& step, double h,
+              IntegrationMethod method, StageHost& host, StepBuffers* buffers, StepWork* work);
+/// Ends a step of h [s]: the multistep history takes x_n, the states the end states of *work,
+/// the time advances.
+void EndStep(double h, StepWork* work, StepState* step);
+
+}  // namespace superdex
