@@ -10,7 +10,6 @@
 namespace superdex {
 namespace {
 using namespace dissipation_kernels;
-using Jet = ceres::Jet<double, kMaxStencil>;
 
 /// The frame's part of a point stencil RigidPullbackStencil formed on [y, δp_B, δθ_B]: kept for
 /// a rigid frame, dropped for a static one, and for a translating frame mapped to its dofs by
@@ -44,12 +43,14 @@ Vec3<T> Cross(const Vec3<T>& a, const Vec3<T>& b) {
 /// F_pᵀ(−f) (translating), f = R_B ∂R/∂V(Y, N_A). Differentiated by forward-mode AD with the
 /// first-order retractions y + δp + δθ × r, R ← (I + [δθ]×) R (exact first derivatives at δ = 0,
 /// the stage's world-torque convention), Y = R_Bᵀ(d − ω × d), N_A = R_Bᵀ(n − ω × n).
+template <int N>  // jets of N >= n derivatives (the smallest of 9, 12, 15, 24 that holds the stencil)
 void AddCurrentModeJacobian(const PairSample& s, const FrameSide& B, const SdfSample& field,
                             const Eigen::Vector3d& Y, const Eigen::Vector3d& Yn,
                             const Eigen::Vector3d& Y0, const DissipationSetup& ds,
                             StencilMatrix* J) {
   const int nA = s.map.Dofs(), nB = B.Dofs(), n = nA + nB;
-  Jet delta[kMaxStencil];
+  using Jet = ceres::Jet<double, N>;
+  Jet delta[N];
   for (int i = 0; i < n; ++i) delta[i] = Jet(0.0, i);
   auto vec = [&](int at) { return Vec3<Jet>(delta[at], delta[at + 1], delta[at + 2]); };
   const bool rigidA = s.map.kind == SamplePointMap::Kind::Rigid;
@@ -82,7 +83,7 @@ void AddCurrentModeJacobian(const PairSample& s, const FrameSide& B, const SdfSa
   const Vec3<Jet> g = CurrentModeDissipationGradient<Jet>(Yj, NA, Y, field, Yn, Y0, ds);
   const Vec3<Jet> fB = B.pose.R.cast<Jet>() * g;
   const Vec3<Jet> f = fB + Cross<Jet>(om, fB);
-  Jet r[kMaxStencil];
+  Jet r[N];
   if (rigidA) {
     const Vec3<Jet> tau = Cross<Jet>(rA, f);
     for (int k = 0; k < 3; ++k) r[k] = f[k], r[3 + k] = tau[k];
@@ -97,6 +98,17 @@ void AddCurrentModeJacobian(const PairSample& s, const FrameSide& B, const SdfSa
     for (int c = 0; c < nB; ++c) r[nA + c] = -(B.Fp.col(c).cast<Jet>().dot(f));
   }
   for (int i = 0; i < n; ++i) J->row(i) += s.weight * r[i].v.head(n).transpose();
+}
+
+void AddCurrentModeJacobianOfSize(const PairSample& s, const FrameSide& B, const SdfSample& field,
+                                  const Eigen::Vector3d& Y, const Eigen::Vector3d& Yn,
+                                  const Eigen::Vector3d& Y0, const DissipationSetup& ds,
+                                  StencilMatrix* J) {
+  const int n = s.map.Dofs() + B.Dofs();
+  if (n <= 9) return AddCurrentModeJacobian<9>(s, B, field, Y, Yn, Y0, ds, J);
+  if (n <= 12) return AddCurrentModeJacobian<12>(s, B, field, Y, Yn, Y0, ds, J);
+  if (n <= 15) return AddCurrentModeJacobian<15>(s, B, field, Y, Yn, Y0, ds, J);
+  AddCurrentModeJacobian<kMaxStencil>(s, B, field, Y, Yn, Y0, ds, J);
 }
 
 /// The sample's pullbacks: Y now, Y_n at x_n, and the colliding normal N_A in B's coordinates at
@@ -192,7 +204,7 @@ void AddDissipation(const PairSample& s, int k, const FrameSide& B, const Pullba
   ChainToActor(s.map, point, s.weight, &st->dissipationResidual,
                hessian ? &st->dissipationJacobian : nullptr);
   if (order >= 2 && !explicitNormals)
-    AddCurrentModeJacobian(s, B, field, p.Y, p.Yn, Y0, ds, &st->dissipationJacobian);
+    AddCurrentModeJacobianOfSize(s, B, field, p.Y, p.Yn, Y0, ds, &st->dissipationJacobian);
 }
 
 /// Fills a stencil's blocks: the sample's, then the frame's.
