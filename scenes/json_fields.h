@@ -1,0 +1,152 @@
+// The scene file's field readers (internal to scenes/): each reads one JSON field and throws
+// LoadError "<json path>: <rule>" on the first problem; LoadSceneText turns it into an Error.
+#pragma once
+
+#include <Eigen/Core>
+#include <climits>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "core/scene.h"
+
+namespace superdex::scene_json {
+
+using json = nlohmann::json;
+
+// Internal only: loading stops at the first problem; LoadSceneText turns it into an Error.
+struct LoadError {
+  std::string message;
+};
+[[noreturn]] inline void Throw(const std::string& path, const std::string& rule) {
+  throw LoadError{path + ": " + rule};
+}
+
+inline std::string Join(const std::string& path, const std::string& key) {
+  return path.empty() ? key : path + "." + key;
+}
+
+inline const char* TypeName(const json& j) { return j.type_name(); }
+
+inline void CheckObject(const json& j, const std::string& path, std::set<std::string> known) {
+  if (!j.is_object()) Throw(path.empty() ? "(top level)" : path, std::string("must be an object, got ") + TypeName(j));
+  for (auto it = j.begin(); it != j.end(); ++it)
+    if (!known.count(it.key())) Throw(Join(path, it.key()), "unknown field");
+}
+
+inline double Number(const json& obj, const std::string& path, const char* key,
+              std::optional<double> def = std::nullopt) {
+  const std::string p = Join(path, key);
+  if (!obj.contains(key)) {
+    if (def) return *def;
+    Throw(p, "missing required field");
+  }
+  const json& v = obj.at(key);
+  if (!v.is_number()) Throw(p, std::string("must be a number, got ") + TypeName(v));
+  const double x = v.get<double>();
+  if (!std::isfinite(x)) Throw(p, "must be finite");
+  return x;
+}
+
+inline double Positive(const json& obj, const std::string& path, const char* key,
+                std::optional<double> def = std::nullopt) {
+  const double x = Number(obj, path, key, def);
+  if (!(x > 0)) {
+    std::ostringstream s;
+    s << "must be > 0, got " << x;
+    Throw(Join(path, key), s.str());
+  }
+  return x;
+}
+
+inline int Integer(const json& obj, const std::string& path, const char* key, int def, int lo, int hi) {
+  const std::string p = Join(path, key);
+  if (!obj.contains(key)) return def;
+  const json& v = obj.at(key);
+  if (!v.is_number_integer()) Throw(p, std::string("must be an integer, got ") + TypeName(v));
+  const long long x = v.get<long long>();
+  if (x < lo || x > hi) {
+    std::ostringstream s;
+    s << "must be in [" << lo << ", " << hi << "], got " << x;
+    Throw(p, s.str());
+  }
+  return static_cast<int>(x);
+}
+
+inline bool Bool(const json& obj, const std::string& path, const char* key, bool def) {
+  if (!obj.contains(key)) return def;
+  const json& v = obj.at(key);
+  if (!v.is_boolean()) Throw(Join(path, key), std::string("must be true or false, got ") + TypeName(v));
+  return v.get<bool>();
+}
+
+inline std::string String(const json& obj, const std::string& path, const char* key,
+                   std::optional<std::string> def = std::nullopt) {
+  if (!obj.contains(key)) {
+    if (def) return *def;
+    Throw(Join(path, key), "missing required field");
+  }
+  const json& v = obj.at(key);
+  if (!v.is_string()) Throw(Join(path, key), std::string("must be a string, got ") + TypeName(v));
+  return v.get<std::string>();
+}
+
+template <int N>
+Eigen::Matrix<double, N, 1> Vector(const json& obj, const std::string& path, const char* key,
+                                   const Eigen::Matrix<double, N, 1>& def) {
+  if (!obj.contains(key)) return def;
+  const json& v = obj.at(key);
+  const std::string p = Join(path, key);
+  if (!v.is_array() || v.size() != N)
+    Throw(p, "must be an array of " + std::to_string(N) + " numbers");
+  Eigen::Matrix<double, N, 1> out;
+  for (int i = 0; i < N; ++i) {
+    if (!v[i].is_number()) Throw(p + "[" + std::to_string(i) + "]", "must be a number");
+    out[i] = v[i].get<double>();
+    if (!std::isfinite(out[i])) Throw(p + "[" + std::to_string(i) + "]", "must be finite");
+  }
+  return out;
+}
+
+template <typename E>
+E Enum(const json& obj, const std::string& path, const char* key, E def) {
+  if (!obj.contains(key)) return def;
+  const std::string s = String(obj, path, key);
+  E e;
+  if (!Parse(s, &e)) Throw(Join(path, key), "unknown value \"" + s + "\" (expected one of: " + AllNames(def) + ")");
+  return e;
+}
+
+// Reads the fields of a parameter table (optim/field_table.h) from the object j: the keys are the
+// rows' names, an absent key keeps the value in *out, any other key is refused. The rules are
+// checked where the struct is validated (Validate, Scene::Add...Actor), except integers' range.
+template <typename Table, typename Class>
+void ReadFields(const json& j, const std::string& path, const Table& table, Class* out) {
+  std::set<std::string> known;
+  ForEachField(table, [&](const auto& f) { known.insert(f.name); });
+  CheckObject(j, path, known);
+  ForEachField(table, [&](const auto& f) {
+    using T = typename std::decay_t<decltype(f)>::ValueType;
+    T& v = f.Of(*out);
+    if constexpr (std::is_same_v<T, bool>) {
+      v = Bool(j, path, f.name, v);
+    } else if constexpr (std::is_enum_v<T>) {
+      v = Enum(j, path, f.name, v);
+    } else if constexpr (std::is_same_v<T, int>) {
+      const int lo = f.rule.kind == Rule::AtLeast ? static_cast<int>(f.rule.lo) : INT_MIN;
+      const int hi = f.rule.fileMax > 0
+                         ? static_cast<int>(std::min<long long>(f.rule.fileMax, INT_MAX))
+                         : INT_MAX;
+      v = Integer(j, path, f.name, v, lo, hi);
+    } else if constexpr (std::is_same_v<T, double>) {
+      v = Number(j, path, f.name, v);
+    } else {
+      static_assert(sizeof(T) == 0, "no scene-file reader for this field type");
+    }
+  });
+}
+
+}  // namespace superdex::scene_json

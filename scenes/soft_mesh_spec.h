@@ -1,0 +1,23 @@
+// A soft actor's "mesh" and "constraints" in a scene file (docs/scene-format.md). Internal to
+// scenes/: errors are thrown as LoadError "<json path>: <rule>".
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "scenes/json_fields.h"
+
+namespace superdex::scene_json {
+
+/// {"type": "file" | "box" | "sphere" | "cylinder" | "surface", ...}: the tet mesh; *source
+/// names where it came from (the file, or "tet box", ...).
+std::shared_ptr<TetMesh> ReadTetMeshSpec(const json& j, const std::string& path,
+                                         const std::string& baseDir, std::string* source);
+
+/// [{"nodes": [...] | "region": {...}, "path": [[t, dx, dy, dz], ...]}, ...]
+std::vector<NodeConstraint> ReadConstraints(const json& list, const std::string& path,
+                                            const TetMesh& mesh, const Eigen::Vector3d& position,
+                                            const Eigen::Quaterniond& orientation);
+
+}  // namespace superdex::scene_json
