@@ -1,6 +1,7 @@
 // Tetrahedral meshes (see tet_mesh.h): queries, validation, boundary, box generator, Gmsh and
 // TetGen files. Meshing of surfaces (CGAL Mesh_3) lives in tet_mesher.cpp.
 #include "geometry/tet_mesh.h"
+#include "geometry/mesh_limits.h"
 #include "geometry/token_parsing.h"
 
 #include <Eigen/Geometry>
@@ -167,6 +168,7 @@ struct PendingTet {
 };
 
 struct GmshState {
+  double fileBytes = -1;  // the file's size (-1: unknown), which bounds every declared count
   TetMesh mesh;
   std::unordered_map<long, int> nodeIndex;  // Gmsh node tag -> 0-based vertex index
   std::vector<PendingTet> tets;
@@ -205,6 +207,24 @@ bool AddElement(const Failer& fail, int line, long tag, long type,
   return true;
 }
 
+// The size of the stream's file in bytes (-1 if unknown); the stream is left at its start.
+double FileBytes(std::istream& in) {
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  in.clear();
+  in.seekg(0, std::ios::beg);
+  return size >= 0 ? static_cast<double>(size) : -1.0;
+}
+
+// A declared count within the limit and the file's size (limits::CheckDeclaredCount), else the
+// message at `line`. Checked before anything is allocated for the items.
+bool CheckCount(const Failer& fail, int line, const std::string& section, long count, double limit,
+                double bytesPerItem, double fileBytes, const std::string& what) {
+  const std::string m = limits::CheckDeclaredCount(double(count), limit, bytesPerItem, fileBytes,
+                                                   what);
+  return m.empty() || fail(line, section + " " + m);
+}
+
 // Reads the declared count(s) of a section header line.
 bool ParseCounts(const Failer& fail, LineReader& r, const char* section, size_t n,
                  std::vector<long>* out) {
@@ -240,7 +260,10 @@ bool ExpectEnd(const Failer& fail, LineReader& r, const std::string& end) {
 
 bool ReadGmshNodes2(const Failer& fail, LineReader& r, GmshState* s) {
   std::vector<long> c;
-  if (!ParseCounts(fail, r, "$Nodes", 1, &c)) return false;
+  if (!ParseCounts(fail, r, "$Nodes", 1, &c) ||
+      !CheckCount(fail, r.Line(), "$Nodes", c[0], limits::kMaxMeshVertices, 8, s->fileBytes,
+                  "nodes"))
+    return false;
   std::vector<std::string> t;
   for (long i = 0; i < c[0]; ++i) {
     if (!NextData(fail, r, "$Nodes", "nodes", c[0], i, &t)) return false;
@@ -253,7 +276,10 @@ bool ReadGmshNodes2(const Failer& fail, LineReader& r, GmshState* s) {
 
 bool ReadGmshElements2(const Failer& fail, LineReader& r, GmshState* s) {
   std::vector<long> c;
-  if (!ParseCounts(fail, r, "$Elements", 1, &c)) return false;
+  if (!ParseCounts(fail, r, "$Elements", 1, &c) ||
+      !CheckCount(fail, r.Line(), "$Elements", c[0], limits::kMaxMeshElements, 8, s->fileBytes,
+                  "elements"))
+    return false;
   std::vector<std::string> t;
   for (long i = 0; i < c[0]; ++i) {
     if (!NextData(fail, r, "$Elements", "elements", c[0], i, &t)) return false;
@@ -271,7 +297,12 @@ bool ReadGmshNodes41(const Failer& fail, LineReader& r, GmshState* s) {
   // numEntityBlocks numNodes minNodeTag maxNodeTag; per block
   // "entityDim entityTag parametric numNodesInBlock", the tags, then the coordinates.
   std::vector<long> c;
-  if (!ParseCounts(fail, r, "$Nodes", 4, &c)) return false;
+  if (!ParseCounts(fail, r, "$Nodes", 4, &c) ||
+      !CheckCount(fail, r.Line(), "$Nodes", c[1], limits::kMaxMeshVertices, 8, s->fileBytes,
+                  "nodes") ||
+      !CheckCount(fail, r.Line(), "$Nodes", c[0], limits::kMaxMeshVertices, 8, s->fileBytes,
+                  "entity blocks"))
+    return false;
   long read = 0;
   std::vector<std::string> t;
   for (long b = 0; b < c[0]; ++b) {
@@ -280,11 +311,17 @@ bool ReadGmshNodes41(const Failer& fail, LineReader& r, GmshState* s) {
     if (t.size() != 4 || !ParseLong(t[0], &h[0]) || !ParseLong(t[1], &h[1]) ||
         !ParseLong(t[2], &h[2]) || !ParseLong(t[3], &h[3]) || h[3] < 0)
       return fail(r.Line(), "malformed node block header " + Quote(t));
-    std::vector<long> tags(h[3]);
+    if (h[3] > c[1] - read)
+      return fail(r.Line(), "node block of " + std::to_string(h[3]) + " nodes, but $Nodes " +
+                                "declares " + std::to_string(c[1]) + " nodes of which " +
+                                std::to_string(read) + " came before");
+    std::vector<long> tags;  // grows with the lines read, not with the declared count
     for (long i = 0; i < h[3]; ++i) {
       if (!NextData(fail, r, "$Nodes", "nodes", c[1], read + i, &t)) return false;
-      if (t.size() != 1 || !ParseLong(t[0], &tags[i]))
+      long tag;
+      if (t.size() != 1 || !ParseLong(t[0], &tag))
         return fail(r.Line(), "malformed node tag line " + Quote(t));
+      tags.push_back(tag);
     }
     for (long i = 0; i < h[3]; ++i) {
       if (!NextData(fail, r, "$Nodes", "node coordinates", c[1], read + i, &t)) return false;
@@ -302,7 +339,12 @@ bool ReadGmshElements41(const Failer& fail, LineReader& r, GmshState* s) {
   // numEntityBlocks numElements minElementTag maxElementTag; per block
   // "entityDim entityTag elementType numElementsInBlock", then "tag node ..." per element.
   std::vector<long> c;
-  if (!ParseCounts(fail, r, "$Elements", 4, &c)) return false;
+  if (!ParseCounts(fail, r, "$Elements", 4, &c) ||
+      !CheckCount(fail, r.Line(), "$Elements", c[1], limits::kMaxMeshElements, 4, s->fileBytes,
+                  "elements") ||
+      !CheckCount(fail, r.Line(), "$Elements", c[0], limits::kMaxMeshElements, 8, s->fileBytes,
+                  "entity blocks"))
+    return false;
   long read = 0;
   std::vector<std::string> t;
   for (long b = 0; b < c[0]; ++b) {
@@ -311,6 +353,10 @@ bool ReadGmshElements41(const Failer& fail, LineReader& r, GmshState* s) {
     if (t.size() != 4 || !ParseLong(t[0], &h[0]) || !ParseLong(t[1], &h[1]) ||
         !ParseLong(t[2], &h[2]) || !ParseLong(t[3], &h[3]) || h[3] < 0)
       return fail(r.Line(), "malformed element block header " + Quote(t));
+    if (h[3] > c[1] - read)
+      return fail(r.Line(), "element block of " + std::to_string(h[3]) + " elements, but " +
+                                "$Elements declares " + std::to_string(c[1]) + " elements of " +
+                                "which " + std::to_string(read) + " came before");
     for (long i = 0; i < h[3]; ++i) {
       if (!NextData(fail, r, "$Elements", "elements", c[1], read + i, &t)) return false;
       long tag;
@@ -329,6 +375,7 @@ bool ReadGmsh(const std::string& path, TetMesh* mesh, std::string* error) {
   const Failer fail{path, error};
   std::ifstream in(path, std::ios::binary);
   if (!in) return fail("cannot open file");
+  const double fileBytes = FileBytes(in);
   LineReader r(in, false);
   std::vector<std::string> t;
   if (!r.Next(&t)) return fail("empty file");
@@ -354,9 +401,10 @@ bool ReadGmsh(const std::string& path, TetMesh* mesh, std::string* error) {
   if (!ExpectEnd(fail, r, "$EndMeshFormat")) return false;
 
   GmshState s;
+  s.fileBytes = fileBytes;
   bool haveNodes = false, haveElements = false;
   while (r.Next(&t)) {
-    const std::string& section = t[0];
+    const std::string section = t[0];  // a copy: skipping a section reads into t
     if (section == "$Nodes") {
       if (haveNodes) return fail(r.Line(), "second $Nodes section");
       haveNodes = true;
@@ -417,7 +465,8 @@ bool ReadTetGen(const std::string& nodePath, const std::string& elePath, const s
   int base = 0;
   {
     const Failer fail{nodePath, error};
-    std::ifstream in(nodePath);
+    std::ifstream in(nodePath, std::ios::binary);
+    const double fileBytes = in ? FileBytes(in) : -1.0;
     if (!in)
       return fail(nodePath == asked ? std::string("cannot open file")
                                     : "cannot open file (the node file of " + asked + ")");
@@ -435,7 +484,9 @@ bool ReadTetGen(const std::string& nodePath, const std::string& elePath, const s
                   "no points (a count of 0 means the points are in a .poly file, "
                   "which is not supported)");
     if (h[1] != 3) return fail(r.Line(), "dimension " + std::to_string(h[1]) + ", expected 3");
-    if (h[0] >= INT_MAX) return fail(r.Line(), "too many points");
+    if (!CheckCount(fail, r.Line(), "the header", h[0], limits::kMaxMeshVertices, 8, fileBytes,
+                    "points"))
+      return false;
     const size_t need = 4 + static_cast<size_t>(h[2]) + (h[3] > 0 ? 1 : 0);
     m.vertices.reserve(h[0]);
     for (long i = 0; i < h[0]; ++i) {
@@ -464,7 +515,8 @@ bool ReadTetGen(const std::string& nodePath, const std::string& elePath, const s
   }
   {
     const Failer fail{elePath, error};
-    std::ifstream in(elePath);
+    std::ifstream in(elePath, std::ios::binary);
+    const double fileBytes = in ? FileBytes(in) : -1.0;
     if (!in)
       return fail(elePath == asked ? std::string("cannot open file")
                                    : "cannot open file (the element file of " + asked + ")");
@@ -480,7 +532,9 @@ bool ReadTetGen(const std::string& nodePath, const std::string& elePath, const s
     if (h[0] == 0) return fail(r.Line(), "no tets");
     if (h[1] != 4 && h[1] != 10)
       return fail(r.Line(), std::to_string(h[1]) + " nodes per tet (expected 4 or 10)");
-    if (h[0] >= INT_MAX) return fail(r.Line(), "too many tets");
+    if (!CheckCount(fail, r.Line(), "the header", h[0], limits::kMaxMeshElements, 10, fileBytes,
+                    "tets"))
+      return false;
     const size_t need = 1 + static_cast<size_t>(h[1]) + static_cast<size_t>(h[2]);
     m.tets.reserve(h[0]);
     for (long i = 0; i < h[0]; ++i) {
@@ -592,8 +646,12 @@ bool ValidateTetMesh(const TetMesh& mesh, const std::string& name, std::string* 
     }
   }
   const Aabb box = mesh.Bounds();
-  const double diag = (box.max - box.min).norm();
-  const double tol = 1e-12 * diag * diag * diag;
+  const double diag = (box.max - box.min).stableNorm();  // no overflow for huge extents
+  const double cube = diag * diag * diag;
+  if (!(cube >= 1e-290 && cube <= 1e290))  // tet volumes (products of three lengths) must fit
+    return fail("the mesh's extent " + Num(diag) + " m is out of double precision's range for "
+                "tet volumes (its cube must be within 1e-290 to 1e290 m^3)");
+  const double tol = 1e-12 * cube;
   int degenerate = 0, inverted = 0, first = -1;
   for (int t = 0; t < mesh.NumTets(); ++t) {
     const double v = mesh.TetVolume(t);

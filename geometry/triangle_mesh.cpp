@@ -1,5 +1,6 @@
 // Triangle surface meshes (see triangle_mesh.h).
 #include "geometry/triangle_mesh.h"
+#include "geometry/mesh_limits.h"
 #include "geometry/token_parsing.h"
 
 #include <Eigen/Geometry>
@@ -209,6 +210,7 @@ bool ReadObj(const std::string& path, TriangleMesh* mesh, std::string* error) {
     int line;
   };
   std::vector<Polygon> polygons;
+  double triangles = 0;
   std::string line;
   int lineNo = 0;
   while (std::getline(in, line)) {
@@ -226,6 +228,9 @@ bool ReadObj(const std::string& path, TriangleMesh* mesh, std::string* error) {
       for (int k = 0; k < 3; ++k)
         if (!(s >> tok[k]) || !ParseDouble(tok[k], &x[k]))
           return fail(where + "malformed vertex (expected \"v x y z\" with finite numbers)");
+      if (static_cast<double>(m.vertices.size()) >= limits::kMaxMeshVertices)
+        return fail(where + "more than " + std::to_string(long(limits::kMaxMeshVertices)) +
+                    " vertices (the limit per mesh file)");
       m.vertices.emplace_back(x[0], x[1], x[2]);
     } else if (tag == "f") {
       // "f a b c ...", each corner "v", "v/vt", "v//vn" or "v/vt/vn"; only v is used.
@@ -248,6 +253,10 @@ bool ReadObj(const std::string& path, TriangleMesh* mesh, std::string* error) {
       if (poly.corners.size() < 3)
         return fail(where + "a face needs at least 3 vertices, got " +
                     std::to_string(poly.corners.size()));
+      triangles += static_cast<double>(poly.corners.size()) - 2;
+      if (triangles > limits::kMaxMeshElements)
+        return fail(where + "more than " + std::to_string(long(limits::kMaxMeshElements)) +
+                    " triangles (the limit per mesh file)");
       polygons.push_back(std::move(poly));
     }
     // Every other statement (vt, vn, o, g, s, usemtl, mtllib, l, ...) is ignored.

@@ -67,7 +67,7 @@ TEST_CASE("mesh files: missing, empty, unknown and malformed files", "[geometry]
   CHECK(e == "/nonexistent/x.off: cannot open file");
   const std::string empty = Write("empty.off", "");
   CHECK_FALSE(ReadMeshFile(empty, &m, &e));
-  CHECK(e == empty + ": not a readable .off file");
+  CHECK(e == empty + ": the file is empty (expected the OFF keyword)");
   const std::string unknown = Write("tet.xyz", "1 2 3\n");
   CHECK_FALSE(ReadMeshFile(unknown, &m, &e));
   CHECK(e == unknown + ": unknown mesh format \".xyz\" (supported: .obj, .off, .stl, .ply)");

@@ -346,7 +346,13 @@ TEST_CASE("tet files: errors name the file and the defect", "[tet_mesh]") {
     const std::string fewTets = Write("few.ele", "2 4 0\n0 0 1 2 3\n");
     Write("few.node", "4 3\n0 0 0 0\n1 1 0 0\n2 0 1 0\n3 0 0 1\n");
     CHECK_FALSE(ReadTetMeshFile(fewTets, &r, &e));
-    CHECK(e == fewTets + ": file ends after 1 of 2 tets");
+    // The header's count is checked against the file's size before any line is read.
+    CHECK(e == fewTets + ": line 1: the header declares 2 tets, which need at least 20 bytes (10 "
+                         "per line), but the file holds 16 bytes");
+    const std::string fewPoints =
+        Write("fewp.node", "4 3\n0 0 0 0\n1 1 0 0\n# a comment, long enough for 4 points\n");
+    CHECK_FALSE(ReadTetMeshFile(fewPoints, &r, &e));
+    CHECK(e == fewPoints + ": file ends after 2 of 4 points");
   }
 
   SECTION("ValidateTetMesh: structure") {
