@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "geometry/aabb.h"
+#include "geometry/mesh_limits.h"
 #include "geometry/triangle_mesh.h"
 
 namespace superdex {
@@ -73,6 +74,15 @@ std::vector<Eigen::Vector3i> BoundaryFaces(const TetMesh& mesh);
 /// ±halfExtents. Vertex (i, j, k) of the lattice has index i + (nx + 1) (j + (ny + 1) k).
 TetMesh MakeTetBox(const Eigen::Vector3d& halfExtents, const Eigen::Vector3i& cells);
 
+/// Bounds on one meshing run (the defaults are geometry/mesh_limits.h's).
+struct MeshingLimits {
+  /// The largest tet count accepted, estimated from the enclosed volume before meshing.
+  double maxTets = limits::kMaxMesherTets;
+  /// The wall-clock budget [s] of the run; negative: limits::kMesherMinSeconds +
+  /// limits::kMesherSecondsPerTet per estimated tet.
+  double seconds = -1.0;
+};
+
 /// Tetrahedralizes the solid bounded by a closed surface (either orientation) with CGAL Mesh_3 (a
 /// polyhedral domain, Delaunay refinement, then sliver perturbation and exudation run to
 /// completion). Criteria, with h = edgeLength [m]: facet_size = cell_size = h (upper bounds on
@@ -80,14 +90,17 @@ TetMesh MakeTetBox(const Eigen::Vector3d& halfExtents, const Eigen::Vector3i& ce
 /// cell_radius_edge_ratio = 3; surface vertices lie on the input surface. The result keeps only the
 /// vertices of the tets, all tets positively oriented; mean edge length about 1.3 h. The boundary
 /// is made of chords of the surface, so curved solids lose volume: a sphere of radius 3.3 h about
-/// 5 %, of radius 6.7 h about 2 %. Deterministic: same input, same output (fixed random seed, no
-/// time limits). Returns false and fills *error ("MeshTetsFromSurface:
+/// 5 %, of radius 6.7 h about 2 %. Deterministic: same input, same output (fixed random seed; the
+/// time budget only ever fails a run). A surface far from unit scale is meshed in normalized
+/// coordinates (geometry/mesher_input.h). Returns false and fills *error ("MeshTetsFromSurface:
 /// <defect>") if edgeLength is not positive and finite, the surface is empty, has an index out of
 /// range or a non-finite coordinate, is not closed (an edge not shared by exactly two faces, or two
-/// faces traversing it in the same direction), is non-manifold at a vertex, would need more than
-/// about 10 million tets, or Mesh_3 fails or produces no tets. Self-intersections are not detected.
+/// faces traversing it in the same direction), is non-manifold at a vertex, encloses no volume,
+/// would need more than `bounds.maxTets` tets, or Mesh_3 fails, produces no tets, or is stopped
+/// ("CGAL Mesh_3 stopped: ...") because a stage ran past the time or vertex budget.
+/// Self-intersections are not detected (a self-touching surface ends at the budget).
 bool MeshTetsFromSurface(const TriangleMesh& surface, double edgeLength, TetMesh* out,
-                         std::string* error);
+                         std::string* error, const MeshingLimits& bounds = MeshingLimits());
 
 /// A mesh size h(x) [m] as a function of the position x [m].
 using MeshSizeField = std::function<double(const Eigen::Vector3d&)>;
@@ -99,7 +112,8 @@ using MeshSizeField = std::function<double(const Eigen::Vector3d&)>;
 /// finite at the surface vertices or at the centres of a 24³ grid over the surface's bounding box
 /// (the size guard integrates 1/h³ over that grid).
 bool MeshTetsFromSurfaceSized(const TriangleMesh& surface, const MeshSizeField& edgeLength,
-                              TetMesh* out, std::string* error);
+                              TetMesh* out, std::string* error,
+                              const MeshingLimits& bounds = MeshingLimits());
 
 /// Tet mesh of a ball of the given radius [m] centred at the origin, graded toward the surface
 /// point p = radius · pole/|pole|: MeshTetsFromSurfaceSized of an icosphere subdivided until its
@@ -117,5 +131,8 @@ TetMesh MakeGradedTetSphere(double radius, const Eigen::Vector3d& pole, double f
 /// 4/3 π r³, see MeshTetsFromSurface). Returns an empty mesh if radius or edgeLength is not
 /// positive or meshing fails (also beyond radius/edgeLength ≈ 65, the 10-million-tet guard).
 TetMesh MakeTetSphere(double radius, double edgeLength);
+/// MakeTetSphere with the reason of a failure in *error and explicit bounds.
+bool MeshTetSphere(double radius, double edgeLength, TetMesh* out, std::string* error,
+                   const MeshingLimits& bounds = MeshingLimits());
 
 }  // namespace superdex

@@ -5,7 +5,8 @@
 // CGAL::make_mesh_3 (make_mesh_3.h, refine_mesh_3.h, optimize_mesh_3.h) declares its options with
 // Boost.Parameter, which alone costs GCC about 2 GB and 25 s. MeshC3t3 below runs the same steps
 // as make_mesh_3 with a domain without features in CGAL 5.5 (initial points, Mesher_3
-// refinement, sliver perturbation, sliver exudation) through the Mesh_3 classes directly.
+// refinement, sliver perturbation, sliver exudation) through the Mesh_3 classes directly, each
+// stage bounded (MeshingLimits): a stage that makes no progress is stopped and reported.
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Mesh_3/Mesher_3.h>
 #include <CGAL/Mesh_3/Sliver_perturber.h>
@@ -20,16 +21,21 @@
 #include <CGAL/Polyhedral_mesh_domain_3.h>
 #include <CGAL/Random.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/point_generators_3.h>
 
 #include <algorithm>
-#include <array>
+#include <atomic>
+#include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <exception>
-#include <map>
-#include <sstream>
+#include <mutex>
+#include <thread>
 #include <unordered_map>
 #include <utility>
 
+#include "geometry/mesh_limits.h"
+#include "geometry/mesher_input.h"
 #include "geometry/tet_mesh.h"
 
 namespace superdex {
@@ -45,13 +51,7 @@ using C3t3 = CGAL::Mesh_complex_3_in_triangulation_3<Tr>;
 using FacetCriteria = CGAL::Mesh_facet_criteria_3<Tr>;
 using CellCriteria = CGAL::Mesh_cell_criteria_3<Tr>;
 using SliverCriterion = CGAL::Mesh_3::Min_dihedral_angle_criterion<Tr>;
-
-std::string Num(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
+using Clock = std::chrono::steady_clock;
 
 // Criteria (facets and cells; a domain without features has no edge criteria) as the
 // Mesh_criteria_3 of make_mesh_3.
@@ -65,14 +65,78 @@ struct Criteria {
   Cell_criteria cells;
 };
 
+// Sets *stop once the deadline has passed, unless Finish() comes first: the refinement checks
+// the flag between its steps.
+class Watchdog {
+ public:
+  Watchdog(Clock::time_point deadline, std::atomic<bool>* stop)
+      : thread_([this, deadline, stop] {
+          std::unique_lock<std::mutex> lock(mutex_);
+          if (!done_.wait_until(lock, deadline, [this] { return finished_; })) *stop = true;
+        }) {}
+  ~Watchdog() { Finish(); }
+  void Finish() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      finished_ = true;
+    }
+    done_.notify_all();
+    if (thread_.joinable()) thread_.join();
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable done_;
+  bool finished_ = false;
+  std::thread thread_;
+};
+
+// CGAL 5.5's Polyhedral_mesh_domain_3::Construct_initial_points (8 points, the same rays from the
+// same generator, so the same points) with a bound on the rays: CGAL's own loop never ends when
+// no ray from the bounding-box centre hits the surface.
+bool InitialPoints(const Domain& domain, CGAL::Random& rng,
+                   std::vector<std::pair<Domain::Point_3, Domain::Index>>* out) {
+  const auto ray = Domain::R().construct_ray_3_object();
+  const auto vector = Domain::R().construct_vector_3_object();
+  const CGAL::Bbox_3 box = domain.bbox();
+  const Domain::Point_3 center(Domain::FT((box.xmin() + box.xmax()) / 2),
+                               Domain::FT((box.ymin() + box.ymax()) / 2),
+                               Domain::FT((box.zmin() + box.zmax()) / 2));
+  CGAL::Random_points_on_sphere_3<Domain::Point_3> randomPoint(1., rng);
+  int needed = 8;
+  for (int shot = 0; needed > 0 && shot < limits::kMesherInitialPointRays; ++shot) {
+    const Domain::Ray_3 r = ray(center, vector(CGAL::ORIGIN, *randomPoint));
+    const Domain::Intersection hit = domain.construct_intersection_object()(r);
+    if (std::get<2>(hit) != 0) {
+      out->emplace_back(std::get<0>(hit), std::get<1>(hit));
+      --needed;
+    }
+    ++randomPoint;
+  }
+  return needed == 0;
+}
+
+double SecondsLeft(Clock::time_point deadline) {
+  return std::chrono::duration<double>(deadline - Clock::now()).count();
+}
+
 // CGAL 5.5 make_mesh_3(domain, criteria, perturb(time_limit = 0), exude(time_limit = 0)) for a
-// domain without features. The default time limits of perturbation and exudation (the wall-clock
-// time of the refinement) would make the result timing dependent; 0 runs them to completion.
-void MeshC3t3(const Domain& domain, const FacetCriteria& facets, const CellCriteria& cells,
-              C3t3* c3t3) {
-  // Initial points on the surface (Mesh_3::internal::init_c3t3, default number of points).
+// domain without features, within the budget of `in`: the refinement stops at in.maxVertices or
+// at the deadline, perturbation and exudation at the deadline (they otherwise run to completion,
+// so the result does not depend on timing unless a budget runs out, which fails). "" on success.
+std::string MeshC3t3(const Domain& domain, CGAL::Random& rng, const FacetCriteria& facets,
+                     const CellCriteria& cells, const MesherInput& in, C3t3* c3t3) {
+  const Clock::time_point deadline =
+      Clock::now() + std::chrono::microseconds(static_cast<long long>(in.seconds * 1e6));
+  const std::string budget = " (the budget for about " + MesherNum(std::ceil(in.estimatedTets)) +
+                             " tets: " +
+                             MesherNum(in.seconds) + " s, " + std::to_string(in.maxVertices) +
+                             " vertices)";
   std::vector<std::pair<Domain::Point_3, Domain::Index>> initial;
-  domain.construct_initial_points_object()(std::back_inserter(initial));
+  if (!InitialPoints(domain, rng, &initial))
+    return "no initial points: " + std::to_string(limits::kMesherInitialPointRays) +
+           " rays from the bounding-box centre found fewer than 8 surface points (is the "
+           "surface degenerate?)";
   Tr& tr = c3t3->triangulation();
   const auto weighted = tr.geom_traits().construct_weighted_point_3_object();
   for (const auto& [point, index] : initial) {
@@ -82,11 +146,20 @@ void MeshC3t3(const Domain& domain, const FacetCriteria& facets, const CellCrite
       c3t3->set_index(v, index);
     }
   }
-  // Delaunay refinement (refine_mesh_3_impl, non-manifold topology, no vertex limit).
+  // Delaunay refinement (refine_mesh_3_impl, non-manifold topology).
   {
+    std::atomic<bool> stop(false);
+    CGAL::Mesh_error_code code = CGAL::CGAL_MESH_3_NO_ERROR;
+    Watchdog watchdog(deadline, &stop);
     const Criteria criteria{facets, cells};
-    CGAL::Mesh_3::Mesher_3<C3t3, Criteria, Domain> mesher(*c3t3, domain, criteria);
+    CGAL::Mesh_3::Mesher_3<C3t3, Criteria, Domain> mesher(*c3t3, domain, criteria, 0,
+                                                          in.maxVertices, &code, &stop);
     mesher.refine_mesh();
+    watchdog.Finish();
+    if (code == CGAL::CGAL_MESH_3_STOPPED)
+      return "the Delaunay refinement did not finish in time" + budget;
+    if (code == CGAL::CGAL_MESH_3_MAXIMAL_NUMBER_OF_VERTICES_REACHED)
+      return "the Delaunay refinement does not converge: it reached the vertex budget" + budget;
   }
   c3t3->clear_manifold_info();
   // Sliver perturbation (perturb_mesh_3 with its default criterion and perturbations).
@@ -101,56 +174,23 @@ void MeshC3t3(const Domain& domain, const FacetCriteria& facets, const CellCrite
         new CGAL::Mesh_3::Dihedral_angle_perturbation<C3t3, Domain, SliverCriterion>(40, 0.05));
     perturber.add_perturbation(
         new CGAL::Mesh_3::Li_random_perturbation<C3t3, Domain, SliverCriterion>(100, 0.15));
-    perturber.set_time_limit(0.0);
-    perturber();
+    const double left = SecondsLeft(deadline);
+    if (!(left > 0)) return "no time left for the sliver perturbation" + budget;
+    perturber.set_time_limit(left);
+    if (perturber() == CGAL::TIME_LIMIT_REACHED)
+      return "the sliver perturbation did not finish in time" + budget;
   }
   // Sliver exudation (exude_mesh_3 with its default criterion).
   {
     CGAL::Mesh_3::Slivers_exuder<C3t3, SliverCriterion> exuder(*c3t3, SliverCriterion(0.0, tr));
-    exuder.set_time_limit(0.0);
-    exuder();
+    const double left = SecondsLeft(deadline);
+    if (!(left > 0)) return "no time left for the sliver exudation" + budget;
+    exuder.set_time_limit(left);
+    if (exuder() == CGAL::TIME_LIMIT_REACHED)
+      return "the sliver exudation did not finish in time" + budget;
   }
+  return "";
 }
-
-// Checks that the surface is a closed, consistently oriented 2-manifold (at its edges: every
-// undirected edge in exactly two faces, traversed once in each direction).
-bool CheckClosed(const TriangleMesh& s, std::string* message) {
-  std::map<std::pair<int, int>, std::array<int, 2>> edges;  // (min, max) -> uses (a→b, b→a)
-  for (int f = 0; f < s.NumFaces(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int a = s.faces[f][k], b = s.faces[f][(k + 1) % 3];
-      if (a == b) {
-        *message = "face " + std::to_string(f) + " repeats vertex " + std::to_string(a);
-        return false;
-      }
-      auto& e = edges[{std::min(a, b), std::max(a, b)}];
-      ++e[a < b ? 0 : 1];
-    }
-  for (const auto& [e, uses] : edges) {
-    const int n = uses[0] + uses[1];
-    const std::string edge =
-        "edge (" + std::to_string(e.first) + ", " + std::to_string(e.second) + ")";
-    if (n == 1) {
-      *message = "the surface is not closed: " + edge + " belongs to only one face";
-      return false;
-    }
-    if (n > 2) {
-      *message = "the surface is not closed: " + edge + " belongs to " + std::to_string(n) +
-                 " faces (non-manifold)";
-      return false;
-    }
-    if (uses[0] != 1) {
-      *message = "the surface is not consistently oriented: the two faces of " + edge +
-                 " traverse it in the same direction";
-      return false;
-    }
-  }
-  return true;
-}
-
-}  // namespace
-
-namespace {
 
 // The mesh size of MeshTetsFromSurfaceSized as a Mesh_3 sizing field (facet size, cell size and,
 // scaled by `scale`, facet distance).
@@ -162,74 +202,50 @@ struct SizeField {
   }
 };
 
+// The tets of the complex, on the vertices they use (numbered in order of first use), moved
+// back from normalized coordinates.
+TetMesh ExtractTets(const C3t3& c3t3, const MesherInput& in) {
+  TetMesh m;
+  const Tr& tr = c3t3.triangulation();
+  std::unordered_map<Tr::Vertex_handle, int> index;
+  auto vertexIndex = [&](Tr::Vertex_handle v) {
+    const auto it = index.find(v);
+    if (it != index.end()) return it->second;
+    const Point& x = tr.geom_traits().construct_point_3_object()(v->point());
+    m.vertices.emplace_back(x.x(), x.y(), x.z());
+    index.emplace(v, m.NumVertices() - 1);
+    return m.NumVertices() - 1;
+  };
+  for (auto c = c3t3.cells_in_complex_begin(); c != c3t3.cells_in_complex_end(); ++c) {
+    Eigen::Vector4i q;
+    for (int k = 0; k < 4; ++k) q[k] = vertexIndex(c->vertex(k));
+    m.tets.push_back(q);
+    // CGAL's cells are positively oriented already; this only guards the convention.
+    if (m.TetVolume(m.NumTets() - 1) < 0.0) std::swap(m.tets.back()[2], m.tets.back()[3]);
+  }
+  if (in.scale != 1.0 || !in.center.isZero())
+    for (Eigen::Vector3d& v : m.vertices) v = v / in.scale + in.center;
+  return m;
+}
+
 // Shared by both entry points: `field` null means the uniform size edgeLength.
 bool Tetrahedralize(const TriangleMesh& surface, double edgeLength, const MeshSizeField* field,
-                    TetMesh* out, std::string* error) {
+                    const MeshingLimits& bounds, TetMesh* out, std::string* error) {
   auto fail = [&](const std::string& message) {
     if (error) *error = "MeshTetsFromSurface: " + message;
     return false;
   };
   if (out == nullptr) return fail("no output mesh given");
-  if (!field && (!(edgeLength > 0.0) || !std::isfinite(edgeLength)))
-    return fail("edge length must be positive and finite (got " + Num(edgeLength) + " m)");
-  if (field && !*field) return fail("no mesh size function given");
-  if (surface.faces.empty()) return fail("the surface has no faces");
-  const int nv = surface.NumVertices();
-  for (int i = 0; i < nv; ++i)
-    if (!surface.vertices[i].allFinite())
-      return fail("surface vertex " + std::to_string(i) + " has a non-finite coordinate");
-  for (int f = 0; f < surface.NumFaces(); ++f)
-    for (int k = 0; k < 3; ++k)
-      if (surface.faces[f][k] < 0 || surface.faces[f][k] >= nv)
-        return fail("surface face " + std::to_string(f) + " references vertex " +
-                    std::to_string(surface.faces[f][k]) + " which does not exist (" +
-                    std::to_string(nv) + " vertices)");
+  MesherInput in;
   std::string message;
-  if (!CheckClosed(surface, &message)) return fail(message);
-
-  // Size guard: a regular tet of edge h has volume h^3 / (6 sqrt 2).
-  double volume = 0.0;
-  for (const auto& f : surface.faces)
-    volume += surface.vertices[f[0]].dot(surface.vertices[f[1]].cross(surface.vertices[f[2]])) / 6;
-  double estimate = 0.0;
-  if (!field) {
-    estimate = std::abs(volume) / (edgeLength * edgeLength * edgeLength / 8.485);
-  } else {
-    // The size function at the centres of 24^3 cells of the bounding box, each cell's count
-    // scaled by the solid's share of the box volume; the smallest size must be positive.
-    Aabb box;
-    for (const auto& v : surface.vertices) box.Extend(v);
-    const Eigen::Vector3d ext = box.max - box.min;
-    const int n = 24;
-    const double cell = ext.x() * ext.y() * ext.z() / (n * n * n);
-    const double share = ext.prod() > 0 ? std::abs(volume) / ext.prod() : 1.0;
-    double smallest = INFINITY;
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j)
-        for (int k = 0; k < n; ++k) {
-          const Eigen::Vector3d c =
-              box.min + ext.cwiseProduct(Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5) / n);
-          const double h = (*field)(c);
-          smallest = std::min(smallest, h);
-          if (h > 0.0) estimate += share * cell / (h * h * h / 8.485);
-        }
-    for (const auto& v : surface.vertices) smallest = std::min(smallest, (*field)(v));
-    if (!(smallest > 0.0) || !std::isfinite(smallest))
-      return fail("the mesh size function must be positive and finite (got " + Num(smallest) +
-                  " m)");
-  }
-  if (estimate > 1e7)
-    return fail((field ? std::string("the mesh size function") : "edge length " + Num(edgeLength) +
-                                                                      " m") +
-                " would give about " + Num(estimate) +
-                " tets (limit 1e7); use a larger edge length");
+  if (!PrepareMesherInput(surface, edgeLength, field, bounds, &in, &message)) return fail(message);
 
   SurfaceMesh sm;
   std::vector<SurfaceMesh::Vertex_index> vi;
-  vi.reserve(nv);
-  for (const auto& v : surface.vertices) vi.push_back(sm.add_vertex(Point(v.x(), v.y(), v.z())));
-  for (int f = 0; f < surface.NumFaces(); ++f) {
-    const auto& q = surface.faces[f];
+  vi.reserve(in.surface.vertices.size());
+  for (const auto& v : in.surface.vertices) vi.push_back(sm.add_vertex(Point(v.x(), v.y(), v.z())));
+  for (int f = 0; f < in.surface.NumFaces(); ++f) {
+    const auto& q = in.surface.faces[f];
     if (sm.add_face(vi[q[0]], vi[q[1]], vi[q[2]]) == SurfaceMesh::null_face())
       return fail("the surface is non-manifold at a vertex of face " + std::to_string(f));
   }
@@ -243,39 +259,24 @@ bool Tetrahedralize(const TriangleMesh& surface, double edgeLength, const MeshSi
     const Domain domain(sm, &rng);
     C3t3 c3t3;
     if (field) {
-      const SizeField size{field, 1.0}, distance{field, 1.0 / 20.0};
-      MeshC3t3(domain, FacetCriteria(25.0, size, distance), CellCriteria(3.0, size), &c3t3);
+      const SizeField size{&in.field, 1.0}, distance{&in.field, 1.0 / 20.0};
+      message = MeshC3t3(domain, rng, FacetCriteria(25.0, size, distance),
+                         CellCriteria(3.0, size), in, &c3t3);
     } else {
-      MeshC3t3(domain, FacetCriteria(25.0, edgeLength, edgeLength / 20.0),
-               CellCriteria(3.0, edgeLength), &c3t3);
+      const double h = in.edgeLength;
+      message = MeshC3t3(domain, rng, FacetCriteria(25.0, h, h / 20.0), CellCriteria(3.0, h), in,
+                         &c3t3);
     }
-
-    // Only the vertices of cells in the complex, numbered in order of first use.
-    const Tr& tr = c3t3.triangulation();
-    std::unordered_map<Tr::Vertex_handle, int> index;
-    auto vertexIndex = [&](Tr::Vertex_handle v) {
-      const auto it = index.find(v);
-      if (it != index.end()) return it->second;
-      const Point& x = tr.geom_traits().construct_point_3_object()(v->point());
-      m.vertices.emplace_back(x.x(), x.y(), x.z());
-      index.emplace(v, m.NumVertices() - 1);
-      return m.NumVertices() - 1;
-    };
-    for (auto c = c3t3.cells_in_complex_begin(); c != c3t3.cells_in_complex_end(); ++c) {
-      Eigen::Vector4i q;
-      for (int k = 0; k < 4; ++k) q[k] = vertexIndex(c->vertex(k));
-      m.tets.push_back(q);
-      // CGAL's cells are positively oriented already; this only guards the convention.
-      if (m.TetVolume(m.NumTets() - 1) < 0.0) std::swap(m.tets.back()[2], m.tets.back()[3]);
-    }
+    if (!message.empty()) return fail("CGAL Mesh_3 stopped: " + message);
+    m = ExtractTets(c3t3, in);
   } catch (const std::exception& e) {
     return fail(std::string("CGAL Mesh_3 failed: ") + e.what());
   }
   if (m.tets.empty())
     return fail(field ? std::string("CGAL Mesh_3 produced no tets (is the mesh size much larger "
                                     "than the surface?)")
-                      : "CGAL Mesh_3 produced no tets (is the edge length " + Num(edgeLength) +
-                            " m much larger than the surface?)");
+                      : "CGAL Mesh_3 produced no tets (is the edge length " +
+                            MesherNum(edgeLength) + " m much larger than the surface?)");
   *out = std::move(m);
   return true;
 }
@@ -299,13 +300,13 @@ TriangleMesh SphereSurface(double radius, double longestEdge) {
 }  // namespace
 
 bool MeshTetsFromSurface(const TriangleMesh& surface, double edgeLength, TetMesh* out,
-                         std::string* error) {
-  return Tetrahedralize(surface, edgeLength, nullptr, out, error);
+                         std::string* error, const MeshingLimits& bounds) {
+  return Tetrahedralize(surface, edgeLength, nullptr, bounds, out, error);
 }
 
 bool MeshTetsFromSurfaceSized(const TriangleMesh& surface, const MeshSizeField& edgeLength,
-                              TetMesh* out, std::string* error) {
-  return Tetrahedralize(surface, 0.0, &edgeLength, out, error);
+                              TetMesh* out, std::string* error, const MeshingLimits& bounds) {
+  return Tetrahedralize(surface, 0.0, &edgeLength, bounds, out, error);
 }
 
 TetMesh MakeGradedTetSphere(double radius, const Eigen::Vector3d& pole, double fineEdgeLength,
@@ -325,12 +326,22 @@ TetMesh MakeGradedTetSphere(double radius, const Eigen::Vector3d& pole, double f
   return out;
 }
 
+bool MeshTetSphere(double radius, double edgeLength, TetMesh* out, std::string* error,
+                   const MeshingLimits& bounds) {
+  if (!(radius > 0.0 && std::isfinite(radius) && edgeLength > 0.0 && std::isfinite(edgeLength))) {
+    if (error)
+      *error = "MeshTetSphere: radius and edge length must be positive and finite (got " +
+               MesherNum(radius) + " m, " + MesherNum(edgeLength) + " m)";
+    return false;
+  }
+  return MeshTetsFromSurface(SphereSurface(radius, 0.5 * edgeLength), edgeLength, out, error,
+                             bounds);
+}
+
 TetMesh MakeTetSphere(double radius, double edgeLength) {
-  if (!(radius > 0.0) || !(edgeLength > 0.0)) return TetMesh();
   TetMesh out;
   std::string error;
-  if (!MeshTetsFromSurface(SphereSurface(radius, 0.5 * edgeLength), edgeLength, &out, &error))
-    return TetMesh();
+  if (!MeshTetSphere(radius, edgeLength, &out, &error)) return TetMesh();
   return out;
 }
 
