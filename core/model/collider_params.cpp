@@ -1,6 +1,7 @@
 #include "core/model/collider_params.h"
 
 #include <cmath>
+#include <cstdio>
 
 namespace superdex {
 namespace {
@@ -41,14 +42,17 @@ std::shared_ptr<GridSdf> BuildGridSdf(const TriangleMesh& mesh,
   double h = g.resolutionDelta * reference;
   const Eigen::Vector3d padded = extent + Eigen::Vector3d::Constant(2 * g.boundaryPaddingDist);
   h = std::min(h, padded.minCoeff() / g.minGridResolution);  // >= minGridResolution voxels/axis
-  Eigen::Vector3i nodes;
-  for (int a = 0; a < 3; ++a) nodes[a] = static_cast<int>(std::ceil(padded[a] / h)) + 1;
-  const double count = double(nodes.x()) * nodes.y() * nodes.z();
-  if (count > 64e6) {
-    *error = "the grid would hold " + std::to_string(count) +
+  Eigen::Vector3d perAxis;  // in double: a huge padding must not wrap an int
+  for (int a = 0; a < 3; ++a) perAxis[a] = std::ceil(padded[a] / h) + 1;
+  const double count = perAxis.prod();
+  if (!(count <= 64e6)) {  // also NaN and infinity
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", count);
+    *error = std::string("the grid would hold ") + text +
              " nodes (limit 64e6); raise resolution_delta";
     return nullptr;
   }
+  const Eigen::Vector3i nodes = perAxis.cast<int>();
   const Eigen::Vector3d origin = bounds.min - Eigen::Vector3d::Constant(g.boundaryPaddingDist);
   return std::make_shared<GridSdf>(GridSdf::Build(phi, origin, h, nodes));
 }

@@ -246,6 +246,10 @@ bool BuildMassProperties(const RigidActorDesc& d, const std::string& prefix, Rig
                                     "triangle inequality");
       J = 0.5 * I.trace() * Eigen::Matrix3d::Identity() - I;
     }
+    if (!(std::isfinite(mass) && mass > 0 && J.allFinite()))
+      return Fail(error, prefix + "shape: its mass properties are not representable in double "
+                                  "precision (mass " + Num(mass) + " kg, second moment trace " +
+                                  Num(J.trace()) + " kg m^2): the shape is too small or too large");
     m->mass = mass;
     m->secondMoment = J;
   }

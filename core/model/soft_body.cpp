@@ -31,7 +31,7 @@ bool BuildSoftBody(const SoftActorDesc& d, const std::string& prefix, SoftBodyMo
   const std::string source = d.meshSource.empty() ? "mesh" : d.meshSource;
   std::string message;
   if (!ValidateTetMesh(*d.mesh, source, &message)) return Fail(error, prefix + "mesh: " + message);
-  if (std::string e = Validate(d.material, prefix); !e.empty()) return Fail(error, e);
+  if (std::string e = Validate(d.material, prefix + "material."); !e.empty()) return Fail(error, e);
   if (std::string e = Validate(d.contact, prefix + "contact."); !e.empty()) return Fail(error, e);
   if (!d.position.allFinite() || !d.linearVelocity.allFinite() ||
       !d.orientation.coeffs().allFinite() || d.orientation.norm() < 1e-12)
@@ -84,6 +84,9 @@ bool BuildSoftBody(const SoftActorDesc& d, const std::string& prefix, SoftBodyMo
     for (int a = 0; a < 4; ++a) m->nodeMass[T[a]] += 0.25 * mt;
     m->mass += mt;
   }
+  if (!std::isfinite(m->mass))
+    return Fail(error, prefix + "mesh: " + source + ": the mass (density x volume) is not " +
+                           "representable in double precision");
   for (int i = 0; i < n; ++i)
     if (!(m->nodeMass[i] > 0))
       return Fail(error, prefix + "mesh: " + source + ": node " + std::to_string(i) +
