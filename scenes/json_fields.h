@@ -12,6 +12,7 @@
 #include <string>
 
 #include "core/scene.h"
+#include "scenes/limits.h"
 
 namespace superdex::scene_json {
 
@@ -67,10 +68,12 @@ inline int Integer(const json& obj, const std::string& path, const char* key, in
   if (!obj.contains(key)) return def;
   const json& v = obj.at(key);
   if (!v.is_number_integer()) Throw(p, std::string("must be an integer, got ") + TypeName(v));
-  const long long x = v.get<long long>();
+  // An unsigned value above the signed range must not wrap to a small one.
+  const bool huge = v.is_number_unsigned() && v.get<unsigned long long>() > LLONG_MAX;
+  const long long x = huge ? LLONG_MAX : v.get<long long>();
   if (x < lo || x > hi) {
     std::ostringstream s;
-    s << "must be in [" << lo << ", " << hi << "], got " << x;
+    s << "must be in [" << lo << ", " << hi << "], got " << v.dump();
     Throw(p, s.str());
   }
   return static_cast<int>(x);
@@ -109,6 +112,43 @@ Eigen::Matrix<double, N, 1> Vector(const json& obj, const std::string& path, con
     if (!std::isfinite(out[i])) Throw(p + "[" + std::to_string(i) + "]", "must be finite");
   }
   return out;
+}
+
+inline std::string Num(double x) {
+  std::ostringstream s;
+  s << x;
+  return s.str();
+}
+
+/// "must be at most <kMaxLength> m ..., got x": the scene-size rule (limits::kMaxLength).
+inline std::string TooLarge(double x) {
+  return "must be at most " + Num(limits::kMaxLength) + " m (the scene size limit), got " + Num(x);
+}
+
+/// A length [m] in (0, limits::kMaxLength].
+inline double Length(const json& obj, const std::string& path, const char* key,
+                     std::optional<double> def = std::nullopt) {
+  const double x = Positive(obj, path, key, def);
+  if (x > limits::kMaxLength) Throw(Join(path, key), TooLarge(x));
+  return x;
+}
+
+/// A point or extent [m] whose components are within ±limits::kMaxLength.
+inline Eigen::Vector3d Point(const json& obj, const std::string& path, const char* key,
+                             const Eigen::Vector3d& def) {
+  const Eigen::Vector3d p = Vector<3>(obj, path, key, def);
+  for (int i = 0; i < 3; ++i)
+    if (std::abs(p[i]) > limits::kMaxLength)
+      Throw(Join(path, key) + "[" + std::to_string(i) + "]", TooLarge(p[i]));
+  return p;
+}
+
+/// Mesh vertices (after their scale) within ±limits::kMaxLength; `path` names the field to blame.
+inline void CheckCoordinates(const std::vector<Eigen::Vector3d>& vertices, const std::string& path) {
+  double largest = 0.0;
+  for (const Eigen::Vector3d& v : vertices) largest = std::max(largest, v.cwiseAbs().maxCoeff());
+  if (largest > limits::kMaxLength)
+    Throw(path, "the mesh's coordinates (after scale) " + TooLarge(largest));
 }
 
 template <typename E>

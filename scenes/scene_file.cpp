@@ -12,6 +12,7 @@
 #include "geometry/mesh_io.h"
 #include "geometry/tet_mesh.h"
 #include "scenes/json_fields.h"
+#include "scenes/json_text.h"
 #include "scenes/soft_mesh_spec.h"
 
 namespace superdex {
@@ -32,7 +33,7 @@ RigidShape ReadShape(const json& j, const std::string& path, const std::string& 
   if (type == "sphere") {
     CheckObject(j, path, {"type", "radius", "surface_resolution"});
     s.kind = RigidShapeKind::Sphere;
-    s.radius = Positive(j, path, "radius");
+    s.radius = Length(j, path, "radius");
     s.surfaceResolution = Integer(j, path, "surface_resolution", 3, 0, 7);
   } else if (type == "box") {
     CheckObject(j, path, {"type", "half_extents", "size", "surface_resolution"});
@@ -40,7 +41,7 @@ RigidShape ReadShape(const json& j, const std::string& path, const std::string& 
     if (j.contains("size") == j.contains("half_extents"))
       Throw(path, "give exactly one of \"size\" and \"half_extents\"");
     const bool full = j.contains("size");
-    const Eigen::Vector3d e = Vector<3>(j, path, full ? "size" : "half_extents", Eigen::Vector3d::Zero());
+    const Eigen::Vector3d e = Point(j, path, full ? "size" : "half_extents", Eigen::Vector3d::Zero());
     if (!(e.minCoeff() > 0)) Throw(Join(path, full ? "size" : "half_extents"), "must be > 0");
     s.halfExtents = full ? 0.5 * e : e;
     s.surfaceResolution = Integer(j, path, "surface_resolution", 2, 1, 64);
@@ -59,6 +60,7 @@ RigidShape ReadShape(const json& j, const std::string& path, const std::string& 
     if (!ReadMeshFile(file, mesh.get(), &err)) Throw(Join(path, "file"), err);
     const double scale = Positive(j, path, "scale", 1.0);
     for (auto& v : mesh->vertices) v *= scale;
+    CheckCoordinates(mesh->vertices, Join(path, j.contains("scale") ? "scale" : "file"));
     s.mesh = mesh;
     s.meshSource = file;
   } else {
@@ -85,6 +87,8 @@ GridSdfParams ReadGridSdf(const json& g, const std::string& gp) {
   GridSdfParams d;
   ReadFields(g, gp, kGridSdfFields, &d);
   if (std::string m = Validate(d, gp + "."); !m.empty()) throw LoadError{m};
+  if (d.boundaryPaddingDist > limits::kMaxLength)
+    Throw(Join(gp, "boundary_padding_dist"), TooLarge(d.boundaryPaddingDist));
   return d;
 }
 
@@ -97,10 +101,14 @@ void ReadSoftActor(const json& a, const std::string& path, const std::string& ba
   SoftActorDesc d;
   d.name = String(a, path, "name");
   if (!a.contains("mesh")) Throw(Join(path, "mesh"), "missing required field");
-  d.mesh = ReadTetMeshSpec(a.at("mesh"), Join(path, "mesh"), baseDir, &d.meshSource);
+  double softTets = 0;
+  for (const ActorHandle h : out->scene->SoftActors())
+    softTets += out->scene->SoftModel(h).rest.NumTets();
+  d.mesh = ReadTetMeshSpec(a.at("mesh"), Join(path, "mesh"), baseDir,
+                           limits::kMaxSoftTets - softTets, &d.meshSource);
   if (a.contains("material"))
     ReadFields(a.at("material"), Join(path, "material"), kSoftMaterialFields, &d.material);
-  d.position = Vector<3>(a, path, "position", Eigen::Vector3d::Zero());
+  d.position = Point(a, path, "position", Eigen::Vector3d::Zero());
   d.orientation = ReadOrientation(a, path);
   d.linearVelocity = Vector<3>(a, path, "velocity", Eigen::Vector3d::Zero());
   if (a.contains("contact")) d.contact = ReadContact(a.at("contact"), Join(path, "contact"));
@@ -116,100 +124,118 @@ void ReadSoftActor(const json& a, const std::string& path, const std::string& ba
   out->actorNames.push_back(d.name);
 }
 
+// The actor named by the field "parent" (none without it); it must come earlier.
+ActorHandle ReadParent(const json& a, const std::string& path, const SceneFile& out) {
+  ActorHandle parent;
+  if (!a.contains("parent")) return parent;
+  const std::string p = String(a, path, "parent");
+  for (size_t k = 0; k < out.actorNames.size(); ++k)
+    if (out.actorNames[k] == p) parent.index = static_cast<int>(k);
+  if (!parent.IsValid()) Throw(Join(path, "parent"), "no earlier actor named \"" + p + "\"");
+  return parent;
+}
+
+RigidActorDesc ReadRigidDesc(const json& a, const std::string& path, const std::string& baseDir) {
+  CheckObject(a, path,
+              {"name", "type", "dynamic", "shape", "density", "mass", "inertia", "position",
+               "orientation", "euler_deg", "velocity", "angular_velocity", "contact",
+               "collider_type", "boundary_element_type", "contact_layer", "parent", "grid",
+               "grid_sdf"});
+  const std::string type = String(a, path, "type", std::string("rigid"));
+  if (type != "rigid")
+    Throw(Join(path, "type"), "unknown value \"" + type + "\" (supported: rigid, soft)");
+  RigidActorDesc d;
+  d.name = String(a, path, "name");
+  d.dynamic = Bool(a, path, "dynamic", true);
+  if (!a.contains("shape")) Throw(Join(path, "shape"), "missing required field");
+  d.shape = ReadShape(a.at("shape"), Join(path, "shape"), baseDir);
+  if (a.contains("density")) d.density = Positive(a, path, "density");
+  if (a.contains("mass")) d.mass = Positive(a, path, "mass");
+  if (a.contains("inertia")) {
+    const Eigen::Vector3d I = Vector<3>(a, path, "inertia", Eigen::Vector3d::Zero());
+    d.inertia = Eigen::Matrix3d(I.asDiagonal());
+  }
+  d.position = Point(a, path, "position", Eigen::Vector3d::Zero());
+  d.orientation = ReadOrientation(a, path);
+  d.linearVelocity = Vector<3>(a, path, "velocity", Eigen::Vector3d::Zero());
+  d.angularVelocity = Vector<3>(a, path, "angular_velocity", Eigen::Vector3d::Zero());
+  if (a.contains("contact")) d.contact = ReadContact(a.at("contact"), Join(path, "contact"));
+  d.colliderType = Enum(a, path, "collider_type", ColliderType::Auto);
+  d.boundaryElementType = Enum(a, path, "boundary_element_type", ActorBoundaryElementType::P1Q3);
+  d.contactLayer = String(a, path, "contact_layer", std::string("default"));
+  if (a.contains("grid_sdf")) d.gridSdf = ReadGridSdf(a.at("grid_sdf"), Join(path, "grid_sdf"));
+  return d;
+}
+
+// Replication on a grid: count [nx, ny, nz], spacing [m], jitter [m] (uniform in
+// [−jitter, jitter] per axis, fixed seed), names "<name>_<k>". Without "grid": d itself.
+std::vector<RigidActorDesc> PlaceOnGrid(const json& a, const std::string& path,
+                                        const RigidActorDesc& d, size_t actorsSoFar) {
+  if (!a.contains("grid")) return {d};
+  const json& g = a.at("grid");
+  const std::string gp = Join(path, "grid");
+  CheckObject(g, gp, {"count", "spacing", "jitter", "seed"});
+  const Eigen::Vector3d c = Vector<3>(g, gp, "count", Eigen::Vector3d::Ones());
+  for (int k = 0; k < 3; ++k)
+    if (c[k] < 1 || c[k] > 1000 || c[k] != std::floor(c[k]))
+      Throw(Join(gp, "count"), "must hold integers in [1, 1000]");
+  const double total = double(actorsSoFar) + c.prod();
+  if (total > limits::kMaxActors)
+    Throw(Join(gp, "count"),
+          "makes " + Num(c.prod()) + " actors, " + Num(total) + " in the scene: beyond the " +
+              "limit of " + Num(limits::kMaxActors) + " actors per scene (about " +
+              Num(c.prod() * limits::kBytesPerActor / 1e9) + " GB to load)");
+  const Eigen::Vector3d spacing = Vector<3>(g, gp, "spacing", Eigen::Vector3d::Zero());
+  const double jitter = Number(g, gp, "jitter", 0.0);
+  if (jitter < 0) Throw(Join(gp, "jitter"), "must be >= 0");
+  std::mt19937 rng(Integer(g, gp, "seed", 1, 0, 1 << 30));
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<RigidActorDesc> out;
+  int k = 0;
+  for (int z = 0; z < int(c.z()); ++z)
+    for (int y = 0; y < int(c.y()); ++y)
+      for (int x = 0; x < int(c.x()); ++x, ++k) {
+        RigidActorDesc di = d;
+        di.name = d.name + "_" + std::to_string(k);
+        di.position += Eigen::Vector3d(x, y, z).cwiseProduct(spacing) +
+                       jitter * Eigen::Vector3d(u(rng), u(rng), u(rng));
+        const double far = di.position.cwiseAbs().maxCoeff();
+        if (!(far <= limits::kMaxLength))  // also an overflow to infinity
+          Throw(Join(gp, spacing.cwiseAbs().maxCoeff() * c.maxCoeff() > jitter ? "spacing"
+                                                                                 : "jitter"),
+                "places actor " + di.name + " at a coordinate that " + TooLarge(far));
+        out.push_back(std::move(di));
+      }
+  return out;
+}
+
 void ReadActors(const json& actors, const std::string& baseDir, SceneFile* out) {
   if (!actors.is_array()) Throw("actors", std::string("must be an array, got ") + TypeName(actors));
+  if (double(actors.size()) > limits::kMaxActors)
+    Throw("actors", "holds " + std::to_string(actors.size()) + " actors, beyond the limit of " +
+                        Num(limits::kMaxActors) + " per scene");
   std::set<std::string> names;
   for (size_t i = 0; i < actors.size(); ++i) {
     const std::string path = "actors[" + std::to_string(i) + "]";
     const json& a = actors[i];
     if (a.is_object() && a.contains("type") && a.at("type") == "soft") {
-      ActorHandle parent;
-      if (a.contains("parent")) {
-        const std::string p = String(a, path, "parent");
-        for (size_t k = 0; k < out->actorNames.size(); ++k)
-          if (out->actorNames[k] == p) parent.index = static_cast<int>(k);
-        if (!parent.IsValid()) Throw(Join(path, "parent"), "no earlier actor named \"" + p + "\"");
-      }
+      const ActorHandle parent = ReadParent(a, path, *out);
       const std::string name = String(a, path, "name");
       if (!names.insert(name).second) Throw(Join(path, "name"), "duplicate actor name \"" + name + "\"");
       ReadSoftActor(a, path, baseDir, parent, out);
       continue;
     }
-    CheckObject(a, path,
-                {"name", "type", "dynamic", "shape", "density", "mass", "inertia", "position",
-                 "orientation", "euler_deg", "velocity", "angular_velocity", "contact",
-                 "collider_type", "boundary_element_type", "contact_layer", "parent", "grid",
-                 "grid_sdf"});
-    const std::string type = String(a, path, "type", std::string("rigid"));
-    if (type != "rigid")
-      Throw(Join(path, "type"), "unknown value \"" + type + "\" (supported: rigid, soft)");
-    RigidActorDesc d;
-    d.name = String(a, path, "name");
-    d.dynamic = Bool(a, path, "dynamic", true);
-    if (!a.contains("shape")) Throw(Join(path, "shape"), "missing required field");
-    d.shape = ReadShape(a.at("shape"), Join(path, "shape"), baseDir);
-    if (a.contains("density")) d.density = Positive(a, path, "density");
-    if (a.contains("mass")) d.mass = Positive(a, path, "mass");
-    if (a.contains("inertia")) {
-      const Eigen::Vector3d I = Vector<3>(a, path, "inertia", Eigen::Vector3d::Zero());
-      d.inertia = Eigen::Matrix3d(I.asDiagonal());
+    const RigidActorDesc d = ReadRigidDesc(a, path, baseDir);
+    const ActorHandle parent = ReadParent(a, path, *out);
+    if (double(out->actorNames.size()) + 1 > limits::kMaxActors)
+      Throw(path, "is beyond the limit of " + Num(limits::kMaxActors) + " actors per scene");
+    for (const RigidActorDesc& di : PlaceOnGrid(a, path, d, out->actorNames.size())) {
+      if (!names.insert(di.name).second) Throw(Join(path, "name"), "duplicate actor name \"" + di.name + "\"");
+      Error err;
+      if (!out->scene->AddRigidActor(di, &err, parent).IsValid())
+        throw LoadError{path + "." + err.message};
+      out->actorNames.push_back(di.name);
     }
-    d.position = Vector<3>(a, path, "position", Eigen::Vector3d::Zero());
-    d.orientation = ReadOrientation(a, path);
-    d.linearVelocity = Vector<3>(a, path, "velocity", Eigen::Vector3d::Zero());
-    d.angularVelocity = Vector<3>(a, path, "angular_velocity", Eigen::Vector3d::Zero());
-    if (a.contains("contact")) d.contact = ReadContact(a.at("contact"), Join(path, "contact"));
-    d.colliderType = Enum(a, path, "collider_type", ColliderType::Auto);
-    d.boundaryElementType = Enum(a, path, "boundary_element_type", ActorBoundaryElementType::P1Q3);
-    d.contactLayer = String(a, path, "contact_layer", std::string("default"));
-    if (a.contains("grid_sdf")) d.gridSdf = ReadGridSdf(a.at("grid_sdf"), Join(path, "grid_sdf"));
-    ActorHandle parent;
-    if (a.contains("parent")) {
-      const std::string p = String(a, path, "parent");
-      for (size_t k = 0; k < out->actorNames.size(); ++k)
-        if (out->actorNames[k] == p) parent.index = static_cast<int>(k);
-      if (!parent.IsValid())
-        Throw(Join(path, "parent"), "no earlier actor named \"" + p + "\"");
-    }
-
-    // Optional replication on a grid: count [nx, ny, nz], spacing [m], jitter [m] (uniform in
-    // [−jitter, jitter] per axis, fixed seed), names "<name>_<k>".
-    Eigen::Vector3i count(1, 1, 1);
-    Eigen::Vector3d spacing = Eigen::Vector3d::Zero();
-    double jitter = 0.0;
-    const bool grid = a.contains("grid");
-    if (grid) {
-      const json& g = a.at("grid");
-      const std::string gp = Join(path, "grid");
-      CheckObject(g, gp, {"count", "spacing", "jitter", "seed"});
-      const Eigen::Vector3d c = Vector<3>(g, gp, "count", Eigen::Vector3d::Ones());
-      for (int k = 0; k < 3; ++k) {
-        if (c[k] < 1 || c[k] > 1000 || c[k] != std::floor(c[k]))
-          Throw(Join(gp, "count"), "must hold integers in [1, 1000]");
-        count[k] = static_cast<int>(c[k]);
-      }
-      spacing = Vector<3>(g, gp, "spacing", Eigen::Vector3d::Zero());
-      jitter = Number(g, gp, "jitter", 0.0);
-      if (jitter < 0) Throw(Join(gp, "jitter"), "must be >= 0");
-    }
-    std::mt19937 rng(grid ? Integer(a.at("grid"), Join(path, "grid"), "seed", 1, 0, 1 << 30) : 1);
-    std::uniform_real_distribution<double> u(-1.0, 1.0);
-    int k = 0;
-    for (int z = 0; z < count.z(); ++z)
-      for (int y = 0; y < count.y(); ++y)
-        for (int x = 0; x < count.x(); ++x, ++k) {
-          RigidActorDesc di = d;
-          if (grid) {
-            di.name = d.name + "_" + std::to_string(k);
-            di.position += Eigen::Vector3d(x, y, z).cwiseProduct(spacing) +
-                           jitter * Eigen::Vector3d(u(rng), u(rng), u(rng));
-          }
-          if (!names.insert(di.name).second) Throw(Join(path, "name"), "duplicate actor name \"" + di.name + "\"");
-          Error err;
-          if (!out->scene->AddRigidActor(di, &err, parent).IsValid())
-            throw LoadError{path + "." + err.message};
-          out->actorNames.push_back(di.name);
-        }
   }
 }
 
@@ -265,11 +291,13 @@ bool LoadSceneText(const std::string& text, const std::string& baseDir, SceneFil
   out->path = path;
   try {
     json j;
-    try {
-      j = json::parse(text);
-    } catch (const json::parse_error& e) {
-      return Fail(error, std::string("(file): not valid JSON: ") + e.what());
-    }
+    std::string parseError;
+    if (!ParseJsonText(text, &j, &parseError))  // a number out of range names its JSON path
+      return Fail(error, (parseError.rfind("not valid JSON", 0) == 0 ||
+                                  parseError.rfind("nested", 0) == 0
+                              ? "(file): "
+                              : "") +
+                             parseError);
     CheckObject(j, "",
                 {"format", "description", "settings", "actors", "contact_filter", "output", "expect"});
     const std::string format = String(j, "", "format", std::string("superdex-scene/1"));
@@ -282,7 +310,10 @@ bool LoadSceneText(const std::string& text, const std::string& baseDir, SceneFil
       const json& s = j.at("settings");
       CheckObject(s, "settings",
                   {"dt", "duration", "integrator", "gravity", "solver", "stage_solver",
-                   "warm_start", "closed_form_free_stages", "experimental_eval_params"});
+                   "warm_start", "closed_form_free_stages", "experimental_eval_params",
+                   "penetration_bound"});
+      if (s.contains("penetration_bound"))
+        out->penetrationBound = Length(s, "settings", "penetration_bound");
       out->dt = Positive(s, "settings", "dt", out->dt);
       out->duration = Positive(s, "settings", "duration", out->duration);
       settings.integrator = Enum(s, "settings", "integrator", settings.integrator);
@@ -346,6 +377,8 @@ bool LoadSceneText(const std::string& text, const std::string& baseDir, SceneFil
     }
   } catch (const LoadError& e) {
     return Fail(error, e.message);
+  } catch (const std::bad_alloc&) {
+    return Fail(error, "(file): out of memory while loading the scene");
   } catch (const std::exception& e) {
     return Fail(error, std::string("(file): ") + e.what());
   }
@@ -353,8 +386,14 @@ bool LoadSceneText(const std::string& text, const std::string& baseDir, SceneFil
 }
 
 bool LoadSceneFile(const std::string& path, SceneFile* out, Error* error) {
-  std::ifstream in(path);
+  std::ifstream in(path, std::ios::binary);
   if (!in) return Fail(error, path + ": cannot open file");
+  in.seekg(0, std::ios::end);
+  const double bytes = static_cast<double>(in.tellg());
+  in.seekg(0, std::ios::beg);
+  if (bytes > limits::kMaxSceneFileBytes)
+    return Fail(error, path + ": the file holds " + Num(bytes) + " bytes, beyond the limit of " +
+                           Num(limits::kMaxSceneFileBytes) + " bytes per scene file");
   std::stringstream buf;
   buf << in.rdbuf();
   out->path = path;

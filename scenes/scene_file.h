@@ -39,6 +39,9 @@ struct SceneFile {
   std::unique_ptr<Scene> scene;
   double dt = 1e-3;        ///< [s]
   double duration = 1.0;   ///< [s]
+  /// settings.penetration_bound [m]: a run fails when the penetration exceeds it (unset: the
+  /// smallest half extent over the actors, scenes/run_checks.h).
+  std::optional<double> penetrationBound;
   OutputSpec output;
   SceneExpectations expect;
   std::vector<std::string> actorNames;  ///< index → name

@@ -11,9 +11,12 @@
 namespace superdex::scene_json {
 
 /// {"type": "file" | "box" | "sphere" | "cylinder" | "surface", ...}: the tet mesh; *source
-/// names where it came from (the file, or "tet box", ...).
+/// names where it came from (the file, or "tet box", ...). A mesh of more than `tetBudget` tets
+/// (counted, or estimated before meshing) is refused: what the scene has left of
+/// limits::kMaxSoftTets.
 std::shared_ptr<TetMesh> ReadTetMeshSpec(const json& j, const std::string& path,
-                                         const std::string& baseDir, std::string* source);
+                                         const std::string& baseDir, double tetBudget,
+                                         std::string* source);
 
 /// [{"nodes": [...] | "region": {...}, "path": [[t, dx, dy, dz], ...]}, ...]
 std::vector<NodeConstraint> ReadConstraints(const json& list, const std::string& path,
