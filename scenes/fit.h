@@ -10,6 +10,7 @@
 // with the cost's gradient from one adjoint pass (core/sensitivity/adjoint.h; for many parameters).
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -29,7 +30,12 @@ struct ObservedFrame {
 struct ObservedTrajectory {
   std::vector<std::string> actors;  ///< names from the header
   std::vector<ObservedFrame> frames;
+  /// What the reader skipped, e.g. "<path>:<line>: the last line is truncated (no newline, not
+  /// valid JSON): skipped" (the trajectory of a killed run).
+  std::vector<std::string> notes;
 };
+/// Reads an observed trajectory; false with "<path>:<line>: <defect>" in *error. A last line
+/// without its newline that is not valid JSON is skipped and noted.
 bool ReadObservedTrajectory(const std::string& path, ObservedTrajectory* out, Error* error);
 
 enum class FitMethod {
@@ -46,11 +52,29 @@ inline bool ParseFitMethod(const std::string& name, FitMethod* method) {
   return Parse(name, method);
 }
 
+/// A fit's state after one solver iteration (FitOptions::iteration).
+struct FitProgress {
+  int iteration = 0;
+  std::vector<double> values;  ///< θ
+  double cost = 0.0;           ///< ½ Σ r² [m²]
+};
+
 struct FitOptions {
   std::vector<std::string> parameters;  ///< "ACTOR.NAME"
   std::optional<double> dt;             ///< overrides the scene's dt [s]
   int maxIterations = 50;
   FitMethod method = FitMethod::LevenbergMarquardt;
+  /// Called after every solver iteration; returning false stops the fit there
+  /// (FitResult::interrupted).
+  std::function<bool(const FitProgress&)> iteration;
+};
+
+/// Why FitSceneParameters or ComputeTrajectoryGradient returned false.
+enum class FitFailure {
+  None,
+  Input,       ///< bad parameters, observations or options (also beyond limits::kMaxFitSteps)
+  Simulation,  ///< a stage did not converge
+  NonFinite,   ///< the cost, residuals or gradient are not finite
 };
 
 struct FitResult {
@@ -66,6 +90,7 @@ struct FitResult {
   int simulations = 0;          ///< forward runs, with or without sensitivities
   double wallSeconds = 0.0;
   bool converged = false;
+  bool interrupted = false;     ///< FitOptions::iteration asked to stop
   std::string message;          ///< Ceres' termination message
 };
 
@@ -73,7 +98,8 @@ struct FitResult {
 /// bad input (unknown parameter or actor, frames off the step grid, nothing observed) or when a
 /// simulation fails (a stage that does not converge).
 bool FitSceneParameters(const SceneFile& file, const ObservedTrajectory& observed,
-                        const FitOptions& options, FitResult* result, Error* error);
+                        const FitOptions& options, FitResult* result, Error* error,
+                        FitFailure* failure = nullptr);
 
 /// The cost and its gradient at the scene file's parameter values, by one simulation and one
 /// adjoint pass (options.method and maxIterations are not used).
@@ -91,6 +117,13 @@ struct TrajectoryGradient {
 };
 bool ComputeTrajectoryGradient(const SceneFile& file, const ObservedTrajectory& observed,
                                const FitOptions& options, TrajectoryGradient* result,
-                               Error* error);
+                               Error* error, FitFailure* failure = nullptr);
+
+/// Writes a fit's values as JSON to `path` (through a temporary file renamed into place, so the
+/// file is always complete): {"parameters": {NAME: {"initial", "fitted", "standard_error"}},
+/// "final_cost", "rms_residual", "iterations", "converged", "status"}. False with the system's
+/// reason in *error when the file cannot be written.
+bool WriteFitJson(const std::string& path, const FitResult& result, const std::string& status,
+                  Error* error);
 
 }  // namespace superdex

@@ -4,125 +4,228 @@
 #include <cmath>
 #include <cstdio>
 #include <iomanip>
+#include <sstream>
 
+#include "scenes/limits.h"
+#include "scenes/run_checks.h"
 #include "scenes/trajectory_writer.h"
 #include "scenes/viewer_page.h"
 #include "scenes/vtk_writer.h"
 
 namespace superdex {
+namespace {
 
-bool RunScene(SceneFile* file, const RunOptions& options, RunSummary* summary, Error* error) {
-  Scene& scene = *file->scene;
-  const double dt = options.dt.value_or(file->dt);
-  const double duration = options.duration.value_or(file->duration);
-  if (!(dt > 0 && std::isfinite(dt))) return Fail(error, "dt: must be > 0");
-  if (!(duration > 0 && std::isfinite(duration))) return Fail(error, "duration: must be > 0");
-  RunSummary s;
-  s.trajectoryPath = options.out.value_or(file->output.path);
-  if (options.view && s.trajectoryPath.empty())
-    return Fail(error, "--view: the viewer page needs a trajectory (output.path or --out)");
-  TrajectoryWriter writer;
-  if (!s.trajectoryPath.empty()) {
-    TrajectoryOptions content;
-    content.contacts = options.contacts.value_or(file->output.contacts);
-    if (!writer.Open(s.trajectoryPath, scene, file->actorNames, dt, error, content)) return false;
-    writer.WriteFrame(scene, 0, nullptr);
+using Clock = std::chrono::steady_clock;
+
+double Seconds(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double>(b - a).count();
+}
+
+std::string Num(double x) {
+  std::ostringstream s;
+  s << x;
+  return s.str();
+}
+
+void Accumulate(const StepReport& rep, RunSummary* s) {
+  ++s->steps;
+  s->newtonIterations += rep.newtonIterations;
+  s->fallbacks += rep.fallbacks;
+  s->stages += rep.stages;
+  s->freeStages += rep.freeStages;
+  s->krylovIterations += rep.krylovIterations;
+  s->krylovFallbacks += rep.krylovFallbacks;
+  s->assemblySeconds += rep.assemblySeconds;
+  s->factorizationSeconds += rep.factorizationSeconds;
+  s->lineSearchSeconds += rep.lineSearchSeconds;
+  s->maxNewtonIterations = std::max(s->maxNewtonIterations, rep.newtonIterations);
+  (rep.status == StageStatus::Converged ? s->converged
+   : rep.status == StageStatus::Stopped ? s->stopped
+                                        : s->diverged) += 1;
+  s->minDetF = std::min(s->minDetF, rep.minDetF);
+  if (std::isfinite(rep.contact.minSignedDistance))
+    s->maxPenetration = std::max(s->maxPenetration, -rep.contact.minSignedDistance);
+}
+
+// The run's files: the trajectory (a line per output frame) and the VTK frames.
+class RunOutputs {
+ public:
+  bool Open(const SceneFile& file, const TrajectoryOptions& content, Scene& scene, double dt,
+            RunSummary* s, Error* error) {
+    every_ = file.output.every;
+    vtkEvery_ = file.output.vtkEvery;
+    if (!s->trajectoryPath.empty() &&
+        !writer_.Open(s->trajectoryPath, scene, file.actorNames, dt, error, content))
+      return false;
+    return Write(scene, 0, nullptr, true, s, error);
   }
-  s.vtkDirectory = options.vtk.value_or(file->output.vtk);
-  auto writeVtk = [&](int step) {
-    char name[32];
-    std::snprintf(name, sizeof(name), "/frame_%06d.vtk", step);
-    if (!WriteVtkFrame(scene, s.vtkDirectory + name, error)) return false;
-    ++s.vtkFrames;
+  // The frames due after `step` (all of them when `force`, e.g. at the last step).
+  bool Write(Scene& scene, long long step, const StepReport* rep, bool force, RunSummary* s,
+             Error* error) {
+    if (writer_.IsOpen() && (force || step % every_ == 0) &&
+        !writer_.WriteFrame(scene, step, rep, error))
+      return false;
+    if (s->vtkDirectory.empty() || !(force || step % vtkEvery_ == 0)) return true;
+    char name[40];
+    std::snprintf(name, sizeof(name), "/frame_%06lld.vtk", step);
+    if (!WriteVtkFrame(scene, s->vtkDirectory + name, error)) return false;
+    ++s->vtkFrames;
     return true;
-  };
-  if (!s.vtkDirectory.empty() && !writeVtk(0)) return false;
-  s.initialEnergy = scene.Energies().Total();
-  s.maxPenetration = std::max(0.0, -scene.ContactState().minSignedDistance);
-  const int steps = std::max(1, static_cast<int>(std::llround(duration / dt)));
-  using Clock = std::chrono::steady_clock;
-  auto seconds = [](Clock::time_point a, Clock::time_point b) {
-    return std::chrono::duration<double>(b - a).count();
-  };
-  for (int k = 1; k <= steps; ++k) {
-    StepReport rep;
-    const Clock::time_point t0 = Clock::now();
-    if (!scene.Step(dt, &rep, error)) return false;
-    const Clock::time_point t1 = Clock::now();
-    s.wallSeconds += seconds(t0, t1);
-    ++s.steps;
-    s.newtonIterations += rep.newtonIterations;
-    s.fallbacks += rep.fallbacks;
-    s.stages += rep.stages;
-    s.freeStages += rep.freeStages;
-    s.krylovIterations += rep.krylovIterations;
-    s.krylovFallbacks += rep.krylovFallbacks;
-    s.assemblySeconds += rep.assemblySeconds;
-    s.factorizationSeconds += rep.factorizationSeconds;
-    s.lineSearchSeconds += rep.lineSearchSeconds;
-    s.maxNewtonIterations = std::max(s.maxNewtonIterations, rep.newtonIterations);
-    (rep.status == StageStatus::Converged ? s.converged
-     : rep.status == StageStatus::Stopped ? s.stopped
-                                          : s.diverged) += 1;
-    s.minDetF = std::min(s.minDetF, rep.minDetF);
-    if (std::isfinite(rep.contact.minSignedDistance))
-      s.maxPenetration = std::max(s.maxPenetration, -rep.contact.minSignedDistance);
-    if (writer.IsOpen() && (k % file->output.every == 0 || k == steps))
-      writer.WriteFrame(scene, k, &rep);
-    if (!s.vtkDirectory.empty() && (k % file->output.vtkEvery == 0 || k == steps) && !writeVtk(k))
-      return false;
-    if (options.progress) options.progress(rep, double(k) / steps);
-    s.outputSeconds += seconds(t1, Clock::now());
   }
-  s.simulatedSeconds = scene.Time();
-  s.finalEnergy = scene.Energies().Total();
-  if (options.view) {
-    writer.Close();
-    const Clock::time_point t0 = Clock::now();
-    ViewerPageInfo page;
-    if (!WriteViewerPage(s.trajectoryPath, ViewerPagePath(s.trajectoryPath), &page, error))
-      return false;
-    s.viewerPage = page.path;
-    s.viewerSeconds = seconds(t0, Clock::now());
-  }
+  bool Close(Error* error) { return writer_.Close(error); }
 
-  const SceneExpectations& e = file->expect;
-  auto fail = [&](const std::string& m) { s.expectationFailures.push_back(m); };
+ private:
+  TrajectoryWriter writer_;
+  int every_ = 1, vtkEvery_ = 1;
+};
+
+void CheckExpectations(const SceneFile& file, const Scene& scene, RunSummary* s) {
+  const SceneExpectations& e = file.expect;
   std::ostringstream m;
-  if (e.maxPenetration && s.maxPenetration > *e.maxPenetration) {
+  auto fail = [&] {
+    s->expectationFailures.push_back(m.str());
     m.str("");
-    m << "max penetration " << s.maxPenetration << " m > expected " << *e.maxPenetration << " m";
-    fail(m.str());
+  };
+  if (e.maxPenetration && s->maxPenetration > *e.maxPenetration) {
+    m << "max penetration " << s->maxPenetration << " m > expected " << *e.maxPenetration << " m";
+    fail();
   }
   if (e.maxRelativeEnergyDrift) {
-    const double drift = std::abs(s.finalEnergy - s.initialEnergy) /
-                         std::max(std::abs(s.initialEnergy), 1e-300);
+    const double drift = std::abs(s->finalEnergy - s->initialEnergy) /
+                         std::max(std::abs(s->initialEnergy), 1e-300);
     if (drift > *e.maxRelativeEnergyDrift) {
-      m.str("");
       m << "relative energy drift " << drift << " > expected " << *e.maxRelativeEnergyDrift;
-      fail(m.str());
+      fail();
     }
   }
-  if (e.allConverged && (s.stopped > 0 || s.diverged > 0)) {
-    m.str("");
-    m << s.stopped << " stages stopped and " << s.diverged << " diverged; expected all converged";
-    fail(m.str());
+  if (e.allConverged && (s->stopped > 0 || s->diverged > 0)) {
+    m << s->stopped << " stages stopped and " << s->diverged << " diverged; expected all converged";
+    fail();
   }
   for (const auto& r : e.finalPositions) {
-    for (size_t i = 0; i < file->actorNames.size(); ++i) {
-      if (file->actorNames[i] != r.actor) continue;
+    for (size_t i = 0; i < file.actorNames.size(); ++i) {
+      if (file.actorNames[i] != r.actor) continue;
       const Eigen::Vector3d p = scene.CenterOfMass({static_cast<int>(i)});
       const double err = (p - r.position).norm();
       if (err > r.tolerance) {
-        m.str("");
         m << "actor " << r.actor << " ends at (" << p.transpose() << "), " << err
           << " m from the expected (" << r.position.transpose() << ") > " << r.tolerance << " m";
-        fail(m.str());
+        fail();
       }
     }
   }
-  *summary = s;
+}
+
+}  // namespace
+
+bool PlanSteps(double duration, double dt, long long* steps, std::string* error) {
+  if (!(dt > 0 && std::isfinite(dt))) {
+    *error = "dt: must be > 0 and finite, got " + Num(dt);
+    return false;
+  }
+  if (!(duration > 0 && std::isfinite(duration))) {
+    *error = "duration: must be > 0 and finite, got " + Num(duration);
+    return false;
+  }
+  const double n = std::max(1.0, std::round(duration / dt));  // in double: no wrap-around
+  if (!(n <= limits::kMaxSteps)) {
+    *error = "duration / dt: " + Num(duration) + " s / " + Num(dt) + " s = " + Num(n) +
+             " steps, beyond the limit of " + Num(limits::kMaxSteps) + " steps per run";
+    return false;
+  }
+  *steps = static_cast<long long>(n);
   return true;
+}
+
+bool RunScene(SceneFile* file, const RunOptions& options, RunSummary* summary, Error* error) {
+  Error scratch;
+  if (!error) error = &scratch;
+  Scene& scene = *file->scene;
+  RunSummary s;
+  auto end = [&](RunEnd how, const std::string& message) {
+    s.end = how;
+    if (how == RunEnd::InvalidInput) Fail(error, message);
+    else s.endMessage = message;
+    *summary = s;
+    return false;
+  };
+  const double dt = options.dt.value_or(file->dt);
+  long long steps = 0;
+  std::string why;
+  if (!PlanSteps(options.duration.value_or(file->duration), dt, &steps, &why))
+    return end(RunEnd::InvalidInput, why);
+  const PenetrationBound bound = MakePenetrationBound(*file);
+  if (std::string m = CheckInitialState(file, bound); !m.empty())
+    return end(RunEnd::InvalidInput, m);
+  s.trajectoryPath = options.out.value_or(file->output.path);
+  if (options.view && s.trajectoryPath.empty())
+    return end(RunEnd::InvalidInput,
+               "--view: the viewer page needs a trajectory (output.path or --out)");
+  s.vtkDirectory = options.vtk.value_or(file->output.vtk);
+  TrajectoryOptions content;
+  content.contacts = options.contacts.value_or(file->output.contacts);
+  RunOutputs outputs;
+  if (!outputs.Open(*file, content, scene, dt, &s, error))
+    return end(RunEnd::OutputFailed, error->message);
+  s.initialEnergy = scene.Energies().Total();
+  s.maxPenetration = std::max(0.0, -scene.ContactState().minSignedDistance);
+  bool finite = true;
+  for (long long k = 1; k <= steps; ++k) {
+    StepReport rep;
+    const Clock::time_point t0 = Clock::now();
+    if (!scene.Step(dt, &rep, error)) return end(RunEnd::InvalidInput, error->message);
+    const Clock::time_point t1 = Clock::now();
+    s.wallSeconds += Seconds(t0, t1);
+    Accumulate(rep, &s);
+    const std::string failed = CheckStep(*file, k, rep, bound, &finite);
+    const int signal = options.interrupted ? options.interrupted() : 0;
+    const bool last = k == steps || !failed.empty() || signal != 0;
+    if (finite && !outputs.Write(scene, k, &rep, last, &s, error)) {
+      s.end = RunEnd::OutputFailed;
+      s.endMessage = error->message;
+      break;
+    }
+    if (!failed.empty()) {
+      s.end = RunEnd::Unphysical;
+      s.endMessage = failed;
+      break;
+    }
+    if (signal != 0) {
+      s.end = RunEnd::Interrupted;
+      s.signal = signal;
+      s.endMessage = "stopped by signal " + std::to_string(signal) + " after step " +
+                     std::to_string(k) + " of " + std::to_string(steps) + " (t = " +
+                     Num(scene.Time()) + " s); its frame is written";
+      break;
+    }
+    if (options.progress) options.progress(rep, double(k) / steps);
+    s.outputSeconds += Seconds(t1, Clock::now());
+  }
+  Error closing;
+  if (!outputs.Close(&closing) && s.end != RunEnd::OutputFailed) {
+    s.end = RunEnd::OutputFailed;
+    s.endMessage = closing.message;
+  }
+  s.simulatedSeconds = scene.Time();
+  s.finalEnergy = finite ? scene.Energies().Total() : NAN;
+  if (options.view && s.end != RunEnd::OutputFailed) {  // also of a run that ended early
+    const Clock::time_point t0 = Clock::now();
+    ViewerPageInfo page;
+    Error viewError;
+    if (WriteViewerPage(s.trajectoryPath, ViewerPagePath(s.trajectoryPath), &page, &viewError)) {
+      s.viewerPage = page.path;
+      s.viewerSeconds = Seconds(t0, Clock::now());
+    } else if (s.end == RunEnd::Completed) {
+      s.end = RunEnd::OutputFailed;
+      s.endMessage = viewError.message;
+    } else {
+      s.endMessage += "; the viewer page was not written: " + viewError.message;
+    }
+  }
+  if (s.end != RunEnd::Completed) error->message = s.endMessage;
+  if (s.end == RunEnd::Completed) CheckExpectations(*file, scene, &s);
+  *summary = s;
+  return s.end == RunEnd::Completed;
 }
 
 void PrintSummary(const SceneFile& file, const RunSummary& s, std::ostream& os) {
@@ -171,7 +274,12 @@ void PrintSummary(const SceneFile& file, const RunSummary& s, std::ostream& os) 
   if (s.vtkFrames > 0)
     os << "VTK frames        " << s.vtkFrames << " in " << s.vtkDirectory
        << "/ (open the series in ParaView; cell data: traction, pressure)\n";
-  if (s.expectationFailures.empty()) {
+  if (s.end == RunEnd::Interrupted) os << "INTERRUPTED       " << s.endMessage << "\n";
+  if (s.end == RunEnd::Unphysical) os << "RUN FAILED        " << s.endMessage << "\n";
+  if (s.end == RunEnd::OutputFailed) os << "OUTPUT FAILED     " << s.endMessage << "\n";
+  if (s.end != RunEnd::Completed) {
+    os << "expectations      not checked (the run ended early)\n";
+  } else if (s.expectationFailures.empty()) {
     os << "expectations      " << (file.expect.maxPenetration || file.expect.allConverged ||
                                    file.expect.maxRelativeEnergyDrift ||
                                    !file.expect.finalPositions.empty()

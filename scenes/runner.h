@@ -1,4 +1,5 @@
-// Runs a loaded scene: steps it, writes the trajectory, and summarizes the run.
+// Runs a loaded scene: steps it, writes the trajectory, checks every step (scenes/run_checks.h),
+// stops cleanly when asked to (a signal), and summarizes the run.
 #pragma once
 
 #include <functional>
@@ -20,10 +21,30 @@ struct RunOptions {
   bool view = false;
   /// Called after every step with the step's report and the fraction done in [0, 1].
   std::function<void(const StepReport&, double)> progress;
+  /// Polled after every step: a nonzero value (the number of the signal that asked for it) ends
+  /// the run there, with that step's frame written and the files closed.
+  std::function<int()> interrupted;
 };
 
+/// How a run ended; `superdex run` maps it to its exit code (docs/reliability.md).
+enum class RunEnd {
+  Completed,     ///< every step ran (stages may still have stopped or diverged: see the counts)
+  InvalidInput,  ///< refused before the first step; *error says why (exit code 2)
+  Unphysical,    ///< a step's state is not finite, a soft tet inverted, or the penetration
+                 ///< exceeded its bound (exit code 5)
+  OutputFailed,  ///< a trajectory or VTK file could not be written (exit code 6)
+  Interrupted,   ///< a signal: the current step finished and its frame was written (128 + signal)
+};
+
+/// The steps of `duration` at `dt`: round(duration / dt), at least 1. False with the count and
+/// the limit in *error when it is beyond limits::kMaxSteps (or dt, duration are not positive).
+bool PlanSteps(double duration, double dt, long long* steps, std::string* error);
+
 struct RunSummary {
-  int steps = 0;
+  RunEnd end = RunEnd::Completed;
+  std::string endMessage;  ///< why the run ended early (Unphysical, OutputFailed, Interrupted)
+  int signal = 0;          ///< Interrupted: the signal's number
+  int steps = 0;           ///< steps run (at most limits::kMaxSteps)
   double simulatedSeconds = 0.0;
   double wallSeconds = 0.0;    ///< in Scene::Step only (what the benchmarks compare)
   double outputSeconds = 0.0;  ///< writing trajectory frames and VTK files, and progress calls
@@ -47,7 +68,9 @@ struct RunSummary {
   int vtkFrames = 0;
 };
 
-/// Runs to the end. Returns false only for I/O or input errors (then *error says which).
+/// Runs to the end, or to the first failed check, failed write or interruption. True when every
+/// step ran (summary->end == Completed); otherwise summary->end says why and *error the details
+/// (also in summary->endMessage once a step has run).
 bool RunScene(SceneFile* scene, const RunOptions& options, RunSummary* summary, Error* error);
 
 /// The one-screen summary printed by `superdex run`.

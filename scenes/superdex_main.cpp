@@ -6,15 +6,19 @@
 //                [--method lm|lbfgs] [--max-iterations N] [--out FITTED.json]
 //   superdex gradient SCENE.json --observed TRAJ.jsonl --params ACTOR.NAME,... [--dt S]
 //   superdex params --markdown     (every parameter table; docs/parameters.md is its output)
-// Exit codes: 0 success; 2 invalid input (scene file, options); 3 a stage did not converge
-// (Stopped or Diverged) or the fit did not converge; 4 a scene expectation failed.
+// Exit codes (kExitCodes below, docs/reliability.md): 0 success; 1 an internal error; 2 invalid
+// input (scene file, options, a resource limit); 3 a stage or the fit did not converge; 4 a scene
+// expectation failed; 5 the run turned unphysical (non-finite state, inverted tet, penetration
+// beyond its bound) or the fit's cost is not finite; 6 an output could not be written;
+// 128 + N stopped by signal N (130 SIGINT, 143 SIGTERM) after finishing the current step.
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <cmath>
+#include <csignal>
 #include <cstdio>
+#include <exception>
 #include <iostream>
-
-#include <fstream>
-#include <nlohmann/json.hpp>
+#include <new>
 
 #include "scenes/fit.h"
 #include "scenes/parameter_docs.h"
@@ -24,6 +28,35 @@
 namespace {
 
 using superdex::StepReport;
+
+constexpr int kExitInternal = 1, kExitInput = 2, kExitNotConverged = 3, kExitExpectation = 4,
+              kExitUnphysical = 5, kExitOutput = 6;
+const char* kExitCodes =
+    "Exit codes: 0 success; 1 internal error; 2 invalid input (the message names the JSON path "
+    "or file:line and the rule; also a resource limit); 3 a stage or the fit did not converge; "
+    "4 a scene expectation failed; 5 the run turned unphysical (non-finite state, inverted soft "
+    "tet, penetration beyond its bound) or the fit's cost is not finite; 6 an output file could "
+    "not be written; 130 / 143 stopped by SIGINT / SIGTERM after the current step (its frame, "
+    "the summary and the files are complete).";
+
+// The signal that asked the run or fit to stop (0: none). SIGINT and SIGTERM finish the current
+// step; a second signal ends the process at once (the handler is reset after the first).
+volatile std::sig_atomic_t g_signal = 0;
+
+extern "C" void OnSignal(int signal) { g_signal = signal; }
+
+void CatchStopSignals() {
+  for (int signal : {SIGINT, SIGTERM}) {
+    struct sigaction current {};
+    sigaction(signal, nullptr, &current);
+    if (current.sa_handler == SIG_IGN) continue;  // e.g. SIGINT of a background job
+    struct sigaction action {};
+    action.sa_handler = OnSignal;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = SA_RESETHAND;
+    sigaction(signal, &action, nullptr);
+  }
+}
 
 // A one-line progress bar on stderr, redrawn at most ten times a second.
 class ProgressBar {
@@ -64,6 +97,7 @@ bool LoadFitInput(const std::string& scenePath, const std::string& observedPath,
     std::cerr << "error: " << error.message << "\n";
     return false;
   }
+  for (const std::string& n : observed->notes) std::cerr << "note: " << n << "\n";
   return true;
 }
 
@@ -86,23 +120,35 @@ bool SetFromOption(const char* option, const std::string& value,
   return true;
 }
 
-int ExitCodeFor(const superdex::Error& error) {
+// An option's value that must be a positive finite number: false (message printed) otherwise.
+bool PositiveOption(const CLI::App* command, const char* option, double value) {
+  if (!command->count(option) || (value > 0 && std::isfinite(value))) return true;
+  std::cerr << "error: " << option << ": must be > 0 and finite, got " << value << "\n";
+  return false;
+}
+
+int ExitCodeFor(const superdex::Error& error, superdex::FitFailure failure) {
   std::cerr << "error: " << error.message << "\n";
-  return error.message.find("converge") != std::string::npos ? 3 : 2;
+  switch (failure) {
+    case superdex::FitFailure::Simulation: return kExitNotConverged;
+    case superdex::FitFailure::NonFinite: return kExitUnphysical;
+    default: return kExitInput;
+  }
 }
 
 int RunGradient(const std::string& scenePath, const std::string& observedPath,
-                const std::vector<std::string>& params, double dt) {
+                const std::vector<std::string>& params, std::optional<double> dt) {
   superdex::SceneFile file;
   superdex::ObservedTrajectory observed;
-  if (!LoadFitInput(scenePath, observedPath, &file, &observed)) return 2;
+  if (!LoadFitInput(scenePath, observedPath, &file, &observed)) return kExitInput;
   superdex::FitOptions options;
   options.parameters = params;
-  if (dt > 0) options.dt = dt;
+  options.dt = dt;
   superdex::TrajectoryGradient g;
   superdex::Error error;
-  if (!superdex::ComputeTrajectoryGradient(file, observed, options, &g, &error))
-    return ExitCodeFor(error);
+  superdex::FitFailure failure;
+  if (!superdex::ComputeTrajectoryGradient(file, observed, options, &g, &error, &failure))
+    return ExitCodeFor(error, failure);
   std::printf("%-45s %14s %16s\n", "parameter", "value", "d cost / d value");
   for (size_t j = 0; j < g.names.size(); ++j)
     std::printf("%-45s %14.6g %16.6g\n", g.names[j].c_str(), g.values[j], g.gradient[j]);
@@ -113,21 +159,44 @@ int RunGradient(const std::string& scenePath, const std::string& observedPath,
 }
 
 int RunFit(const std::string& scenePath, const std::string& observedPath,
-           const std::vector<std::string>& params, double dt, superdex::FitMethod method,
-           int maxIterations, const std::string& outPath) {
+           const std::vector<std::string>& params, std::optional<double> dt,
+           superdex::FitMethod method, int maxIterations, const std::string& outPath) {
   superdex::SceneFile file;
   superdex::ObservedTrajectory observed;
-  if (!LoadFitInput(scenePath, observedPath, &file, &observed)) return 2;
+  if (!LoadFitInput(scenePath, observedPath, &file, &observed)) return kExitInput;
   superdex::Error error;
   superdex::FitOptions options;
   options.parameters = params;
-  if (dt > 0) options.dt = dt;
+  options.dt = dt;
   options.maxIterations = maxIterations;
   options.method = method;
   superdex::FitResult r;
+  // --out holds the values at every iteration (status "running"), so a killed fit leaves its
+  // last iterate; it is written before the fit starts, so an unwritable path fails at once.
+  auto write = [&](const superdex::FitResult& result, const char* status) {
+    if (outPath.empty() || superdex::WriteFitJson(outPath, result, status, &error)) return true;
+    std::cerr << "error: " << error.message << "\n";
+    return false;
+  };
+  superdex::FitResult start;
+  start.names = params;
+  start.initial.assign(params.size(), NAN);
+  if (!write(start, "running")) return kExitOutput;
+  bool writeFailed = false;
+  options.iteration = [&](const superdex::FitProgress& p) {
+    superdex::FitResult now = r;
+    now.fitted = p.values;
+    now.finalCost = p.cost;
+    now.iterations = p.iteration;
+    writeFailed = writeFailed || !write(now, "running");
+    return g_signal == 0 && !writeFailed;
+  };
   std::cerr << "fitting " << params.size() << " parameters to " << observed.frames.size()
             << " observed frames ...\n";
-  if (!superdex::FitSceneParameters(file, observed, options, &r, &error)) return ExitCodeFor(error);
+  CatchStopSignals();
+  superdex::FitFailure failure;
+  if (!superdex::FitSceneParameters(file, observed, options, &r, &error, &failure))
+    return ExitCodeFor(error, failure);
   std::printf("%-45s %14s %14s %12s\n", "parameter", "initial", "fitted", "std. error");
   for (size_t j = 0; j < r.names.size(); ++j)
     std::printf("%-45s %14.6g %14.6g %12.3g\n", r.names[j].c_str(), r.initial[j], r.fitted[j],
@@ -136,23 +205,58 @@ int RunFit(const std::string& scenePath, const std::string& observedPath,
               r.initialCost, r.finalCost, r.rmsResidual, r.residuals);
   std::printf("%d iterations, %d simulations, %.1f s; %s\n", r.iterations, r.simulations,
               r.wallSeconds, r.message.c_str());
-  if (!outPath.empty()) {
-    nlohmann::json j;
-    for (size_t k = 0; k < r.names.size(); ++k)
-      j["parameters"][r.names[k]] = {{"initial", r.initial[k]}, {"fitted", r.fitted[k]},
-                                     {"standard_error", r.standardError[k]}};
-    j["final_cost"] = r.finalCost;
-    j["rms_residual"] = r.rmsResidual;
-    j["converged"] = r.converged;
-    std::ofstream(outPath) << j.dump(2) << "\n";
+  std::fflush(stdout);
+  const char* status = g_signal ? "interrupted" : r.converged ? "converged" : "not converged";
+  if (writeFailed || !write(r, status)) return kExitOutput;
+  if (g_signal) {
+    std::cerr << "error: the fit was stopped by signal " << g_signal << " after iteration "
+              << r.iterations << "; --out holds its last values\n";
+    return 128 + g_signal;
   }
   if (!r.converged) {
     std::cerr << "error: the fit did not converge: " << r.message << "\n";
-    return 3;
+    return kExitNotConverged;
   }
   return 0;
 }
 
+// `superdex run` after loading: runs, prints the summary, maps the end to the exit code.
+int RunAndReport(superdex::SceneFile& file, superdex::RunOptions options, bool quiet) {
+  ProgressBar bar(!quiet);
+  options.progress = [&](const StepReport& r, double f) { bar.Update(r, f); };
+  options.interrupted = [] { return static_cast<int>(g_signal); };
+  superdex::RunSummary summary;
+  superdex::Error error;
+  CatchStopSignals();
+  superdex::RunScene(&file, options, &summary, &error);
+  if (summary.end == superdex::RunEnd::InvalidInput) {
+    std::cerr << "error: " << error.message << "\n";
+    return kExitInput;
+  }
+  if (summary.steps > 0 || summary.end != superdex::RunEnd::OutputFailed) {
+    if (!quiet && summary.end != superdex::RunEnd::Completed) std::fputc('\n', stderr);
+    superdex::PrintSummary(file, summary, std::cout);
+    std::cout.flush();
+  }
+  switch (summary.end) {
+    case superdex::RunEnd::OutputFailed:
+      std::cerr << "error: " << summary.endMessage << "\n";
+      return kExitOutput;
+    case superdex::RunEnd::Unphysical:
+      std::cerr << "error: " << summary.endMessage << "\n";
+      return kExitUnphysical;
+    case superdex::RunEnd::Interrupted:
+      std::cerr << "error: " << summary.endMessage << "\n";
+      return 128 + summary.signal;
+    default: break;
+  }
+  if (summary.stopped > 0 || summary.diverged > 0) {
+    std::cerr << "error: " << summary.stopped + summary.diverged
+              << " stages did not converge (see the summary)\n";
+    return kExitNotConverged;
+  }
+  return summary.expectationFailures.empty() ? 0 : kExitExpectation;
+}
 
 // The options of `superdex run`.
 struct RunArgs {
@@ -190,7 +294,7 @@ int RunCommand(const RunArgs& a, const CLI::App& run) {
   superdex::Error error;
   if (!superdex::LoadSceneFile(a.scene, &file, &error)) {
     std::cerr << "error: " << error.message << "\n";
-    return 2;
+    return kExitInput;
   }
   superdex::RunOptions options;
   if (run.count("--dt")) options.dt = a.dt;
@@ -203,27 +307,13 @@ int RunCommand(const RunArgs& a, const CLI::App& run) {
   if (run.count("--integrator") &&
       !SetFromOption<superdex::IntegrationMethod>("--integrator", a.integrator, superdex::Parse,
                      [&](auto m, superdex::Error* e) { return scene.SetIntegrator(m, e); }))
-    return 2;
+    return kExitInput;
   if (run.count("--solver") &&
       !SetFromOption<superdex::StageSolverKind>("--solver", a.solver, superdex::ParseStageSolver,
                      [&](auto k, superdex::Error* e) { return scene.SetStageSolver(k, e); }))
-    return 2;
+    return kExitInput;
   for (const auto& n : file.scene->Notices()) std::cerr << "note: " << n << "\n";
-
-  ProgressBar bar(!a.quiet);
-  options.progress = [&](const StepReport& r, double f) { bar.Update(r, f); };
-  superdex::RunSummary summary;
-  if (!superdex::RunScene(&file, options, &summary, &error)) {
-    std::cerr << "error: " << error.message << "\n";
-    return 2;
-  }
-  superdex::PrintSummary(file, summary, std::cout);
-  if (summary.stopped > 0 || summary.diverged > 0) {
-    std::cerr << "error: " << summary.stopped + summary.diverged
-              << " stages did not converge (see the summary)\n";
-    return 3;
-  }
-  return summary.expectationFailures.empty() ? 0 : 4;
+  return RunAndReport(file, options, a.quiet);
 }
 
 int ViewCommand(const std::string& trajectory, const std::string& out) {
@@ -232,7 +322,7 @@ int ViewCommand(const std::string& trajectory, const std::string& out) {
   const std::string page = out.empty() ? superdex::ViewerPagePath(trajectory) : out;
   if (!superdex::WriteViewerPage(trajectory, page, &info, &error)) {
     std::cerr << "error: " << error.message << "\n";
-    return 2;
+    return error.message.rfind("view: cannot write", 0) == 0 ? kExitOutput : kExitInput;
   }
   std::printf("viewer page %s: %d frames, %d actors, %ld contact samples, %.2f MB (open it in a "
               "browser)\n", info.path.c_str(), info.frames, info.actors, info.contactSamples,
@@ -240,10 +330,9 @@ int ViewCommand(const std::string& trajectory, const std::string& out) {
   return 0;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int Main(int argc, char** argv) {
   CLI::App app{"superdex: compliant-contact simulation by incremental potentials"};
+  app.footer(kExitCodes);
   app.require_subcommand(1);
   RunArgs runArgs;
   CLI::App* run = AddRunCommand(&app, &runArgs);
@@ -289,25 +378,42 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
+    return code == 0 ? 0 : kExitInput;
   }
 
   if (params->parsed()) {
     superdex::PrintParameterMarkdown(std::cout);
     return 0;
   }
-  if (gradient->parsed())
-    return RunGradient(fitScene, observedPath, fitParams, gradient->count("--dt") ? fitDt : 0.0);
+  if (!PositiveOption(run, "--dt", runArgs.dt) ||
+      !PositiveOption(run, "--duration", runArgs.duration) ||
+      !PositiveOption(fit, "--dt", fitDt) || !PositiveOption(gradient, "--dt", fitDt))
+    return kExitInput;
+  const std::optional<double> fitDtOption =
+      (fit->parsed() ? fit : gradient)->count("--dt") ? std::optional<double>(fitDt) : std::nullopt;
+  if (gradient->parsed()) return RunGradient(fitScene, observedPath, fitParams, fitDtOption);
   if (fit->parsed()) {
     superdex::FitMethod method;
     if (!superdex::ParseFitMethod(fitMethod, &method)) {
       std::cerr << "error: --method: unknown value \"" << fitMethod
                 << "\" (expected one of: " << superdex::AllNames(method) << ")\n";
-      return 2;
+      return kExitInput;
     }
-    return RunFit(fitScene, observedPath, fitParams, fit->count("--dt") ? fitDt : 0.0, method,
-                  maxIterations, fitOut);
+    return RunFit(fitScene, observedPath, fitParams, fitDtOption, method, maxIterations, fitOut);
   }
   if (view->parsed()) return ViewCommand(viewTrajectory, viewOut);
   return RunCommand(runArgs, *run);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return Main(argc, argv);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "error: out of memory\n";
+  } catch (const std::exception& e) {
+    std::cerr << "error: internal error: " << e.what() << "\n";
+  }
+  return kExitInternal;
 }

@@ -1,8 +1,10 @@
 #include "scenes/trajectory_writer.h"
 
 #include <Eigen/Geometry>
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
@@ -75,14 +77,42 @@ json ContactsJson(Scene& scene) {
 
 }  // namespace
 
+TrajectoryWriter::~TrajectoryWriter() {
+  if (file_) std::fclose(file_);
+}
+
+bool TrajectoryWriter::WriteLine(const std::string& line, Error* error) {
+  errno = 0;
+  if (std::fputs(line.c_str(), file_) < 0 || std::fputc('\n', file_) == EOF ||
+      std::fflush(file_) != 0)
+    return Fail(error, "output.path: writing \"" + path_ + "\" failed: " +
+                           (errno ? std::strerror(errno) : "write error"));
+  return true;
+}
+
+bool TrajectoryWriter::Close(Error* error) {
+  if (!file_) return true;
+  errno = 0;
+  const int status = std::fclose(file_);
+  file_ = nullptr;
+  if (status != 0)
+    return Fail(error, "output.path: closing \"" + path_ + "\" failed: " +
+                           (errno ? std::strerror(errno) : "write error"));
+  return true;
+}
+
 bool TrajectoryWriter::Open(const std::string& path, const Scene& scene,
                             const std::vector<std::string>& names, double dt, Error* error,
                             const TrajectoryOptions& options) {
   std::error_code ec;
   const std::filesystem::path p(path);
   if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path(), ec);
-  out_.open(path);
-  if (!out_) return Fail(error, "output.path: cannot write \"" + path + "\"");
+  path_ = path;
+  errno = 0;
+  file_ = std::fopen(path.c_str(), "w");
+  if (!file_)
+    return Fail(error, "output.path: cannot write \"" + path + "\": " +
+                           (errno ? std::strerror(errno) : "open failed"));
   options_ = options;
   surfaceNodes_.assign(scene.NumActors(), {});
   json h;
@@ -105,11 +135,11 @@ bool TrajectoryWriter::Open(const std::string& path, const Scene& scene,
                       {"mass", m.mass}, {"shape", RigidShapeJson(m)}});
   }
   h["actors"] = actors;
-  out_ << h.dump() << '\n';
-  return true;
+  return WriteLine(h.dump(), error);
 }
 
-void TrajectoryWriter::WriteFrame(Scene& scene, int step, const StepReport* report) {
+bool TrajectoryWriter::WriteFrame(Scene& scene, long long step, const StepReport* report,
+                                  Error* error) {
   json f;
   f["t"] = scene.Time();
   f["step"] = step;
@@ -148,7 +178,7 @@ void TrajectoryWriter::WriteFrame(Scene& scene, int step, const StepReport* repo
                   {"wall_seconds", report->wallSeconds}};
     if (std::isfinite(report->minDetF)) f["stats"]["min_det_f"] = report->minDetF;
   }
-  out_ << f.dump() << '\n';
+  return WriteLine(f.dump(), error);
 }
 
 }  // namespace superdex

@@ -1,8 +1,9 @@
 // The trajectory format (docs/trajectory-format.md): JSON Lines, one header line, then one line
-// per output frame.
+// per output frame. Every line is flushed as it is written, so a killed run leaves complete
+// lines up to its last frame; a failed write is an error.
 #pragma once
 
-#include <fstream>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -19,18 +20,27 @@ struct TrajectoryOptions {
 
 class TrajectoryWriter {
  public:
+  TrajectoryWriter() = default;
+  TrajectoryWriter(const TrajectoryWriter&) = delete;
+  TrajectoryWriter& operator=(const TrajectoryWriter&) = delete;
+  ~TrajectoryWriter();
+
   /// Opens `path` (creating parent folders) and writes the header line: settings and every
   /// actor with its shape (rigid) or boundary surface (soft).
   bool Open(const std::string& path, const Scene& scene, const std::vector<std::string>& names,
             double dt, Error* error, const TrajectoryOptions& options = TrajectoryOptions());
-  /// Writes one frame: time, every actor's pose and velocity (soft: also the boundary nodes'
-  /// positions), energies, step statistics and, if asked for, the contact samples.
-  void WriteFrame(Scene& scene, int step, const StepReport* report);
-  bool IsOpen() const { return out_.is_open(); }
-  void Close() { out_.close(); }
+  /// Writes and flushes one frame: time, every actor's pose and velocity (soft: also the
+  /// boundary nodes' positions), energies, step statistics and, if asked for, the contact
+  /// samples. False (and *error, with the system's reason) when the write fails.
+  bool WriteFrame(Scene& scene, long long step, const StepReport* report, Error* error);
+  /// Closes the file; false (and *error) when the last data cannot be written.
+  bool Close(Error* error);
+  bool IsOpen() const { return file_ != nullptr; }
 
  private:
-  std::ofstream out_;
+  bool WriteLine(const std::string& line, Error* error);
+  std::FILE* file_ = nullptr;
+  std::string path_;
   TrajectoryOptions options_;
   /// Per actor (empty for rigid ones): the soft boundary's nodes, in the header's order.
   std::vector<std::vector<int>> surfaceNodes_;

@@ -1,5 +1,8 @@
 #include "scenes/vtk_writer.h"
 
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -70,8 +73,13 @@ bool WriteVtkFrame(Scene& scene, const std::string& path, Error* error) {
   std::error_code ec;
   const std::filesystem::path p(path);
   if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path(), ec);
-  std::ofstream out(path);
-  if (!out) return Fail(error, "vtk: cannot write \"" + path + "\"");
+  // Written to a temporary name and renamed when complete: a killed run leaves no partial frame.
+  const std::string part = path + ".part";
+  errno = 0;
+  std::ofstream out(part);
+  if (!out)
+    return Fail(error, "vtk: cannot write \"" + path + "\": " +
+                           (errno ? std::strerror(errno) : "open failed"));
   out.precision(9);
   out << "# vtk DataFile Version 3.0\nsuperdex frame t = " << scene.Time()
       << " s\nASCII\nDATASET POLYDATA\n";
@@ -94,7 +102,13 @@ bool WriteVtkFrame(Scene& scene, const std::string& path, Error* error) {
   for (int a : s.actor) out << a << '\n';
   out << "POINT_DATA " << s.points.size() << "\nVECTORS displacement double\n";
   for (const auto& d : s.displacement) out << d.x() << ' ' << d.y() << ' ' << d.z() << '\n';
-  if (!out) return Fail(error, "vtk: writing \"" + path + "\" failed");
+  errno = 0;
+  out.close();
+  if (!out || std::rename(part.c_str(), path.c_str()) != 0) {
+    const std::string why = errno ? std::strerror(errno) : "write error";
+    std::remove(part.c_str());
+    return Fail(error, "vtk: writing \"" + path + "\" failed: " + why);
+  }
   return true;
 }
 

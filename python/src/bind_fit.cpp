@@ -65,6 +65,8 @@ ObservedTrajectory Observed(const SceneFile& file, const std::optional<std::stri
       throw py::value_error("observed: give a file or times and positions, not both");
     Error e;
     if (!ReadObservedTrajectory(*observed, &obs, &e)) throw py::value_error(e.message);
+    for (const std::string& note : obs.notes)  // e.g. a truncated last line, skipped
+      if (PyErr_WarnEx(PyExc_UserWarning, note.c_str(), 1) != 0) throw py::error_already_set();
     return obs;
   }
   if (times.is_none() || !positions)

@@ -6,10 +6,12 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <sstream>
 
 #include "actor.h"
 #include "bindings.h"
 #include "core/scene.h"
+#include "scenes/limits.h"
 #include "scenes/scene_file.h"
 
 namespace superdex::python {
@@ -38,9 +40,20 @@ py::dict Run(Scene& s, double duration, double dt, int every,
              const std::function<void(double, const StepReport&)>& progress) {
   if (!(duration > 0) || !(dt > 0)) throw py::value_error("duration, dt: must be > 0");
   if (every < 1) throw py::value_error("every: must be >= 1, got " + std::to_string(every));
-  const int steps = static_cast<int>(std::ceil(duration / dt - 1e-9));
-  const int frames = 1 + (steps + every - 1) / every + ((steps % every) != 0 ? 0 : 0);
+  // Counted in double first: a huge duration / dt must not wrap the int.
+  const double stepCount = std::ceil(duration / dt - 1e-9);
   const int A = s.NumActors();
+  const double bytes = (stepCount / every + 2) * std::max(A, 1) * 14 * sizeof(double);
+  if (!(stepCount <= limits::kMaxSteps) || !(bytes <= limits::kMaxRecordBytes))
+  {
+    std::ostringstream m;
+    m << "duration / dt: " << stepCount << " steps (limit " << limits::kMaxSteps
+      << ") recorded in " << bytes / 1e9 << " GB of arrays (limit "
+      << limits::kMaxRecordBytes / 1e9 << " GB)";
+    throw py::value_error(m.str());
+  }
+  const int steps = static_cast<int>(stepCount);
+  const int frames = 1 + (steps + every - 1) / every + ((steps % every) != 0 ? 0 : 0);
   py::array_t<double> t(frames), p({frames, A, 3}), q({frames, A, 4}), v({frames, A, 3}),
       w({frames, A, 3}), energy(frames);
   auto T = t.mutable_unchecked<1>();

@@ -181,3 +181,13 @@ def test_part_line_search_setting_changes_the_path_not_the_solution():
     # the solutions agree to the solver's tolerance whichever line search found them.
     assert abs(p_on - p_off).max() < 1e-7
     assert p_on[1, 2] == pytest.approx(0.1, abs=1e-3)
+
+
+def test_run_refuses_step_counts_beyond_the_limit():
+    # duration / dt used to wrap the int step count (4294967.296 s at 1 ms ran one step).
+    scene = sd.Scene()
+    scene.add_rigid_actor(sd.RigidActorDesc("ball", sd.RigidShape.sphere(0.1)))
+    for duration in (4294967.296, 1e308):
+        with pytest.raises(ValueError, match=r"^duration / dt: .* steps \(limit 1e\+08\)"):
+            scene.run(duration, 1e-3)
+    assert scene.run(0.01, 1e-3)["t"].shape == (11,)

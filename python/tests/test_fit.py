@@ -105,3 +105,15 @@ def test_adjoint_gradient_and_lbfgs_fit():
     assert r.fitted == pytest.approx([0.4, 4.0], rel=1e-2)
     with pytest.raises(ValueError, match="method: must be 'lm' or 'lbfgs'"):
         sd.fit(sd.load_scene(THROW), names, times=times, positions={"box": com}, method="newton")
+
+
+def test_a_truncated_last_line_is_skipped_with_a_warning(tmp_path):
+    # The trajectory of a killed writer ends in a partial line: reported and skipped.
+    with open(os.path.join(SRC, "scenes", "data", "fit_throw_observed.jsonl")) as f:
+        text = f.read()
+    path = tmp_path / "killed.jsonl"
+    path.write_text(text + '{"t": 0.42, "actors": [null, {"p": [0.3')
+    with pytest.warns(UserWarning, match=r"killed\.jsonl:23: the last line is truncated"):
+        g = sd.trajectory_gradient(sd.load_scene(THROW), ["box.coulomb_friction_coefficient"],
+                                   observed=str(path))
+    assert g.residuals == 63
