@@ -324,6 +324,7 @@ int ViewCommand(const std::string& trajectory, const std::string& out) {
     std::cerr << "error: " << error.message << "\n";
     return error.message.rfind("view: cannot write", 0) == 0 ? kExitOutput : kExitInput;
   }
+  for (const std::string& n : info.notes) std::cerr << "note: " << n << "\n";
   std::printf("viewer page %s: %d frames, %d actors, %ld contact samples, %.2f MB (open it in a "
               "browser)\n", info.path.c_str(), info.frames, info.actors, info.contactSamples,
               info.bytes / 1e6);

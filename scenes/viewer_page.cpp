@@ -1,7 +1,9 @@
 #include "scenes/viewer_page.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -12,6 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "scenes/json_text.h"
 #include "scenes/viewer_assets.h"
 
 namespace superdex {
@@ -243,21 +246,27 @@ class PageData {
   double maxPairForce_ = 0.0, maxTraction_ = 0.0;
 };
 
-// Reads the whole trajectory; throws BadInput.
-void ReadTrajectory(const std::string& path, PageData* data) {
-  std::ifstream in(path);
+// Reads the whole trajectory; throws BadInput. A last line without its newline that is not
+// valid JSON (a killed run's) is skipped and noted.
+void ReadTrajectory(const std::string& path, PageData* data, std::vector<std::string>* notes) {
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw BadInput{"view: cannot read \"" + path + "\""};
   bool header = true;
   int lineNo = 0;
   for (std::string line; std::getline(in, line);) {
     ++lineNo;
+    const bool unterminated = in.eof();
     if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
     const std::string where = path + ":" + std::to_string(lineNo) + ": ";
     json j;
-    try {
-      j = json::parse(line);
-    } catch (const json::exception& e) {
-      throw BadInput{where + "not JSON (" + e.what() + ")"};
+    std::string why;
+    if (!ParseJsonText(line, &j, &why)) {
+      if (unterminated && !header) {
+        notes->push_back(where + "the last line is truncated (no newline, not valid JSON): "
+                                 "skipped");
+        break;
+      }
+      throw BadInput{where + why};
     }
     if (header) {
       data->ReadHeader(j, where);
@@ -322,8 +331,9 @@ std::string ViewerPagePath(const std::string& trajectoryPath) {
 bool WriteViewerPage(const std::string& trajectoryPath, const std::string& pagePath,
                      ViewerPageInfo* info, Error* error) {
   PageData data;
+  std::vector<std::string> notes;
   try {
-    ReadTrajectory(trajectoryPath, &data);
+    ReadTrajectory(trajectoryPath, &data, &notes);
   } catch (const BadInput& e) {
     return Fail(error, e.message);
   }
@@ -336,11 +346,19 @@ bool WriteViewerPage(const std::string& trajectoryPath, const std::string& pageP
   std::error_code ec;
   const std::filesystem::path p(pagePath);
   if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path(), ec);
-  std::ofstream out(pagePath, std::ios::binary);
+  // Written to a temporary name and renamed when complete: never a partial page.
+  const std::string part = pagePath + ".part";
+  errno = 0;
+  std::ofstream out(part, std::ios::binary);
   out << page;
   out.close();
-  if (!out) return Fail(error, "view: cannot write \"" + pagePath + "\"");
+  if (!out || std::rename(part.c_str(), pagePath.c_str()) != 0) {
+    const std::string why = errno ? std::strerror(errno) : "write error";
+    std::remove(part.c_str());
+    return Fail(error, "view: cannot write \"" + pagePath + "\": " + why);
+  }
   if (info) {
+    info->notes = notes;
     info->path = pagePath;
     info->frames = data.Frames();
     info->actors = data.Actors();

@@ -195,3 +195,20 @@ TEST_CASE("command line: SIGINT and SIGTERM finish the step, the files and the s
     CHECK(out.find("expectations      not checked (the run ended early)") != std::string::npos);
   }
 }
+
+TEST_CASE("command line: the viewer page skips a truncated last line and is written whole",
+          "[scenes][cli][bad_input]") {
+  const std::string traj = kDir + "view.jsonl";
+  REQUIRE(Cli("run " + kData + "drop.json --quiet --duration 0.01 --out " + traj).code == 0);
+  std::ofstream(traj, std::ios::app) << R"({"t": 0.0102, "actors": [{"p": [0, 0)";
+  Result r = Cli("view " + traj + " --out " + kDir + "view.html");
+  CHECK(r.code == 0);
+  CHECK(r.err.find(traj + ":") != std::string::npos);
+  CHECK(r.err.find(": the last line is truncated (no newline, not valid JSON): skipped\n") !=
+        std::string::npos);
+  CHECK(Read(kDir + "view.html").find("</html>") != std::string::npos);
+  r = Cli("view " + traj + " --out /proc/nope/view.html");
+  CHECK(r.code == 6);
+  CHECK(r.err == "error: view: cannot write \"/proc/nope/view.html\": No such file or "
+                 "directory\n");
+}

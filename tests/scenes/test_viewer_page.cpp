@@ -226,7 +226,7 @@ TEST_CASE("viewer page: bad trajectories name the line and the field", "[scenes]
   CHECK(error(header + "\n{\"t\": 0, \"actors\": [{}], \"contacts\": {\"tn\": [1], \"p\": [], "
                        "\"f\": []}}\n") ==
         dir + "/bad.jsonl:2: contacts.p: expected 3 numbers");
-  CHECK(error(header + "\nnot json\n").rfind(dir + "/bad.jsonl:2: not JSON", 0) == 0);
+  CHECK(error(header + "\nnot json\n").rfind(dir + "/bad.jsonl:2: not valid JSON", 0) == 0);
   // An actor not observed in a frame (null, as in observed trajectories) is allowed.
   std::ofstream(dir + "/observed.jsonl") << header << "\n{\"t\": 0, \"actors\": [null]}\n";
   Error e;
