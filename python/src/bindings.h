@@ -22,6 +22,7 @@ void BindSceneSettings(py::module_& m);
 void BindStepReport(py::module_& m);
 void BindActor(py::module_& m);
 void BindFit(py::module_& m);
+void BindRun(py::module_& m);  // run_scene, RunSummary, load_scene_text
 
 /// Runs call() (the simulator's work: a step, a fit, a mesher) with the GIL released, so that
 /// other Python threads run meanwhile; returns its result.

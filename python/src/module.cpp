@@ -1,7 +1,8 @@
-// The `superdex` Python module: the spec's API in snake_case over the C++ library.
+// superdex._superdex, the compiled part of the Python package `superdex` (python/superdex/ re-exports
+// it): the spec's API in snake_case over the C++ library.
 #include "bindings.h"
 
-PYBIND11_MODULE(superdex, m) {
+PYBIND11_MODULE(_superdex, m) {
   m.doc() =
       "superdex: a simulator for contact-rich scenes on a compliant contact model.\n\n"
       "Units are SI throughout (m, kg, s, N, Pa). Build a Scene, add actors, step or run it;\n"
@@ -11,4 +12,5 @@ PYBIND11_MODULE(superdex, m) {
   superdex::python::BindSoft(m);
   superdex::python::BindScene(m);
   superdex::python::BindFit(m);
+  superdex::python::BindRun(m);
 }

@@ -1,0 +1,110 @@
+// Running a scene file as `superdex run` does (scenes/runner.h): the run summary with its
+// expectations, and scene files from JSON text. superdex.sweep runs its variants with these.
+#include <pybind11/functional.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+
+#include "bindings.h"
+#include "scenes/runner.h"
+
+namespace superdex::python {
+namespace {
+
+void BindRunSummary(py::module_& m) {
+  py::class_<RunSummary>(m, "RunSummary",
+                         "The figures of a run of a scene file (what `superdex run` prints).")
+      .def_readonly("steps", &RunSummary::steps)
+      .def_readonly("simulated_seconds", &RunSummary::simulatedSeconds, "[s]")
+      .def_readonly("wall_seconds", &RunSummary::wallSeconds, "in the steps only [s]")
+      .def_readonly("output_seconds", &RunSummary::outputSeconds,
+                    "writing trajectory frames and VTK files, and progress calls [s]")
+      .def_readonly("newton_iterations", &RunSummary::newtonIterations, "summed over steps")
+      .def_readonly("max_newton_iterations", &RunSummary::maxNewtonIterations, "in one step")
+      .def_readonly("fallbacks", &RunSummary::fallbacks,
+                    "stages re-solved with explicit normals after a failed residual solve")
+      .def_readonly("stages", &RunSummary::stages, "stages solved, summed over steps")
+      .def_readonly("free_stages", &RunSummary::freeStages, "of those, solved in closed form")
+      .def_readonly("converged", &RunSummary::converged, "steps whose stages converged")
+      .def_readonly("stopped", &RunSummary::stopped, "steps with a stage Stopped")
+      .def_readonly("diverged", &RunSummary::diverged, "steps with a stage Diverged")
+      .def_readonly("max_penetration", &RunSummary::maxPenetration,
+                    "max over steps of max(0, -min phi) [m]")
+      .def_readonly("min_det_f", &RunSummary::minDetF,
+                    "smallest det F over soft tets at step ends (inf: no soft actor)")
+      .def_readonly("initial_energy", &RunSummary::initialEnergy, "total mechanical energy [J]")
+      .def_readonly("final_energy", &RunSummary::finalEnergy, "total mechanical energy [J]")
+      .def_readonly("expectation_failures", &RunSummary::expectationFailures,
+                    "one message per failed expectation of the scene file (empty: all hold)")
+      .def_readonly("trajectory_path", &RunSummary::trajectoryPath, "'' when none was written")
+      .def_readonly("vtk_directory", &RunSummary::vtkDirectory, "'' when none was written")
+      .def_readonly("vtk_frames", &RunSummary::vtkFrames)
+      .def("__repr__", [](const RunSummary& s) {
+        return "<superdex.RunSummary " + std::to_string(s.steps) + " steps, " +
+               std::to_string(s.stopped + s.diverged) + " not converged, " +
+               std::to_string(s.expectationFailures.size()) + " expectations failed>";
+      });
+}
+
+void BindRunScene(py::module_& m) {
+  m.def(
+      "run_scene",
+      [](SceneFile& file, std::optional<double> dt, std::optional<double> duration,
+         std::optional<std::string> out, std::optional<std::string> vtk,
+         const std::function<void(const StepReport&, double)>& progress) {
+        RunOptions options;
+        options.dt = dt;
+        options.duration = duration;
+        options.out = out;
+        options.vtk = vtk;
+        RunSummary summary;
+        Error e;
+        bool ok;
+        if (progress) {
+          // The callback needs the GIL after every step; without one the run releases it.
+          options.progress = progress;
+          ok = RunScene(&file, options, &summary, &e);
+        } else {
+          py::gil_scoped_release release;
+          ok = RunScene(&file, options, &summary, &e);
+        }
+        if (!ok) throw py::value_error(e.message);
+        return summary;
+      },
+      py::arg("scene_file"), py::arg("dt") = py::none(), py::arg("duration") = py::none(),
+      py::arg("out") = py::none(), py::arg("vtk") = py::none(), py::arg("progress") = nullptr,
+      "Runs a loaded scene file to its end as `superdex run` does and returns a RunSummary.\n"
+      "dt, duration [s], out (trajectory path) and vtk (frame directory) override the file's\n"
+      "settings; out='' and vtk='' write nothing. progress(report, fraction) is called after\n"
+      "every step. Stages that do not converge are counted in the summary (stopped,\n"
+      "diverged), not raised; bad input or an I/O error raises ValueError.");
+}
+
+void BindLoadSceneText(py::module_& m) {
+  m.def(
+      "load_scene_text",
+      [](const std::string& text, const std::string& baseDir) {
+        auto f = std::make_unique<SceneFile>();
+        Error e;
+        bool ok;
+        {
+          py::gil_scoped_release release;
+          ok = LoadSceneText(text, baseDir, f.get(), &e);
+        }
+        if (!ok) throw py::value_error(e.message);
+        return f;
+      },
+      py::arg("text"), py::arg("base_dir") = ".",
+      "Loads a scene file from its JSON text; base_dir resolves relative mesh paths. Raises\n"
+      "ValueError naming the JSON path and the rule.");
+}
+
+}  // namespace
+
+void BindRun(py::module_& m) {
+  BindRunSummary(m);
+  BindRunScene(m);
+  BindLoadSceneText(m);
+}
+
+}  // namespace superdex::python

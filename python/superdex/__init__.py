@@ -1,0 +1,7 @@
+"""superdex: a simulator for contact-rich scenes on a compliant contact model.
+
+Units are SI throughout (m, kg, s, N, Pa). Build a Scene, add actors, step or run it; states and
+trajectories come back as numpy arrays. Bad values raise ValueError with the field and the rule;
+a stage that does not converge raises RuntimeError.
+"""
+from ._superdex import *  # noqa: F401,F403  (the compiled API)
