@@ -6,16 +6,24 @@
 //                [--method lm|lbfgs] [--max-iterations N] [--out FITTED.json]
 //   superdex gradient SCENE.json --observed TRAJ.jsonl --params ACTOR.NAME,... [--dt S]
 //   superdex params --markdown     (every parameter table; docs/parameters.md is its output)
+//   superdex sweep SCENE.json --set ACTOR.FIELD=v1,v2,... [--workers N | --scheduler ADDRESS] ...
+//   superdex fit-batch SCENE.json --observed T1.jsonl,T2.jsonl,... --params ACTOR.NAME,... ...
+//                                  (both run `python3 -m superdex`: Dask, docs/sweeps.md)
 // Exit codes (kExitCodes below, docs/reliability.md): 0 success; 1 an internal error; 2 invalid
 // input (scene file, options, a resource limit); 3 a stage or the fit did not converge; 4 a scene
 // expectation failed; 5 the run turned unphysical (non-finite state, inverted tet, penetration
 // beyond its bound) or the fit's cost is not finite; 6 an output could not be written;
 // 128 + N stopped by signal N (130 SIGINT, 143 SIGTERM) after finishing the current step.
 #include <CLI/CLI.hpp>
+#include <unistd.h>
+
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <iostream>
 #include <new>
@@ -406,9 +414,36 @@ int Main(int argc, char** argv) {
   return RunCommand(runArgs, *run);
 }
 
+// `superdex sweep` and `superdex fit-batch` are the Python package's (python/superdex/__main__.py,
+// on dask.distributed): replaces this process by `python3 -m superdex ARGS...` with the build's
+// package first on PYTHONPATH (an installed package is found without it).
+int ExecPython(int argc, char** argv) {
+#ifdef SUPERDEX_PYTHON
+  const std::string python = SUPERDEX_PYTHON, packageDir = SUPERDEX_PYTHON_DIR;
+#else
+  const std::string python = "python3", packageDir;
+#endif
+  if (!packageDir.empty() && access((packageDir + "/superdex/__init__.py").c_str(), R_OK) == 0) {
+    const char* old = std::getenv("PYTHONPATH");
+    const std::string path = packageDir + (old && *old ? ":" + std::string(old) : "");
+    setenv("PYTHONPATH", path.c_str(), 1);
+  }
+  std::vector<std::string> words = {python, "-m", "superdex"};
+  for (int i = 1; i < argc; ++i) words.emplace_back(argv[i]);
+  std::vector<char*> args;
+  for (auto& w : words) args.push_back(w.data());
+  args.push_back(nullptr);
+  execvp(python.c_str(), args.data());
+  std::cerr << "error: " << argv[1] << " runs " << python << " -m superdex: " << std::strerror(errno)
+            << "\n";
+  return 2;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc > 1 && (std::strcmp(argv[1], "sweep") == 0 || std::strcmp(argv[1], "fit-batch") == 0))
+    return ExecPython(argc, argv);
   try {
     return Main(argc, argv);
   } catch (const std::bad_alloc&) {

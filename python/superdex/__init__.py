@@ -3,5 +3,9 @@
 Units are SI throughout (m, kg, s, N, Pa). Build a Scene, add actors, step or run it; states and
 trajectories come back as numpy arrays. Bad values raise ValueError with the field and the rule;
 a stage that does not converge raises RuntimeError.
+
+sweep() and fit_batch() run many variants of a scene file, or fits to many observed trajectories,
+on dask.distributed workers (docs/sweeps.md).
 """
 from ._superdex import *  # noqa: F401,F403  (the compiled API)
+from ._sweep import fit_batch, sweep  # noqa: F401
