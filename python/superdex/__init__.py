@@ -7,5 +7,12 @@ a stage that does not converge raises RuntimeError.
 sweep() and fit_batch() run many variants of a scene file, or fits to many observed trajectories,
 on dask.distributed workers (docs/sweeps.md).
 """
+from . import _superdex
 from ._superdex import *  # noqa: F401,F403  (the compiled API)
 from ._sweep import fit_batch, sweep  # noqa: F401
+
+# The compiled classes present themselves by their public name, superdex.NAME.
+for _type in vars(_superdex).values():
+    if isinstance(_type, type) and _type.__module__ == _superdex.__name__:
+        _type.__module__ = __name__
+del _type
