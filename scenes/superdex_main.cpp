@@ -383,6 +383,11 @@ int Main(int argc, char** argv) {
   CLI::App* params = app.add_subcommand(
       "params", "Print every parameter table: names, types, units, defaults and rules");
   params->add_flag("--markdown", "As markdown, the only format (docs/parameters.md is this output)");
+  // Listed for --help only: main() hands them to Python before parsing.
+  app.add_subcommand("sweep", "Run variants of a scene file on Dask workers: one CSV row per run "
+                              "and a PNG plot (`superdex sweep --help`)");
+  app.add_subcommand("fit-batch", "Fit parameters to several observed trajectories on Dask "
+                                  "workers (`superdex fit-batch --help`)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
