@@ -59,6 +59,14 @@ double AddPairStats(const PairStencils& r, ContactStats* st) {
   return energy;
 }
 
+/// How far beyond its shape a collider's field can act [m]: a pair is possible when A's samples
+/// come within δ of B's shape, and δ comes from the collider (with its padding, never below 0),
+/// plus the field's distance error bound.
+double ColliderReach(const ContactParams& c) {
+  return std::max(0.0, c.penaltyThresholdDefault + c.penaltyThresholdExtraPadding) +
+         c.distanceErrorBound;
+}
+
 /// The penalty part of a pair's combined parameters.
 PenaltyParams PenaltyOf(const PairContactParams& p) {
   PenaltyParams pp;
@@ -87,11 +95,7 @@ void ContactPipeline::Configure(const std::vector<RigidBodyModel>* models,
   kindInflation_.clear();
   if (kinds_)
     for (const ActorKind* k : *kinds_) {
-      const ContactParams& c = k->contact;
-      kindInflation_.push_back(k->Collider() ? std::max(0.0, c.penaltyThresholdDefault +
-                                                                 c.penaltyThresholdExtraPadding) +
-                                                   c.distanceErrorBound
-                                             : 0.0);
+      kindInflation_.push_back(k->Collider() ? ColliderReach(k->contact) : 0.0);
     }
   filter_ = filter;
   softModels_ = softModels && !softModels->empty() ? softModels : nullptr;
@@ -100,19 +104,10 @@ void ContactPipeline::Configure(const std::vector<RigidBodyModel>* models,
   softInflation_.clear();
   if (softModels_)
     for (const SoftBodyModel& m : *softModels_)
-      softInflation_.push_back(m.collider == ColliderType::Sdf
-                                   ? std::max(0.0, m.contact.penaltyThresholdDefault +
-                                                       m.contact.penaltyThresholdExtraPadding) +
-                                         m.contact.distanceErrorBound
-                                   : 0.0);
+      softInflation_.push_back(m.collider == ColliderType::Sdf ? ColliderReach(m.contact) : 0.0);
   const size_t n = models->size();
   inflation_.assign(n, 0.0);
-  for (size_t i = 0; i < n; ++i) {
-    const ContactParams& c = (*models)[i].contact;
-    // A pair is possible when A's samples come within δ of B's shape; δ comes from the collider.
-    inflation_[i] = std::max(0.0, c.penaltyThresholdDefault + c.penaltyThresholdExtraPadding) +
-                    c.distanceErrorBound;
-  }
+  for (size_t i = 0; i < n; ++i) inflation_[i] = ColliderReach((*models)[i].contact);
 }
 
 void ContactPipeline::FindPairs(const std::vector<RigidPose>& poses,
