@@ -266,8 +266,8 @@ void Scene::Prepare() {
   kindStageDof_.resize(kinds_.size());
   for (size_t k = 0; k < kinds_.size(); ++k) {
     kindPtrs_.push_back(kinds_[k].get());
-    kindStageDof_[k].resize(kinds_[k]->NumDofs());
-    for (int i = 0; i < kinds_[k]->NumDofs(); ++i)
+    kindStageDof_[k].resize(kinds_[k]->NumTangentDofs());
+    for (int i = 0; i < kinds_[k]->NumTangentDofs(); ++i)
       kindStageDof_[k][i] = kinds_[k]->IsPrescribed(i) ? -1 : numDofs_++;
   }
   std::vector<int> rigidActor, softActor, kindActor;

@@ -206,6 +206,9 @@ class Scene : private StageHost {
   // the stage start, geometry from the last configuration.
   SoftStage MakeSoftStage(double dt, double t, const std::vector<SoftBodyState>& start,
                           const std::vector<Eigen::VectorXd>& last) const override;
+  const ActorKind* VectorKind(size_t s) const override {
+    return s < softModels_.size() ? nullptr : kinds_[s - softModels_.size()].get();
+  }
   // Prescribed node positions (and kinds' prescribed dofs) at time t written into x.
   void ApplyConstraints(double t, std::vector<Eigen::VectorXd>* x) const override;
   double MinDetF() const;

@@ -1,5 +1,6 @@
 // Scene: state and parameter access beyond stepping — actor lookup, replacing states and
 // parameters, and the dynamic state as one vector (the layout core/sensitivity/sensitivity.h differentiates).
+#include <cmath>
 #include <algorithm>
 #include <sstream>
 
@@ -72,30 +73,35 @@ std::string Scene::ValidateKind(const ActorKind& kind) const {
   if (s.x.size() != n || s.v.size() != n)
     return name + ": the initial state needs " + std::to_string(n) + " entries in x and v";
   if (!s.x.allFinite() || !s.v.allFinite()) return name + ": the initial state must be finite";
-  // Blocks read by the contact assembler: whole 3-dof blocks inside q, prescribed all or none.
+  const int m = kind.NumTangentDofs();
+  if (m <= 0 || m > n) return name + ": NumTangentDofs must be in [1, NumDofs]";
+  // Blocks read by the contact assembler: whole 3-dof blocks of δ, prescribed all or none.
   auto badBlock = [&](int first) {
-    if (first < 0 || first + 3 > n) return true;
+    if (first < 0 || first + 3 > m) return true;
     return kind.IsPrescribed(first) != kind.IsPrescribed(first + 1) ||
            kind.IsPrescribed(first) != kind.IsPrescribed(first + 2);
   };
   for (int k = 0; k < kind.NumSamples(); ++k) {
     const KindSample ks = kind.Sample(k, s.x);
-    if (ks.map.kind != SamplePointMap::Kind::Nodes || ks.map.nodes < 1 || ks.map.nodes > 4)
-      return name + ": sample " + std::to_string(k) + " needs a Nodes map of 1 to 4 nodes";
-    for (int b = 0; b < ks.map.nodes; ++b)
-      if (badBlock(ks.dof[b]))
-        return name + ": sample " + std::to_string(k) +
-               " reads a dof block outside q or partly prescribed";
+    const std::string sample = name + ": sample " + std::to_string(k);
+    if (ks.map.kind == SamplePointMap::Kind::Nodes && (ks.map.nodes < 1 || ks.map.nodes > 4))
+      return sample + " needs a Nodes map of 1 to 4 nodes";
+    for (int b = 0; b < ks.Blocks(); ++b)
+      if (badBlock(ks.dof[b])) return sample + " reads a dof block outside δ or partly prescribed";
     if (!(ks.weight >= 0.0)) return name + ": sample weights must be >= 0";
+    if (ks.hasNormal && !(std::abs(ks.n.norm() - 1.0) < 1e-9))
+      return sample + ": its colliding normal must be a unit vector";
   }
   if (kind.Collider()) {
     const KindFrame f = kind.ColliderFrame(s.x);
+    if (f.rigid && f.blocks != 2)
+      return name + ": a rigid collider frame moves with 2 blocks, [δp] and [δθ]";
     if (f.blocks < 0 || f.blocks > 4) return name + ": the collider frame moves with 0 to 4 blocks";
-    if (!f.F.bottomRows<3>().isZero())
-      return name + ": a collider frame that rotates with the dofs is not supported yet";
+    if (!f.rigid && !f.F.bottomRows<3>().isZero())
+      return name + ": a collider frame that rotates with a general map of the dofs is not supported yet";
     for (int b = 0; b < f.blocks; ++b)
       if (badBlock(f.dof[b]))
-        return name + ": the collider frame reads a dof block outside q or partly prescribed";
+        return name + ": the collider frame reads a dof block outside δ or partly prescribed";
   }
   return {};
 }

@@ -625,7 +625,8 @@ FrameSide ContactPipeline::KindPairSides(const Request& q, const KindPair& kp,
   }
   if (kp.aKind) {
     GatherKindSamples(*(*kinds_)[kp.a], (*kv.q)[kv.first + kp.a], at(kv.qLast, kp.a),
-                      q.dissipation ? at(kv.q0, kp.a) : nullptr, (*kv.stageDof)[kp.a], samples);
+                      q.dissipation ? at(kv.q0, kp.a) : nullptr, (*kv.stageDof)[kp.a], B,
+                      kp.params.threshold, setup, samples);
   } else {
     GatherRigidSamples((*models_)[kp.a], (*q.poses)[kp.a],
                        q.stageStart ? &(*q.stageStart)[kp.a] : nullptr, (*q.dofOffset)[kp.a], B,

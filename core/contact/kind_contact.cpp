@@ -257,24 +257,49 @@ void EvaluateSamplesOnFrame(const std::vector<PairSample>& samples, const FrameS
   close();
 }
 
+/// Whether a ball of colliding samples (radius r [m], centred at c now and at cLast at x_n, world)
+/// may hold a sample that contributes on B's field: its penalty now, or with dissipation the load
+/// geometry of the mode (x_n for explicit normals; the reconstructed load's bound). B's field has
+/// Lipschitz constant L, so every sample of the ball has φ >= φ(centre) − L r.
+class BallCulling {
+ public:
+  BallCulling(const FrameSide& B, double delta, const DissipationSetup* dissipation,
+              bool hasStart)
+      : field_(*B.field),
+        B_(B),
+        RBt_(B.pose.R.transpose()),
+        RnBt_(B.last.R.transpose()),
+        delta_(delta) {
+    const bool diss = dissipation && dissipation->coefficients.Any() && hasStart && B.hasStart;
+    mode_ = diss ? dissipation->mode : DissipationMode::ImplicitLoad;
+  }
+  bool operator()(const Eigen::Vector3d& c, const Eigen::Vector3d& cLast, double r) const {
+    const double L = field_.lipschitz;
+    const Eigen::Vector3d Y = RBt_ * (c - B_.pose.p);
+    const double phiNow = field_.Value(Y) - L * r;
+    if (phiNow < delta_) return true;
+    if (mode_ == DissipationMode::ImplicitLoad) return false;
+    const Eigen::Vector3d Yn = RnBt_ * (cLast - B_.last.p);
+    if (mode_ == DissipationMode::ExplicitNormals) return field_.Value(Yn) - L * r < delta_;
+    return phiNow - L * ((Yn - Y).norm() + 2.0 * r) < delta_;  // the reconstructed load's bound
+  }
+
+ private:
+  const RigidCollider& field_;
+  const FrameSide& B_;
+  Eigen::Matrix3d RBt_, RnBt_;
+  double delta_;
+  DissipationMode mode_;
+};
+
 void GatherRigidSamples(const RigidBodyModel& A, const RigidPose& a, const RigidStageStart* start,
                         int aOffset, const FrameSide& B, double delta,
                         const DissipationSetup* dissipation, std::vector<PairSample>* out) {
   out->clear();
-  const RigidCollider& field = *B.field;
-  const double L = field.lipschitz;
   const RigidPose& an = start ? start->last : a;
-  const Eigen::Matrix3d RBt = B.pose.R.transpose(), RnBt = B.last.R.transpose();
-  const bool diss = dissipation && dissipation->coefficients.Any() && start && B.hasStart;
-  const DissipationMode mode = diss ? dissipation->mode : DissipationMode::ImplicitLoad;
+  const BallCulling near(B, delta, dissipation, start != nullptr);
   auto keep = [&](const Eigen::Vector3d& c, double r) {
-    const Eigen::Vector3d Y = RBt * (a.p + a.R * c - B.pose.p);
-    const double phiNow = field.Value(Y) - L * r;
-    if (phiNow < delta) return true;
-    if (!diss || mode == DissipationMode::ImplicitLoad) return false;
-    const Eigen::Vector3d Yn = RnBt * (an.p + an.R * c - B.last.p);
-    if (mode == DissipationMode::ExplicitNormals) return field.Value(Yn) - L * r < delta;
-    return phiNow - L * ((Yn - Y).norm() + 2.0 * r) < delta;  // the reconstructed load's bound
+    return near(a.p + a.R * c, an.p + an.R * c, r);
   };
   auto visit = [&](int begin, int end) {
     for (int q = begin; q < end; ++q) {
@@ -301,18 +326,38 @@ void GatherRigidSamples(const RigidBodyModel& A, const RigidPose& a, const Rigid
 
 void GatherKindSamples(const ActorKind& A, const Eigen::VectorXd& q, const Eigen::VectorXd* qLast,
                        const Eigen::VectorXd* q0, const std::vector<int>& stageDof,
+                       const FrameSide& B, double delta, const DissipationSetup* dissipation,
                        std::vector<PairSample>* out) {
   out->clear();
-  for (int k = 0; k < A.NumSamples(); ++k) {
+  const BallCulling near(B, delta, dissipation, q0 != nullptr);
+  A.ForEachSampleNear(q, qLast ? *qLast : q, near, [&](int begin, int end) {
+    GatherKindSampleRange(A, q, qLast, q0, stageDof, begin, end, out);
+  });
+}
+
+void GatherKindSampleRange(const ActorKind& A, const Eigen::VectorXd& q,
+                           const Eigen::VectorXd* qLast, const Eigen::VectorXd* q0,
+                           const std::vector<int>& stageDof, int begin, int end,
+                           std::vector<PairSample>* out) {
+  for (int k = begin; k < end; ++k) {
     const KindSample ks = A.Sample(k, q);
     PairSample s;
     s.y = ks.y;
-    s.yLast = qLast ? A.Sample(k, *qLast).y : ks.y;
+    s.hasNormal = ks.hasNormal;
+    s.n = ks.n;
+    s.nLast = ks.n;
+    if (qLast) {
+      const KindSample last = A.Sample(k, *qLast);
+      s.yLast = last.y;
+      s.nLast = last.n;
+    } else {
+      s.yLast = ks.y;
+    }
     s.y0 = q0 ? A.Sample(k, *q0).y : ks.y;
     s.weight = ks.weight;
     s.map = ks.map;
     s.key = k;
-    s.blocks = ks.map.nodes;
+    s.blocks = ks.Blocks();
     for (int b = 0; b < s.blocks; ++b) s.offs[b] = stageDof[ks.dof[b]];
     out->push_back(s);
   }
@@ -329,9 +374,16 @@ FrameSide KindFrameSide(const ActorKind& B, const Eigen::VectorXd& q, const Eige
     const RigidPose p0 = B.ColliderFrame(*q0).pose;
     side.start.p = p0.p;
     side.start.R = p0.R;
-    side.start.Rinv = p0.R.transpose();
+    side.start.Rinv = f.rigid ? Eigen::Matrix3d(p0.R.inverse()) : p0.R.transpose();
     side.start.last = side.last;
     side.hasStart = true;
+  }
+  if (f.rigid) {
+    side.motion = FrameSide::Motion::Rigid;
+    side.offs[0] = stageDof[f.dof[0]];
+    side.offs[1] = stageDof[f.dof[1]];
+    if (side.offs[0] < 0) side.motion = FrameSide::Motion::Static;  // a prescribed pose
+    return side;
   }
   side.motion = f.blocks > 0 ? FrameSide::Motion::Translation : FrameSide::Motion::Static;
   side.blocks = f.blocks;

@@ -84,10 +84,18 @@ void GatherRigidSamples(const RigidBodyModel& A, const RigidPose& a, const Rigid
                         const DissipationSetup* dissipation, std::vector<PairSample>* out);
 
 /// The samples of a kind's actor at q (x_n: qLast, x⁰: q0, either may be null), with the stage
-/// offsets of its local dofs (`stageDof`, −1 for prescribed ones).
+/// offsets of its local dofs (`stageDof`, −1 for prescribed ones), that can contribute on B's
+/// field: the kind's bounding balls (ActorKind::ForEachSampleNear) culled as GatherRigidSamples
+/// culls a rigid body's tree.
 void GatherKindSamples(const ActorKind& A, const Eigen::VectorXd& q, const Eigen::VectorXd* qLast,
                        const Eigen::VectorXd* q0, const std::vector<int>& stageDof,
+                       const FrameSide& B, double delta, const DissipationSetup* dissipation,
                        std::vector<PairSample>* out);
+/// Appends the kind's samples begin .. end−1 (no culling).
+void GatherKindSampleRange(const ActorKind& A, const Eigen::VectorXd& q,
+                           const Eigen::VectorXd* qLast, const Eigen::VectorXd* q0,
+                           const std::vector<int>& stageDof, int begin, int end,
+                           std::vector<PairSample>* out);
 
 /// A kind's collider frame as a FrameSide (its F moves the frame by translation only), at q, x_n
 /// (qLast; null: q) and x⁰ (q0; null: no stage start).

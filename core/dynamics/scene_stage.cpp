@@ -57,6 +57,14 @@ DissipationContext ContextOf(const StageDissipation& dissipation, double dt) {
   return c;
 }
 
+const Eigen::VectorXd& SceneStageProblem::KindLocal(size_t k, const Eigen::VectorXd& d) const {
+  const std::vector<int>& dof = soft_->kinds.stageDof[k];
+  Eigen::VectorXd& local = ws_->kindDelta;
+  local.resize(static_cast<Eigen::Index>(dof.size()));
+  for (size_t i = 0; i < dof.size(); ++i) local[i] = dof[i] >= 0 ? d[dof[i]] : 0.0;
+  return local;
+}
+
 bool SceneStageProblem::IsPotential() const {
   return !dissipation_.enabled || dissipation_.mode == DissipationMode::ExplicitNormals;
 }
@@ -81,13 +89,8 @@ void SceneStageProblem::Retract(const Eigen::VectorXd& d, std::vector<RigidPose>
           x.segment<3>(3 * a) += d.segment<3>(soft_->dofOffset[s] + 3 * m.freeIndex[a]);
     }
     const size_t ns = soft_->targets.size();
-    for (size_t k = 0; k < soft_->kinds.Size(); ++k) {
-      const std::vector<int>& dof = soft_->kinds.stageDof[k];
-      Eigen::VectorXd& q = (*softOut)[ns + k];
-      q = (*softX_)[ns + k];
-      for (size_t i = 0; i < dof.size(); ++i)
-        if (dof[i] >= 0) q[i] += d[dof[i]];
-    }
+    for (size_t k = 0; k < soft_->kinds.Size(); ++k)
+      (*soft_->kinds.kinds)[k]->Retract((*softX_)[ns + k], KindLocal(k, d), &(*softOut)[ns + k]);
   }
   for (size_t i = 0; i < models_.size(); ++i) {
     const int o = dofOffset_[i];
@@ -185,7 +188,7 @@ double SceneStageProblem::EvaluateKindTerms(const std::vector<Eigen::VectorXd>& 
   for (size_t k = 0; k < ks.Size(); ++k) {
     const ActorKind& kind = *(*ks.kinds)[k];
     const std::vector<int>& dof = ks.stageDof[k];
-    if (order >= 1) g.setZero(kind.NumDofs());
+    if (order >= 1) g.setZero(kind.NumTangentDofs());
     H.clear();
     value += kind.StageEnergy(ks.data[k], softX[ns + k], order, projection,
                               order >= 1 ? &g : nullptr, order >= 2 ? &H : nullptr);
@@ -281,9 +284,31 @@ void SceneStageProblem::ResidualAndJacobian(const std::vector<RigidPose>& poses,
         for (int k = 0; k < 3; ++k)
           if (k != c) triplets_.emplace_back(o + 3 + k, o + 3 + c, S(k, c));
     }
+    if (soft_) AddKindJacobianCorrections(*r, dissipationIsPotential, softX);
     ws_->jacobianAssembly.Assemble(triplets_, ws_->blocks, ws_->blockPosition, numDofs_, J);
   }
   *r += scratch_;
+}
+
+void SceneStageProblem::AddKindJacobianCorrections(const Eigen::VectorXd& r,
+                                                   bool dissipationIsPotential,
+                                                   const std::vector<Eigen::VectorXd>& softX) {
+  const KindStage& ks = soft_->kinds;
+  const size_t ns = soft_->targets.size();
+  std::vector<Eigen::Triplet<double>>& local = ws_->kindHessian;
+  for (size_t k = 0; k < ks.Size(); ++k) {
+    const std::vector<int>& dof = ks.stageDof[k];
+    Eigen::VectorXd& residual = ws_->kindDelta;  // the potential part of r at the kind's dofs
+    residual.setZero(static_cast<Eigen::Index>(dof.size()));
+    for (size_t i = 0; i < dof.size(); ++i)
+      if (dof[i] >= 0) residual[i] = r[dof[i]] + (dissipationIsPotential ? scratch_[dof[i]] : 0.0);
+    local.clear();
+    (*ks.kinds)[k]->AddResidualJacobianCorrection(softX[ns + k], residual, &local);
+    for (const Eigen::Triplet<double>& t : local) {
+      const int row = dof[t.row()], col = dof[t.col()];
+      if (row >= 0 && col >= 0) triplets_.emplace_back(row, col, t.value());
+    }
+  }
 }
 
 void SceneStageProblem::SetChartOrigin() {
@@ -312,6 +337,14 @@ Eigen::MatrixXd SceneStageProblem::ChartTangentMap(const Eigen::VectorXd& d) con
   for (size_t i = 0; i < models_.size(); ++i) {
     const int o = dofOffset_[i];
     if (o >= 0) T.block<3, 3>(o + 3, o + 3) = LeftJacobianSo3(d.segment<3>(o + 3));
+  }
+  if (!soft_) return T;
+  for (size_t k = 0; k < soft_->kinds.Size(); ++k) {
+    const std::vector<int>& dof = soft_->kinds.stageDof[k];
+    const Eigen::MatrixXd Tk = (*soft_->kinds.kinds)[k]->ChartTangentMap(KindLocal(k, d));
+    for (size_t i = 0; i < dof.size(); ++i)
+      for (size_t j = 0; j < dof.size(); ++j)
+        if (dof[i] >= 0 && dof[j] >= 0) T(dof[i], dof[j]) = Tk(i, j);
   }
   return T;
 }
@@ -361,6 +394,15 @@ bool SceneStageProblem::TrustStep(Eigen::VectorXd* d) {
     d->segment<6>(o) *= trust / move;
     changed = true;
   }
+  if (!soft_) return changed;
+  const size_t ns = soft_->targets.size();
+  for (size_t k = 0; k < soft_->kinds.Size(); ++k) {
+    const double f = (*soft_->kinds.kinds)[k]->TrustFraction((*softX_)[ns + k], KindLocal(k, *d));
+    if (!(f < 1.0)) continue;
+    for (int i : soft_->kinds.stageDof[k])
+      if (i >= 0) (*d)[i] *= f;
+    changed = true;
+  }
   return changed;
 }
 
@@ -401,11 +443,19 @@ double SceneStageProblem::StepNorm(const Eigen::VectorXd& d) const {
     norm = std::max(norm, d.segment<3>(o).lpNorm<Eigen::Infinity>());
     norm = std::max(norm, d.segment<3>(o + 3).norm() * radius);
   }
-  if (soft_) {  // soft nodes [m] and the kinds' dofs, after every rigid dof
+  if (soft_) {  // soft nodes [m], after every rigid dof and before the kinds' dofs
     int begin = 0;
     for (size_t i = 0; i < models_.size(); ++i)
       if (dofOffset_[i] >= 0) begin += 6;
-    norm = std::max(norm, d.segment(begin, numDofs_ - begin).lpNorm<Eigen::Infinity>());
+    int end = numDofs_;
+    for (const std::vector<int>& dof : soft_->kinds.stageDof)
+      for (int i : dof)
+        if (i >= 0) end = std::min(end, i);
+    norm = std::max(norm, d.segment(begin, end - begin).lpNorm<Eigen::Infinity>());
+    const size_t ns = soft_->targets.size();
+    for (size_t k = 0; k < soft_->kinds.Size(); ++k)
+      norm = std::max(norm, (*soft_->kinds.kinds)[k]->StepLength((*softX_)[ns + k],
+                                                                  KindLocal(k, d)));
   }
   return norm;
 }

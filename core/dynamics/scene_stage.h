@@ -80,18 +80,12 @@ struct StageWorkspace {
   size_t blockPosition = 0;                ///< where in `triplets` the blocks stand
   std::vector<SoftTermScratch> soft;
   Eigen::VectorXd kindGradient;                    ///< a kind's local gradient
+  Eigen::VectorXd kindDelta;                       ///< a kind's local step (or residual)
   std::vector<Eigen::Triplet<double>> kindHessian; ///< a kind's local Hessian entries
   TripletAssembly hessianAssembly;   ///< Evaluate's Hessians (pattern kept between iterations)
   TripletAssembly jacobianAssembly;  ///< EvaluateResidual's Jacobians
 };
 
-/// The trust region of one Newton correction of a rigid body (SceneStageProblem::TrustStep), as a
-/// fraction of the body's radius. The contact step limit bounds how much a sample's depth may
-/// grow, as the field reads it; it cannot see a correction that carries a body past the medial
-/// plane of a box (where the field's gradient flips and the body is pushed out the far side) or
-/// a rotation of many radians along the flat, rippled landscape a sampled sphere has about its
-/// centre (the inertia's curvature J/Δt² against the sampling's spurious torques).
-constexpr double kCorrectionTrust = 0.25;
 
 class SceneStageProblem : public StageProblem {
  public:
@@ -158,6 +152,14 @@ class SceneStageProblem : public StageProblem {
   /// >= 1 adds their gradients into *gPot, order 2 their Hessians into triplets_.
   double EvaluateKindTerms(const std::vector<Eigen::VectorXd>& softX, int order,
                            PsdProjection projection, Eigen::VectorXd* gPot);
+  /// Kind k's part of a stage vector d (its tangent dofs; 0 at prescribed ones), in a scratch
+  /// vector of the workspace (valid until the next call).
+  const Eigen::VectorXd& KindLocal(size_t k, const Eigen::VectorXd& d) const;
+  /// The kinds' trivialization terms of the residual Jacobian (ActorKind::
+  /// AddResidualJacobianCorrection) from the potential residual (r, plus scratch_ when the
+  /// dissipation is a potential) at their configurations in softX, into triplets_.
+  void AddKindJacobianCorrections(const Eigen::VectorXd& r, bool dissipationIsPotential,
+                                  const std::vector<Eigen::VectorXd>& softX);
   /// Moves trial_ to s ⊕ d and marks d as the step whose statistics a Commit(d) adopts.
   void BeginTrial(const Eigen::VectorXd& d);
   /// Evaluate's work at the given configuration.

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/dynamics/step_report.h"
+#include "core/model/actor_kind.h"
 #include "core/model/rigid_body.h"
 #include "core/model/soft_body.h"
 
@@ -43,6 +44,8 @@ struct StepBuffers {
   std::vector<std::vector<Eigen::Vector3d>> stageTorques;
   std::vector<std::vector<RigidPose>> stagePoses;       ///< Q_i
   std::vector<double> bdfTimes, bdfWeights;
+  std::vector<std::vector<KindSlope>> vectorSlopes;  ///< a DIRK step's slopes per vector state
+  std::vector<double> stageWeights;                  ///< a DIRK step's h b_i
 };
 
 }  // namespace superdex

@@ -84,9 +84,11 @@ void StepDirk(const std::vector<RigidBodyModel>& models, const StepState& step, 
     VK[st].resize(n);
     torque[st].resize(n);
   }
-  // Soft nodes: stage slopes (position, velocity) per stage and actor, as for p and v.
-  std::vector<std::vector<SoftBodyState>> softVK(ns ? T.stages : 0,
-                                                 std::vector<SoftBodyState>(ns));
+  // Vector states: stage slopes (position, velocity) per actor and stage, as for p and v; the
+  // kinds' from their own rule (ActorKind::DirkStageSlope).
+  std::vector<std::vector<KindSlope>>& softVK = buffers.vectorSlopes;
+  softVK.resize(ns);
+  for (std::vector<KindSlope>& slopes : softVK) slopes.resize(T.stages);
   std::vector<Eigen::VectorXd> softLast = softStepStart;
   for (int st = 0; st < T.stages; ++st) {
     std::vector<RigidBodyState>& start = buffers.start;
@@ -105,8 +107,8 @@ void StepDirk(const std::vector<RigidBodyModel>& models, const StepState& step, 
     for (size_t s = 0; s < ns; ++s)
       for (int j = 0; j < st; ++j) {
         const double c = h * T.a[st][j];
-        softStart[s].x += c * softVK[j][s].x;
-        softStart[s].v += c * softVK[j][s].v;
+        softStart[s].x += c * softVK[s][j].slope.x;
+        softStart[s].v += c * softVK[s][j].slope.v;
       }
     const double dt = h * T.a[st][st];
     // Dissipation geometry: the last configuration the bodies occupied (x_n, then Q_{i−1}).
@@ -116,8 +118,13 @@ void StepDirk(const std::vector<RigidBodyModel>& models, const StepState& step, 
     host.SolveStage(dt, start, last, &poses, &soft, &softX, cStage * h, &rep);
     Q[st] = poses;
     for (size_t s = 0; s < ns; ++s) {
-      softVK[st][s].x = (softX[s] - softStart[s].x) / dt;
-      softVK[st][s].v = (softVK[st][s].x - softStart[s].v) / dt;
+      if (const ActorKind* kind = host.VectorKind(s)) {
+        kind->DirkStageSlope(softX[s], softStart[s], dt, &softVK[s][st]);
+        continue;
+      }
+      SoftBodyState& vk = softVK[s][st].slope;
+      vk.x = (softX[s] - softStart[s].x) / dt;
+      vk.v = (vk.x - softStart[s].v) / dt;
     }
     softLast = softX;
     for (size_t i = 0; i < n; ++i) {
@@ -163,12 +170,18 @@ void StepDirk(const std::vector<RigidBodyModel>& models, const StepState& step, 
     const Eigen::Vector3d missing = spin - SpinMomentum(next[i].R, end.Rdot, J);
     next[i].Rdot = end.Rdot + Skew(WorldInertia(next[i].R, J).ldlt().solve(missing)) * next[i].R;
   }
+  std::vector<double>& hb = buffers.stageWeights;  // h b_i
+  hb.resize(T.stages);
+  for (int st = 0; st < T.stages; ++st) hb[st] = h * T.b[st];
   for (size_t s = 0; s < ns; ++s) {
     softNext[s] = step.softStates[s];
     for (int st = 0; st < T.stages; ++st) {
-      softNext[s].x += h * T.b[st] * softVK[st][s].x;
-      softNext[s].v += h * T.b[st] * softVK[st][s].v;
+      softNext[s].x += hb[st] * softVK[s][st].slope.x;
+      softNext[s].v += hb[st] * softVK[s][st].slope.v;
     }
+    if (const ActorKind* kind = host.VectorKind(s))
+      kind->DirkStepEnd(step.softStates[s], softLast[s], T.stifflyAccurate, softVK[s], hb,
+                        &softNext[s]);
   }
   // Prescribed nodes sit exactly on their path at the step's end.
   std::vector<Eigen::VectorXd> endX(ns);

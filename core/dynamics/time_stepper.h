@@ -11,6 +11,7 @@
 #include "core/dynamics/scene_stage.h"
 #include "core/dynamics/step_report.h"
 #include "core/dynamics/step_state.h"
+#include "core/model/actor_kind.h"
 #include "core/model/enums.h"
 #include "core/model/rigid_body.h"
 
@@ -20,6 +21,9 @@ namespace superdex {
 class StageHost {
  public:
   virtual ~StageHost() = default;
+  /// The kind of vector state s (soft actors first, then the generic layer's actors; null for a
+  /// soft actor).
+  virtual const ActorKind* VectorKind(size_t s) const = 0;
   /// Writes the prescribed node positions (and the kinds' prescribed dofs) at time t [s] into x.
   virtual void ApplyConstraints(double t, std::vector<Eigen::VectorXd>* x) const = 0;
   /// The vector-state actors' data for a stage of step dt [s] at time t [s]: targets from the

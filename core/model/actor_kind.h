@@ -2,9 +2,13 @@
 // contact assembler can carry it without knowing it (docs/architecture.md, "Adding an actor
 // kind").
 //
-// A kind's actor has a configuration q ∈ Rⁿ and a velocity v = q̇ ∈ Rⁿ (a vector-state kind: the
-// integrators combine states affinely, exactly as for soft nodes). Each implicit stage adds the
-// kind's own stage energy
+// A kind's actor has a configuration q ∈ Rⁿ and a velocity v = q̇ ∈ Rⁿ; the integrators combine
+// states affinely, exactly as for soft nodes. The stage's unknowns are a tangent step δ ∈ Rᵐ at q,
+// applied by the kind's retraction q ⊕ δ: q + δ for a vector kind (m = n, the default); a kind
+// whose configuration lies on a manifold embeds it in Rⁿ (a rigid body: q = [p, vec R], n = 12,
+// δ = [δp, δθ], m = 6, q ⊕ δ = [p + δp, vec(exp([δθ]×) R)]) and supplies the hooks below (its
+// retraction, the residual Jacobian's trivialization, the chart's tangent map, and the DIRK
+// stage slope and step end on the manifold). Each implicit stage adds the kind's own stage energy
 //   Φ_a(q) = 1/(2Δt_i²) (q − q̂)ᵀ M (q − q̂) + U(q) [J],   q̂ = q⁰ + Δt_i v⁰,
 // (inertia with the kind's mass matrix M, plus gravity and internal energies U), and the contact
 // assembler (core/contact/kind_contact.h) adds the pair terms through the kind's two contact roles:
@@ -12,12 +16,14 @@
 //              weights w [m²];
 //   collider:  a field Φ_B in a frame (p_B(q), R_B(q)) that follows the kind's dofs through a
 //              constant frame Jacobian F = ∂(δp_B, δθ_B)/∂q (translation-only frames, as a
-//              particle's, or frames that are a subset of the dofs).
+//              particle's), or a frame whose [δp_B, δθ_B] are two 3-dof blocks of δ (a rigid
+//              body's own pose, with the rotation retraction's curvature).
 // Units: SI (m, kg, s, N, J).
 #pragma once
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -28,6 +34,7 @@
 #include "core/model/sample_map.h"
 #include "core/model/vector_state.h"
 #include "energies/psd_projection.h"
+#include "optim/stage_problem.h"
 #include "geometry/aabb.h"
 
 namespace superdex {
@@ -46,27 +53,47 @@ struct KindStageData {
 };
 
 /// One colliding sample at a configuration: its world point, weight and point map. A Nodes map
-/// reads the 3-dof blocks starting at the kind's local dofs `dof[0 .. map.nodes)`.
+/// reads the 3-dof blocks starting at the kind's local tangent dofs `dof[0 .. map.nodes)`; a
+/// Rigid map reads [δp] at dof[0] and [δθ] at dof[1]. A sample with a colliding normal n (unit,
+/// world) takes part in the alignment rejection and the friction fading (spec: "Normal/Tangential
+/// Split"); without one it has neither.
 struct KindSample {
   Eigen::Vector3d y = Eigen::Vector3d::Zero();  ///< world point [m]
   double weight = 0.0;                          ///< quadrature weight w [m²]
-  SamplePointMap map;                           ///< must be a Nodes map
-  int dof[4] = {0, 0, 0, 0};                    ///< first local dof of each node's block
+  SamplePointMap map;
+  int dof[4] = {0, 0, 0, 0};                    ///< first local tangent dof of each block
+  bool hasNormal = false;
+  Eigen::Vector3d n = Eigen::Vector3d::Zero();  ///< colliding normal (world), when hasNormal
+  /// The number of 3-dof blocks the map reads.
+  int Blocks() const { return map.kind == SamplePointMap::Kind::Rigid ? 2 : map.nodes; }
 };
 
 /// Largest number of dofs a kind's collider frame may follow.
 constexpr int kMaxFrameDofs = 12;
 
 /// A kind's collider frame at a configuration: pose (body → world), the 3-dof blocks of the
-/// kind's local dofs that move it (first dofs `dof[0 .. blocks)`), and the Jacobian F
-/// (6 × 3·blocks) of its [δp_B, δθ_B] in those dofs. The frame may only translate with the dofs
-/// (F's rotation rows zero; checked when the actor is added): a frame whose rotation follows the
-/// dofs needs the curvature of that map, which this layer does not carry yet.
+/// kind's local tangent dofs that move it (first dofs `dof[0 .. blocks)`), and either
+///   rigid = false: the Jacobian F (6 × 3·blocks) of its [δp_B, δθ_B] in those dofs; the frame may
+///                  only translate with them (F's rotation rows zero; checked when the actor is
+///                  added): a frame whose rotation follows a general map needs that map's
+///                  curvature, which this layer does not carry yet; or
+///   rigid = true:  blocks = 2 and [δp_B, δθ_B] are the dofs at dof[0] and dof[1] themselves,
+///                  with the retraction R ← exp([δθ_B]×) R (the kind's own), F unused.
+/// At a stage start x⁰ (an affine combination of configurations) the pose's R need not be a
+/// rotation; the assembler uses its exact inverse there.
 struct KindFrame {
   RigidPose pose;
+  bool rigid = false;
   int blocks = 0;
   int dof[4] = {0, 0, 0, 0};
   Eigen::Matrix<double, 6, kMaxFrameDofs> F = Eigen::Matrix<double, 6, kMaxFrameDofs>::Zero();
+};
+
+/// A DIRK stage's slope (V_i, K_i) of one actor, with the kind's own per-stage data (a rigid
+/// body's stage torque) for its step end.
+struct KindSlope {
+  KindState slope;        ///< x: V_i, v: K_i
+  Eigen::VectorXd extra;  ///< the kind's (empty for a vector kind)
 };
 
 class ActorKind {
@@ -79,22 +106,71 @@ class ActorKind {
   virtual std::unique_ptr<ActorKind> Clone() const = 0;
   /// n, the size of q and v.
   virtual int NumDofs() const = 0;
+  /// m, the size of a tangent step δ (the kind's stage unknowns). StageEnergy's derivatives,
+  /// IsPrescribed and the dof indices of samples and frames count these.
+  virtual int NumTangentDofs() const { return NumDofs(); }
   /// The state at creation.
   virtual KindState InitialState() const = 0;
   /// Empty when valid; else a message naming the field and the rule (checked when added).
   virtual std::string Validate() const { return {}; }
 
-  /// Φ_a(q) of the stage [J]. order >= 1: adds ∂Φ_a/∂q (size n, local dofs) into *g; order 2:
-  /// appends ∂²Φ_a/∂q² in local (row, col) to *H, projected to PSD per `projection` where it
-  /// is not PSD already.
+  /// Φ_a(q) of the stage [J]. order >= 1: adds ∂Φ_a(q ⊕ δ)/∂δ at δ = 0 (size m, local tangent
+  /// dofs) into *g; order 2: appends the second derivative in local (row, col) to *H, projected
+  /// to PSD per `projection` where it is not PSD already.
   virtual double StageEnergy(const KindStageData& stage, const Eigen::VectorXd& q, int order,
                              PsdProjection projection, Eigen::VectorXd* g,
                              std::vector<Eigen::Triplet<double>>* H) const = 0;
 
-  /// Prescribed dofs: whether dof i is held on a path (it is then no stage unknown), and
-  /// Prescribe writes every prescribed dof's value at time t [s] into *q.
+  /// Prescribed dofs: whether tangent dof i is held on a path (it is then no stage unknown), and
+  /// Prescribe writes every prescribed part's value at time t [s] into *q.
   virtual bool IsPrescribed(int /*dof*/) const { return false; }
   virtual void Prescribe(double /*t*/, Eigen::VectorXd* /*q*/) const {}
+
+  // --- A configuration on a manifold (defaults: a vector kind).
+  /// *out = q ⊕ δ (δ: m entries; zero at prescribed dofs). Must be q + δ to the bit where the
+  /// kind is a vector kind, and q itself at δ = 0.
+  virtual void Retract(const Eigen::VectorXd& q, const Eigen::VectorXd& delta,
+                       Eigen::VectorXd* out) const {
+    *out = q + delta;
+  }
+  /// The residual modes' Jacobian is ∂r(q ⊕ δ)/∂δ of the stage residual r; the stage assembles
+  /// the potential terms' second derivatives, exact for a vector kind. Where ⊕ is not additive,
+  /// the kind appends (local row, col) the difference (a rigid rotation: −½[τ]× on its δθ block,
+  /// τ the potential residual's torque entries, given in `residual`, m entries).
+  virtual void AddResidualJacobianCorrection(const Eigen::VectorXd& /*q*/,
+                                             const Eigen::VectorXd& /*residual*/,
+                                             std::vector<Eigen::Triplet<double>>* /*J*/) const {}
+  /// The chart's tangent map ∂(q ⊕ δ)/∂δ expressed back in tangent coordinates at q (m × m), for
+  /// the solvers that move in a chart: I for a vector kind, the left Jacobian of SO(3) on a
+  /// rotation's δθ.
+  virtual Eigen::MatrixXd ChartTangentMap(const Eigen::VectorXd& delta) const {
+    return Eigen::MatrixXd::Identity(delta.size(), delta.size());
+  }
+  /// The size of a step δ at q as a length [m] (the solvers' step tolerance): the largest entry
+  /// for a vector kind of lengths; a rotation counts |δθ| times a radius.
+  virtual double StepLength(const Eigen::VectorXd& /*q*/, const Eigen::VectorXd& delta) const {
+    return delta.size() ? delta.lpNorm<Eigen::Infinity>() : 0.0;
+  }
+  /// The fraction (0, 1] of a Newton correction δ the kind trusts (1: all; a rigid body bounds
+  /// its move by a quarter of its radius, core/dynamics/scene_stage.h).
+  virtual double TrustFraction(const Eigen::VectorXd& /*q*/,
+                               const Eigen::VectorXd& /*delta*/) const {
+    return 1.0;
+  }
+  /// DIRK: the stage slope from the stage's solution x = Q_i and its start (x⁰, v⁰) with step
+  /// Δt_i [s]. Default (a vector kind): V_i = (x − x⁰)/Δt_i, K_i = (V_i − v⁰)/Δt_i.
+  virtual void DirkStageSlope(const Eigen::VectorXd& x, const KindState& start, double dt,
+                              KindSlope* out) const {
+    out->slope.x = (x - start.x) / dt;
+    out->slope.v = (out->slope.x - start.v) / dt;
+    out->extra.resize(0);
+  }
+  /// DIRK: the step's end state. *end arrives as x_n + h Σ b_i V_i, v_n + h Σ b_i K_i; the kind
+  /// may bring it back onto its manifold from x_n (`start`), the last stage's solution and the
+  /// stages' slopes with their weights h b_i. Default: kept.
+  virtual void DirkStepEnd(const KindState& /*start*/, const Eigen::VectorXd& /*lastStage*/,
+                           bool /*stifflyAccurate*/, const std::vector<KindSlope>& /*slopes*/,
+                           const std::vector<double>& /*hb*/, KindState* /*end*/) const {}
 
   /// Reporting: kinetic, gravity and internal (elastic, joint) energy [J], linear momentum
   /// [kg·m/s], angular momentum about the world origin [kg·m²/s], centre of mass [m] and its
@@ -113,6 +189,17 @@ class ActorKind {
   // --- Colliding role (no samples: not colliding).
   virtual int NumSamples() const { return 0; }
   virtual KindSample Sample(int /*k*/, const Eigen::VectorXd& /*q*/) const { return {}; }
+  /// Culling: calls visit(begin, end) for ranges of sample indices, in a fixed order (the sums
+  /// over them must be deterministic), skipping only samples inside balls that `keep` rejects:
+  /// keep(c, cLast, r) is asked for a ball of radius r [m] holding the samples, centred at c at q
+  /// and at cLast at qLast (world, m). The default visits every sample at once; a kind with many
+  /// samples descends its own bounding-ball tree (a rigid body's sample tree).
+  virtual void ForEachSampleNear(
+      const Eigen::VectorXd& /*q*/, const Eigen::VectorXd& /*qLast*/,
+      const std::function<bool(const Eigen::Vector3d&, const Eigen::Vector3d&, double)>& /*keep*/,
+      const std::function<void(int, int)>& visit) const {
+    visit(0, NumSamples());
+  }
 
   // --- Collider role (null: not a collider). The field is in the frame's coordinates.
   virtual const RigidCollider* Collider() const { return nullptr; }

@@ -171,6 +171,14 @@ double RmsRadius(const RigidBodyModel& model);
 /// World inertia tensor R (tr(J) 1 − J) Rᵀ [kg·m²]: L = I_w ω for Ṙ = [ω]× R.
 Eigen::Matrix3d WorldInertia(const Eigen::Matrix3d& R, const Eigen::Matrix3d& J);
 
+/// The trust region of one Newton correction of a rigid body (the stage's TrustStep, core/dynamics/scene_stage.h), as a
+/// fraction of the body's radius. The contact step limit bounds how much a sample's depth may
+/// grow, as the field reads it; it cannot see a correction that carries a body past the medial
+/// plane of a box (where the field's gradient flips and the body is pushed out the far side) or
+/// a rotation of many radians along the flat, rippled landscape a sampled sphere has about its
+/// centre (the inertia's curvature J/Δt² against the sampling's spurious torques).
+constexpr double kCorrectionTrust = 0.25;
+
 /// World AABB of the shape at the given pose (infinite for a plane).
 Aabb WorldBounds(const RigidBodyModel& model, const Eigen::Vector3d& p, const Eigen::Matrix3d& R);
 

@@ -1,0 +1,240 @@
+#include "core/model/rigid_kind.h"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+
+#include "core/model/rigid_math.h"
+#include "energies/rigid_inertia.h"
+
+namespace superdex {
+namespace {
+
+Eigen::Map<const Eigen::Matrix3d> RotationOf(const Eigen::VectorXd& q) {
+  return Eigen::Map<const Eigen::Matrix3d>(q.data() + 3);
+}
+
+}  // namespace
+
+RigidKind::RigidKind(RigidBodyModel model, const RigidBodyState& state)
+    : model_(std::move(model)), initial_(state) {
+  contact = model_.contact;
+  name = model_.name;
+}
+
+std::unique_ptr<RigidKind> RigidKind::Build(const RigidActorDesc& desc, Error* error) {
+  RigidBodyModel model;
+  RigidBodyState state;
+  if (!BuildRigidBody(desc, "", &model, &state, error)) return nullptr;
+  return std::make_unique<RigidKind>(std::move(model), state);
+}
+
+std::unique_ptr<ActorKind> RigidKind::Clone() const { return std::make_unique<RigidKind>(*this); }
+
+KindState RigidKind::Pack(const RigidBodyState& s) {
+  KindState k;
+  k.x.resize(12);
+  k.v.resize(12);
+  k.x.head<3>() = s.p;
+  k.x.tail<9>() = Eigen::Map<const Eigen::Matrix<double, 9, 1>>(s.R.data());
+  k.v.head<3>() = s.v;
+  k.v.tail<9>() = Eigen::Map<const Eigen::Matrix<double, 9, 1>>(s.Rdot.data());
+  return k;
+}
+
+RigidBodyState RigidKind::Unpack(const KindState& k) {
+  RigidBodyState s;
+  s.p = k.x.head<3>();
+  s.R = RotationOf(k.x);
+  s.v = k.v.head<3>();
+  s.Rdot = RotationOf(k.v);
+  return s;
+}
+
+RigidPose RigidKind::PoseOf(const Eigen::VectorXd& q) {
+  RigidPose pose;
+  pose.p = q.head<3>();
+  pose.R = RotationOf(q);
+  return pose;
+}
+
+double RigidKind::StageEnergy(const KindStageData& stage, const Eigen::VectorXd& q, int order,
+                              PsdProjection projection, Eigen::VectorXd* g,
+                              std::vector<Eigen::Triplet<double>>* H) const {
+  if (!model_.dynamic) return 0.0;
+  const double w = 1.0 / (stage.dt * stage.dt);
+  const Eigen::Vector3d p = q.head<3>();
+  const RigidInertiaTerm t = RigidInertia(model_.mass, model_.secondMoment, p, RotationOf(q),
+                                          stage.qHat.head<3>(), RotationOf(stage.qHat),
+                                          order >= 1);
+  const double value = w * t.value + GravityPotential(model_.mass, stage.gravity, p);
+  if (order < 1) return value;
+  g->head<6>() += w * t.gradient;
+  g->head<3>() -= model_.mass * stage.gravity;
+  if (order < 2) return value;
+  Eigen::Matrix<double, 6, 6> Hs = w * t.hessian;
+  // Block diagonal: w m I and the rotation block; when the latter factorizes the whole matrix is
+  // positive definite and a projection would return it unchanged.
+  if (projection != PsdProjection::None &&
+      Eigen::LLT<Eigen::Matrix3d>(Hs.bottomRightCorner<3, 3>()).info() != Eigen::Success) {
+    SmallStencilMatrix Hd = Hs;
+    ProjectToPsd(&Hd, projection == PsdProjection::Abs);
+    Hs = Hd;
+  }
+  // The translation diagonal and the whole rotation block always (a stable pattern), other
+  // entries where nonzero.
+  for (int c = 0; c < 6; ++c)
+    for (int r = 0; r < 6; ++r)
+      if (r == c || (r >= 3 && c >= 3) || Hs(r, c) != 0.0) H->emplace_back(r, c, Hs(r, c));
+  return value;
+}
+
+void RigidKind::Prescribe(double /*t*/, Eigen::VectorXd* q) const {
+  if (model_.dynamic) return;
+  *q = Pack(initial_).x;
+}
+
+void RigidKind::Retract(const Eigen::VectorXd& q, const Eigen::VectorXd& delta,
+                        Eigen::VectorXd* out) const {
+  out->resize(12);
+  out->head<3>() = q.head<3>() + delta.head<3>();
+  const Eigen::Matrix3d R = ExpSo3(delta.segment<3>(3)) * RotationOf(q);
+  out->tail<9>() = Eigen::Map<const Eigen::Matrix<double, 9, 1>>(R.data());
+}
+
+void RigidKind::AddResidualJacobianCorrection(const Eigen::VectorXd& /*q*/,
+                                              const Eigen::VectorXd& residual,
+                                              std::vector<Eigen::Triplet<double>>* J) const {
+  if (!model_.dynamic) return;
+  const Eigen::Matrix3d S = -0.5 * Skew(residual.segment<3>(3));
+  for (int c = 0; c < 3; ++c)
+    for (int k = 0; k < 3; ++k)
+      if (k != c) J->emplace_back(3 + k, 3 + c, S(k, c));
+}
+
+Eigen::MatrixXd RigidKind::ChartTangentMap(const Eigen::VectorXd& delta) const {
+  Eigen::MatrixXd T = Eigen::MatrixXd::Identity(6, 6);
+  T.bottomRightCorner<3, 3>() = LeftJacobianSo3(delta.segment<3>(3));
+  return T;
+}
+
+double RigidKind::StepLength(const Eigen::VectorXd& /*q*/, const Eigen::VectorXd& delta) const {
+  return std::max(delta.head<3>().lpNorm<Eigen::Infinity>(),
+                  delta.segment<3>(3).norm() * RmsRadius(model_));
+}
+
+double RigidKind::TrustFraction(const Eigen::VectorXd& /*q*/, const Eigen::VectorXd& delta) const {
+  const double rho = std::max(model_.samplesRadius, RmsRadius(model_));
+  if (!(rho > 0.0)) return 1.0;
+  const double move = delta.head<3>().norm() + delta.segment<3>(3).norm() * rho;
+  const double trust = kCorrectionTrust * rho;
+  return move > trust ? trust / move : 1.0;
+}
+
+void RigidKind::DirkStageSlope(const Eigen::VectorXd& x, const KindState& start, double dt,
+                               KindSlope* out) const {
+  KindState& vk = out->slope;
+  vk.x.resize(12);
+  vk.v.resize(12);
+  vk.x.head<3>() = (x.head<3>() - start.x.head<3>()) / dt;
+  vk.v.head<3>() = (vk.x.head<3>() - start.v.head<3>()) / dt;
+  out->extra.setZero(3);
+  if (!model_.dynamic) {
+    vk.x.tail<9>().setZero();
+    vk.v.tail<9>().setZero();
+    return;
+  }
+  const Eigen::Matrix3d& J = model_.secondMoment;
+  const Eigen::Matrix3d Q = RotationOf(x), R0 = RotationOf(start.x), Rdot0 = RotationOf(start.v);
+  const Eigen::Matrix3d V = (Q - R0) / dt;
+  // The stage's world torque: its stationarity makes the rotational inertia force
+  // K = (V − Ṙ⁰)/Δt_i balance it, τ = axial(K J Qᵀ − Q J Kᵀ).
+  out->extra = SpinMomentum(Q, (V - Rdot0) / dt, J);
+  // The stage velocity, made tangent to SO(3) at Q with the same spin momentum.
+  const Eigen::Matrix3d VR = Skew(WorldInertia(Q, J).ldlt().solve(SpinMomentum(Q, V, J))) * Q;
+  const Eigen::Matrix3d KR = (VR - Rdot0) / dt;
+  vk.x.tail<9>() = Eigen::Map<const Eigen::Matrix<double, 9, 1>>(VR.data());
+  vk.v.tail<9>() = Eigen::Map<const Eigen::Matrix<double, 9, 1>>(KR.data());
+}
+
+void RigidKind::DirkStepEnd(const KindState& start, const Eigen::VectorXd& lastStage,
+                            bool stifflyAccurate, const std::vector<KindSlope>& slopes,
+                            const std::vector<double>& hb, KindState* end) const {
+  if (!model_.dynamic) return;
+  const Eigen::Matrix3d& J = model_.secondMoment;
+  Eigen::Vector3d spin = SpinMomentum(RotationOf(start.x), RotationOf(start.v), J);
+  for (size_t st = 0; st < slopes.size(); ++st) spin += hb[st] * slopes[st].extra;  // L̇ = τ
+  const Eigen::Matrix3d R =
+      stifflyAccurate ? Eigen::Matrix3d(RotationOf(lastStage)) : NearestRotation(RotationOf(end->x));
+  const Eigen::Matrix3d Rdot = RotationOf(end->v);
+  // Keep the end velocity, corrected along the tangent directions [δω] R so that it carries
+  // exactly the integrated spin momentum.
+  const Eigen::Vector3d missing = spin - SpinMomentum(R, Rdot, J);
+  const Eigen::Matrix3d RdotEnd = Rdot + Skew(WorldInertia(R, J).ldlt().solve(missing)) * R;
+  end->x.tail<9>() = Eigen::Map<const Eigen::Matrix<double, 9, 1>>(R.data());
+  end->v.tail<9>() = Eigen::Map<const Eigen::Matrix<double, 9, 1>>(RdotEnd.data());
+}
+
+double RigidKind::KineticEnergy(const KindState& s) const {
+  return model_.dynamic ? superdex::KineticEnergy(model_, Unpack(s)) : 0.0;
+}
+
+double RigidKind::GravityEnergy(const KindState& s, const Eigen::Vector3d& gravity) const {
+  return model_.dynamic ? GravityPotential(model_.mass, gravity, s.x.head<3>()) : 0.0;
+}
+
+Eigen::Vector3d RigidKind::LinearMomentum(const KindState& s) const {
+  return model_.dynamic ? superdex::LinearMomentum(model_, Unpack(s)) : Eigen::Vector3d::Zero();
+}
+
+Eigen::Vector3d RigidKind::AngularMomentum(const KindState& s) const {
+  return model_.dynamic ? superdex::AngularMomentum(model_, Unpack(s)) : Eigen::Vector3d::Zero();
+}
+
+Aabb RigidKind::Bounds(const Eigen::VectorXd& q) const {
+  return WorldBounds(model_, q.head<3>(), RotationOf(q));
+}
+
+KindSample RigidKind::Sample(int k, const Eigen::VectorXd& q) const {
+  const SurfaceSample& s = model_.samples[k];
+  const Eigen::Matrix3d R = RotationOf(q);
+  KindSample out;
+  const Eigen::Vector3d r = R * s.X;
+  out.y = q.head<3>() + r;
+  out.weight = s.weight;
+  out.map = SamplePointMap::Rigid(r);
+  out.dof[0] = 0;
+  out.dof[1] = 3;
+  out.hasNormal = true;
+  out.n = R * s.normal;
+  return out;
+}
+
+void RigidKind::ForEachSampleNear(
+    const Eigen::VectorXd& q, const Eigen::VectorXd& qLast,
+    const std::function<bool(const Eigen::Vector3d&, const Eigen::Vector3d&, double)>& keep,
+    const std::function<void(int, int)>& visit) const {
+  const Eigen::Vector3d p = q.head<3>(), pLast = qLast.head<3>();
+  const Eigen::Matrix3d R = RotationOf(q), RLast = RotationOf(qLast);
+  ForEachSampleRange(
+      model_,
+      [&](const Eigen::Vector3d& c, double r) {
+        return keep(p + R * c, pLast + RLast * c, r);
+      },
+      visit);
+}
+
+const RigidCollider* RigidKind::Collider() const {
+  return model_.collider.type == ColliderType::None ? nullptr : &model_.collider;
+}
+
+KindFrame RigidKind::ColliderFrame(const Eigen::VectorXd& q) const {
+  KindFrame f;
+  f.pose = PoseOf(q);
+  f.rigid = true;
+  f.blocks = 2;
+  f.dof[0] = 0;
+  f.dof[1] = 3;
+  return f;
+}
+
+}  // namespace superdex
