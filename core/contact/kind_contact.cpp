@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/contact/dissipation_kernels.h"
+#include "core/contact/rigid_dissipation.h"
 #include "core/contact/sample_chain.h"
 #include "core/model/rigid_math.h"
 
@@ -111,6 +112,52 @@ void AddCurrentModeJacobianOfSize(const PairSample& s, const FrameSide& B, const
   AddCurrentModeJacobian<kMaxStencil>(s, B, field, Y, Yn, Y0, ds, J);
 }
 
+/// The regrouped chain of one rigid body's samples on a rigid or static frame (one stencil
+/// [δp_A, δθ_A (, δp_B, δθ_B)]): gradients and residuals per sample by AddFunctionOfPullback into
+/// fixed-size vectors, second derivatives as moments in B's frame, mapped at Flush.
+struct RigidSums {
+  bool on = false;
+  bool bDynamic = false;
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();  ///< p_A − p_B [m]
+  PairVector penaltyGradient, dissipationResidual;
+  PairHessianSums penalty, potentialDissipation;
+  PairForceJacobianSums force{true};
+
+  /// Starts a stencil: on when its samples are a Rigid map's and B does not deform.
+  void Begin(const PairSample& s, const FrameSide& B) {
+    on = s.map.kind == SamplePointMap::Kind::Rigid && s.hasNormal &&
+         B.motion != FrameSide::Motion::Translation;
+    if (!on) return;
+    bDynamic = B.motion == FrameSide::Motion::Rigid;
+    c = s.map.origin - B.pose.p;
+    penaltyGradient.setZero();
+    dissipationResidual.setZero();
+    penalty = PairHessianSums();
+    potentialDissipation = PairHessianSums();
+    force = PairForceJacobianSums(bDynamic);
+  }
+  /// Writes the sums into the stencil (its parts zero on n dofs).
+  void Flush(const FrameSide& B, int order, ContactStencil* st) const {
+    if (!on || order < 1) return;
+    const int n = bDynamic ? 12 : 6;
+    if (st->penaltyActive) st->penaltyGradient = penaltyGradient.head(n);
+    if (st->dissipationActive) st->dissipationResidual = dissipationResidual.head(n);
+    if (order < 2) return;
+    PairMatrix M;
+    if (st->penaltyActive) {
+      M.setZero();
+      penalty.AddTo(B.pose.R, c, bDynamic, &M);
+      st->penaltyHessian = M.topLeftCorner(n, n);
+    }
+    if (st->dissipationActive) {
+      M.setZero();
+      potentialDissipation.AddTo(B.pose.R, c, bDynamic, &M);
+      force.AddTo(B.pose.R, c, &M);
+      st->dissipationJacobian = M.topLeftCorner(n, n);
+    }
+  }
+};
+
 /// The sample's pullbacks: Y now, Y_n at x_n, and the colliding normal N_A in B's coordinates at
 /// both (zero without a normal).
 struct Pullback {
@@ -131,7 +178,7 @@ Pullback PullbackOf(const PairSample& s, const FrameSide& B) {
 /// The penalty of one sample into stencil *st; returns whether it was active.
 bool AddPenalty(const PairSample& s, const FrameSide& B, const Pullback& p, const SdfSample& field,
                 const PenaltyParams& penalty, double m, int order, PairStencils* out,
-                ContactStencil* st, std::vector<ContactSampleRecord>* records) {
+                ContactStencil* st, RigidSums* sums, std::vector<ContactSampleRecord>* records) {
   if (!(field.value < penalty.delta)) return false;
   if (s.hasNormal && std::isfinite(m)) {
     const Eigen::Vector3d G = B.hasStart ? B.field->Evaluate(p.Yn).gradient : field.gradient;
@@ -158,6 +205,12 @@ bool AddPenalty(const PairSample& s, const FrameSide& B, const Pullback& p, cons
   Eigen::Matrix3d HY;
   PointStencil point;
   PenaltyInPullback(W, field, &gY, order >= 2 ? &HY : nullptr);
+  if (sums->on) {
+    AddFunctionOfPullback(s.map.r, p.d, B.pose.R, gY, nullptr, sums->bDynamic, s.weight,
+                          &sums->penaltyGradient, nullptr);
+    if (order >= 2) sums->penalty.Add(B.pose.R.transpose() * s.map.r, gY, HY, s.weight);
+    return true;
+  }
   PullbackOnFrame(B, p.d, gY, order >= 2 ? &HY : nullptr, &point);
   ChainToActor(s.map, point, s.weight, &st->penaltyGradient,
                order >= 2 ? &st->penaltyHessian : nullptr);
@@ -167,7 +220,7 @@ bool AddPenalty(const PairSample& s, const FrameSide& B, const Pullback& p, cons
 /// The dissipation of one sample (sample index k, the slip key) into stencil *st.
 void AddDissipation(const PairSample& s, int k, const FrameSide& B, const Pullback& p,
                     const SdfSample& field, const DissipationSetup& ds, int order,
-                    PairStencils* out, ContactStencil* st) {
+                    PairStencils* out, ContactStencil* st, RigidSums* sums) {
   const bool explicitNormals = ds.mode == DissipationMode::ExplicitNormals;
   const double m = ds.maxAlignment, delta = ds.penalty.delta;
   double lambdaHat = 0.0;
@@ -199,6 +252,19 @@ void AddDissipation(const PairSample& s, int k, const FrameSide& B, const Pullba
   out->AddDissipative(s.weight, ds.dt, D, ds.coefficients.mu, lambdaHat);
   if (order == 0) return;
   const Eigen::Matrix3d HY = D.hessian / ds.dt;
+  if (sums->on) {
+    AddFunctionOfPullback(s.map.r, p.d, B.pose.R, D.gradient, nullptr, sums->bDynamic, s.weight,
+                          &sums->dissipationResidual, nullptr);
+    if (order < 2) return;
+    const Eigen::Vector3d rB = B.pose.R.transpose() * s.map.r;
+    if (explicitNormals) {
+      sums->potentialDissipation.Add(rB, D.gradient, HY, s.weight);
+    } else {
+      const CurrentModeLinearization lin = LinearizeCurrentModeGradient(p.Y, p.NA, field, p.Yn, Y0, ds);
+      sums->force.Add(rB, p.NA, lin.g, lin.GY, lin.GN, s.weight);
+    }
+    return;
+  }
   PointStencil point;
   PullbackOnFrame(B, p.d, D.gradient, hessian ? &HY : nullptr, &point);
   ChainToActor(s.map, point, s.weight, &st->dissipationResidual,
@@ -235,8 +301,12 @@ void EvaluateSamplesOnFrame(const std::vector<PairSample>& samples, const FrameS
     noNormal.frictionWithColliderNormal = true;
   }
   ContactStencil* st = nullptr;
+  RigidSums sums;
   auto close = [&]() {  // kept when it has a contribution, else its slot is taken again
-    if (st && (st->penaltyActive || st->dissipationActive)) out->Keep();
+    if (st && (st->penaltyActive || st->dissipationActive)) {
+      sums.Flush(B, order, st);
+      out->Keep();
+    }
     st = nullptr;
   };
   for (const PairSample& s : samples) {
@@ -245,14 +315,15 @@ void EvaluateSamplesOnFrame(const std::vector<PairSample>& samples, const FrameS
       close();
       st = &out->Slot(s.face, -1, n, order);
       SetBlocks(s, B, st);
+      sums.Begin(s, B);
     }
     const Pullback p = PullbackOf(s, B);
     const SdfSample field = B.field->Evaluate(p.Y);
     out->minPhi = std::min(out->minPhi, field.value);
-    AddPenalty(s, B, p, field, penalty, maxAlignment, order, out, st, records);
+    AddPenalty(s, B, p, field, penalty, maxAlignment, order, out, st, &sums, records);
     if (withDissipation)
       AddDissipation(s, s.key, B, p, field, s.hasNormal ? *dissipation : noNormal, order, out,
-                     st);
+                     st, &sums);
   }
   close();
 }
@@ -313,7 +384,7 @@ void GatherRigidSamples(const RigidBodyModel& A, const RigidPose& a, const Rigid
       s.n = a.R * ss.normal;
       s.nLast = an.R * ss.normal;
       s.weight = ss.weight;
-      s.map = SamplePointMap::Rigid(r);
+      s.map = SamplePointMap::Rigid(r, a.p);
       s.key = q;
       s.blocks = 2;
       s.offs[0] = aOffset;

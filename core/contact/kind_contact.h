@@ -69,7 +69,12 @@ struct FrameSide {
 
 /// Evaluates every sample on the frame's field into stencils: consecutive samples with the same
 /// blocks share one (a rigid body's samples, a soft face's). order 0: value;
-/// 1: gradient and residual; 2: Hessian and Jacobian (unprojected). `dissipation` null: penalty
+/// 1: gradient and residual; 2: Hessian and Jacobian (unprojected). The samples of a Rigid map on
+/// a rigid or static frame (one rigid body on another's field) are chained to the stencil as
+/// regrouped moments (PairHessianSums, PairForceJacobianSums of core/contact/rigid_contact.h and
+/// rigid_dissipation.h): per sample a few 3 × 3 products instead of a 12 × 12 stencil, mapped once
+/// per stencil, and the current modes' Jacobian from the closed-form linearization of the kernel
+/// instead of automatic differentiation; the same derivatives up to rounding. `dissipation` null: penalty
 /// only. `records` (order 0 only) collects the active penalty samples.
 void EvaluateSamplesOnFrame(const std::vector<PairSample>& samples, const FrameSide& B,
                             const PenaltyParams& penalty, double maxAlignment,

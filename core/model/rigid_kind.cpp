@@ -201,7 +201,7 @@ KindSample RigidKind::Sample(int k, const Eigen::VectorXd& q) const {
   const Eigen::Vector3d r = R * s.X;
   out.y = q.head<3>() + r;
   out.weight = s.weight;
-  out.map = SamplePointMap::Rigid(r);
+  out.map = SamplePointMap::Rigid(r, q.head<3>());
   out.dof[0] = 0;
   out.dof[1] = 3;
   out.hasNormal = true;

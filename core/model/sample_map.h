@@ -18,14 +18,17 @@ namespace superdex {
 struct SamplePointMap {
   enum class Kind { Rigid, Nodes };
   Kind kind = Kind::Nodes;
-  Eigen::Vector3d r = Eigen::Vector3d::Zero();     ///< Rigid: y − p_A (world) [m]
+  Eigen::Vector3d r = Eigen::Vector3d::Zero();       ///< Rigid: y − p_A (world) [m]
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< Rigid: p_A (world) [m]
   Eigen::Vector4d bary = Eigen::Vector4d::Zero();  ///< Nodes: the weights b_a
   int nodes = 0;                                   ///< Nodes: how many
 
-  static SamplePointMap Rigid(const Eigen::Vector3d& r) {
+  static SamplePointMap Rigid(const Eigen::Vector3d& r,
+                              const Eigen::Vector3d& origin = Eigen::Vector3d::Zero()) {
     SamplePointMap m;
     m.kind = Kind::Rigid;
     m.r = r;
+    m.origin = origin;
     return m;
   }
   /// A sample on a triangle with barycentrics b (three nodes).

@@ -41,7 +41,7 @@ struct Setup {
     PairSample s;
     if (rigidA) {
       const Eigen::Matrix3d R = ExpSo3(d.segment<3>(3)) * RA;
-      s.map = SamplePointMap::Rigid(R * X);
+      s.map = SamplePointMap::Rigid(R * X, pA + d.segment<3>(0));
       s.y = pA + d.segment<3>(0) + R * X;
       s.hasNormal = true;
       s.n = R * nBody;
