@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <memory>
 
@@ -82,6 +83,11 @@ int main(int argc, char** argv) {
               "active", "kinds/built", "max |Δx| [m]");
   for (int n : quick ? std::vector<int>{2, 3} : std::vector<int>{2, 3, 4}) {
     const Run built = Measure(n, false, steps);
+    if (std::getenv("SUPERDEX_BENCH_BUILT_IN_ONLY")) {  // for profiling one layer
+      std::printf("%8d %-9s %12.4g %10.2f %8d\n", n * n * n, "built-in", built.secondsPerStep,
+                  built.newtonPerStep, built.active);
+      continue;
+    }
     const Run kinds = Measure(n, true, steps);
     double diff = 0.0;
     for (size_t i = 0; i < built.centres.size(); ++i)

@@ -24,7 +24,8 @@ void ForEachPair(size_t n, bool parallel, F&& f) {
   }
 }
 
-void AppendBlocks(const SmallStencilMatrix& M, const int offs[2], int blocks,
+/// A rigid pair's matrix as dense 6 × 6 blocks at the bodies' offsets (−1: static).
+void AppendBlocks(const StencilMatrix& M, const int offs[2], int blocks,
                   std::vector<DenseBlock6>* out) {
   for (int bi = 0; bi < blocks; ++bi) {
     if (offs[bi] < 0) continue;
@@ -76,7 +77,7 @@ PenaltyParams PenaltyOf(const PairContactParams& p) {
   return pp;
 }
 
-void AddBlocks(const SmallStencilVector& g, const int offs[2], int blocks, Eigen::VectorXd* out) {
+void AddBlocks(const StencilVector& g, const int offs[2], int blocks, Eigen::VectorXd* out) {
   for (int bi = 0; bi < blocks; ++bi)
     if (offs[bi] >= 0) out->segment<6>(offs[bi]) += g.segment<6>(6 * bi);
 }
@@ -341,22 +342,17 @@ size_t ContactPipeline::RigidPairWork() const {
 bool ContactPipeline::SplitLastEvaluation(const std::vector<int>& dofOffset,
                                           std::vector<double>* share,
                                           std::vector<std::pair<int, int>>* joins) const {
-  const bool withDissipation = !dissipationResults_.empty();
   if (!softPairs_.empty() || !softColliderPairs_.empty() || !kindPairs_.empty() ||
-      results_.size() != pairs_.size() ||
-      (withDissipation && dissipationResults_.size() != pairs_.size()))
+      results_.size() != pairs_.size())
     return false;
   for (size_t k = 0; k < pairs_.size(); ++k) {
-    const RigidPairPenalty& r = results_[k];
-    const RigidPairDissipation* d =
-        withDissipation && dissipationResults_[k].activeSamples > 0 ? &dissipationResults_[k]
-                                                                    : nullptr;
-    if (r.activeSamples == 0 && !d) continue;
+    const PairStencils& r = results_[k];
+    if (r.activeSamples == 0 && r.dissipativeSamples == 0) continue;
     const int a = pairs_[k].colliding, b = pairs_[k].collider;
     const int owner = dofOffset[a] >= 0 ? a : b;
     if (dofOffset[owner] < 0) continue;
-    if (r.activeSamples > 0) (*share)[owner] += r.value;
-    if (d) (*share)[owner] += d->value;
+    if (r.activeSamples > 0) (*share)[owner] += r.penaltyValue;
+    if (r.dissipativeSamples > 0) (*share)[owner] += r.dissipationValue;
     if (dofOffset[a] >= 0 && dofOffset[b] >= 0) joins->emplace_back(a, b);
   }
   return true;
@@ -471,62 +467,49 @@ void ContactPipeline::EvaluateRigidPairs(const Request& q, double* energy, Conta
   const DissipationContext* dissipation = q.dissipation;
   const bool potential = q.potential;
   results_.resize(pairs_.size());
-  dissipationResults_.resize(dissipation ? pairs_.size() : 0);
-  const std::vector<RigidStageStart>* reference = q.stageStart;
+  rigidSamples_.resize(pairs_.size());
+  const std::vector<RigidStageStart>* start = q.stageStart;
   const auto rigidId = [&](size_t k) { return std::make_pair(pairs_[k].colliding, pairs_[k].collider); };
   auto evaluate = [&](size_t k) {
     const ContactPair& cp = pairs_[k];
-    const PenaltyParams pp = PenaltyOf(cp.params);
-    const RigidBodyModel& A = models[cp.colliding];
-    const RigidBodyModel& B = models[cp.collider];
-    RigidPairPenalty& r = results_[k];
-    const RigidPose* aRef = reference ? &(*reference)[cp.colliding].last : nullptr;
-    const RigidPose* bRef = reference ? &(*reference)[cp.collider].last : nullptr;
-    EvaluateRigidPairPenalty(A, poses[cp.colliding], B, poses[cp.collider], B.dynamic, pp, order,
-                             &r, cp.params.maxAlignmentNormals, aRef, bRef);
-    RigidPairDissipation* d = dissipation ? &dissipationResults_[k] : nullptr;
-    if (d) {
-      DissipationSetup setup = MakeSetup(cp.params, *dissipation, q.isotropic);
+    DissipationSetup setup;
+    if (dissipation) {
+      setup = MakeSetup(cp.params, *dissipation, q.isotropic);
       setup.slips = SlipUse(SlipPairKind::Rigid, k);
-      const std::vector<RigidStageStart>& start = *q.stageStart;
-      EvaluateRigidPairDissipation(A, poses[cp.colliding], start[cp.colliding], B,
-                                   poses[cp.collider], start[cp.collider], B.dynamic, setup, order,
-                                   d);
     }
-    if (order >= 2)
-      ProjectContactHessian(r.activeSamples > 0, d && d->activeSamples > 0, potential,
-                            q.projection, d ? d->jacobian : r.hessian, &r.hessian);
+    const int a = cp.colliding, b = cp.collider;
+    const FrameSide B = RigidFrameSide(models[b], poses[b], start ? &(*start)[b] : nullptr,
+                                       dofOffset[b]);
+    GatherRigidSamples(models[a], poses[a], start ? &(*start)[a] : nullptr, dofOffset[a], B,
+                       cp.params.threshold, dissipation ? &setup : nullptr, &rigidSamples_[k]);
+    PairStencils& r = results_[k];
+    EvaluateSamplesOnFrame(rigidSamples_[k], B, PenaltyOf(cp.params), cp.params.maxAlignmentNormals,
+                           dissipation ? &setup : nullptr, order, &r);
+    if (order < 2) return;
+    for (int e = 0; e < r.count; ++e) ProjectStencil(potential, q.projection, &r.stencils[e]);
   };
   SweepPairs(dissipation, SlipPairKind::Rigid, pairs_.size(),
              RigidPairWork() >= kParallelSampleWork, rigidId, evaluate);
-  // Fixed-order reduction.
-  st->candidatePairs += static_cast<int>(pairs_.size());
+  // Fixed-order reduction; the matrices as dense 6 × 6 blocks.
   for (size_t k = 0; k < pairs_.size(); ++k) {
-    const RigidPairPenalty& r = results_[k];
+    const PairStencils& r = results_[k];
+    ++st->candidatePairs;
+    *energy += AddPairStats(r, st);
+    if (order < 1) continue;
     const int offs[2] = {dofOffset[pairs_[k].colliding], dofOffset[pairs_[k].collider]};
     const int blocks = models[pairs_[k].collider].dynamic ? 2 : 1;
-    st->minSignedDistance = std::min(st->minSignedDistance, r.minPhi);
-    const RigidPairDissipation* d =
-        dissipation && dissipationResults_[k].activeSamples > 0 ? &dissipationResults_[k] : nullptr;
-    if (r.activeSamples > 0) {
-      ++st->activePairs;
-      st->activeSamples += r.activeSamples;
-      st->energy += r.value;
-      *energy += r.value;
-      if (order >= 1) AddBlocks(r.gradient, offs, blocks, q.gradient);
-    }
-    if (d) {
-      st->dissipativeSamples += d->activeSamples;
-      st->dissipation += d->value;
-      st->maxCoulombRatio = std::max(st->maxCoulombRatio, d->maxCoulombRatio);
-      *energy += d->value;
-      if (order >= 1)
-        AddBlocks(d->residual, offs, blocks,
+    for (int e = 0; e < r.count; ++e) {
+      const ContactStencil& cs = r.stencils[e];
+      if (cs.penaltyActive) AddBlocks(cs.penaltyGradient, offs, blocks, q.gradient);
+      if (cs.dissipationActive)
+        AddBlocks(cs.dissipationResidual, offs, blocks,
                   q.dissipationResidual ? q.dissipationResidual : q.gradient);
-      if (order >= 2 && !potential) AppendBlocks(d->jacobian, offs, blocks, q.blocks);
+      if (order < 2) continue;
+      if (cs.penaltyActive || (potential && cs.dissipationActive))
+        AppendBlocks(cs.penaltyHessian, offs, blocks, q.blocks);
+      if (!potential && cs.dissipationActive)
+        AppendBlocks(cs.dissipationJacobian, offs, blocks, q.blocks);
     }
-    if (order >= 2 && (r.activeSamples > 0 || (d && potential)))
-      AppendBlocks(r.hessian, offs, blocks, q.blocks);
   }
 }
 
@@ -662,13 +645,16 @@ void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,
   const std::vector<RigidBodyModel>& models = *models_;
   FindPairs(poses, nullptr, nullptr, soft, kinds);
   records->clear();
-  RigidPairPenalty scratch;
+  PairStencils scratch;
+  std::vector<PairSample> rigidSamples;
   for (const ContactPair& cp : pairs_) {
     const PenaltyParams pp = PenaltyOf(cp.params);
     const size_t first = records->size();
-    EvaluateRigidPairPenalty(models[cp.colliding], poses[cp.colliding], models[cp.collider],
-                             poses[cp.collider], models[cp.collider].dynamic, pp, 0, &scratch,
-                             cp.params.maxAlignmentNormals, nullptr, nullptr, records);
+    const FrameSide B = RigidFrameSide(models[cp.collider], poses[cp.collider], nullptr, -1);
+    GatherRigidSamples(models[cp.colliding], poses[cp.colliding], nullptr, -1, B, pp.delta,
+                       nullptr, &rigidSamples);
+    EvaluateSamplesOnFrame(rigidSamples, B, pp, cp.params.maxAlignmentNormals, nullptr, 0,
+                           &scratch, records);
     for (size_t k = first; k < records->size(); ++k) {
       (*records)[k].colliding = RigidActor(cp.colliding);
       (*records)[k].collider = RigidActor(cp.collider);

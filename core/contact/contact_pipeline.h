@@ -113,7 +113,7 @@ class ContactPipeline {
   /// Π = Σ over eligible ordered pairs of the penalty energy at the given poses, plus Δt_i Σ w R
   /// when `dissipation` is not null (it then needs `stageStart`, x⁰ and x_n per actor). With
   /// `stageStart`, the alignment rejection of the penalty is decided at x_n (see
-  /// EvaluateRigidPairPenalty); without, at the given poses. order 0: value; 1: also adds the penalty gradient into
+  /// core/contact/kind_contact.h); without, at the given poses. order 0: value; 1: also adds the penalty gradient into
   /// *gradient and the dissipative residual into *dissipationResidual (may alias *gradient;
   /// dofs at dofOffset[i], −1 for static actors); 2: also appends Jacobian entries: each rigid
   /// pair's penalty Hessian plus, in ExplicitNormals mode, its dissipation Hessian, projected per
@@ -212,8 +212,8 @@ class ContactPipeline {
   std::vector<std::pair<int, int>> overlaps_;
   OverlapCache overlapCache_;  // the broad phase's candidates, kept while the boxes stay inside
   std::vector<ContactPair> pairs_;
-  std::vector<RigidPairPenalty> results_;
-  std::vector<RigidPairDissipation> dissipationResults_;
+  std::vector<PairStencils> results_;               // per rigid pair
+  std::vector<std::vector<PairSample>> rigidSamples_;  // per rigid pair (capacity kept)
   std::vector<double> pairLimits_;
   const std::vector<SoftBodyModel>* softModels_ = nullptr;
   std::vector<int> rigidActor_, softActor_;

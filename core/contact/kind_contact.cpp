@@ -226,8 +226,8 @@ void AddDissipation(const PairSample& s, int k, const FrameSide& B, const Pullba
   double lambdaHat = 0.0;
   Eigen::Vector3d N;
   if (explicitNormals) {
-    const SdfSample f0 = B.field->Evaluate(p.Yn);
-    if (f0.value >= delta) return;
+    SdfSample f0;
+    if (!B.field->EvaluateBelow(p.Yn, delta, &f0)) return;
     const double al = f0.gradient.dot(p.NAn);
     if (s.hasNormal && al > m + kAlignmentRoundoff) return;
     lambdaHat = AlignmentFactor(al, ds) * NormalPenaltyDensity(f0.value, ds.penalty).lambdaN;
@@ -300,6 +300,10 @@ void EvaluateSamplesOnFrame(const std::vector<PairSample>& samples, const FrameS
     noNormal.fadeFriction = false;
     noNormal.frictionWithColliderNormal = true;
   }
+  const bool explicitNormals =
+      withDissipation && dissipation->mode == DissipationMode::ExplicitNormals;
+  const bool reconstructed =
+      withDissipation && dissipation->mode == DissipationMode::ReconstructedLoad;
   ContactStencil* st = nullptr;
   RigidSums sums;
   auto close = [&]() {  // kept when it has a contribution, else its slot is taken again
@@ -318,10 +322,16 @@ void EvaluateSamplesOnFrame(const std::vector<PairSample>& samples, const FrameS
       sums.Begin(s, B);
     }
     const Pullback p = PullbackOf(s, B);
-    const SdfSample field = B.field->Evaluate(p.Y);
+    // The field's derivatives only where a term can use them: φ < δ for the penalty and the
+    // current load; the reconstructed load φ + G·(Y_n − Y) >= φ − L|Y_n − Y| needs φ below
+    // δ + L|Y_n − Y|. Explicit normals read the field at Y_n by themselves.
+    double bound = penalty.delta;
+    if (reconstructed) bound += B.field->lipschitz * (p.Yn - p.Y).norm();
+    SdfSample field;
+    const bool below = B.field->EvaluateBelow(p.Y, bound, &field);
     out->minPhi = std::min(out->minPhi, field.value);
-    AddPenalty(s, B, p, field, penalty, maxAlignment, order, out, st, &sums, records);
-    if (withDissipation)
+    if (below) AddPenalty(s, B, p, field, penalty, maxAlignment, order, out, st, &sums, records);
+    if (withDissipation && (below || explicitNormals))
       AddDissipation(s, s.key, B, p, field, s.hasNormal ? *dissipation : noNormal, order, out,
                      st, &sums);
   }
@@ -330,19 +340,25 @@ void EvaluateSamplesOnFrame(const std::vector<PairSample>& samples, const FrameS
 
 /// Whether a ball of colliding samples (radius r [m], centred at c now and at cLast at x_n, world)
 /// may hold a sample that contributes on B's field: its penalty now, or with dissipation the load
-/// geometry of the mode (x_n for explicit normals; the reconstructed load's bound). B's field has
-/// Lipschitz constant L, so every sample of the ball has φ >= φ(centre) − L r.
+/// geometry of the mode. B's field has Lipschitz constant L, so every sample of the ball has
+/// φ >= φ(centre) − L r. Explicit normals read the load at x_n; so does the reconstructed load on
+/// an affine field (a plane), where φ + G·(Y_n − Y) is Φ(Y_n) exactly; otherwise the reconstructed
+/// load is at least φ − L|Y_n − Y|, and a sample's |Y_n − Y| exceeds its ball centre's by at most
+/// `spread` r (a rigid body: ‖R_n,BᵀR_n,A − R_BᵀR_A‖_F).
 class BallCulling {
  public:
   BallCulling(const FrameSide& B, double delta, const DissipationSetup* dissipation,
-              bool hasStart)
+              bool hasStart, double spread)
       : field_(*B.field),
         B_(B),
         RBt_(B.pose.R.transpose()),
         RnBt_(B.last.R.transpose()),
-        delta_(delta) {
+        delta_(delta),
+        spread_(spread) {
     const bool diss = dissipation && dissipation->coefficients.Any() && hasStart && B.hasStart;
     mode_ = diss ? dissipation->mode : DissipationMode::ImplicitLoad;
+    loadAtLast_ = mode_ == DissipationMode::ExplicitNormals ||
+                  (mode_ == DissipationMode::ReconstructedLoad && field_.type == ColliderType::Plane);
   }
   bool operator()(const Eigen::Vector3d& c, const Eigen::Vector3d& cLast, double r) const {
     const double L = field_.lipschitz;
@@ -351,16 +367,17 @@ class BallCulling {
     if (phiNow < delta_) return true;
     if (mode_ == DissipationMode::ImplicitLoad) return false;
     const Eigen::Vector3d Yn = RnBt_ * (cLast - B_.last.p);
-    if (mode_ == DissipationMode::ExplicitNormals) return field_.Value(Yn) - L * r < delta_;
-    return phiNow - L * ((Yn - Y).norm() + 2.0 * r) < delta_;  // the reconstructed load's bound
+    if (loadAtLast_) return field_.Value(Yn) - L * r < delta_;
+    return phiNow - L * ((Yn - Y).norm() + spread_ * r) < delta_;
   }
 
  private:
   const RigidCollider& field_;
   const FrameSide& B_;
   Eigen::Matrix3d RBt_, RnBt_;
-  double delta_;
+  double delta_, spread_;
   DissipationMode mode_;
+  bool loadAtLast_ = false;
 };
 
 void GatherRigidSamples(const RigidBodyModel& A, const RigidPose& a, const RigidStageStart* start,
@@ -368,15 +385,17 @@ void GatherRigidSamples(const RigidBodyModel& A, const RigidPose& a, const Rigid
                         const DissipationSetup* dissipation, std::vector<PairSample>* out) {
   out->clear();
   const RigidPose& an = start ? start->last : a;
-  const BallCulling near(B, delta, dissipation, start != nullptr);
+  const double spread =
+      (B.last.R.transpose() * an.R - B.pose.R.transpose() * a.R).norm();
+  const BallCulling near(B, delta, dissipation, start != nullptr, spread);
   auto keep = [&](const Eigen::Vector3d& c, double r) {
     return near(a.p + a.R * c, an.p + an.R * c, r);
   };
   auto visit = [&](int begin, int end) {
     for (int q = begin; q < end; ++q) {
       const SurfaceSample& ss = A.samples[q];
-      PairSample s;
       const Eigen::Vector3d r = a.R * ss.X;
+      PairSample& s = out->emplace_back();
       s.y = a.p + r;
       s.yLast = an.p + an.R * ss.X;
       s.y0 = start ? Eigen::Vector3d(start->p + start->R * ss.X) : s.y;
@@ -389,7 +408,6 @@ void GatherRigidSamples(const RigidBodyModel& A, const RigidPose& a, const Rigid
       s.blocks = 2;
       s.offs[0] = aOffset;
       s.offs[1] = aOffset < 0 ? -1 : aOffset + 3;
-      out->push_back(s);
     }
   };
   ForEachSampleRange(A, keep, visit);
@@ -400,7 +418,9 @@ void GatherKindSamples(const ActorKind& A, const Eigen::VectorXd& q, const Eigen
                        const FrameSide& B, double delta, const DissipationSetup* dissipation,
                        std::vector<PairSample>* out) {
   out->clear();
-  const BallCulling near(B, delta, dissipation, q0 != nullptr);
+  // A kind's ball may turn by anything between x_n and now: |ΔY| of a sample within 2 r of its
+  // centre's.
+  const BallCulling near(B, delta, dissipation, q0 != nullptr, 2.0);
   A.ForEachSampleNear(q, qLast ? *qLast : q, near, [&](int begin, int end) {
     GatherKindSampleRange(A, q, qLast, q0, stageDof, begin, end, out);
   });

@@ -14,6 +14,15 @@
 // differentiation of the same residual (kind_contact.cpp). Samples without a colliding normal
 // (a kind's, as a shell's or a particle's) have no alignment rejection and no fading, and split
 // friction on the collider's normal (spec: "Normal/Tangential Split").
+//
+// Alignment rejection (spec: "Normal/Tangential Split"): a sample whose alignment
+// s = G_B·N_A (N_A the colliding normal in B's coordinates, raw vectors) exceeds the collider's m
+// is rejected entirely; +∞ disables the test. The test is evaluated at the last actual
+// configuration x_n (when the frame has a stage start), so that within one stage the set of
+// rejected samples is fixed and the stage energy stays smooth: evaluated at the current iterate,
+// the samples of a face perpendicular to the collider (s = 0 = m by default, e.g. the side faces
+// of a box pressed into a plane deeper than their first sample row) would be rejected and
+// accepted at random from one Newton iterate to the next, and the stage would not converge.
 #pragma once
 
 #include <vector>

@@ -1,4 +1,7 @@
-// Normal penalty between a colliding rigid actor's surface samples and a rigid collider's field.
+// The rigid chain of the contact assembler (core/contact/kind_contact.h): a function of the
+// pullback of a rigid body's sample into a rigid collider's frame, chained through both bodies'
+// rotation retractions, per sample and as regrouped moments; the sample records; and the step
+// limit of rigid pairs.
 #pragma once
 
 #include <vector>
@@ -9,8 +12,7 @@
 
 namespace superdex {
 
-/// Sum over the samples of A of w_q W(φ_B(x_A,q)), the discrete Π_{A,B} (spec: "Surface
-/// Quadrature"), with its gradient and Hessian on the stencil
+/// The stencil of one rigid body A's sample on a rigid collider B:
 ///   [δp_A, δθ_A]            (6 dofs, B static) or
 ///   [δp_A, δθ_A, δp_B, δθ_B] (12 dofs, B dynamic),
 /// with the retractions p ← p + δp, R ← exp([δθ]×) R.
@@ -22,13 +24,6 @@ namespace superdex {
 /// with S the curvature of the retractions contracted with n:
 ///   S_θAθA = ½(n rᵀ + r nᵀ) − (n·r) I,   S_θBθB = ½(n dᵀ + d nᵀ) − (n·d) I,
 ///   S_θBpA = [n]×,  S_θBpB = −[n]×,  S_θBθA = (n·r) I − r nᵀ   (and their transposes).
-struct RigidPairPenalty {
-  double value = 0.0;      ///< Σ w_q W [J]
-  SmallStencilVector gradient;  ///< [N, N·m]
-  SmallStencilMatrix hessian;   ///< unprojected
-  int activeSamples = 0;   ///< samples with φ < δ
-  double minPhi = INFINITY;///< smallest φ among the samples tested [m]
-};
 
 /// One active contact sample (φ < δ, not rejected), in the world frame, for reporting.
 struct ContactSampleRecord {
@@ -46,24 +41,6 @@ struct ContactSampleRecord {
 /// Round-off allowance of the alignment test: a sample is rejected when s > m + this. A face
 /// exactly perpendicular to the collider's surface has s = 0 up to round-off.
 constexpr double kAlignmentRoundoff = 1e-9;
-
-/// order: 0 value only, 1 with gradient, 2 with gradient and Hessian.
-///
-/// Alignment rejection (spec: "Normal/Tangential Split"): a sample whose alignment
-/// s = G_B·N_A (N_A = R_Bᵀ R_A n_A, raw vectors) exceeds `maxAlignment` (the collider's m) is
-/// rejected entirely; +∞ disables the test. The test is evaluated at the reference poses
-/// (aRef, bRef), normally the stage-start configuration x_n, so that within one stage the set of
-/// rejected samples is fixed and the stage energy stays smooth: evaluated at the current iterate,
-/// the samples of a face perpendicular to the collider (s = 0 = m by default, e.g. the side faces
-/// of a box pressed into a plane deeper than their first sample row) would be rejected and
-/// accepted at random from one Newton iterate to the next, and the stage would not converge.
-/// Null references use the current poses.
-void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& poseA,
-                              const RigidBodyModel& B, const RigidPose& poseB, bool bDynamic,
-                              const PenaltyParams& params, int order, RigidPairPenalty* out,
-                              double maxAlignment = INFINITY, const RigidPose* aRef = nullptr,
-                              const RigidPose* bRef = nullptr,
-                              std::vector<ContactSampleRecord>* records = nullptr);
 
 /// Step limit of Newton's global phase (SceneStageProblem::LimitStep): the largest fraction
 /// α ∈ (0, 1] of the move (a0 → a1, b0 → b1), interpolated linearly per sample, that keeps every

@@ -1,5 +1,6 @@
 // Stage-discrete contact dissipation between a colliding rigid actor's surface samples and a rigid
-// collider (spec: "Friction and Damping", "Stage-Discrete Dissipation").
+// collider (spec: "Friction and Damping", "Stage-Discrete Dissipation"), as the contact assembler
+// (core/contact/kind_contact.h) evaluates it, and the regrouped sums of its residual Jacobian.
 //
 // Per sample (X, n_A in A's body frame, quadrature weight w [m²]):
 //   Y  = R_Bᵀ (p_A + R_A X − p_B)            current pullback X_B,i(x_A,i)             [m]
@@ -36,14 +37,6 @@
 
 namespace superdex {
 
-struct RigidPairDissipation {
-  double value = 0.0;        ///< Δt_i Σ w R [J] (the potential in ExplicitNormals mode)
-  SmallStencilVector residual;  ///< [N, N·m]: w J_Yᵀ ∂R/∂V summed
-  SmallStencilMatrix jacobian;  ///< ExplicitNormals: Hessian of `value` (symmetric, unprojected);
-                                ///< otherwise ∂residual/∂q (not symmetric)
-  int activeSamples = 0;     ///< samples with a positive dissipative load
-  double maxCoulombRatio = 0.0;  ///< max over samples of ‖T_C‖ / (μ λ̂_n) (<= 1 by construction)
-};
 
 /// Σ over a pair's samples of w ∂(J_Yᵀ f)/∂δ — the stencil rows [df; [r]× df − [f]× dr; −df;
 /// [f]× dd − [d]× df] of a sample force f (world) with differential df (δ = [δp_A, δθ_A, δp_B,
@@ -74,11 +67,5 @@ class PairForceJacobianSums {
   bool empty_ = true;
 };
 
-/// order: 0 value only, 1 with the residual, 2 with the residual and its Jacobian.
-void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
-                                  const RigidStageStart& a0, const RigidBodyModel& B,
-                                  const RigidPose& b, const RigidStageStart& b0, bool bDynamic,
-                                  const DissipationSetup& setup, int order,
-                                  RigidPairDissipation* out);
 
 }  // namespace superdex

@@ -4,8 +4,13 @@
 #include "core/contact/rigid_dissipation.h"
 #include "core/model/rigid_math.h"
 #include "derivative_check.h"
+#include "rigid_pair_eval.h"
 
 using namespace superdex;
+using test::EvaluateRigidPairDissipation;
+using test::EvaluateRigidPairPenalty;
+using test::RigidPairDissipation;
+using test::RigidPairPenalty;
 
 namespace {
 

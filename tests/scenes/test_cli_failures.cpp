@@ -35,13 +35,15 @@ struct Result {
   std::string out, err;
 };
 
-// Runs `superdex ARGS` under a 60 s timeout (a hang fails as code 124).
+// Runs `superdex ARGS` under a 60 s timeout (a hang fails as code 124). Its output goes to files
+// of this test process's own (ctest runs the test cases as parallel processes).
 Result Cli(const std::string& args) {
-  const std::string cmd = "timeout 60 " + std::string(SUPERDEX_CLI) + " " + args + " > " + kDir +
-                          "out.txt 2> " + kDir + "err.txt";
+  const std::string own = kDir + std::to_string(getpid()) + "_";
+  const std::string cmd = "timeout 60 " + std::string(SUPERDEX_CLI) + " " + args + " > " + own +
+                          "out.txt 2> " + own + "err.txt";
   const int status = std::system(cmd.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, Read(kDir + "out.txt"),
-          Read(kDir + "err.txt")};
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, Read(own + "out.txt"),
+          Read(own + "err.txt")};
 }
 
 std::string Observed(const std::string& name, const std::string& frame) {
