@@ -8,6 +8,7 @@
 // (NonlinearSolverParams) and core/model's can include; it knows nothing of either.
 #pragma once
 
+#include <Eigen/Core>
 #include <cmath>
 #include <optional>
 #include <sstream>
@@ -20,10 +21,16 @@ namespace superdex {
 
 // ---------------------------------------------------------------------------------------------
 // Enum names. An enum E has a name table when `NamesOf(E())` is declared next to it (found by
-// argument-dependent lookup), e.g.
-//   constexpr EnumName<Color> kColors[] = {{Color::Red, "Red"}, {Color::Blue, "Blue", "doc"}};
-//   inline EnumNames<Color> NamesOf(Color) { return kColors; }
-// Then ToString, Parse, AllNames and OneOfText below work for it.
+// argument-dependent lookup):
+//   EnumNames<Color> NamesOf(Color);
+// and defined once, in a .cpp file, over its rows (value, name, optional doc):
+//   SUPERDEX_ENUM_NAMES(Color, {Color::Red, "Red"}, {Color::Blue, "Blue", "doc"})
+// Then ToString, Parse, ParseName, AllNames and OneOfText below work for it.
+#define SUPERDEX_ENUM_NAMES(E, ...)                              \
+  EnumNames<E> NamesOf(E) {                                      \
+    static constexpr EnumName<E> kNameTable[] = {__VA_ARGS__};   \
+    return kNameTable;                                           \
+  }
 
 template <typename E>
 struct EnumName {
@@ -63,6 +70,14 @@ bool Parse(const std::string& name, E* value) {
       return true;
     }
   return false;
+}
+
+/// Parses a name as every reader does (scene files, Python, the command line): the exact name,
+/// unless the enum declares its own ParseName overload next to it (found by argument-dependent
+/// lookup; e.g. one that also accepts a capitalized name).
+template <typename E, typename = IfNamed<E>>
+bool ParseName(const std::string& name, E* value) {
+  return Parse(name, value);
 }
 
 /// Whether the value is one of the table's.
@@ -161,9 +176,14 @@ constexpr Rule AtLeast(int lo, long long fileMax) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Fields. A table is a std::tuple of Field rows (MakeField), one per parameter, in the order of
-// validation. A row of a nested struct (e.g. NonlinearSolverParams::linear) reaches its member
-// through `outer` (LiftFields).
+// Fields. A table is a std::tuple of rows, one per parameter, in the order of validation:
+//   - Field (MakeField): a value: a number (double, int), a flag, an enum's name, an optional
+//     enum, or a fixed-size vector of numbers (Eigen::Matrix<double, N, 1>; the rule holds for
+//     every component). A row of a nested struct spliced into the outer table (e.g.
+//     NonlinearSolverParams::linear) reaches its member through `outer` (LiftFields).
+//   - NestedField (MakeNested): a struct member with a table of its own (e.g.
+//     SceneSettings::solver): an object in scene files, a property holding the struct in Python,
+//     its own section in the docs, validated by the struct's Validate.
 
 template <typename Class, typename T, typename Inner = Class>
 struct Field {
@@ -197,6 +217,36 @@ constexpr Field<Class, T> MakeField(const char* name, T Class::*member, const ch
                                     const char* doc) {
   return {name, nullptr, member, unit, rule, doc};
 }
+
+/// A struct member with its own table (`table`, its Validate), named `typeName` in the docs.
+template <typename Class, typename Inner, typename Table>
+struct NestedField {
+  using ClassType = Class;
+  using ValueType = Inner;
+  const char* name;      ///< snake_case: the JSON key, the Python property, the message's field
+  Inner Class::*member;
+  const char* typeName;  ///< the struct's name, e.g. "NonlinearSolverParams"
+  const Table* table;
+  const char* doc;
+
+  constexpr Inner& Of(Class& c) const { return c.*member; }
+  constexpr const Inner& Of(const Class& c) const { return c.*member; }
+};
+
+template <typename Class, typename Inner, typename Table>
+constexpr NestedField<Class, Inner, Table> MakeNested(const char* name, Inner Class::*member,
+                                                      const char* typeName, const Table& table,
+                                                      const char* doc) {
+  return {name, member, typeName, &table, doc};
+}
+
+template <typename F>
+struct IsNestedField : std::false_type {};
+template <typename Class, typename Inner, typename Table>
+struct IsNestedField<NestedField<Class, Inner, Table>> : std::true_type {};
+/// Whether the row F (a row's decayed type) is a NestedField.
+template <typename F>
+constexpr bool kIsNested = IsNestedField<std::decay_t<F>>::value;
 
 /// A nested struct's table as rows of the outer struct.
 template <typename Class, typename Inner, typename... T>
@@ -240,6 +290,14 @@ template <typename T>
 struct IsOptional<std::optional<T>> : std::true_type {};
 }  // namespace field_table_detail
 
+/// Whether T is a fixed-size column of doubles (a vector row: gravity [m/s²]).
+template <typename T>
+struct IsFixedVector : std::false_type {};
+template <int N>
+struct IsFixedVector<Eigen::Matrix<double, N, 1>> : std::true_type {};
+template <typename T>
+constexpr bool kIsFixedVector = IsFixedVector<T>::value;
+
 /// Values as the tables print them: numbers as %g does, flags true/false, enums by name,
 /// an empty optional as "none".
 template <typename T>
@@ -250,6 +308,10 @@ std::string ValueText(const T& v) {
     return ToString(v);
   } else if constexpr (field_table_detail::IsOptional<T>::value) {
     return v ? ValueText(*v) : std::string("none");
+  } else if constexpr (kIsFixedVector<T>) {
+    std::string t = "[";
+    for (int i = 0; i < v.size(); ++i) t += (i ? ", " : "") + ValueText(v[i]);
+    return t + "]";
   } else {
     std::ostringstream s;
     s << v;
@@ -272,6 +334,7 @@ std::string TypeText() {
   else if constexpr (std::is_enum_v<T>) return "name: " + AllNames(T());
   else if constexpr (field_table_detail::IsOptional<T>::value)
     return TypeText<typename T::value_type>() + ", or none";
+  else if constexpr (kIsFixedVector<T>) return std::to_string(T::RowsAtCompileTime) + " numbers";
   else if constexpr (std::is_integral_v<T>) return "integer";
   else return "number";
 }
@@ -282,20 +345,30 @@ std::string FieldsMarkdown(const Table& table) {
   std::string md = "| name | type | unit | default | rule | description |\n"
                    "|---|---|---|---|---|---|\n";
   ForEachField(table, [&](const auto& f) {
-    using T = typename std::decay_t<decltype(f)>::ValueType;
-    std::string rule = f.rule.Text();
-    if (f.rule.fileMax > 0) rule += " (scene files: <= " + std::to_string(f.rule.fileMax) + ")";
-    md += std::string("| `") + f.name + "` | " + TypeText<T>() + " | " + f.unit + " | " +
-          ValueText(f.Default()) + " | " + rule + " | " + f.doc + " |\n";
+    if constexpr (kIsNested<decltype(f)>) {
+      md += std::string("| `") + f.name + "` | " + f.typeName + " | | its table | | " + f.doc +
+            " |\n";
+    } else {
+      using T = typename std::decay_t<decltype(f)>::ValueType;
+      std::string rule = f.rule.Text();
+      if (f.rule.fileMax > 0) rule += " (scene files: <= " + std::to_string(f.rule.fileMax) + ")";
+      md += std::string("| `") + f.name + "` | " + TypeText<T>() + " | " + f.unit + " | " +
+            ValueText(f.Default()) + " | " + rule + " | " + f.doc + " |\n";
+    }
   });
   return md;
 }
 
-/// "" when the row's value is valid, else "<prefix><name>: must be <rule>, got <value>".
+/// "" when the row's value is valid, else "<prefix><name>: must be <rule>, got <value>"; a nested
+/// row: "<prefix><name>." followed by its struct's Validate message.
 template <typename F>
 std::string CheckField(const F& f, const typename F::ClassType& c, const std::string& prefix) {
   using T = typename F::ValueType;
   const T& v = f.Of(c);
+  if constexpr (kIsNested<F>) {
+    const std::string m = Validate(v);
+    return m.empty() ? m : prefix + f.name + "." + m;
+  }
   auto fail = [&](const std::string& rule, const auto& got) {
     std::ostringstream s;
     s << prefix << f.name << ": must be " << rule << ", got " << got;
@@ -307,6 +380,9 @@ std::string CheckField(const F& f, const typename F::ClassType& c, const std::st
     if (v && !IsNamed(*v)) return fail(OneOfText(typename T::value_type()), static_cast<int>(*v));
   } else if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>) {
     if (!f.rule.Holds(v)) return fail(f.rule.Text(), v);
+  } else if constexpr (kIsFixedVector<T>) {
+    for (int i = 0; i < v.size(); ++i)
+      if (!f.rule.Holds(v[i])) return fail(f.rule.Text(), ValueText(v));
   }
   return std::string();
 }

@@ -520,14 +520,10 @@ Eigen::VectorXd UnsymmetricSolver::SolveTransposed(const Eigen::VectorXd& b) {
   return Eigen::VectorXd::Constant(b.size(), std::numeric_limits<double>::quiet_NaN());
 }
 
-namespace {
-constexpr EnumName<LinearSolverKind> kLinearSolverKinds[] = {
+SUPERDEX_ENUM_NAMES(LinearSolverKind,
     {LinearSolverKind::Auto, "auto", "iterative from 3000 unknowns up, direct below"},
     {LinearSolverKind::Direct, "direct", "sparse Cholesky / LU on every system"},
-    {LinearSolverKind::Iterative, "iterative", "block-Jacobi CG / BiCGSTAB, direct fallback"}};
-}  // namespace
-
-EnumNames<LinearSolverKind> NamesOf(LinearSolverKind) { return kLinearSolverKinds; }
+    {LinearSolverKind::Iterative, "iterative", "block-Jacobi CG / BiCGSTAB, direct fallback"})
 
 std::string Validate(const LinearSolverSettings& s) {
   return ValidateFields(kLinearSolverFields, s);

@@ -104,18 +104,14 @@ std::string Format(const ConvergenceTest& test) {
   return s;
 }
 
-namespace {
-constexpr EnumName<LineSearchKind> kLineSearches[] = {
+SUPERDEX_ENUM_NAMES(LineSearchKind,
     {LineSearchKind::Armijo, "Armijo", "backtracking until the Armijo condition holds"},
-    {LineSearchKind::None, "None", "full Newton steps"}};
-constexpr EnumName<StageStatus> kStatuses[] = {
+    {LineSearchKind::None, "None", "full Newton steps"})
+
+SUPERDEX_ENUM_NAMES(StageStatus,
     {StageStatus::Converged, "Converged", "a convergence test passed"},
     {StageStatus::Stopped, "Stopped", "the iteration cap was reached first"},
-    {StageStatus::Diverged, "Diverged", "non-finite values, or no step the line search accepts"}};
-}  // namespace
-
-EnumNames<LineSearchKind> NamesOf(LineSearchKind) { return kLineSearches; }
-EnumNames<StageStatus> NamesOf(StageStatus) { return kStatuses; }
+    {StageStatus::Diverged, "Diverged", "non-finite values, or no step the line search accepts"})
 
 std::string Validate(const NonlinearSolverParams& p) {
   return ValidateFields(kNonlinearSolverFields, p);

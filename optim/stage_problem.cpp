@@ -1,14 +1,11 @@
 #include "optim/stage_problem.h"
 
 namespace superdex {
-namespace {
-constexpr EnumName<PsdProjection> kProjections[] = {
+
+SUPERDEX_ENUM_NAMES(PsdProjection,
     {PsdProjection::None, "None", "exact Hessian (may be indefinite)"},
     {PsdProjection::Clamp, "Clamp", "negative eigenvalues set to zero"},
-    {PsdProjection::Abs, "Abs", "negative eigenvalues replaced by their absolute value"}};
-}  // namespace
-
-EnumNames<PsdProjection> NamesOf(PsdProjection) { return kProjections; }
+    {PsdProjection::Abs, "Abs", "negative eigenvalues replaced by their absolute value"})
 
 // A problem without a residual interface reports an empty residual; the residual solvers refuse it.
 void StageProblem::Residual(const Eigen::VectorXd&, Eigen::VectorXd* r) { r->resize(0); }

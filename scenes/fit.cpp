@@ -470,15 +470,11 @@ bool FitLevenbergMarquardt(const Scene& base, const FitSetup& setup, const FitOp
 
 }  // namespace
 
-namespace {
-constexpr EnumName<FitMethod> kFitMethods[] = {
+SUPERDEX_ENUM_NAMES(FitMethod,
     {FitMethod::LevenbergMarquardt, "lm",
      "Levenberg-Marquardt, Jacobian from forward sensitivities, standard errors (for a few "
      "parameters)"},
-    {FitMethod::Lbfgs, "lbfgs", "L-BFGS with adjoint gradients (for many parameters)"}};
-}  // namespace
-
-EnumNames<FitMethod> NamesOf(FitMethod) { return kFitMethods; }
+    {FitMethod::Lbfgs, "lbfgs", "L-BFGS with adjoint gradients (for many parameters)"})
 
 bool ComputeTrajectoryGradient(const SceneFile& file, const ObservedTrajectory& observed,
                                const FitOptions& options, TrajectoryGradient* result,

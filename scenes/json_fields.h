@@ -156,22 +156,27 @@ E Enum(const json& obj, const std::string& path, const char* key, E def) {
   if (!obj.contains(key)) return def;
   const std::string s = String(obj, path, key);
   E e;
-  if (!Parse(s, &e)) Throw(Join(path, key), "unknown value \"" + s + "\" (expected one of: " + AllNames(def) + ")");
+  if (!ParseName(s, &e))
+    Throw(Join(path, key), "unknown value \"" + s + "\" (expected one of: " + AllNames(def) + ")");
   return e;
 }
 
 // Reads the fields of a parameter table (optim/field_table.h) from the object j: the keys are the
-// rows' names, an absent key keeps the value in *out, any other key is refused. The rules are
-// checked where the struct is validated (Validate, Scene::Add...Actor), except integers' range.
+// rows' names (a nested row's key holds an object read by its own table), an absent key keeps the
+// value in *out, any other key is refused unless it is one of `alsoKnown` (read by the caller).
+// The rules are checked where the struct is validated (Validate, Scene::Add...Actor), except
+// integers' range.
 template <typename Table, typename Class>
-void ReadFields(const json& j, const std::string& path, const Table& table, Class* out) {
-  std::set<std::string> known;
-  ForEachField(table, [&](const auto& f) { known.insert(f.name); });
-  CheckObject(j, path, known);
+void ReadFields(const json& j, const std::string& path, const Table& table, Class* out,
+                std::set<std::string> alsoKnown = {}) {
+  ForEachField(table, [&](const auto& f) { alsoKnown.insert(f.name); });
+  CheckObject(j, path, alsoKnown);
   ForEachField(table, [&](const auto& f) {
     using T = typename std::decay_t<decltype(f)>::ValueType;
     T& v = f.Of(*out);
-    if constexpr (std::is_same_v<T, bool>) {
+    if constexpr (kIsNested<decltype(f)>) {
+      if (j.contains(f.name)) ReadFields(j.at(f.name), Join(path, f.name), *f.table, &v);
+    } else if constexpr (std::is_same_v<T, bool>) {
       v = Bool(j, path, f.name, v);
     } else if constexpr (std::is_enum_v<T>) {
       v = Enum(j, path, f.name, v);
@@ -183,6 +188,8 @@ void ReadFields(const json& j, const std::string& path, const Table& table, Clas
       v = Integer(j, path, f.name, v, lo, hi);
     } else if constexpr (std::is_same_v<T, double>) {
       v = Number(j, path, f.name, v);
+    } else if constexpr (kIsFixedVector<T>) {
+      v = Vector<T::RowsAtCompileTime>(j, path, f.name, v);
     } else {
       static_assert(sizeof(T) == 0, "no scene-file reader for this field type");
     }

@@ -1,5 +1,6 @@
 #include "scenes/parameter_docs.h"
 
+#include "core/dynamics/scene_settings.h"
 #include "core/model/collider_params.h"
 #include "core/model/contact_params.h"
 #include "core/model/eval_params.h"
@@ -49,6 +50,11 @@ void PrintParameterMarkdown(std::ostream& out) {
           "Python: `superdex.PointCloudColliderParams` (the PointCloud collider is not "
           "implemented yet). Source: `core/model/collider_params.h`.",
           kPointCloudColliderFields);
+  Section(out, "SceneSettings",
+          "Scene file: `settings` (which also holds the scene file's own `dt`, `duration` and "
+          "`penetration_bound`). Python: `superdex.SceneSettings` (`Scene(settings)`). "
+          "Source: `core/dynamics/scene_settings.h`.",
+          kSceneSettingsFields);
   Section(out, "ExperimentalEvalParams",
           "Scene file: `settings.experimental_eval_params`. Python: "
           "`superdex.ExperimentalEvalParams` (`SceneSettings.experimental_eval_params`). "
@@ -62,6 +68,8 @@ void PrintParameterMarkdown(std::ostream& out) {
           "`optim/linear_solver.h`.",
           kNonlinearSolverFields);
   out << "\n## Names\n";
+  Names<IntegrationMethod>(out, "integrator");
+  Names<StageSolverKind>(out, "stage_solver");
   Names<GridSdfResolutionMode>(out, "resolution_mode");
   Names<LineSearchKind>(out, "line_search");
   Names<PsdProjection>(out, "psd_projection");

@@ -307,31 +307,14 @@ bool LoadSceneText(const std::string& text, const std::string& baseDir, SceneFil
 
     SceneSettings settings;
     if (j.contains("settings")) {
+      // The scene's settings, and the scene file's own: dt, duration, penetration_bound.
       const json& s = j.at("settings");
-      CheckObject(s, "settings",
-                  {"dt", "duration", "integrator", "gravity", "solver", "stage_solver",
-                   "warm_start", "closed_form_free_stages", "experimental_eval_params",
-                   "penetration_bound"});
+      ReadFields(s, "settings", kSceneSettingsFields, &settings,
+                 {"dt", "duration", "penetration_bound"});
       if (s.contains("penetration_bound"))
         out->penetrationBound = Length(s, "settings", "penetration_bound");
       out->dt = Positive(s, "settings", "dt", out->dt);
       out->duration = Positive(s, "settings", "duration", out->duration);
-      settings.integrator = Enum(s, "settings", "integrator", settings.integrator);
-      settings.gravity = Vector<3>(s, "settings", "gravity", settings.gravity);
-      settings.warmStart = Bool(s, "settings", "warm_start", settings.warmStart);
-      settings.closedFormFreeStages = Bool(s, "settings", "closed_form_free_stages",
-                                           settings.closedFormFreeStages);
-      if (s.contains("solver"))
-        ReadFields(s.at("solver"), "settings.solver", kNonlinearSolverFields, &settings.solver);
-      if (s.contains("stage_solver")) {
-        const std::string name = String(s, "settings", "stage_solver", std::string("newton"));
-        if (!ParseStageSolver(name, &settings.stageSolver))
-          Throw("settings.stage_solver", "unknown value \"" + name + "\" (expected one of: " +
-                                             AllNames(settings.stageSolver) + ")");
-      }
-      if (s.contains("experimental_eval_params"))
-        ReadFields(s.at("experimental_eval_params"), "settings.experimental_eval_params",
-                   kExperimentalEvalFields, &settings.eval);
     }
     if (std::string m = Validate(settings, "settings."); !m.empty()) throw LoadError{m};
     out->scene = std::make_unique<Scene>(settings);

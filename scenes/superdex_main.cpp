@@ -112,11 +112,10 @@ bool LoadFitInput(const std::string& scenePath, const std::string& observedPath,
 // Parses an enum option's value and applies it; false (message printed) on a bad value or a
 // refusal.
 template <typename E, typename Apply>
-bool SetFromOption(const char* option, const std::string& value,
-                   bool (*parse)(const std::string&, E*), Apply apply) {
+bool SetFromOption(const char* option, const std::string& value, Apply apply) {
   E v;
   superdex::Error error;
-  if (!parse(value, &v)) {
+  if (!superdex::ParseName(value, &v)) {
     std::cerr << "error: " << option << ": unknown value \"" << value
               << "\" (expected one of: " << superdex::AllNames(v) << ")\n";
     return false;
@@ -278,14 +277,18 @@ CLI::App* AddRunCommand(CLI::App* app, RunArgs* a) {
   run->add_option("scene", a->scene, "Scene file (JSON)")->required();
   run->add_option("--dt", a->dt, "Time step [s] (overrides settings.dt)");
   run->add_option("--duration", a->duration, "Simulated time [s] (overrides settings.duration)");
+  using superdex::SceneSettings;
+  const auto settingsKey = [](auto member) {  // "settings.<the table's name of member>"
+    return std::string("settings.") + superdex::FieldName(superdex::kSceneSettingsFields, member);
+  };
   run->add_option("--integrator", a->integrator,
-                  "IntegrationMethod (overrides settings.integrator): " +
-                      superdex::AllNames(superdex::IntegrationMethod()));
+                  "IntegrationMethod (overrides " + settingsKey(&SceneSettings::integrator) +
+                      "): " + superdex::AllNames(superdex::IntegrationMethod()));
   run->add_option("--out", a->out, "Trajectory file (JSON Lines); overrides output.path");
   run->add_option("--vtk", a->vtk, "Directory for VTK frames (surfaces with contact tractions); "
                                    "overrides output.vtk");
   run->add_option("--solver", a->solver,
-                  "Stage solver (overrides settings.stage_solver): " +
+                  "Stage solver (overrides " + settingsKey(&SceneSettings::stageSolver) + "): " +
                       superdex::AllNames(superdex::StageSolverKind()) +
                       "; ipopt (potential stages only) and ceres are dense checks for small "
                       "scenes");
@@ -313,11 +316,11 @@ int RunCommand(const RunArgs& a, const CLI::App& run) {
   options.view = a.view;
   superdex::Scene& scene = *file.scene;
   if (run.count("--integrator") &&
-      !SetFromOption<superdex::IntegrationMethod>("--integrator", a.integrator, superdex::Parse,
+      !SetFromOption<superdex::IntegrationMethod>("--integrator", a.integrator,
                      [&](auto m, superdex::Error* e) { return scene.SetIntegrator(m, e); }))
     return kExitInput;
   if (run.count("--solver") &&
-      !SetFromOption<superdex::StageSolverKind>("--solver", a.solver, superdex::ParseStageSolver,
+      !SetFromOption<superdex::StageSolverKind>("--solver", a.solver,
                      [&](auto k, superdex::Error* e) { return scene.SetStageSolver(k, e); }))
     return kExitInput;
   for (const auto& n : file.scene->Notices()) std::cerr << "note: " << n << "\n";

@@ -5,23 +5,16 @@
 namespace superdex {
 
 std::string Validate(const SceneSettings& s, const std::string& prefix) {
-  if (!s.gravity.allFinite()) return prefix + "gravity: must be finite";
-  if (std::string m = Validate(s.solver); !m.empty()) return prefix + "solver." + m;
-  if (std::string m = Validate(s.eval); !m.empty()) return prefix + "experimental_eval_params." + m;
-  if (!IsNamed(s.integrator)) return prefix + "integrator: must be one of " + AllNames(s.integrator);
-  return "";
+  return ValidateFields(kSceneSettingsFields, s, prefix);
 }
 
-namespace {
-constexpr EnumName<StageSolverKind> kStageSolvers[] = {
+SUPERDEX_ENUM_NAMES(
+    StageSolverKind,
     {StageSolverKind::Newton, "newton", "projected Newton (potential stages), residual Newton"},
     {StageSolverKind::Ipopt, "ipopt", "potential stages only; a dense check for small scenes"},
-    {StageSolverKind::Ceres, "ceres", "a dense check for small scenes"}};
-}  // namespace
+    {StageSolverKind::Ceres, "ceres", "a dense check for small scenes"})
 
-EnumNames<StageSolverKind> NamesOf(StageSolverKind) { return kStageSolvers; }
-
-bool ParseStageSolver(const std::string& name, StageSolverKind* kind) {
+bool ParseName(const std::string& name, StageSolverKind* kind) {
   std::string lower = name;
   if (!lower.empty())
     lower[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(lower[0])));

@@ -17,8 +17,8 @@ namespace superdex {
 enum class StageSolverKind { Newton, Ipopt, Ceres };
 EnumNames<StageSolverKind> NamesOf(StageSolverKind);  ///< "newton", "ipopt", "ceres"
 /// A name of NamesOf(StageSolverKind), or one with its first letter capitalized ("Newton");
-/// false for anything else.
-bool ParseStageSolver(const std::string& name, StageSolverKind* kind);
+/// false for anything else. Every reader parses the stage solver with it (optim/field_table.h).
+bool ParseName(const std::string& name, StageSolverKind* kind);
 
 struct SceneSettings {
   Eigen::Vector3d gravity = Eigen::Vector3d(0.0, 0.0, -9.81);  ///< [m/s²]
@@ -40,7 +40,28 @@ struct SceneSettings {
   /// Not for scenes with soft actors, nor for the Ipopt and Ceres checks, nor for recorded steps.
   bool closedFormFreeStages = true;
 };
-/// "" when valid, else a message naming the field.
+
+/// The fields (optim/field_table.h), named as the scene file's `settings` keys, in the order of
+/// validation.
+inline constexpr auto kSceneSettingsFields = std::make_tuple(
+    MakeField("gravity", &SceneSettings::gravity, "m/s²", FiniteRule(),
+              "Gravitational acceleration g"),
+    MakeField("integrator", &SceneSettings::integrator, "", NoRule(), "The time integrator"),
+    MakeNested("solver", &SceneSettings::solver, "NonlinearSolverParams", kNonlinearSolverFields,
+               "The stage solver's settings"),
+    MakeField("stage_solver", &SceneSettings::stageSolver, "", NoRule(),
+              "Which solver runs each implicit stage (also capitalized: Newton, Ipopt, Ceres)"),
+    MakeNested("experimental_eval_params", &SceneSettings::eval, "ExperimentalEvalParams",
+               kExperimentalEvalFields, "Time levels of the dissipative terms"),
+    MakeField("warm_start", &SceneSettings::warmStart, "", NoRule(),
+              "Newton stage solves of rigid bodies start from the motion's prediction (the "
+              "last step's acceleration continued)"),
+    MakeField("closed_form_free_stages", &SceneSettings::closedFormFreeStages, "", NoRule(),
+              "A Newton stage with no contact sample active at the minimizer of inertia and "
+              "gravity is solved in closed form (0 Newton iterations)"));
+
+/// "" when valid, else "<prefix><field>: must be <rule>, got <value>" for the first invalid row
+/// of kSceneSettingsFields (a nested row's message after "<prefix><field>.").
 std::string Validate(const SceneSettings& settings, const std::string& prefix = "");
 
 /// The dissipation mode the settings select (ExperimentalEvalParams' supported combinations).

@@ -4,16 +4,11 @@
 #include <cstdio>
 
 namespace superdex {
-namespace {
 
-constexpr EnumName<GridSdfResolutionMode> kResolutionModes[] = {
+SUPERDEX_ENUM_NAMES(GridSdfResolutionMode,
     {GridSdfResolutionMode::MeanEdgeLength, "MeanEdgeLength", "the shape mesh's mean edge length"},
     {GridSdfResolutionMode::BoundingExtent, "BoundingExtent",
-     "the longest side of the shape's bounding box, divided by 64"}};
-
-}  // namespace
-
-EnumNames<GridSdfResolutionMode> NamesOf(GridSdfResolutionMode) { return kResolutionModes; }
+     "the longest side of the shape's bounding box, divided by 64"})
 
 std::string Validate(const GridSdfParams& p, const std::string& prefix) {
   return ValidateFields(kGridSdfFields, p, prefix);

@@ -1,16 +1,11 @@
 #include "core/model/eval_params.h"
 
 namespace superdex {
-namespace {
 
-constexpr EnumName<DissipationMode> kModes[] = {
+SUPERDEX_ENUM_NAMES(DissipationMode,
     {DissipationMode::ExplicitNormals, "ExplicitNormals"},
     {DissipationMode::ReconstructedLoad, "ReconstructedLoad"},
-    {DissipationMode::ImplicitLoad, "ImplicitLoad"}};
-
-}  // namespace
-
-EnumNames<DissipationMode> NamesOf(DissipationMode) { return kModes; }
+    {DissipationMode::ImplicitLoad, "ImplicitLoad"})
 
 std::string Validate(const ExperimentalEvalParams& p, const std::string& prefix) {
   if (std::string m = ValidateFields(kExperimentalEvalFields, p, prefix); !m.empty()) return m;

@@ -1,11 +1,13 @@
 // Enums and parameter types of the spec, with snake_case properties that validate on assignment.
 // Both come from the C++ tables (optim/field_table.h): an enum's names, a struct's fields.
+#include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
 #include <list>
 #include <string>
 
 #include "bindings.h"
+#include "core/dynamics/scene_settings.h"
 #include "core/model/collider_params.h"
 #include "core/model/contact_params.h"
 #include "core/model/enums.h"
@@ -18,7 +20,7 @@ namespace superdex::python {
 namespace {
 
 // The enums bound as Python enums. A field of another enum type (linear_solver, line_search,
-// psd_projection) is a property holding the value's name as a string.
+// psd_projection, stage_solver) is a property holding the value's name as a string.
 template <typename E>
 constexpr bool kPythonEnum = false;
 template <>
@@ -50,16 +52,29 @@ std::string PythonValueText(const T& v) {
   if constexpr (std::is_same_v<T, bool>) return v ? "True" : "False";
   else if constexpr (std::is_same_v<T, std::optional<ActorBoundaryElementType>>)
     return v ? ValueText(*v) : "None";
+  else if constexpr (std::is_class_v<T> && !kIsFixedVector<T>)  // a nested row's struct
+    return std::string(py::repr(py::cast(v)));
   else return ValueText(v);
 }
 
-// "<doc> [<unit>], <rule>. Default <value>."
+// "<doc> [<unit>], <rule>. Default <value>."; a nested row: "<doc> (<TypeName>)."
 template <typename F>
 const char* DocOf(const F& f) {
   std::string d = f.doc;
-  if (*f.unit) d += std::string(" [") + f.unit + "]";
-  if (const std::string rule = f.rule.Text(); !rule.empty()) d += ", " + rule;
-  return Keep(d + ". Default " + PythonValueText(f.Default()) + ".");
+  if constexpr (kIsNested<F>) return Keep(d + " (" + f.typeName + ").");
+  else {
+    if (*f.unit) d += std::string(" [") + f.unit + "]";
+    if (const std::string rule = f.rule.Text(); !rule.empty()) d += ", " + rule;
+    return Keep(d + ". Default " + PythonValueText(f.Default()) + ".");
+  }
+}
+
+// The Python name of a row's value type, for messages.
+template <typename T>
+std::string PythonTypeName() {
+  if constexpr (kIsFixedVector<T>)
+    return "a sequence of " + std::to_string(T::RowsAtCompileTime) + " numbers";
+  else return py::type_id<T>();
 }
 
 // The value a Python object gives the field: names for enums bound as strings.
@@ -69,7 +84,7 @@ auto FromPython(const F& f, const py::handle& value) {
   if constexpr (std::is_enum_v<T> && !kPythonEnum<T>) {
     const std::string name = value.cast<std::string>();
     T v;
-    if (!Parse(name, &v))
+    if (!ParseName(name, &v))
       throw py::value_error(std::string(f.name) + ": unknown value \"" + name +
                             "\" (expected one of: " + AllNames(T()) + ")");
     return v;
@@ -77,33 +92,52 @@ auto FromPython(const F& f, const py::handle& value) {
     try {
       return value.cast<T>();
     } catch (const py::cast_error&) {
-      throw py::type_error(std::string(f.name) + ": must be " + py::type_id<T>() + ", got " +
+      throw py::type_error(std::string(f.name) + ": must be " + PythonTypeName<T>() + ", got " +
                            py::str(py::type::of(value).attr("__name__")).cast<std::string>());
     }
   }
 }
 
+// A row's value as a Python object: a name for enums bound as strings, a read-only array for a
+// vector (as a struct member's array was).
 template <typename F>
 py::object ToPython(const F& f, const typename F::ClassType& p) {
   using T = typename F::ValueType;
-  if constexpr (std::is_enum_v<T> && !kPythonEnum<T>) return py::str(ToString(f.Of(p)));
-  else return py::cast(f.Of(p));
+  if constexpr (std::is_enum_v<T> && !kPythonEnum<T>) {
+    return py::str(ToString(f.Of(p)));
+  } else if constexpr (kIsFixedVector<T>) {
+    py::array a = py::cast(f.Of(p));
+    a.attr("setflags")(py::arg("write") = false);
+    return std::move(a);
+  } else {
+    return py::cast(f.Of(p));
+  }
 }
 
 // Per row a property that validates the whole object after the assignment and rolls back on
-// failure; a constructor taking the fields positionally (in table order) or by name; a repr.
+// failure (a nested row's property gives the struct itself, so that `settings.solver.x = v`
+// changes the settings); a constructor taking the fields positionally (in table order) or by
+// name; a repr.
 template <typename Class, typename Table>
 void BindFields(py::class_<Class>& c, const Table& table) {
   ForEachField(table, [&](const auto& f) {
-    c.def_property(
-        f.name, [f](const Class& p) { return ToPython(f, p); },
-        [f](Class& p, const py::object& value) {
-          Class q = p;
-          f.Of(q) = FromPython(f, value);
-          CheckValue(Validate(q));
-          p = q;
-        },
-        DocOf(f));
+    auto set = [f](Class& p, const py::object& value) {
+      Class q = p;
+      f.Of(q) = FromPython(f, value);
+      CheckValue(Validate(q));
+      p = q;
+    };
+    using Row = std::decay_t<decltype(f)>;
+    if constexpr (kIsNested<Row>) {
+      c.def_property(
+          f.name,
+          py::cpp_function([f](Class& p) -> typename Row::ValueType& { return f.Of(p); },
+                           py::return_value_policy::reference_internal),
+          set, DocOf(f));
+    } else {
+      c.def_property(
+          f.name, [f](const Class& p) { return ToPython(f, p); }, set, DocOf(f));
+    }
   });
   const char* className = Keep(py::str(c.attr("__name__")).cast<std::string>());
   c.def(py::init([table, className](const py::args& args, const py::kwargs& kwargs) {
@@ -198,6 +232,10 @@ void BindParams(py::module_& m) {
       m, "NonlinearSolverParams",
       Keep(std::string("Stage solver settings (scene files: settings.solver).") + validated),
       kNonlinearSolverFields);
+  BindParamsClass<SceneSettings>(
+      m, "SceneSettings",
+      Keep(std::string("Scene-wide settings (scene files: settings).") + validated),
+      kSceneSettingsFields);
 
   m.def("hunt_crossley_damping_from_restitution", &HuntCrossleyDampingFromRestitution,
         py::arg("e"), py::arg("v"),

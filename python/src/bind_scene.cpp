@@ -1,5 +1,6 @@
 // Scene: construction, stepping and running with trajectories as numpy arrays, contact filtering;
-// scene files. The types it takes and gives are bound in bind_settings.cpp and bind_actor.cpp.
+// scene files. The types it takes and gives are bound in bind_params.cpp,
+// bind_settings.cpp and bind_actor.cpp.
 #include <pybind11/eigen.h>
 #include <pybind11/functional.h>
 #include <pybind11/numpy.h>
@@ -262,7 +263,7 @@ void BindSceneClass(py::module_& m) {
           [](Scene& s, const std::string& name) {
             StageSolverKind k;
             Error e;
-            if (!ParseStageSolver(name, &k))
+            if (!ParseName(name, &k))
               throw py::value_error("stage_solver: unknown value \"" + name + "\"");
             if (!s.SetStageSolver(k, &e)) throw py::value_error(e.message);
           },
@@ -294,7 +295,6 @@ void BindSceneFile(py::module_& m) {
 void BindScene(py::module_& m) {
   BindRigidShape(m);
   BindRigidActorDesc(m);
-  BindSceneSettings(m);
   BindStepReport(m);
   BindActor(m);
   BindSceneClass(m);

@@ -1,4 +1,4 @@
-// Rigid shapes and descriptions, scene settings and step reports.
+// Rigid shapes and descriptions, and step reports (SceneSettings: bind_params.cpp, from its table).
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
@@ -95,29 +95,6 @@ void BindRigidActorDesc(py::module_& m) {
       .def_readwrite("boundary_element_type", &RigidActorDesc::boundaryElementType)
       .def_readwrite("contact_layer", &RigidActorDesc::contactLayer)
       .def_readwrite("grid_sdf", &RigidActorDesc::gridSdf, "GridSdfParams for an Sdf collider");
-}
-
-void BindSceneSettings(py::module_& m) {
-  py::class_<SceneSettings>(m, "SceneSettings", "Scene-wide settings.")
-      .def(py::init<>())
-      .def_readwrite("gravity", &SceneSettings::gravity, "[m/s^2]. Default [0, 0, -9.81].")
-      .def_readwrite("integrator", &SceneSettings::integrator, "Default IntegrationMethod.BDF2.")
-      .def_readwrite("solver", &SceneSettings::solver)
-      .def_readwrite("experimental_eval_params", &SceneSettings::eval)
-      .def_readwrite("warm_start", &SceneSettings::warmStart,
-                     "Newton stage solves of rigid bodies start from the motion's prediction "
-                     "(the last step's acceleration continued). Default True.")
-      .def_readwrite("closed_form_free_stages", &SceneSettings::closedFormFreeStages,
-                     "A Newton stage with no contact sample active at the minimizer of inertia "
-                     "and gravity is solved in closed form (0 Newton iterations). Default True.")
-      .def_property(
-          "stage_solver", [](const SceneSettings& s) { return std::string(ToString(s.stageSolver)); },
-          [](SceneSettings& s, const std::string& name) {
-            if (!ParseStageSolver(name, &s.stageSolver))
-              throw py::value_error("stage_solver: unknown value \"" + name +
-                                    "\" (expected one of: " + AllNames(s.stageSolver) + ")");
-          },
-          "'newton' (default), 'ipopt' (potential stages) or 'ceres'.");
 }
 
 void BindStepReport(py::module_& m) {

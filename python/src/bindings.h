@@ -15,10 +15,9 @@ namespace py = pybind11;
 
 void BindParams(py::module_& m);
 void BindSoft(py::module_& m);
-void BindScene(py::module_& m);  // calls the five below, then binds Scene and SceneFile
+void BindScene(py::module_& m);  // calls the four below, then binds Scene and SceneFile
 void BindRigidShape(py::module_& m);
 void BindRigidActorDesc(py::module_& m);
-void BindSceneSettings(py::module_& m);
 void BindStepReport(py::module_& m);
 void BindActor(py::module_& m);
 void BindFit(py::module_& m);

@@ -1,6 +1,7 @@
 """The Python API: names, defaults and enums against the spec's tables, and its errors."""
 import math
 import os
+import re
 
 import pytest
 import superdex as sd
@@ -191,3 +192,27 @@ def test_run_refuses_step_counts_beyond_the_limit():
         with pytest.raises(ValueError, match=r"^duration / dt: .* steps \(limit 1e\+08\)"):
             scene.run(duration, 1e-3)
     assert scene.run(0.01, 1e-3)["t"].shape == (11,)
+
+
+def test_scene_settings_properties_are_the_docs_table_rows():
+    # docs/parameters.md is generated from kSceneSettingsFields (a C++ test keeps it current).
+    with open(os.path.join(SOURCE, "docs", "parameters.md"), encoding="utf-8") as f:
+        docs = f.read()
+    section = docs.split("## SceneSettings", 1)[1].split("\n## ", 1)[0]
+    names = re.findall(r"^\| `(\w+)` \|", section, re.M)
+    assert names == ["gravity", "integrator", "solver", "stage_solver",
+                     "experimental_eval_params", "warm_start", "closed_form_free_stages"]
+    s = sd.SceneSettings()
+    for name in names:
+        assert isinstance(getattr(type(s), name), property)
+        assert name + "=" in repr(s)
+    assert list(s.gravity) == [0.0, 0.0, -9.81]
+    with pytest.raises(ValueError, match=r"^gravity: must be finite, got \[0, nan, 0\]$"):
+        s.gravity = [0.0, float("nan"), 0.0]
+    assert list(s.gravity) == [0.0, 0.0, -9.81]  # rolled back
+    s.stage_solver = "Ceres"  # a capitalized name, as scene files accept it
+    assert s.stage_solver == "ceres"
+    s.solver.max_iterations = 3  # the nested struct itself, not a copy
+    assert s.solver.max_iterations == 3
+    t = sd.SceneSettings(integrator=sd.IntegrationMethod.DIRK22, warm_start=False)
+    assert t.integrator == sd.IntegrationMethod.DIRK22 and t.warm_start is False
