@@ -4,12 +4,19 @@
 #include <cmath>
 
 namespace superdex {
+namespace {
 
-SdfSample SphereSdf::Evaluate(const Eigen::Vector3d& X) const {
+// Value, gradient and Hessian: EvaluateBelow without a bound.
+template <typename Field>
+SdfSample EvaluateFully(const Field& field, const Eigen::Vector3d& X) {
   SdfSample s;
-  EvaluateBelow(X, INFINITY, &s);
+  field.EvaluateBelow(X, INFINITY, &s);
   return s;
 }
+
+}  // namespace
+
+SdfSample SphereSdf::Evaluate(const Eigen::Vector3d& X) const { return EvaluateFully(*this, X); }
 
 bool SphereSdf::EvaluateBelow(const Eigen::Vector3d& X, double bound, SdfSample* s) const {
   const double r = X.norm();
@@ -25,11 +32,7 @@ bool SphereSdf::EvaluateBelow(const Eigen::Vector3d& X, double bound, SdfSample*
   return true;
 }
 
-SdfSample BoxSdf::Evaluate(const Eigen::Vector3d& X) const {
-  SdfSample s;
-  EvaluateBelow(X, INFINITY, &s);
-  return s;
-}
+SdfSample BoxSdf::Evaluate(const Eigen::Vector3d& X) const { return EvaluateFully(*this, X); }
 
 bool BoxSdf::EvaluateBelow(const Eigen::Vector3d& X, double bound, SdfSample* out) const {
   SdfSample& s = *out;
@@ -68,11 +71,7 @@ bool BoxSdf::EvaluateBelow(const Eigen::Vector3d& X, double bound, SdfSample* ou
   return true;
 }
 
-SdfSample PlaneSdf::Evaluate(const Eigen::Vector3d& X) const {
-  SdfSample s;
-  EvaluateBelow(X, INFINITY, &s);
-  return s;
-}
+SdfSample PlaneSdf::Evaluate(const Eigen::Vector3d& X) const { return EvaluateFully(*this, X); }
 
 bool PlaneSdf::EvaluateBelow(const Eigen::Vector3d& X, double bound, SdfSample* s) const {
   // normal is used as given (the header requires it to be a unit vector).

@@ -250,28 +250,18 @@ TriangleQuadratureRule Make(ActorBoundaryElementType type) {
 }  // namespace
 
 const TriangleQuadratureRule& GetTriangleQuadratureRule(ActorBoundaryElementType type) {
-  // Function-local statics: built once, on first use, thread-safely (C++11 magic statics).
-  static const TriangleQuadratureRule q1 = Make(ActorBoundaryElementType::P1Q1);
-  static const TriangleQuadratureRule q3 = Make(ActorBoundaryElementType::P1Q3);
-  static const TriangleQuadratureRule q6 = Make(ActorBoundaryElementType::P1Q6);
-  static const TriangleQuadratureRule q7 = Make(ActorBoundaryElementType::ExperimentalP1Q7);
-  static const TriangleQuadratureRule q12 = Make(ActorBoundaryElementType::ExperimentalP1Q12);
-  static const TriangleQuadratureRule q16 = Make(ActorBoundaryElementType::ExperimentalP1Q16);
-  switch (type) {
-    case ActorBoundaryElementType::P1Q1:
-      return q1;
-    case ActorBoundaryElementType::P1Q3:
-      return q3;
-    case ActorBoundaryElementType::P1Q6:
-      return q6;
-    case ActorBoundaryElementType::ExperimentalP1Q7:
-      return q7;
-    case ActorBoundaryElementType::ExperimentalP1Q12:
-      return q12;
-    case ActorBoundaryElementType::ExperimentalP1Q16:
-      return q16;
-  }
-  return q3;  // not a valid enumerator: the default rule
+  using T = ActorBoundaryElementType;
+  constexpr T kTypes[] = {T::P1Q1,           T::P1Q3,           T::P1Q6,
+                          T::ExperimentalP1Q7, T::ExperimentalP1Q12, T::ExperimentalP1Q16};
+  // A function-local static: built once, on first use, thread-safely (C++11 magic statics).
+  static const std::vector<TriangleQuadratureRule> rules = [&] {
+    std::vector<TriangleQuadratureRule> r;
+    for (const T t : kTypes) r.push_back(Make(t));
+    return r;
+  }();
+  for (size_t i = 0; i < rules.size(); ++i)
+    if (kTypes[i] == type) return rules[i];
+  return rules[1];  // not a valid enumerator: the default rule, P1Q3
 }
 
 }  // namespace superdex

@@ -258,117 +258,125 @@ bool ExpectEnd(const Failer& fail, LineReader& r, const std::string& end) {
   return true;
 }
 
-bool ReadGmshNodes2(const Failer& fail, LineReader& r, GmshState* s) {
+// A Gmsh section of items ($Nodes, $Elements): its names and the limits on its declared counts.
+struct ItemSection {
+  const char* name;     ///< "$Nodes"
+  const char* item;     ///< "node"
+  const char* items;    ///< "nodes"
+  double limit;         ///< the most items (and entity blocks) a file may declare
+  double bytesPerItem;  ///< the fewest bytes an item takes in a format 4.1 file
+  const char* end;      ///< "$EndNodes"
+};
+const ItemSection kNodeSection{"$Nodes", "node", "nodes", limits::kMaxMeshVertices, 8,
+                               "$EndNodes"};
+const ItemSection kElementSection{"$Elements", "element", "elements", limits::kMaxMeshElements,
+                                  4, "$EndElements"};
+
+// A format 2 section: the count, then one item a line, each read by readItem(tokens), then the
+// section's end. An item line takes at least 8 bytes.
+template <typename ReadItem>
+bool ReadItemLines(const Failer& fail, LineReader& r, const ItemSection& x, double fileBytes,
+                   ReadItem readItem) {
   std::vector<long> c;
-  if (!ParseCounts(fail, r, "$Nodes", 1, &c) ||
-      !CheckCount(fail, r.Line(), "$Nodes", c[0], limits::kMaxMeshVertices, 8, s->fileBytes,
-                  "nodes"))
+  if (!ParseCounts(fail, r, x.name, 1, &c) ||
+      !CheckCount(fail, r.Line(), x.name, c[0], x.limit, 8, fileBytes, x.items))
     return false;
   std::vector<std::string> t;
-  for (long i = 0; i < c[0]; ++i) {
-    if (!NextData(fail, r, "$Nodes", "nodes", c[0], i, &t)) return false;
+  for (long i = 0; i < c[0]; ++i)
+    if (!NextData(fail, r, x.name, x.items, c[0], i, &t) || !readItem(t)) return false;
+  return ExpectEnd(fail, r, x.end);
+}
+
+bool ReadGmshNodes2(const Failer& fail, LineReader& r, GmshState* s) {
+  auto readNode = [&](const std::vector<std::string>& t) {
     long tag;
     if (!ParseLong(t[0], &tag)) return fail(r.Line(), "malformed node line " + Quote(t));
-    if (!AddNode(fail, r.Line(), tag, t, 1, s)) return false;
-  }
-  return ExpectEnd(fail, r, "$EndNodes");
+    return AddNode(fail, r.Line(), tag, t, 1, s);
+  };
+  return ReadItemLines(fail, r, kNodeSection, s->fileBytes, readNode);
 }
 
 bool ReadGmshElements2(const Failer& fail, LineReader& r, GmshState* s) {
-  std::vector<long> c;
-  if (!ParseCounts(fail, r, "$Elements", 1, &c) ||
-      !CheckCount(fail, r.Line(), "$Elements", c[0], limits::kMaxMeshElements, 8, s->fileBytes,
-                  "elements"))
-    return false;
-  std::vector<std::string> t;
-  for (long i = 0; i < c[0]; ++i) {
-    if (!NextData(fail, r, "$Elements", "elements", c[0], i, &t)) return false;
+  auto readElement = [&](const std::vector<std::string>& t) {
     // elm-number elm-type number-of-tags <tags> node-number-list
     long tag, type, ntags;
     if (t.size() < 3 || !ParseLong(t[0], &tag) || !ParseLong(t[1], &type) ||
         !ParseLong(t[2], &ntags) || ntags < 0 || 3 + static_cast<size_t>(ntags) > t.size())
       return fail(r.Line(), "malformed element line " + Quote(t));
-    if (!AddElement(fail, r.Line(), tag, type, t, 3 + static_cast<size_t>(ntags), s)) return false;
-  }
-  return ExpectEnd(fail, r, "$EndElements");
+    return AddElement(fail, r.Line(), tag, type, t, 3 + static_cast<size_t>(ntags), s);
+  };
+  return ReadItemLines(fail, r, kElementSection, s->fileBytes, readElement);
 }
 
-bool ReadGmshNodes41(const Failer& fail, LineReader& r, GmshState* s) {
-  // numEntityBlocks numNodes minNodeTag maxNodeTag; per block
-  // "entityDim entityTag parametric numNodesInBlock", the tags, then the coordinates.
+// A format 4.1 section of entity blocks: the header "numEntityBlocks numItems minTag maxTag",
+// then per block a line "entityDim entityTag <x> numItemsInBlock" (x: parametric for $Nodes, the
+// element type for $Elements) and the block's lines, then the section's end. readBlock(header,
+// total, read) reads one block's lines (`total`: the items the section declares, `read`: those
+// of the blocks before it) and returns false on a problem.
+template <typename ReadBlock>
+bool ReadEntityBlocks(const Failer& fail, LineReader& r, const ItemSection& x, double fileBytes,
+                      ReadBlock readBlock) {
   std::vector<long> c;
-  if (!ParseCounts(fail, r, "$Nodes", 4, &c) ||
-      !CheckCount(fail, r.Line(), "$Nodes", c[1], limits::kMaxMeshVertices, 8, s->fileBytes,
-                  "nodes") ||
-      !CheckCount(fail, r.Line(), "$Nodes", c[0], limits::kMaxMeshVertices, 8, s->fileBytes,
-                  "entity blocks"))
+  if (!ParseCounts(fail, r, x.name, 4, &c) ||
+      !CheckCount(fail, r.Line(), x.name, c[1], x.limit, x.bytesPerItem, fileBytes, x.items) ||
+      !CheckCount(fail, r.Line(), x.name, c[0], x.limit, 8, fileBytes, "entity blocks"))
     return false;
+  const std::string name = x.name, item = x.item, items = x.items;
   long read = 0;
   std::vector<std::string> t;
   for (long b = 0; b < c[0]; ++b) {
-    if (!NextData(fail, r, "$Nodes", "entity blocks", c[0], b, &t)) return false;
+    if (!NextData(fail, r, name, "entity blocks", c[0], b, &t)) return false;
     long h[4];
     if (t.size() != 4 || !ParseLong(t[0], &h[0]) || !ParseLong(t[1], &h[1]) ||
         !ParseLong(t[2], &h[2]) || !ParseLong(t[3], &h[3]) || h[3] < 0)
-      return fail(r.Line(), "malformed node block header " + Quote(t));
+      return fail(r.Line(), "malformed " + item + " block header " + Quote(t));
     if (h[3] > c[1] - read)
-      return fail(r.Line(), "node block of " + std::to_string(h[3]) + " nodes, but $Nodes " +
-                                "declares " + std::to_string(c[1]) + " nodes of which " +
-                                std::to_string(read) + " came before");
+      return fail(r.Line(), item + " block of " + std::to_string(h[3]) + " " + items + ", but " +
+                                name + " declares " + std::to_string(c[1]) + " " + items +
+                                " of which " + std::to_string(read) + " came before");
+    if (!readBlock(h, c[1], read)) return false;
+    read += h[3];
+  }
+  if (read != c[1])
+    return fail(r.Line(), name + " declares " + std::to_string(c[1]) + " " + items +
+                              ", its blocks hold " + std::to_string(read));
+  return ExpectEnd(fail, r, x.end);
+}
+
+bool ReadGmshNodes41(const Failer& fail, LineReader& r, GmshState* s) {
+  // Per block: the node tags, one a line, then the coordinates, one node a line.
+  std::vector<std::string> t;
+  auto readBlock = [&](const long* h, long total, long read) {
     std::vector<long> tags;  // grows with the lines read, not with the declared count
     for (long i = 0; i < h[3]; ++i) {
-      if (!NextData(fail, r, "$Nodes", "nodes", c[1], read + i, &t)) return false;
+      if (!NextData(fail, r, "$Nodes", "nodes", total, read + i, &t)) return false;
       long tag;
       if (t.size() != 1 || !ParseLong(t[0], &tag))
         return fail(r.Line(), "malformed node tag line " + Quote(t));
       tags.push_back(tag);
     }
     for (long i = 0; i < h[3]; ++i) {
-      if (!NextData(fail, r, "$Nodes", "node coordinates", c[1], read + i, &t)) return false;
+      if (!NextData(fail, r, "$Nodes", "node coordinates", total, read + i, &t)) return false;
       if (!AddNode(fail, r.Line(), tags[i], t, 0, s)) return false;
     }
-    read += h[3];
-  }
-  if (read != c[1])
-    return fail(r.Line(), "$Nodes declares " + std::to_string(c[1]) + " nodes, its blocks hold " +
-                              std::to_string(read));
-  return ExpectEnd(fail, r, "$EndNodes");
+    return true;
+  };
+  return ReadEntityBlocks(fail, r, kNodeSection, s->fileBytes, readBlock);
 }
 
 bool ReadGmshElements41(const Failer& fail, LineReader& r, GmshState* s) {
-  // numEntityBlocks numElements minElementTag maxElementTag; per block
-  // "entityDim entityTag elementType numElementsInBlock", then "tag node ..." per element.
-  std::vector<long> c;
-  if (!ParseCounts(fail, r, "$Elements", 4, &c) ||
-      !CheckCount(fail, r.Line(), "$Elements", c[1], limits::kMaxMeshElements, 4, s->fileBytes,
-                  "elements") ||
-      !CheckCount(fail, r.Line(), "$Elements", c[0], limits::kMaxMeshElements, 8, s->fileBytes,
-                  "entity blocks"))
-    return false;
-  long read = 0;
+  // Per block (its header's third number is the element type): "tag node ..." per element.
   std::vector<std::string> t;
-  for (long b = 0; b < c[0]; ++b) {
-    if (!NextData(fail, r, "$Elements", "entity blocks", c[0], b, &t)) return false;
-    long h[4];
-    if (t.size() != 4 || !ParseLong(t[0], &h[0]) || !ParseLong(t[1], &h[1]) ||
-        !ParseLong(t[2], &h[2]) || !ParseLong(t[3], &h[3]) || h[3] < 0)
-      return fail(r.Line(), "malformed element block header " + Quote(t));
-    if (h[3] > c[1] - read)
-      return fail(r.Line(), "element block of " + std::to_string(h[3]) + " elements, but " +
-                                "$Elements declares " + std::to_string(c[1]) + " elements of " +
-                                "which " + std::to_string(read) + " came before");
+  auto readBlock = [&](const long* h, long total, long read) {
     for (long i = 0; i < h[3]; ++i) {
-      if (!NextData(fail, r, "$Elements", "elements", c[1], read + i, &t)) return false;
+      if (!NextData(fail, r, "$Elements", "elements", total, read + i, &t)) return false;
       long tag;
       if (!ParseLong(t[0], &tag)) return fail(r.Line(), "malformed element line " + Quote(t));
       if (!AddElement(fail, r.Line(), tag, h[2], t, 1, s)) return false;
     }
-    read += h[3];
-  }
-  if (read != c[1])
-    return fail(r.Line(), "$Elements declares " + std::to_string(c[1]) +
-                              " elements, its blocks hold " + std::to_string(read));
-  return ExpectEnd(fail, r, "$EndElements");
+    return true;
+  };
+  return ReadEntityBlocks(fail, r, kElementSection, s->fileBytes, readBlock);
 }
 
 bool ReadGmsh(const std::string& path, TetMesh* mesh, std::string* error) {
