@@ -2,6 +2,7 @@
 // TetGen files. Meshing of surfaces (CGAL Mesh_3) lives in tet_mesher.cpp.
 #include "geometry/tet_mesh.h"
 #include "geometry/mesh_limits.h"
+#include "geometry/number_text.h"
 #include "geometry/token_parsing.h"
 
 #include <Eigen/Geometry>
@@ -15,7 +16,6 @@
 #include <cstdlib>
 #include <fstream>
 #include <map>
-#include <sstream>
 #include <unordered_map>
 #include <utility>
 
@@ -38,14 +38,6 @@ Aabb TetMesh::Bounds() const {
 
 namespace {
 
-// Short number for messages.
-std::string Num(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
-
 // Shortest decimal text that reads back to exactly v.
 std::string RoundTrip(double v) {
   char buf[40];
@@ -55,7 +47,6 @@ std::string RoundTrip(double v) {
   }
   return buf;
 }
-
 
 std::vector<std::string> Split(const std::string& line) {
   std::vector<std::string> out;
@@ -640,8 +631,8 @@ bool ValidateTetMesh(const TetMesh& mesh, const std::string& name, std::string* 
   for (int i = 0; i < nv; ++i)
     if (!mesh.vertices[i].allFinite())
       return fail("vertex " + std::to_string(i) + " has a non-finite coordinate (" +
-                  Num(mesh.vertices[i].x()) + ", " + Num(mesh.vertices[i].y()) + ", " +
-                  Num(mesh.vertices[i].z()) + ")");
+                  NumberText(mesh.vertices[i].x()) + ", " + NumberText(mesh.vertices[i].y()) +
+                  ", " + NumberText(mesh.vertices[i].z()) + ")");
   for (int t = 0; t < mesh.NumTets(); ++t) {
     const Eigen::Vector4i& q = mesh.tets[t];
     for (int k = 0; k < 4; ++k) {
@@ -657,8 +648,9 @@ bool ValidateTetMesh(const TetMesh& mesh, const std::string& name, std::string* 
   const double diag = (box.max - box.min).stableNorm();  // no overflow for huge extents
   const double cube = diag * diag * diag;
   if (!(cube >= 1e-290 && cube <= 1e290))  // tet volumes (products of three lengths) must fit
-    return fail("the mesh's extent " + Num(diag) + " m is out of double precision's range for "
-                "tet volumes (its cube must be within 1e-290 to 1e290 m^3)");
+    return fail("the mesh's extent " + NumberText(diag) +
+                " m is out of double precision's range for tet volumes (its cube must be within "
+                "1e-290 to 1e290 m^3)");
   const double tol = 1e-12 * cube;
   int degenerate = 0, inverted = 0, first = -1;
   for (int t = 0; t < mesh.NumTets(); ++t) {
@@ -673,13 +665,13 @@ bool ValidateTetMesh(const TetMesh& mesh, const std::string& name, std::string* 
   if (first < 0) return true;
   const double v = mesh.TetVolume(first);
   const std::string counts = std::to_string(degenerate) + " of " + std::to_string(mesh.NumTets()) +
-                             " tets are degenerate (|volume| <= " + Num(tol) + " m^3), " +
+                             " tets are degenerate (|volume| <= " + NumberText(tol) + " m^3), " +
                              std::to_string(inverted) + " inverted";
   if (std::abs(v) <= tol)
-    return fail("tet " + std::to_string(first) + " is degenerate (volume " + Num(v) + "); " +
-                counts);
-  return fail("tet " + std::to_string(first) + " is inverted (signed volume " + Num(v) + " < 0); " +
-              counts + " (swapping two vertices of a tet reverses its orientation)");
+    return fail("tet " + std::to_string(first) + " is degenerate (volume " + NumberText(v) +
+                "); " + counts);
+  return fail("tet " + std::to_string(first) + " is inverted (signed volume " + NumberText(v) +
+              " < 0); " + counts + " (swapping two vertices of a tet reverses its orientation)");
 }
 
 // ---------------------------------------------------------------------------------------------

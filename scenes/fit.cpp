@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/sensitivity/adjoint.h"
+#include "geometry/number_text.h"
 #include "scenes/json_text.h"
 #include "scenes/limits.h"
 
@@ -30,12 +31,6 @@ bool Failed(FitFailure* failure, FitFailure kind) {
 FitFailure SimulationFailure(const Error& e) {
   return e.message.find("converge") != std::string::npos ? FitFailure::Simulation
                                                          : FitFailure::Input;
-}
-
-std::string Num(double x) {
-  std::ostringstream s;
-  s << x;
-  return s.str();
 }
 
 // One observed centre of mass: at step `step`, actor `actor`.
@@ -219,7 +214,7 @@ bool PrepareFit(const SceneFile& file, const ObservedTrajectory& observed,
   const Scene& base = *file.scene;
   const double dt = options.dt.value_or(file.dt);
   if (!(dt > 0 && std::isfinite(dt)))
-    return Fail(error, "dt: must be > 0 and finite, got " + Num(dt));
+    return Fail(error, "dt: must be > 0 and finite, got " + NumberText(dt));
   if (options.parameters.empty()) return Fail(error, "params: name at least one parameter");
   if (options.maxIterations < 1) return Fail(error, "max_iterations: must be >= 1");
   std::vector<SceneParameter> params(options.parameters.size());
@@ -232,11 +227,11 @@ bool PrepareFit(const SceneFile& file, const ObservedTrajectory& observed,
     const ObservedFrame& f = observed.frames[k];
     const double n = std::round(f.time / dt);
     if (f.time >= 0 && !(n <= limits::kMaxFitSteps))  // checked in double, before any cast
-      return Fail(error, "observed frame " + std::to_string(k) + ": t = " + Num(f.time) +
-                             " s is step " + Num(n) + " at dt = " + Num(dt) + " s, beyond the " +
-                             "limit of " + Num(limits::kMaxFitSteps) + " steps per fit (the " +
-                             "adjoint keeps every step: about " +
-                             Num(n * limits::kBytesPerFitStep / 1e9) + " GB)");
+      return Fail(error, "observed frame " + std::to_string(k) + ": t = " + NumberText(f.time) +
+                             " s is step " + NumberText(n) + " at dt = " + NumberText(dt) +
+                             " s, beyond the limit of " + NumberText(limits::kMaxFitSteps) +
+                             " steps per fit (the adjoint keeps every step: about " +
+                             NumberText(n * limits::kBytesPerFitStep / 1e9) + " GB)");
     if (f.time < 0 || std::abs(n * dt - f.time) > 1e-9 * std::max(1.0, f.time))
       return Fail(error, "observed frame " + std::to_string(k) + ": t = " + std::to_string(f.time) +
                              " s is not a multiple of dt = " + std::to_string(dt) + " s");
@@ -286,7 +281,7 @@ bool AdjointCost(const Scene& base, const FitSetup& setup, const std::vector<dou
   if (!adjoint.Gradient(setup.params, loss, gradient, error))
     return Failed(failure, SimulationFailure(*error));
   if (!std::isfinite(*cost) || !gradient->allFinite()) {
-    Fail(error, "the cost (" + Num(*cost) + " m^2) or its gradient is not finite: the " +
+    Fail(error, "the cost (" + NumberText(*cost) + " m^2) or its gradient is not finite: the " +
                     "simulated or observed positions, or the parameter values, are beyond " +
                     "double precision");
     return Failed(failure, FitFailure::NonFinite);

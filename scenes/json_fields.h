@@ -12,6 +12,7 @@
 #include <string>
 
 #include "core/scene.h"
+#include "geometry/number_text.h"
 #include "scenes/limits.h"
 
 namespace superdex::scene_json {
@@ -114,15 +115,21 @@ Eigen::Matrix<double, N, 1> Vector(const json& obj, const std::string& path, con
   return out;
 }
 
-inline std::string Num(double x) {
-  std::ostringstream s;
-  s << x;
-  return s.str();
+/// Calls each(item, "<path>.<key>[m]") for every item of the array obj[key] (present); a value
+/// that is no array is refused with `rule`.
+template <typename Each>
+void ForEachItem(const json& obj, const std::string& path, const char* key, const char* rule,
+                 Each each) {
+  const json& list = obj.at(key);
+  const std::string p = Join(path, key);
+  if (!list.is_array()) Throw(p, rule);
+  for (size_t m = 0; m < list.size(); ++m) each(list[m], p + "[" + std::to_string(m) + "]");
 }
 
 /// "must be at most <kMaxLength> m ..., got x": the scene-size rule (limits::kMaxLength).
 inline std::string TooLarge(double x) {
-  return "must be at most " + Num(limits::kMaxLength) + " m (the scene size limit), got " + Num(x);
+  return "must be at most " + NumberText(limits::kMaxLength) + " m (the scene size limit), got " +
+         NumberText(x);
 }
 
 /// A length [m] in (0, limits::kMaxLength].

@@ -1,17 +1,13 @@
 #include "scenes/run_checks.h"
 
 #include <cmath>
-#include <sstream>
+
+#include "geometry/number_text.h"
 
 namespace superdex {
 namespace {
 
-std::string Num(double x) {
-  std::ostringstream s;
-  s.precision(4);
-  s << x;
-  return s.str();
-}
+std::string Num(double x) { return NumberText(x, 4); }
 
 std::string Name(const SceneFile& file, int i) { return "'" + file.actorNames[i] + "'"; }
 

@@ -6,6 +6,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "geometry/number_text.h"
 #include "scenes/limits.h"
 #include "scenes/run_checks.h"
 #include "scenes/trajectory_writer.h"
@@ -19,12 +20,6 @@ using Clock = std::chrono::steady_clock;
 
 double Seconds(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double>(b - a).count();
-}
-
-std::string Num(double x) {
-  std::ostringstream s;
-  s << x;
-  return s.str();
 }
 
 void Accumulate(const StepReport& rep, RunSummary* s) {
@@ -120,17 +115,18 @@ void CheckExpectations(const SceneFile& file, const Scene& scene, RunSummary* s)
 
 bool PlanSteps(double duration, double dt, long long* steps, std::string* error) {
   if (!(dt > 0 && std::isfinite(dt))) {
-    *error = "dt: must be > 0 and finite, got " + Num(dt);
+    *error = "dt: must be > 0 and finite, got " + NumberText(dt);
     return false;
   }
   if (!(duration > 0 && std::isfinite(duration))) {
-    *error = "duration: must be > 0 and finite, got " + Num(duration);
+    *error = "duration: must be > 0 and finite, got " + NumberText(duration);
     return false;
   }
   const double n = std::max(1.0, std::round(duration / dt));  // in double: no wrap-around
   if (!(n <= limits::kMaxSteps)) {
-    *error = "duration / dt: " + Num(duration) + " s / " + Num(dt) + " s = " + Num(n) +
-             " steps, beyond the limit of " + Num(limits::kMaxSteps) + " steps per run";
+    *error = "duration / dt: " + NumberText(duration) + " s / " + NumberText(dt) +
+             " s = " + NumberText(n) + " steps, beyond the limit of " +
+             NumberText(limits::kMaxSteps) + " steps per run";
     return false;
   }
   *steps = static_cast<long long>(n);
@@ -195,7 +191,7 @@ bool RunScene(SceneFile* file, const RunOptions& options, RunSummary* summary, E
       s.signal = signal;
       s.endMessage = "stopped by signal " + std::to_string(signal) + " after step " +
                      std::to_string(k) + " of " + std::to_string(steps) + " (t = " +
-                     Num(scene.Time()) + " s); its frame is written";
+                     NumberText(scene.Time()) + " s); its frame is written";
       break;
     }
     if (options.progress) options.progress(rep, double(k) / steps);

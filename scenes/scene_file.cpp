@@ -5,12 +5,12 @@
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <random>
 #include <set>
 #include <sstream>
 
 #include "geometry/mesh_io.h"
 #include "geometry/tet_mesh.h"
+#include "scenes/grid_copies.h"
 #include "scenes/json_fields.h"
 #include "scenes/json_text.h"
 #include "scenes/soft_mesh_spec.h"
@@ -182,30 +182,26 @@ std::vector<RigidActorDesc> PlaceOnGrid(const json& a, const std::string& path,
   const double total = double(actorsSoFar) + c.prod();
   if (total > limits::kMaxActors)
     Throw(Join(gp, "count"),
-          "makes " + Num(c.prod()) + " actors, " + Num(total) + " in the scene: beyond the " +
-              "limit of " + Num(limits::kMaxActors) + " actors per scene (about " +
-              Num(c.prod() * limits::kBytesPerActor / 1e9) + " GB to load)");
+          "makes " + NumberText(c.prod()) + " actors, " + NumberText(total) +
+              " in the scene: beyond the limit of " + NumberText(limits::kMaxActors) +
+              " actors per scene (about " +
+              NumberText(c.prod() * limits::kBytesPerActor / 1e9) + " GB to load)");
   const Eigen::Vector3d spacing = Vector<3>(g, gp, "spacing", Eigen::Vector3d::Zero());
   const double jitter = Number(g, gp, "jitter", 0.0);
   if (jitter < 0) Throw(Join(gp, "jitter"), "must be >= 0");
-  std::mt19937 rng(Integer(g, gp, "seed", 1, 0, 1 << 30));
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const std::vector<Eigen::Vector3d> offsets =
+      GridCopyOffsets(c, spacing, jitter, Integer(g, gp, "seed", 1, 0, 1 << 30));
   std::vector<RigidActorDesc> out;
-  int k = 0;
-  for (int z = 0; z < int(c.z()); ++z)
-    for (int y = 0; y < int(c.y()); ++y)
-      for (int x = 0; x < int(c.x()); ++x, ++k) {
-        RigidActorDesc di = d;
-        di.name = d.name + "_" + std::to_string(k);
-        di.position += Eigen::Vector3d(x, y, z).cwiseProduct(spacing) +
-                       jitter * Eigen::Vector3d(u(rng), u(rng), u(rng));
-        const double far = di.position.cwiseAbs().maxCoeff();
-        if (!(far <= limits::kMaxLength))  // also an overflow to infinity
-          Throw(Join(gp, spacing.cwiseAbs().maxCoeff() * c.maxCoeff() > jitter ? "spacing"
-                                                                                 : "jitter"),
-                "places actor " + di.name + " at a coordinate that " + TooLarge(far));
-        out.push_back(std::move(di));
-      }
+  for (size_t k = 0; k < offsets.size(); ++k) {
+    RigidActorDesc di = d;
+    di.name = d.name + "_" + std::to_string(k);
+    di.position += offsets[k];
+    const double far = di.position.cwiseAbs().maxCoeff();
+    if (!(far <= limits::kMaxLength))  // also an overflow to infinity
+      Throw(Join(gp, spacing.cwiseAbs().maxCoeff() * c.maxCoeff() > jitter ? "spacing" : "jitter"),
+            "places actor " + di.name + " at a coordinate that " + TooLarge(far));
+    out.push_back(std::move(di));
+  }
   return out;
 }
 
@@ -213,7 +209,7 @@ void ReadActors(const json& actors, const std::string& baseDir, SceneFile* out) 
   if (!actors.is_array()) Throw("actors", std::string("must be an array, got ") + TypeName(actors));
   if (double(actors.size()) > limits::kMaxActors)
     Throw("actors", "holds " + std::to_string(actors.size()) + " actors, beyond the limit of " +
-                        Num(limits::kMaxActors) + " per scene");
+                        NumberText(limits::kMaxActors) + " per scene");
   std::set<std::string> names;
   for (size_t i = 0; i < actors.size(); ++i) {
     const std::string path = "actors[" + std::to_string(i) + "]";
@@ -228,7 +224,7 @@ void ReadActors(const json& actors, const std::string& baseDir, SceneFile* out) 
     const RigidActorDesc d = ReadRigidDesc(a, path, baseDir);
     const ActorHandle parent = ReadParent(a, path, *out);
     if (double(out->actorNames.size()) + 1 > limits::kMaxActors)
-      Throw(path, "is beyond the limit of " + Num(limits::kMaxActors) + " actors per scene");
+      Throw(path, "is beyond the limit of " + NumberText(limits::kMaxActors) + " actors per scene");
     for (const RigidActorDesc& di : PlaceOnGrid(a, path, d, out->actorNames.size())) {
       if (!names.insert(di.name).second) Throw(Join(path, "name"), "duplicate actor name \"" + di.name + "\"");
       Error err;
@@ -375,8 +371,9 @@ bool LoadSceneFile(const std::string& path, SceneFile* out, Error* error) {
   const double bytes = static_cast<double>(in.tellg());
   in.seekg(0, std::ios::beg);
   if (bytes > limits::kMaxSceneFileBytes)
-    return Fail(error, path + ": the file holds " + Num(bytes) + " bytes, beyond the limit of " +
-                           Num(limits::kMaxSceneFileBytes) + " bytes per scene file");
+    return Fail(error, path + ": the file holds " + NumberText(bytes) +
+                           " bytes, beyond the limit of " +
+                           NumberText(limits::kMaxSceneFileBytes) + " bytes per scene file");
   std::stringstream buf;
   buf << in.rdbuf();
   out->path = path;

@@ -157,11 +157,7 @@ std::vector<NodeConstraint> ReadConstraints(const json& list, const std::string&
     if (c.contains("nodes") == c.contains("region"))
       Throw(p, "give exactly one of \"nodes\" and \"region\"");
     if (c.contains("nodes")) {
-      const json& n = c.at("nodes");
-      if (!n.is_array()) Throw(Join(p, "nodes"), "must be an array of node indices");
-      for (size_t m = 0; m < n.size(); ++m) {
-        const json& v = n[m];
-        const std::string np = Join(p, "nodes") + "[" + std::to_string(m) + "]";
+      auto readNode = [&](const json& v, const std::string& np) {
         if (!v.is_number_integer()) Throw(np, "must be a node index (an integer)");
         // Checked before narrowing: a huge index must not wrap to an existing node.
         if (v.is_number_unsigned() ? v.get<unsigned long long>() >= unsigned(mesh.NumVertices())
@@ -170,7 +166,8 @@ std::vector<NodeConstraint> ReadConstraints(const json& list, const std::string&
           Throw(np, "node " + v.dump() + " does not exist (the mesh has " +
                         std::to_string(mesh.NumVertices()) + " nodes)");
         k.nodes.push_back(v.get<int>());
-      }
+      };
+      ForEachItem(c, p, "nodes", "must be an array of node indices", readNode);
     } else {
       const json& r = c.at("region");
       const std::string rp = Join(p, "region");
@@ -183,21 +180,17 @@ std::vector<NodeConstraint> ReadConstraints(const json& list, const std::string&
       }
       if (k.nodes.empty()) Throw(rp, "selects no node");
     }
-    if (c.contains("path")) {
-      const json& kp = c.at("path");
-      if (!kp.is_array()) Throw(Join(p, "path"), "must be an array of [t, dx, dy, dz]");
-      for (size_t m = 0; m < kp.size(); ++m) {
-        const json& f = kp[m];
-        const std::string fp = Join(p, "path") + "[" + std::to_string(m) + "]";
-        if (!f.is_array() || f.size() != 4) Throw(fp, "must be [t, dx, dy, dz]");
-        for (const json& v : f)
-          if (!v.is_number()) Throw(fp, "must be [t, dx, dy, dz] (numbers)");
-        const Eigen::Vector3d d(f[1].get<double>(), f[2].get<double>(), f[3].get<double>());
-        if (d.cwiseAbs().maxCoeff() > limits::kMaxLength)
-          Throw(fp, "the displacement " + TooLarge(d.cwiseAbs().maxCoeff()));
-        k.path.push_back({f[0].get<double>(), d});
-      }
-    }
+    auto readStep = [&](const json& f, const std::string& fp) {  // one [t, dx, dy, dz]
+      if (!f.is_array() || f.size() != 4) Throw(fp, "must be [t, dx, dy, dz]");
+      for (const json& v : f)
+        if (!v.is_number()) Throw(fp, "must be [t, dx, dy, dz] (numbers)");
+      const Eigen::Vector3d d(f[1].get<double>(), f[2].get<double>(), f[3].get<double>());
+      if (d.cwiseAbs().maxCoeff() > limits::kMaxLength)
+        Throw(fp, "the displacement " + TooLarge(d.cwiseAbs().maxCoeff()));
+      k.path.push_back({f[0].get<double>(), d});
+    };
+    if (c.contains("path"))
+      ForEachItem(c, p, "path", "must be an array of [t, dx, dy, dz]", readStep);
     out.push_back(std::move(k));
   }
   return out;

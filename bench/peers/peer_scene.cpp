@@ -5,8 +5,9 @@
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <random>
 #include <sstream>
+
+#include "scenes/grid_copies.h"
 
 namespace superdex::peers {
 namespace {
@@ -88,29 +89,23 @@ PeerBody ReadBody(const json& a) {
   return b;
 }
 
-// Grid replication exactly as scenes/scene_file.cpp does it (same generator and draw order).
+// Grid replication as scenes/scene_file.cpp does it (scenes/grid_copies.h).
 void Replicate(const json& a, const PeerBody& proto, std::vector<PeerBody>* out) {
   if (!a.contains("grid")) {
     out->push_back(proto);
     return;
   }
   const json& g = a.at("grid");
-  const Eigen::Vector3d c = Vec(g, "count", Eigen::Vector3d::Ones());
-  const Eigen::Vector3d spacing = Vec(g, "spacing", Eigen::Vector3d::Zero());
-  const double jitter = g.value("jitter", 0.0);
-  std::mt19937 rng(g.value("seed", 1));
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  int k = 0;
-  for (int z = 0; z < int(c.z()); ++z)
-    for (int y = 0; y < int(c.y()); ++y)
-      for (int x = 0; x < int(c.x()); ++x, ++k) {
-        PeerBody b = proto;
-        b.name = proto.name + "_" + std::to_string(k);
-        // The same expression as the scene loader, so the draws land on the same axes.
-        b.position += Eigen::Vector3d(x, y, z).cwiseProduct(spacing) +
-                      jitter * Eigen::Vector3d(u(rng), u(rng), u(rng));
-        out->push_back(b);
-      }
+  const std::vector<Eigen::Vector3d> offsets =
+      GridCopyOffsets(Vec(g, "count", Eigen::Vector3d::Ones()),
+                      Vec(g, "spacing", Eigen::Vector3d::Zero()), g.value("jitter", 0.0),
+                      g.value("seed", 1));
+  for (size_t k = 0; k < offsets.size(); ++k) {
+    PeerBody b = proto;
+    b.name = proto.name + "_" + std::to_string(k);
+    b.position += offsets[k];
+    out->push_back(b);
+  }
 }
 
 }  // namespace

@@ -6,21 +6,15 @@
 
 #include <cmath>
 #include <memory>
-#include <sstream>
 
 #include "bindings.h"
 #include "core/model/soft_body.h"
+#include "geometry/number_text.h"
 #include "geometry/tet_mesh.h"
 #include "geometry/triangle_mesh.h"
 
 namespace superdex::python {
 namespace {
-
-std::string Num(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 // TetMesh and the functions that make or read one.
 void BindTetMesh(py::module_& m) {
@@ -91,9 +85,10 @@ void BindTetMesh(py::module_& m) {
       "make_tet_sphere",
       [](double radius, double edgeLength) {
         if (!(std::isfinite(radius) && radius > 0))
-          throw py::value_error("radius: must be finite and > 0, got " + Num(radius));
+          throw py::value_error("radius: must be finite and > 0, got " + NumberText(radius));
         if (!(std::isfinite(edgeLength) && edgeLength > 0))
-          throw py::value_error("edge_length: must be finite and > 0, got " + Num(edgeLength));
+          throw py::value_error("edge_length: must be finite and > 0, got " +
+                                NumberText(edgeLength));
         auto mesh = std::make_shared<TetMesh>();
         {
           py::gil_scoped_release release;
@@ -101,7 +96,7 @@ void BindTetMesh(py::module_& m) {
         }
         if (mesh->NumTets() == 0)
           throw py::value_error("make_tet_sphere: meshing failed (radius/edge_length = " +
-                                Num(radius / edgeLength) +
+                                NumberText(radius / edgeLength) +
                                 "; above about 65 exceeds the 10-million-tet guard)");
         return mesh;
       },
