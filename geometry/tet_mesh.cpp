@@ -458,26 +458,38 @@ bool ReadGmsh(const std::string& path, TetMesh* mesh, std::string* error) {
 // ---------------------------------------------------------------------------------------------
 // TetGen
 
+// Reads one of TetGen's two files (`role`: "node" or "element", for the message when it is the
+// sibling of the file asked for): its header line's counts into h[0..n) (absent ones keep their
+// values; `layout` names them in the message), then the rest by readBody(fail, r, fileBytes).
+template <typename ReadBody>
+bool ReadTetGenFile(const std::string& path, const std::string& asked, const char* role,
+                    const char* layout, size_t n, long* h, std::string* error, ReadBody readBody) {
+  const Failer fail{path, error};
+  std::ifstream in(path, std::ios::binary);
+  const double fileBytes = in ? FileBytes(in) : -1.0;
+  if (!in)
+    return fail(path == asked ? std::string("cannot open file")
+                              : "cannot open file (the " + std::string(role) + " file of " +
+                                    asked + ")");
+  LineReader r(in, true);
+  std::vector<std::string> t;
+  if (!r.Next(&t)) return fail("empty file");
+  for (size_t k = 0; k < t.size() && k < n; ++k)
+    if (!ParseLong(t[k], &h[k]) || h[k] < 0)
+      return fail(r.Line(),
+                  "malformed header " + Quote(t) + " (expected \"" + std::string(layout) + "\")");
+  if (!readBody(fail, r, fileBytes)) return false;
+  return !r.Bad() || fail("read error");
+}
+
 bool ReadTetGen(const std::string& nodePath, const std::string& elePath, const std::string& asked,
                 TetMesh* mesh, std::string* error) {
   TetMesh m;
   int base = 0;
-  {
-    const Failer fail{nodePath, error};
-    std::ifstream in(nodePath, std::ios::binary);
-    const double fileBytes = in ? FileBytes(in) : -1.0;
-    if (!in)
-      return fail(nodePath == asked ? std::string("cannot open file")
-                                    : "cannot open file (the node file of " + asked + ")");
-    LineReader r(in, true);
-    std::vector<std::string> t;
-    if (!r.Next(&t)) return fail("empty file");
-    // <# of points> <dimension (3)> <# of attributes> <boundary markers (0 or 1)>
-    long h[4] = {0, 3, 0, 0};
-    for (size_t k = 0; k < t.size() && k < 4; ++k)
-      if (!ParseLong(t[k], &h[k]) || h[k] < 0)
-        return fail(r.Line(), "malformed header " + Quote(t) +
-                                  " (expected \"points dimension attributes markers\")");
+  std::vector<std::string> t;
+  // <# of points> <dimension (3)> <# of attributes> <boundary markers (0 or 1)>
+  long h[4] = {0, 3, 0, 0};
+  auto readPoints = [&](const Failer& fail, LineReader& r, double fileBytes) {
     if (h[0] == 0)
       return fail(r.Line(),
                   "no points (a count of 0 means the points are in a .poly file, "
@@ -510,40 +522,30 @@ bool ReadTetGen(const std::string& nodePath, const std::string& elePath, const s
       }
       m.vertices.emplace_back(x[0], x[1], x[2]);
     }
-    if (r.Bad()) return fail("read error");
-  }
-  {
-    const Failer fail{elePath, error};
-    std::ifstream in(elePath, std::ios::binary);
-    const double fileBytes = in ? FileBytes(in) : -1.0;
-    if (!in)
-      return fail(elePath == asked ? std::string("cannot open file")
-                                   : "cannot open file (the element file of " + asked + ")");
-    LineReader r(in, true);
-    std::vector<std::string> t;
-    if (!r.Next(&t)) return fail("empty file");
-    // <# of tetrahedra> <nodes per tet (4 or 10)> <# of attributes>
-    long h[3] = {0, 4, 0};
-    for (size_t k = 0; k < t.size() && k < 3; ++k)
-      if (!ParseLong(t[k], &h[k]) || h[k] < 0)
-        return fail(r.Line(), "malformed header " + Quote(t) +
-                                  " (expected \"tetrahedra nodes-per-tet attributes\")");
-    if (h[0] == 0) return fail(r.Line(), "no tets");
-    if (h[1] != 4 && h[1] != 10)
-      return fail(r.Line(), std::to_string(h[1]) + " nodes per tet (expected 4 or 10)");
-    if (!CheckCount(fail, r.Line(), "the header", h[0], limits::kMaxMeshElements, 10, fileBytes,
+    return true;
+  };
+  if (!ReadTetGenFile(nodePath, asked, "node", "points dimension attributes markers", 4, h, error,
+                      readPoints))
+    return false;
+  // <# of tetrahedra> <nodes per tet (4 or 10)> <# of attributes>
+  long e[3] = {0, 4, 0};
+  auto readTets = [&](const Failer& fail, LineReader& r, double fileBytes) {
+    if (e[0] == 0) return fail(r.Line(), "no tets");
+    if (e[1] != 4 && e[1] != 10)
+      return fail(r.Line(), std::to_string(e[1]) + " nodes per tet (expected 4 or 10)");
+    if (!CheckCount(fail, r.Line(), "the header", e[0], limits::kMaxMeshElements, 10, fileBytes,
                     "tets"))
       return false;
-    const size_t need = 1 + static_cast<size_t>(h[1]) + static_cast<size_t>(h[2]);
-    m.tets.reserve(h[0]);
-    for (long i = 0; i < h[0]; ++i) {
+    const size_t need = 1 + static_cast<size_t>(e[1]) + static_cast<size_t>(e[2]);
+    m.tets.reserve(e[0]);
+    for (long i = 0; i < e[0]; ++i) {
       if (!r.Next(&t))
-        return fail("file ends after " + std::to_string(i) + " of " + std::to_string(h[0]) +
+        return fail("file ends after " + std::to_string(i) + " of " + std::to_string(e[0]) +
                     " tets");
       long idx, n[4];
       if (t.size() < need || !ParseLong(t[0], &idx))
         return fail(r.Line(), "malformed tet line " + Quote(t) + " (expected index, " +
-                                  std::to_string(h[1]) + " nodes and " + std::to_string(h[2]) +
+                                  std::to_string(e[1]) + " nodes and " + std::to_string(e[2]) +
                                   " attributes)");
       Eigen::Vector4i q;
       for (int k = 0; k < 4; ++k) {
@@ -559,8 +561,11 @@ bool ReadTetGen(const std::string& nodePath, const std::string& elePath, const s
       }
       m.tets.push_back(q);
     }
-    if (r.Bad()) return fail("read error");
-  }
+    return true;
+  };
+  if (!ReadTetGenFile(elePath, asked, "element", "tetrahedra nodes-per-tet attributes", 3, e,
+                      error, readTets))
+    return false;
   *mesh = std::move(m);
   return true;
 }

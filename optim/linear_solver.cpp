@@ -35,6 +35,13 @@ namespace {
 using SparseMatrix = Eigen::SparseMatrix<double>;
 
 enum class BackendKind { None, Dense, Dense6, Cholmod, Ldlt, Pcg };
+SUPERDEX_ENUM_NAMES(BackendKind,
+    {BackendKind::None, "none"},
+    {BackendKind::Dense, "dense"},
+    {BackendKind::Dense6, "dense"},  // the same dense solve, on a 6 x 6 system
+    {BackendKind::Cholmod, "cholmod"},
+    {BackendKind::Ldlt, "ldlt"},
+    {BackendKind::Pcg, "pcg"})
 
 bool UseIterative(const LinearSolverSettings& s, Eigen::Index n) {
   return s.kind == LinearSolverKind::Iterative ||
@@ -284,17 +291,7 @@ void SymmetricSolver::Solve(const Eigen::VectorXd& b, Eigen::VectorXd* out) cons
   x.setConstant(b.size(), std::numeric_limits<double>::quiet_NaN());
 }
 
-const char* SymmetricSolver::Backend() const {
-  switch (impl_->backend) {
-    case BackendKind::Dense:
-    case BackendKind::Dense6: return "dense";
-    case BackendKind::Cholmod: return "cholmod";
-    case BackendKind::Ldlt: return "ldlt";
-    case BackendKind::Pcg: return "pcg";
-    case BackendKind::None: break;
-  }
-  return "none";
-}
+const char* SymmetricSolver::Backend() const { return ToString(impl_->backend); }
 
 // Eigen's UMFPACK wrapper solves with J only; the adjoint pass needs Jᵀ x = b from the same
 // factors (UMFPACK_At).
