@@ -178,8 +178,8 @@ constexpr Rule AtLeast(int lo, long long fileMax) {
 // ---------------------------------------------------------------------------------------------
 // Fields. A table is a std::tuple of rows, one per parameter, in the order of validation:
 //   - Field (MakeField): a value: a number (double, int), a flag, an enum's name, an optional
-//     enum, or a fixed-size vector of numbers (Eigen::Matrix<double, N, 1>; the rule holds for
-//     every component). A row of a nested struct spliced into the outer table (e.g.
+//     enum, a text (std::string), or a fixed-size vector of numbers (Eigen::Matrix<double, N, 1>;
+//     the rule holds for every component). A row of a nested struct spliced into the outer table (e.g.
 //     NonlinearSolverParams::linear) reaches its member through `outer` (LiftFields).
 //   - NestedField (MakeNested): a struct member with a table of its own (e.g.
 //     SceneSettings::solver): an object in scene files, a property holding the struct in Python,
@@ -308,6 +308,8 @@ std::string ValueText(const T& v) {
     return ToString(v);
   } else if constexpr (field_table_detail::IsOptional<T>::value) {
     return v ? ValueText(*v) : std::string("none");
+  } else if constexpr (std::is_same_v<T, std::string>) {
+    return "\"" + v + "\"";
   } else if constexpr (kIsFixedVector<T>) {
     std::string t = "[";
     for (int i = 0; i < v.size(); ++i) t += (i ? ", " : "") + ValueText(v[i]);
@@ -334,6 +336,7 @@ std::string TypeText() {
   else if constexpr (std::is_enum_v<T>) return "name: " + AllNames(T());
   else if constexpr (field_table_detail::IsOptional<T>::value)
     return TypeText<typename T::value_type>() + ", or none";
+  else if constexpr (std::is_same_v<T, std::string>) return "text";
   else if constexpr (kIsFixedVector<T>) return std::to_string(T::RowsAtCompileTime) + " numbers";
   else if constexpr (std::is_integral_v<T>) return "integer";
   else return "number";

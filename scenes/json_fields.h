@@ -195,6 +195,8 @@ void ReadFields(const json& j, const std::string& path, const Table& table, Clas
       v = Integer(j, path, f.name, v, lo, hi);
     } else if constexpr (std::is_same_v<T, double>) {
       v = Number(j, path, f.name, v);
+    } else if constexpr (std::is_same_v<T, std::string>) {
+      v = String(j, path, f.name, v);
     } else if constexpr (kIsFixedVector<T>) {
       v = Vector<T::RowsAtCompileTime>(j, path, f.name, v);
     } else {

@@ -7,6 +7,7 @@
 #include "core/model/soft_body.h"
 #include "core/sensitivity/sensitivity.h"
 #include "optim/newton_solver.h"
+#include "scenes/scene_file.h"
 
 namespace superdex {
 namespace {
@@ -67,6 +68,10 @@ void PrintParameterMarkdown(std::ostream& out) {
           "`psd_projection` as strings). Source: `optim/newton_solver.h`, "
           "`optim/linear_solver.h`.",
           kNonlinearSolverFields);
+  Section(out, "OutputSpec",
+          "Scene file: `output` (the command line's `--out`, `--vtk` and `--contacts` override "
+          "it). Source: `scenes/scene_file.h`.",
+          kOutputSpecFields);
   out << "\n## Names\n";
   Names<IntegrationMethod>(out, "integrator");
   Names<StageSolverKind>(out, "stage_solver");

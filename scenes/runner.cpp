@@ -150,6 +150,8 @@ bool RunScene(SceneFile* file, const RunOptions& options, RunSummary* summary, E
   std::string why;
   if (!PlanSteps(options.duration.value_or(file->duration), dt, &steps, &why))
     return end(RunEnd::InvalidInput, why);
+  if (std::string m = Validate(file->output, "output."); !m.empty())  // e.g. every = 0
+    return end(RunEnd::InvalidInput, m);
   const PenetrationBound bound = MakePenetrationBound(*file);
   if (std::string m = CheckInitialState(file, bound); !m.empty())
     return end(RunEnd::InvalidInput, m);

@@ -321,13 +321,7 @@ bool LoadSceneText(const std::string& text, const std::string& baseDir, SceneFil
     if (j.contains("contact_filter")) ReadContactFilter(j.at("contact_filter"), out);
 
     if (j.contains("output")) {
-      const json& o = j.at("output");
-      CheckObject(o, "output", {"path", "every", "vtk", "vtk_every", "contacts"});
-      out->output.path = String(o, "output", "path", std::string());
-      out->output.every = Integer(o, "output", "every", 1, 1, 1 << 30);
-      out->output.vtk = String(o, "output", "vtk", std::string());
-      out->output.vtkEvery = Integer(o, "output", "vtk_every", 10, 1, 1 << 30);
-      out->output.contacts = Bool(o, "output", "contacts", false);
+      ReadFields(j.at("output"), "output", kOutputSpecFields, &out->output);
     }
     if (j.contains("expect")) {
       const json& e = j.at("expect");

@@ -19,6 +19,26 @@ struct OutputSpec {
   bool contacts = false; ///< the trajectory frames carry the contact samples (for the viewer)
 };
 
+/// The fields (optim/field_table.h), named as the scene file's `output` keys.
+inline constexpr auto kOutputSpecFields = std::make_tuple(
+    MakeField("path", &OutputSpec::path, "", NoRule(),
+              "Trajectory file (JSON Lines, docs/trajectory-format.md); empty: none. `--out` "
+              "overrides"),
+    MakeField("every", &OutputSpec::every, "", AtLeast(1, 1 << 30),
+              "A trajectory frame every so many steps (plus the initial state and the last step)"),
+    MakeField("vtk", &OutputSpec::vtk, "", NoRule(),
+              "Directory for VTK frames; empty: none. `--vtk` overrides"),
+    MakeField("vtk_every", &OutputSpec::vtkEvery, "", AtLeast(1, 1 << 30),
+              "A VTK frame every so many steps"),
+    MakeField("contacts", &OutputSpec::contacts, "", NoRule(),
+              "Every frame carries the active contact samples (what the viewer page draws). "
+              "`--contacts` sets it"));
+
+/// "" when valid, else "<prefix><field>: must be <rule>, got <value>" (kOutputSpecFields).
+inline std::string Validate(const OutputSpec& output, const std::string& prefix = "") {
+  return ValidateFields(kOutputSpecFields, output, prefix);
+}
+
 /// Expected figures of a shipped scene (regression checks run by `superdex run` and the tests).
 struct SceneExpectations {
   std::optional<double> maxPenetration;        ///< max over the run of max(0, −φ) <= this [m]

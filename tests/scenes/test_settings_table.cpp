@@ -1,11 +1,13 @@
-// SceneSettings from its field table (kSceneSettingsFields): the scene-file reader, the validation
-// messages and the docs cover the same rows, and every row is read.
+// SceneSettings and OutputSpec from their field tables (kSceneSettingsFields, kOutputSpecFields):
+// the scene-file reader, the validation messages and the docs cover the same rows, and every row
+// is read.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <set>
 #include <string>
 
 #include "core/scene.h"
+#include "scenes/runner.h"
 #include "scenes/scene_file.h"
 
 using namespace superdex;
@@ -99,4 +101,29 @@ TEST_CASE("the docs' SceneSettings table has one row per field", "[scenes][setti
                                        "experimental_eval_params", "warm_start",
                                        "closed_form_free_stages"});
   CHECK(md.find("| `gravity` | 3 numbers | m/s² | [0, 0, -9.81] | finite |") != std::string::npos);
+}
+
+TEST_CASE("the output section is read and validated by kOutputSpecFields", "[scenes][settings]") {
+  SceneFile f;
+  Error e;
+  const std::string text = R"({"format": "superdex-scene/1", "actors": [],
+      "output": {"path": "a.jsonl", "every": 3, "vtk": "frames", "vtk_every": 4, "contacts": true}})";
+  REQUIRE(LoadSceneText(text, ".", &f, &e));
+  CHECK(f.output.path == "a.jsonl");
+  CHECK(f.output.every == 3);
+  CHECK(f.output.vtk == "frames");
+  CHECK(f.output.vtkEvery == 4);
+  CHECK(f.output.contacts);
+  CHECK_FALSE(LoadSceneText(R"({"actors": [], "output": {"every": 0}})", ".", &f, &e));
+  CHECK(e.message == "output.every: must be in [1, 1073741824], got 0");
+  CHECK_FALSE(LoadSceneText(R"({"actors": [], "output": {"path": 3}})", ".", &f, &e));
+  CHECK(e.message == "output.path: must be a string, got number");
+  // A C++ caller's value is checked by the same rule before a run.
+  REQUIRE(LoadSceneText(R"({"actors": [], "settings": {"duration": 0.01}})", ".", &f, &e));
+  f.output.vtkEvery = 0;
+  RunSummary summary;
+  CHECK_FALSE(RunScene(&f, RunOptions(), &summary, &e));
+  CHECK(e.message == "output.vtk_every: must be >= 1, got 0");
+  CHECK(FieldsMarkdown(kOutputSpecFields).find("| `vtk_every` | integer |  | 10 | >= 1") !=
+        std::string::npos);
 }
