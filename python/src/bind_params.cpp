@@ -74,6 +74,9 @@ template <typename T>
 std::string PythonTypeName() {
   if constexpr (kIsFixedVector<T>)
     return "a sequence of " + std::to_string(T::RowsAtCompileTime) + " numbers";
+  else if constexpr (std::is_class_v<T> && !std::is_same_v<T, std::string> &&
+                     !field_table_detail::IsOptional<T>::value)  // a nested row's bound struct
+    return "a " + std::string(py::str(py::type::of<T>().attr("__name__")));
   else return py::type_id<T>();
 }
 
