@@ -80,6 +80,8 @@ ObservedTrajectory Observed(const SceneFile& file, const std::optional<std::stri
   throw py::value_error(e.message);
 }
 
+}  // namespace
+
 // ForwardSensitivity.
 void BindForwardSensitivity(py::module_& m) {
   py::class_<PySensitivity>(
@@ -223,13 +225,6 @@ void BindFitting(py::module_& m) {
       "The fitting cost ½ Σ ‖c_a(t_k) − ĉ_a(t_k)‖² of superdex.fit at the scene file's values\n"
       "and its gradient in `parameters`, by one simulation and one adjoint pass (its cost does\n"
       "not grow with the number of initial-state parameters). Returns a TrajectoryGradient.");
-}
-
-}  // namespace
-
-void BindFit(py::module_& m) {
-  BindForwardSensitivity(m);
-  BindFitting(m);
 }
 
 }  // namespace superdex::python

@@ -9,7 +9,6 @@
 #include "scenes/runner.h"
 
 namespace superdex::python {
-namespace {
 
 void BindRunSummary(py::module_& m) {
   py::class_<RunSummary>(m, "RunSummary",
@@ -97,14 +96,6 @@ void BindLoadSceneText(py::module_& m) {
       py::arg("text"), py::arg("base_dir") = ".",
       "Loads a scene file from its JSON text; base_dir resolves relative mesh paths. Raises\n"
       "ValueError naming the JSON path and the rule.");
-}
-
-}  // namespace
-
-void BindRun(py::module_& m) {
-  BindRunSummary(m);
-  BindRunScene(m);
-  BindLoadSceneText(m);
 }
 
 }  // namespace superdex::python

@@ -189,6 +189,8 @@ void BindContactFilter(py::class_<Scene>& scene) {
           py::arg("a"), py::arg("b"));
 }
 
+}  // namespace
+
 void BindSceneClass(py::module_& m) {
   py::class_<Scene> scene(m, "Scene", "Actors, settings and time stepping.");
   scene.def(py::init([](const SceneSettings& s) {
@@ -288,17 +290,6 @@ void BindSceneFile(py::module_& m) {
         return f;
       },
       py::arg("path"), "Loads a scene file; raises ValueError naming the JSON path and the rule.");
-}
-
-}  // namespace
-
-void BindScene(py::module_& m) {
-  BindRigidShape(m);
-  BindRigidActorDesc(m);
-  BindStepReport(m);
-  BindActor(m);
-  BindSceneClass(m);
-  BindSceneFile(m);
 }
 
 }  // namespace superdex::python

@@ -14,7 +14,6 @@
 #include "geometry/triangle_mesh.h"
 
 namespace superdex::python {
-namespace {
 
 // TetMesh and the functions that make or read one.
 void BindTetMesh(py::module_& m) {
@@ -193,13 +192,6 @@ void BindSoftActorDesc(py::module_& m) {
       .def_readwrite("contact_layer", &SoftActorDesc::contactLayer)
       .def_readwrite("constraints", &SoftActorDesc::constraints,
                      "list of NodeConstraint (a copy: assign a whole list)");
-}
-
-}  // namespace
-
-void BindSoft(py::module_& m) {
-  BindTetMesh(m);
-  BindSoftActorDesc(m);
 }
 
 }  // namespace superdex::python

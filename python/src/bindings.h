@@ -13,18 +13,23 @@ namespace superdex::python {
 
 namespace py = pybind11;
 
-void BindParams(py::module_& m);
-void BindSoft(py::module_& m);
-void BindScene(py::module_& m);  // calls the four below, then binds Scene and SceneFile
+// One function per group of classes, called in this order by module.cpp (a class is registered
+// before a signature names it).
+void BindParams(py::module_& m);  // enums and parameter structs, from their tables
+void BindTetMesh(py::module_& m);
+void BindSoftActorDesc(py::module_& m);  // NodeConstraint, SoftActorDesc
 void BindRigidShape(py::module_& m);
 void BindRigidActorDesc(py::module_& m);
 void BindStepReport(py::module_& m);
 void BindActor(py::module_& m);
-void BindFit(py::module_& m);
-void BindRun(py::module_& m);  // run_scene, RunSummary, load_scene_text
+void BindSceneClass(py::module_& m);  // Scene, with contact filtering
+void BindSceneFile(py::module_& m);  // SceneFile, load_scene
+void BindForwardSensitivity(py::module_& m);
+void BindFitting(py::module_& m);  // FitResult, TrajectoryGradient, fit, trajectory_gradient
+void BindRunSummary(py::module_& m);
+void BindRunScene(py::module_& m);
+void BindLoadSceneText(py::module_& m);
 
-/// Runs call() (the simulator's work: a step, a fit, a mesher) with the GIL released, so that
-/// other Python threads run meanwhile; returns its result.
 template <typename Call>
 auto WithoutGil(Call&& call) {
   py::gil_scoped_release release;

@@ -8,9 +8,19 @@ PYBIND11_MODULE(_superdex, m) {
       "Units are SI throughout (m, kg, s, N, Pa). Build a Scene, add actors, step or run it;\n"
       "states and trajectories come back as numpy arrays. Bad values raise ValueError with the\n"
       "field and the rule; a stage that does not converge raises RuntimeError.";
-  superdex::python::BindParams(m);
-  superdex::python::BindSoft(m);
-  superdex::python::BindScene(m);
-  superdex::python::BindFit(m);
-  superdex::python::BindRun(m);
+  using namespace superdex::python;
+  BindParams(m);
+  BindTetMesh(m);
+  BindSoftActorDesc(m);
+  BindRigidShape(m);
+  BindRigidActorDesc(m);
+  BindStepReport(m);
+  BindActor(m);
+  BindSceneClass(m);
+  BindSceneFile(m);
+  BindForwardSensitivity(m);
+  BindFitting(m);
+  BindRunSummary(m);
+  BindRunScene(m);
+  BindLoadSceneText(m);
 }
