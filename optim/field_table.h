@@ -368,16 +368,15 @@ template <typename F>
 std::string CheckField(const F& f, const typename F::ClassType& c, const std::string& prefix) {
   using T = typename F::ValueType;
   const T& v = f.Of(c);
-  if constexpr (kIsNested<F>) {
-    const std::string m = Validate(v);
-    return m.empty() ? m : prefix + f.name + "." + m;
-  }
   auto fail = [&](const std::string& rule, const auto& got) {
     std::ostringstream s;
     s << prefix << f.name << ": must be " << rule << ", got " << got;
     return s.str();
   };
-  if constexpr (std::is_enum_v<T>) {
+  if constexpr (kIsNested<F>) {
+    const std::string m = Validate(v);  // the nested struct's own rules, found by ADL
+    if (!m.empty()) return prefix + f.name + "." + m;
+  } else if constexpr (std::is_enum_v<T>) {
     if (!IsNamed(v)) return fail(OneOfText(T()), static_cast<int>(v));
   } else if constexpr (field_table_detail::IsOptional<T>::value) {
     if (v && !IsNamed(*v)) return fail(OneOfText(typename T::value_type()), static_cast<int>(*v));
