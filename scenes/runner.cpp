@@ -45,21 +45,31 @@ void Accumulate(const StepReport& rep, RunSummary* s) {
 // The run's files: the trajectory (a line per output frame) and the VTK frames.
 class RunOutputs {
  public:
+  // Opens the files and writes the first frame; a resumed run (`resume`) continues the
+  // checkpoint's trajectory when it is the same file.
   bool Open(const SceneFile& file, const TrajectoryOptions& content, Scene& scene, double dt,
-            RunSummary* s, Error* error) {
+            const Checkpoint* resume, RunSummary* s, Error* error) {
     every_ = file.output.every;
     vtkEvery_ = file.output.vtkEvery;
-    if (!s->trajectoryPath.empty() &&
-        !writer_.Open(s->trajectoryPath, scene, file.actorNames, dt, error, content))
-      return false;
-    return Write(scene, 0, nullptr, true, s, error);
+    if (s->trajectoryPath.empty()) return resume || Write(scene, 0, nullptr, true, s, error);
+    if (resume && resume->run.trajectoryPath == s->trajectoryPath) {
+      if (!writer_.Reopen(s->trajectoryPath, resume->run.trajectoryBytes, scene, file.actorNames,
+                          dt, error, content))
+        return false;
+      scheduledBytes_ = resume->run.trajectoryBytes;
+      return true;
+    }
+    if (!writer_.Open(s->trajectoryPath, scene, file.actorNames, dt, error, content)) return false;
+    scheduledBytes_ = writer_.Bytes();
+    return resume || Write(scene, 0, nullptr, true, s, error);
   }
   // The frames due after `step` (all of them when `force`, e.g. at the last step).
   bool Write(Scene& scene, long long step, const StepReport* rep, bool force, RunSummary* s,
              Error* error) {
-    if (writer_.IsOpen() && (force || step % every_ == 0) &&
-        !writer_.WriteFrame(scene, step, rep, error))
+    const bool due = step % every_ == 0;
+    if (writer_.IsOpen() && (force || due) && !writer_.WriteFrame(scene, step, rep, error))
       return false;
+    if (due) scheduledBytes_ = writer_.Bytes();
     if (s->vtkDirectory.empty() || !(force || step % vtkEvery_ == 0)) return true;
     char name[40];
     std::snprintf(name, sizeof(name), "/frame_%06lld.vtk", step);
@@ -68,11 +78,66 @@ class RunOutputs {
     return true;
   }
   bool Close(Error* error) { return writer_.Close(error); }
+  /// The trajectory's length after the last frame due by its schedule (a frame forced by the
+  /// end of a run is not part of the uninterrupted run).
+  long long ScheduledBytes() const { return scheduledBytes_; }
 
  private:
   TrajectoryWriter writer_;
   int every_ = 1, vtkEvery_ = 1;
+  long long scheduledBytes_ = 0;
 };
+
+// The checkpoint after `step`: the scene's state and the run's accumulators.
+bool SaveCheckpoint(const SceneFile& file, const RunOptions& options, const RunSummary& s,
+                    const RunOutputs& outputs, long long step, double dt, Error* error) {
+  Checkpoint c;
+  c.sceneHash = file.textHash;
+  c.scenePath = file.path;
+  c.snapshot = file.scene->Save();
+  CheckpointRun& r = c.run;
+  r.step = step;
+  r.dt = dt;
+  r.integrator = ToString(file.scene->Settings().integrator);
+  r.trajectoryPath = s.trajectoryPath;
+  r.trajectoryBytes = outputs.ScheduledBytes();
+  r.vtkFrames = s.vtkFrames;
+  r.newtonIterations = s.newtonIterations;
+  r.stages = s.stages;
+  r.freeStages = s.freeStages;
+  r.krylovIterations = s.krylovIterations;
+  r.krylovFallbacks = s.krylovFallbacks;
+  r.fallbacks = s.fallbacks;
+  r.maxNewtonIterations = s.maxNewtonIterations;
+  r.converged = s.converged;
+  r.stopped = s.stopped;
+  r.diverged = s.diverged;
+  r.maxPenetration = s.maxPenetration;
+  r.minDetF = s.minDetF;
+  r.initialEnergy = s.initialEnergy;
+  return WriteCheckpoint(options.checkpointPath, c, error);
+}
+
+// Continues from a checkpoint: the scene's state and the summary's accumulators.
+void Resume(const Checkpoint& c, Scene& scene, RunSummary* s) {
+  scene.Restore(c.snapshot);
+  const CheckpointRun& r = c.run;
+  s->steps = static_cast<int>(r.step);
+  s->vtkFrames = r.vtkFrames;
+  s->newtonIterations = r.newtonIterations;
+  s->stages = r.stages;
+  s->freeStages = r.freeStages;
+  s->krylovIterations = r.krylovIterations;
+  s->krylovFallbacks = r.krylovFallbacks;
+  s->fallbacks = r.fallbacks;
+  s->maxNewtonIterations = r.maxNewtonIterations;
+  s->converged = r.converged;
+  s->stopped = r.stopped;
+  s->diverged = r.diverged;
+  s->maxPenetration = r.maxPenetration;
+  s->minDetF = r.minDetF;
+  s->initialEnergy = r.initialEnergy;
+}
 
 void CheckExpectations(const SceneFile& file, const Scene& scene, RunSummary* s) {
   const SceneExpectations& e = file.expect;
@@ -155,6 +220,11 @@ bool RunScene(SceneFile* file, const RunOptions& options, RunSummary* summary, E
   const PenetrationBound bound = MakePenetrationBound(*file);
   if (std::string m = CheckInitialState(file, bound); !m.empty())
     return end(RunEnd::InvalidInput, m);
+  const Checkpoint* resume = options.resume;
+  if (resume && resume->run.step >= steps)
+    return end(RunEnd::InvalidInput,
+               "--resume: the checkpoint is at step " + std::to_string(resume->run.step) +
+                   " and the run has " + std::to_string(steps) + " steps: nothing is left to run");
   s.trajectoryPath = options.out.value_or(file->output.path);
   if (options.view && s.trajectoryPath.empty())
     return end(RunEnd::InvalidInput,
@@ -163,12 +233,16 @@ bool RunScene(SceneFile* file, const RunOptions& options, RunSummary* summary, E
   TrajectoryOptions content;
   content.contacts = options.contacts.value_or(file->output.contacts);
   RunOutputs outputs;
-  if (!outputs.Open(*file, content, scene, dt, &s, error))
-    return end(RunEnd::OutputFailed, error->message);
-  s.initialEnergy = scene.Energies().Total();
-  s.maxPenetration = std::max(0.0, -scene.ContactState().minSignedDistance);
+  if (resume) {
+    Resume(*resume, scene, &s);
+  } else {
+    s.initialEnergy = scene.Energies().Total();
+    s.maxPenetration = std::max(0.0, -scene.ContactState().minSignedDistance);
+  }
+  if (!outputs.Open(*file, content, scene, dt, resume, &s, error))
+    return end(resume ? RunEnd::InvalidInput : RunEnd::OutputFailed, error->message);
   bool finite = true;
-  for (long long k = 1; k <= steps; ++k) {
+  for (long long k = resume ? resume->run.step + 1 : 1; k <= steps; ++k) {
     StepReport rep;
     const Clock::time_point t0 = Clock::now();
     if (!scene.Step(dt, &rep, error)) return end(RunEnd::InvalidInput, error->message);
@@ -188,12 +262,20 @@ bool RunScene(SceneFile* file, const RunOptions& options, RunSummary* summary, E
       s.endMessage = failed;
       break;
     }
+    const bool checkpoint = options.checkpointEvery > 0 &&
+                            (k % options.checkpointEvery == 0 || signal != 0);
+    if (checkpoint && !SaveCheckpoint(*file, options, s, outputs, k, dt, error)) {
+      s.end = RunEnd::OutputFailed;
+      s.endMessage = error->message;
+      break;
+    }
     if (signal != 0) {
       s.end = RunEnd::Interrupted;
       s.signal = signal;
       s.endMessage = "stopped by signal " + std::to_string(signal) + " after step " +
                      std::to_string(k) + " of " + std::to_string(steps) + " (t = " +
-                     NumberText(scene.Time()) + " s); its frame is written";
+                     NumberText(scene.Time()) + " s); its frame is written" +
+                     (checkpoint ? " and the checkpoint " + options.checkpointPath : "");
       break;
     }
     if (options.progress) options.progress(rep, double(k) / steps);

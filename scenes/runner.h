@@ -6,6 +6,7 @@
 #include <ostream>
 #include <string>
 
+#include "scenes/checkpoint.h"
 #include "scenes/scene_file.h"
 
 namespace superdex {
@@ -24,6 +25,14 @@ struct RunOptions {
   /// Polled after every step: a nonzero value (the number of the signal that asked for it) ends
   /// the run there, with that step's frame written and the files closed.
   std::function<int()> interrupted;
+  /// Checkpoints (scenes/checkpoint.h): after every `checkpointEvery`-th step (0: never) and
+  /// after the step a signal ended the run at, written to `checkpointPath`.
+  long long checkpointEvery = 0;
+  std::string checkpointPath;
+  /// Continues the run `resume` was written from (it must fit: CheckpointFits) instead of
+  /// starting at t = 0. The trajectory, when it is the checkpoint's, is cut to its length at the
+  /// checkpoint and continued; another path gets a new file from the next frame on.
+  const Checkpoint* resume = nullptr;
 };
 
 /// How a run ended; `superdex run` maps it to its exit code (docs/reliability.md).
@@ -32,7 +41,7 @@ enum class RunEnd {
   InvalidInput,  ///< refused before the first step; *error says why (exit code 2)
   Unphysical,    ///< a step's state is not finite, a soft tet inverted, or the penetration
                  ///< exceeded its bound (exit code 5)
-  OutputFailed,  ///< a trajectory or VTK file could not be written (exit code 6)
+  OutputFailed,  ///< a trajectory, VTK or checkpoint file could not be written (exit code 6)
   Interrupted,   ///< a signal: the current step finished and its frame was written (128 + signal)
 };
 

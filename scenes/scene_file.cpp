@@ -10,6 +10,7 @@
 
 #include "geometry/mesh_io.h"
 #include "geometry/tet_mesh.h"
+#include "scenes/checkpoint.h"
 #include "scenes/grid_copies.h"
 #include "scenes/json_fields.h"
 #include "scenes/json_text.h"
@@ -285,6 +286,7 @@ bool LoadSceneText(const std::string& text, const std::string& baseDir, SceneFil
   const std::string path = out->path;
   *out = SceneFile();
   out->path = path;
+  out->textHash = SceneTextHash(text);
   try {
     json j;
     std::string parseError;

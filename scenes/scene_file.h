@@ -1,6 +1,7 @@
 // The JSON scene format (README "Scene format"): loading with errors that name the JSON path.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -65,6 +66,7 @@ struct SceneFile {
   OutputSpec output;
   SceneExpectations expect;
   std::vector<std::string> actorNames;  ///< index → name
+  std::uint64_t textHash = 0;  ///< SceneTextHash of the file's text (scenes/checkpoint.h)
 };
 
 /// Loads a scene file. Returns false and fills *error with "<json path>: <rule>" (e.g.

@@ -1,6 +1,7 @@
 // The `superdex` command-line tool.
 //   superdex run SCENE.json [--dt S] [--duration S] [--integrator NAME] [--solver NAME]
 //                [--out FILE] [--vtk DIR] [--contacts] [--view] [--quiet]
+//                [--checkpoint-every N [--checkpoint FILE]] [--resume FILE]
 //   superdex view RUN.jsonl [--out PAGE.html]
 //   superdex fit SCENE.json --observed TRAJ.jsonl --params ACTOR.NAME,... [--dt S]
 //                [--method lm|lbfgs] [--max-iterations N] [--out FITTED.json]
@@ -267,8 +268,9 @@ int RunAndReport(superdex::SceneFile& file, superdex::RunOptions options, bool q
 
 // The options of `superdex run`.
 struct RunArgs {
-  std::string scene, integrator, out, vtk, solver;
+  std::string scene, integrator, out, vtk, solver, checkpoint, resume;
   double dt = 0.0, duration = 0.0;
+  long long checkpointEvery = 0;
   bool quiet = false, contacts = false, view = false;
 };
 
@@ -297,7 +299,51 @@ CLI::App* AddRunCommand(CLI::App* app, RunArgs* a) {
   run->add_flag("--view", a->view,
                 "At the end, write the viewer page next to the trajectory (as `superdex view`)");
   run->add_flag("--quiet", a->quiet, "No progress bar");
+  run->add_option("--checkpoint-every", a->checkpointEvery,
+                  "Write a checkpoint after every N-th step (and when a signal stops the run)");
+  run->add_option("--checkpoint", a->checkpoint,
+                  "The checkpoint file (default: the trajectory's path with .checkpoint, or the "
+                  "--resume file)");
+  run->add_option("--resume", a->resume,
+                  "Continue the run from a checkpoint of this scene file (docs/reliability.md)");
   return run;
+}
+
+// --checkpoint-every, --checkpoint and --resume into `options` (after every other override:
+// the checkpoint must fit the scene as it will run); false after printing the error.
+bool CheckpointOptions(const RunArgs& a, const CLI::App& run, const superdex::SceneFile& file,
+                       superdex::Checkpoint* resume, superdex::RunOptions* options) {
+  superdex::Error error;
+  if (run.count("--resume")) {
+    if (!superdex::ReadCheckpoint(a.resume, resume, &error) ||
+        !superdex::CheckpointFits(*resume, a.resume, *file.scene, file.textHash,
+                                  options->dt.value_or(file.dt), &error)) {
+      std::cerr << "error: " << error.message << "\n";
+      return false;
+    }
+    options->resume = resume;
+  }
+  if (!run.count("--checkpoint-every")) {
+    if (!run.count("--checkpoint")) return true;
+    std::cerr << "error: --checkpoint: needs --checkpoint-every N\n";
+    return false;
+  }
+  if (a.checkpointEvery < 1) {
+    std::cerr << "error: --checkpoint-every: must be >= 1, got " << a.checkpointEvery << "\n";
+    return false;
+  }
+  options->checkpointEvery = a.checkpointEvery;
+  const std::string trajectory = options->out.value_or(file.output.path);
+  options->checkpointPath = run.count("--checkpoint") ? a.checkpoint
+                            : run.count("--resume")   ? a.resume
+                            : trajectory.empty()      ? std::string()
+                                                      : trajectory + ".checkpoint";
+  if (options->checkpointPath.empty()) {
+    std::cerr << "error: --checkpoint-every: give --checkpoint FILE (the run writes no "
+                 "trajectory to put it next to)\n";
+    return false;
+  }
+  return true;
 }
 
 int RunCommand(const RunArgs& a, const CLI::App& run) {
@@ -323,6 +369,8 @@ int RunCommand(const RunArgs& a, const CLI::App& run) {
       !SetFromOption<superdex::StageSolverKind>("--solver", a.solver,
                      [&](auto k, superdex::Error* e) { return scene.SetStageSolver(k, e); }))
     return kExitInput;
+  superdex::Checkpoint resume;
+  if (!CheckpointOptions(a, run, file, &resume, &options)) return kExitInput;
   for (const auto& n : file.scene->Notices()) std::cerr << "note: " << n << "\n";
   return RunAndReport(file, options, a.quiet);
 }

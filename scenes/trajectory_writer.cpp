@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 namespace superdex {
@@ -101,18 +102,8 @@ bool TrajectoryWriter::Close(Error* error) {
   return true;
 }
 
-bool TrajectoryWriter::Open(const std::string& path, const Scene& scene,
-                            const std::vector<std::string>& names, double dt, Error* error,
-                            const TrajectoryOptions& options) {
-  std::error_code ec;
-  const std::filesystem::path p(path);
-  if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path(), ec);
-  path_ = path;
-  errno = 0;
-  file_ = std::fopen(path.c_str(), "w");
-  if (!file_)
-    return Fail(error, "output.path: cannot write \"" + path + "\": " +
-                           (errno ? std::strerror(errno) : "open failed"));
+std::string TrajectoryWriter::Header(const Scene& scene, const std::vector<std::string>& names,
+                                    double dt, const TrajectoryOptions& options) {
   options_ = options;
   surfaceNodes_.assign(scene.NumActors(), {});
   json h;
@@ -135,7 +126,55 @@ bool TrajectoryWriter::Open(const std::string& path, const Scene& scene,
                       {"mass", m.mass}, {"shape", RigidShapeJson(m)}});
   }
   h["actors"] = actors;
-  return WriteLine(h.dump(), error);
+  return h.dump();
+}
+
+bool TrajectoryWriter::Open(const std::string& path, const Scene& scene,
+                            const std::vector<std::string>& names, double dt, Error* error,
+                            const TrajectoryOptions& options) {
+  std::error_code ec;
+  const std::filesystem::path p(path);
+  if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path(), ec);
+  path_ = path;
+  errno = 0;
+  file_ = std::fopen(path.c_str(), "w");
+  if (!file_)
+    return Fail(error, "output.path: cannot write \"" + path + "\": " +
+                           (errno ? std::strerror(errno) : "open failed"));
+  return WriteLine(Header(scene, names, dt, options), error);
+}
+
+bool TrajectoryWriter::Reopen(const std::string& path, long long bytes, const Scene& scene,
+                              const std::vector<std::string>& names, double dt, Error* error,
+                              const TrajectoryOptions& options) {
+  const std::string header = Header(scene, names, dt, options);
+  path_ = path;
+  std::string first;
+  {
+    std::ifstream in(path, std::ios::binary);
+    if (!in || !std::getline(in, first))
+      return Fail(error, "output.path: cannot resume \"" + path + "\": it cannot be read");
+  }
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec || static_cast<long long>(size) < bytes)
+    return Fail(error, "output.path: cannot resume \"" + path + "\": it holds " +
+                           std::to_string(ec ? 0 : size) + " bytes, the checkpoint needs " +
+                           std::to_string(bytes));
+  if (first != header)
+    return Fail(error, "output.path: cannot resume \"" + path +
+                           "\": its header is not this run's (another scene or options)");
+  std::filesystem::resize_file(path, static_cast<std::uintmax_t>(bytes), ec);
+  errno = 0;
+  file_ = ec ? nullptr : std::fopen(path.c_str(), "a");
+  if (!file_)
+    return Fail(error, "output.path: cannot resume \"" + path + "\": " +
+                           (ec ? ec.message() : errno ? std::strerror(errno) : "open failed"));
+  return true;
+}
+
+long long TrajectoryWriter::Bytes() const {
+  return file_ ? static_cast<long long>(std::ftell(file_)) : 0;
 }
 
 bool TrajectoryWriter::WriteFrame(Scene& scene, long long step, const StepReport* report,

@@ -29,6 +29,14 @@ class TrajectoryWriter {
   /// actor with its shape (rigid) or boundary surface (soft).
   bool Open(const std::string& path, const Scene& scene, const std::vector<std::string>& names,
             double dt, Error* error, const TrajectoryOptions& options = TrajectoryOptions());
+  /// Continues the file a checkpoint left (scenes/checkpoint.h): checks that its header line is
+  /// the one Open would write, cuts it to `bytes` and appends from there. False (and *error)
+  /// when it is missing, shorter, or has another header.
+  bool Reopen(const std::string& path, long long bytes, const Scene& scene,
+              const std::vector<std::string>& names, double dt, Error* error,
+              const TrajectoryOptions& options = TrajectoryOptions());
+  /// The bytes written so far (the file's length once flushed).
+  long long Bytes() const;
   /// Writes and flushes one frame: time, every actor's pose and velocity (soft: also the
   /// boundary nodes' positions), energies, step statistics and, if asked for, the contact
   /// samples. False (and *error, with the system's reason) when the write fails.
@@ -39,6 +47,9 @@ class TrajectoryWriter {
 
  private:
   bool WriteLine(const std::string& line, Error* error);
+  // The header line (settings, actors); sets options_ and surfaceNodes_.
+  std::string Header(const Scene& scene, const std::vector<std::string>& names, double dt,
+                     const TrajectoryOptions& options);
   std::FILE* file_ = nullptr;
   std::string path_;
   TrajectoryOptions options_;

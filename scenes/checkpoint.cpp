@@ -1,0 +1,359 @@
+#include "scenes/checkpoint.h"
+
+#include <cerrno>
+#include <cinttypes>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "scenes/json_text.h"
+
+namespace superdex {
+namespace {
+
+using json = nlohmann::json;
+
+constexpr const char* kFormat = "superdex-checkpoint";
+constexpr int kVersion = 1;
+constexpr int kRigidValues = 24;  // p, R (column-major), v, Ṙ
+
+// A double as a hex float string: exact, also for ±inf and nan.
+std::string Hex(double x) {
+  char text[64];
+  std::snprintf(text, sizeof(text), "%a", x);
+  return text;
+}
+
+std::string HashText(std::uint64_t h) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "fnv1a64:%016" PRIx64, h);
+  return text;
+}
+
+json Doubles(const double* x, int n) {
+  json a = json::array();
+  for (int i = 0; i < n; ++i) a.push_back(Hex(x[i]));
+  return a;
+}
+
+json RigidJson(const std::vector<RigidBodyState>& states) {
+  json a = json::array();
+  for (const RigidBodyState& s : states) {
+    double v[kRigidValues];
+    Eigen::Map<Eigen::Vector3d>{v} = s.p;
+    Eigen::Map<Eigen::Matrix3d>{v + 3} = s.R;
+    Eigen::Map<Eigen::Vector3d>{v + 12} = s.v;
+    Eigen::Map<Eigen::Matrix3d>{v + 15} = s.Rdot;
+    a.push_back(Doubles(v, kRigidValues));
+  }
+  return a;
+}
+
+json VectorJson(const std::vector<SoftBodyState>& states) {
+  json a = json::array();
+  for (const SoftBodyState& s : states)
+    a.push_back({{"x", Doubles(s.x.data(), static_cast<int>(s.x.size()))},
+                 {"v", Doubles(s.v.data(), static_cast<int>(s.v.size()))}});
+  return a;
+}
+
+json ToJson(const Checkpoint& c) {
+  const CheckpointRun& r = c.run;
+  json j;
+  j["format"] = kFormat;
+  j["version"] = kVersion;
+  j["scene_hash"] = HashText(c.sceneHash);
+  j["scene"] = c.scenePath;
+  j["run"] = {{"step", r.step},
+              {"dt", Hex(r.dt)},
+              {"integrator", r.integrator},
+              {"trajectory", r.trajectoryPath},
+              {"trajectory_bytes", r.trajectoryBytes},
+              {"vtk_frames", r.vtkFrames},
+              {"newton_iterations", r.newtonIterations},
+              {"stages", r.stages},
+              {"free_stages", r.freeStages},
+              {"krylov_iterations", r.krylovIterations},
+              {"krylov_fallbacks", r.krylovFallbacks},
+              {"fallbacks", r.fallbacks},
+              {"max_newton_iterations", r.maxNewtonIterations},
+              {"converged", r.converged},
+              {"stopped", r.stopped},
+              {"diverged", r.diverged},
+              {"max_penetration", Hex(r.maxPenetration)},
+              {"min_det_f", Hex(r.minDetF)},
+              {"initial_energy", Hex(r.initialEnergy)}};
+  const StageDriver::State& d = c.snapshot.driver;
+  j["driver"] = {{"explicit_first_stages", d.explicitFirstStages},
+                 {"explicit_first_run", d.explicitFirstRun},
+                 {"last_potential_iterations", d.lastPotentialIterations},
+                 {"last_stage_in_contact", d.lastStageInContact}};
+  const StepState& s = c.snapshot.step;
+  j["time"] = Hex(s.time);
+  j["rigid"] = RigidJson(s.states);
+  j["vector"] = VectorJson(s.softStates);
+  json history = json::array();
+  for (size_t h = 0; h < s.history.size(); ++h)
+    history.push_back({{"time", Hex(h < s.historyTimes.size() ? s.historyTimes[h] : 0.0)},
+                       {"rigid", RigidJson(s.history[h])},
+                       {"vector", VectorJson(h < s.softHistory.size() ? s.softHistory[h]
+                                                                       : std::vector<SoftBodyState>())}});
+  j["history"] = history;
+  return j;
+}
+
+// Reading: each accessor throws Bad{"<field>: <rule>"} on the first problem.
+struct Bad {
+  std::string message;
+};
+[[noreturn]] void Throw(const std::string& field, const std::string& rule) {
+  throw Bad{field + ": " + rule};
+}
+
+const json& At(const json& j, const std::string& path, const char* key) {
+  if (!j.is_object()) Throw(path, "must be an object");
+  if (!j.contains(key)) Throw(path.empty() ? key : path + "." + key, "missing");
+  return j.at(key);
+}
+
+std::string Field(const std::string& path, const char* key) {
+  return path.empty() ? key : path + "." + key;
+}
+
+double HexNumber(const json& v, const std::string& field) {
+  if (!v.is_string()) Throw(field, "must be a hex float string, got " + std::string(v.type_name()));
+  const std::string& text = v.get_ref<const std::string&>();
+  char* end = nullptr;
+  errno = 0;
+  const double x = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size())
+    Throw(field, "\"" + text + "\" is not a number");
+  return x;
+}
+
+double HexAt(const json& j, const std::string& path, const char* key) {
+  return HexNumber(At(j, path, key), Field(path, key));
+}
+
+long long IntegerAt(const json& j, const std::string& path, const char* key, long long lo) {
+  const json& v = At(j, path, key);
+  if (!v.is_number_integer()) Throw(Field(path, key), "must be an integer");
+  const long long x = v.is_number_unsigned() && v.get<unsigned long long>() > (1ULL << 62)
+                          ? (1LL << 62)
+                          : v.get<long long>();
+  if (x < lo || x > (1LL << 53)) Throw(Field(path, key), "out of range: " + v.dump());
+  return x;
+}
+
+std::string StringAt(const json& j, const std::string& path, const char* key) {
+  const json& v = At(j, path, key);
+  if (!v.is_string()) Throw(Field(path, key), "must be a string");
+  return v.get<std::string>();
+}
+
+const json& ArrayAt(const json& j, const std::string& path, const char* key) {
+  const json& v = At(j, path, key);
+  if (!v.is_array()) Throw(Field(path, key), "must be an array");
+  return v;
+}
+
+void ReadDoubles(const json& a, const std::string& field, Eigen::VectorXd* out) {
+  if (!a.is_array()) Throw(field, "must be an array");
+  out->resize(static_cast<Eigen::Index>(a.size()));
+  for (size_t i = 0; i < a.size(); ++i)
+    (*out)[static_cast<Eigen::Index>(i)] =
+        HexNumber(a[i], field + "[" + std::to_string(i) + "]");
+}
+
+std::vector<RigidBodyState> ReadRigid(const json& j, const std::string& path) {
+  const json& a = ArrayAt(j, path, "rigid");
+  std::vector<RigidBodyState> states(a.size());
+  for (size_t i = 0; i < a.size(); ++i) {
+    const std::string field = Field(path, "rigid") + "[" + std::to_string(i) + "]";
+    Eigen::VectorXd v;
+    ReadDoubles(a[i], field, &v);
+    if (v.size() != kRigidValues)
+      Throw(field, "needs 24 numbers (p, R, v, dR/dt), got " + std::to_string(v.size()));
+    states[i].p = v.segment<3>(0);
+    states[i].R = Eigen::Map<const Eigen::Matrix3d>(v.data() + 3);
+    states[i].v = v.segment<3>(12);
+    states[i].Rdot = Eigen::Map<const Eigen::Matrix3d>(v.data() + 15);
+  }
+  return states;
+}
+
+std::vector<SoftBodyState> ReadVector(const json& j, const std::string& path) {
+  const json& a = ArrayAt(j, path, "vector");
+  std::vector<SoftBodyState> states(a.size());
+  for (size_t i = 0; i < a.size(); ++i) {
+    const std::string field = Field(path, "vector") + "[" + std::to_string(i) + "]";
+    ReadDoubles(At(a[i], field, "x"), field + ".x", &states[i].x);
+    ReadDoubles(At(a[i], field, "v"), field + ".v", &states[i].v);
+    if (states[i].x.size() != states[i].v.size())
+      Throw(field, "x and v differ in length");
+  }
+  return states;
+}
+
+void ReadRun(const json& j, CheckpointRun* r) {
+  const json& run = At(j, "", "run");
+  r->step = IntegerAt(run, "run", "step", 0);
+  r->dt = HexAt(run, "run", "dt");
+  r->integrator = StringAt(run, "run", "integrator");
+  r->trajectoryPath = StringAt(run, "run", "trajectory");
+  r->trajectoryBytes = IntegerAt(run, "run", "trajectory_bytes", 0);
+  r->vtkFrames = static_cast<int>(IntegerAt(run, "run", "vtk_frames", 0));
+  r->newtonIterations = IntegerAt(run, "run", "newton_iterations", 0);
+  r->stages = IntegerAt(run, "run", "stages", 0);
+  r->freeStages = IntegerAt(run, "run", "free_stages", 0);
+  r->krylovIterations = IntegerAt(run, "run", "krylov_iterations", 0);
+  r->krylovFallbacks = IntegerAt(run, "run", "krylov_fallbacks", 0);
+  r->fallbacks = static_cast<int>(IntegerAt(run, "run", "fallbacks", 0));
+  r->maxNewtonIterations = static_cast<int>(IntegerAt(run, "run", "max_newton_iterations", 0));
+  r->converged = static_cast<int>(IntegerAt(run, "run", "converged", 0));
+  r->stopped = static_cast<int>(IntegerAt(run, "run", "stopped", 0));
+  r->diverged = static_cast<int>(IntegerAt(run, "run", "diverged", 0));
+  r->maxPenetration = HexAt(run, "run", "max_penetration");
+  r->minDetF = HexAt(run, "run", "min_det_f");
+  r->initialEnergy = HexAt(run, "run", "initial_energy");
+}
+
+void FromJson(const json& j, Checkpoint* c) {
+  if (!j.is_object()) Throw("(top level)", "must be an object");
+  if (StringAt(j, "", "format") != kFormat)
+    Throw("format", "\"" + StringAt(j, "", "format") + "\" is not \"" + kFormat + "\"");
+  const long long version = IntegerAt(j, "", "version", 0);
+  if (version != kVersion)
+    Throw("version", std::to_string(version) + " is not supported (this build reads version " +
+                         std::to_string(kVersion) + ")");
+  const std::string hash = StringAt(j, "", "scene_hash");
+  unsigned long long h = 0;
+  char tail = 0;
+  if (std::sscanf(hash.c_str(), "fnv1a64:%16llx%c", &h, &tail) != 1 || hash.size() != 24)
+    Throw("scene_hash", "\"" + hash + "\" is not fnv1a64:<16 hex digits>");
+  c->sceneHash = h;
+  c->scenePath = StringAt(j, "", "scene");
+  ReadRun(j, &c->run);
+  const json& d = At(j, "", "driver");
+  StageDriver::State& ds = c->snapshot.driver;
+  ds.explicitFirstStages = static_cast<int>(IntegerAt(d, "driver", "explicit_first_stages", 0));
+  ds.explicitFirstRun = static_cast<int>(IntegerAt(d, "driver", "explicit_first_run", 0));
+  ds.lastPotentialIterations =
+      static_cast<int>(IntegerAt(d, "driver", "last_potential_iterations", 0));
+  const json& contact = At(d, "driver", "last_stage_in_contact");
+  if (!contact.is_boolean()) Throw("driver.last_stage_in_contact", "must be true or false");
+  ds.lastStageInContact = contact.get<bool>();
+  StepState& s = c->snapshot.step;
+  s = StepState();
+  s.time = HexAt(j, "", "time");
+  s.states = ReadRigid(j, "");
+  s.softStates = ReadVector(j, "");
+  const json& history = ArrayAt(j, "", "history");
+  if (history.size() > 2) Throw("history", "holds at most 2 states, got " + std::to_string(history.size()));
+  for (size_t h = 0; h < history.size(); ++h) {
+    const std::string path = "history[" + std::to_string(h) + "]";
+    s.historyTimes.push_back(HexAt(history[h], path, "time"));
+    s.history.push_back(ReadRigid(history[h], path));
+    s.softHistory.push_back(ReadVector(history[h], path));
+  }
+}
+
+// Whether `states` have the shapes of `reference` (the scene's own), else the field and rule.
+std::string SameShapes(const std::vector<RigidBodyState>& rigid,
+                       const std::vector<SoftBodyState>& vector, const StepState& reference,
+                       const std::string& path) {
+  if (rigid.size() != reference.states.size())
+    return Field(path, "rigid") + ": " + std::to_string(rigid.size()) +
+           " rigid actors, the scene has " + std::to_string(reference.states.size());
+  if (vector.size() != reference.softStates.size())
+    return Field(path, "vector") + ": " + std::to_string(vector.size()) +
+           " soft (and generic) actors, the scene has " +
+           std::to_string(reference.softStates.size());
+  for (size_t i = 0; i < vector.size(); ++i)
+    if (vector[i].x.size() != reference.softStates[i].x.size())
+      return Field(path, "vector") + "[" + std::to_string(i) + "].x: " +
+             std::to_string(vector[i].x.size()) + " values, the scene's actor has " +
+             std::to_string(reference.softStates[i].x.size());
+  return {};
+}
+
+}  // namespace
+
+std::uint64_t SceneTextHash(const std::string& text) {
+  std::uint64_t h = 14695981039346656037ULL;
+  for (unsigned char c : text) {
+    h ^= c;
+    h *= 1099511628211ULL;
+  }
+  return h;
+}
+
+bool WriteCheckpoint(const std::string& path, const Checkpoint& checkpoint, Error* error) {
+  const std::string part = path + ".part";
+  const std::string text = ToJson(checkpoint).dump() + "\n";
+  auto failed = [&](const std::string& what) {
+    const std::string reason = errno ? std::strerror(errno) : "write error";
+    std::remove(part.c_str());
+    return Fail(error, "checkpoint: " + what + " \"" + path + "\" failed: " + reason);
+  };
+  errno = 0;
+  std::FILE* f = std::fopen(part.c_str(), "wb");
+  if (!f) return failed("writing");
+  const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size() &&
+                       std::fflush(f) == 0;
+  if (std::fclose(f) != 0 || !written) return failed("writing");
+  if (std::rename(part.c_str(), path.c_str()) != 0) return failed("renaming the new");
+  return true;
+}
+
+bool ReadCheckpoint(const std::string& path, Checkpoint* checkpoint, Error* error) {
+  const std::string where = "checkpoint " + path + ": ";
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Fail(error, where + "cannot open file");
+  std::stringstream buf;
+  buf << in.rdbuf();
+  const std::string text = buf.str();
+  if (text.empty()) return Fail(error, where + "the file is empty");
+  json j;
+  std::string why;
+  if (!ParseJsonText(text, &j, &why))
+    return Fail(error, where + why + (text.back() != '\n' ? " (the file is truncated)" : ""));
+  try {
+    FromJson(j, checkpoint);
+  } catch (const Bad& bad) {
+    return Fail(error, where + bad.message);
+  }
+  return true;
+}
+
+bool CheckpointFits(const Checkpoint& c, const std::string& path, const Scene& scene,
+                    std::uint64_t sceneHash, double dt, Error* error) {
+  const std::string where = "checkpoint " + path + ": ";
+  if (c.sceneHash != sceneHash)
+    return Fail(error, where + "scene_hash: written for the scene file \"" + c.scenePath +
+                           "\" (" + HashText(c.sceneHash) + "); this scene file's text has " +
+                           HashText(sceneHash) +
+                           ": resume with the scene file the checkpoint was written from");
+  if (c.run.dt != dt)
+    return Fail(error, where + "run.dt: written at dt = " + Hex(c.run.dt) + " s, resumed at " +
+                           Hex(dt) + " s (give the same --dt)");
+  const std::string integrator = ToString(scene.Settings().integrator);
+  if (c.run.integrator != integrator)
+    return Fail(error, where + "run.integrator: written with " + c.run.integrator +
+                           ", resumed with " + integrator + " (give the same --integrator)");
+  const StepState reference = scene.Save().step;
+  const StepState& s = c.snapshot.step;
+  if (std::string m = SameShapes(s.states, s.softStates, reference, ""); !m.empty())
+    return Fail(error, where + m);
+  for (size_t h = 0; h < s.history.size(); ++h)
+    if (std::string m = SameShapes(s.history[h], s.softHistory[h], reference,
+                                   "history[" + std::to_string(h) + "]");
+        !m.empty())
+      return Fail(error, where + m);
+  return true;
+}
+
+}  // namespace superdex
