@@ -123,24 +123,27 @@ std::vector<ActorHandle> Scene::RigidActors() const {
   return out;
 }
 
+namespace {
+// Σ_i m_i u_i / Σ_i m_i over a soft actor's nodes (u: their positions or velocities).
+Eigen::Vector3d NodeMassMean(const SoftBodyModel& m, const Eigen::VectorXd& u) {
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (int i = 0; i < m.NumNodes(); ++i) c += m.nodeMass[i] * u.segment<3>(3 * i);
+  return c / m.mass;
+}
+}  // namespace
+
 Eigen::Vector3d Scene::CenterOfMass(ActorHandle a) const {
   const ActorRef& r = actors_[a.index];
   if (r.kind) return kinds_[r.local]->CenterOfMass(KindStateOf(a));
   if (!r.soft) return step_.states[r.local].p;
-  const SoftBodyModel& m = softModels_[r.local];
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (int i = 0; i < m.NumNodes(); ++i) c += m.nodeMass[i] * step_.softStates[r.local].x.segment<3>(3 * i);
-  return c / m.mass;
+  return NodeMassMean(softModels_[r.local], step_.softStates[r.local].x);
 }
 
 Eigen::Vector3d Scene::CenterOfMassVelocity(ActorHandle a) const {
   const ActorRef& r = actors_[a.index];
   if (r.kind) return kinds_[r.local]->CenterOfMassVelocity(KindStateOf(a));
   if (!r.soft) return step_.states[r.local].v;
-  const SoftBodyModel& m = softModels_[r.local];
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (int i = 0; i < m.NumNodes(); ++i) c += m.nodeMass[i] * step_.softStates[r.local].v.segment<3>(3 * i);
-  return c / m.mass;
+  return NodeMassMean(softModels_[r.local], step_.softStates[r.local].v);
 }
 
 std::vector<ActorHandle> Scene::SoftActors() const {
