@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include "scenes/checkpoint.h"
 #include "scenes/runner.h"
@@ -18,7 +19,9 @@ using namespace superdex;
 namespace {
 
 const std::string kData = std::string(SUPERDEX_SOURCE_DIR) + "/scenes/data/";
-const std::string kDir = std::string(SUPERDEX_BINARY_DIR) + "/checkpoint_";
+// Files of this test process's own (ctest runs the test cases as parallel processes).
+const std::string kDir =
+    std::string(SUPERDEX_BINARY_DIR) + "/checkpoint_" + std::to_string(getpid()) + "_";
 
 std::string Read(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
