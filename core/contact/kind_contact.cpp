@@ -432,7 +432,7 @@ void GatherKindSampleRange(const ActorKind& A, const Eigen::VectorXd& q,
                            std::vector<PairSample>* out) {
   for (int k = begin; k < end; ++k) {
     const KindSample ks = A.Sample(k, q);
-    PairSample s;
+    PairSample& s = out->emplace_back();
     s.y = ks.y;
     s.hasNormal = ks.hasNormal;
     s.n = ks.n;
@@ -450,7 +450,6 @@ void GatherKindSampleRange(const ActorKind& A, const Eigen::VectorXd& q,
     s.key = k;
     s.blocks = ks.Blocks();
     for (int b = 0; b < s.blocks; ++b) s.offs[b] = stageDof[ks.dof[b]];
-    out->push_back(s);
   }
 }
 
@@ -465,7 +464,7 @@ FrameSide KindFrameSide(const ActorKind& B, const Eigen::VectorXd& q, const Eige
     const RigidPose p0 = B.ColliderFrame(*q0).pose;
     side.start.p = p0.p;
     side.start.R = p0.R;
-    side.start.Rinv = f.rigid ? Eigen::Matrix3d(p0.R.inverse()) : p0.R.transpose();
+    side.start.Rinv = p0.R.inverse();  // R⁰ an affine combination, not always a rotation
     side.start.last = side.last;
     side.hasStart = true;
   }

@@ -1,7 +1,7 @@
 #include "core/dynamics/scene_stage.h"
 
-#include <Eigen/Cholesky>
 
+#include "core/model/rigid_kind.h"
 #include "core/model/rigid_math.h"
 #include "energies/psd_projection.h"
 #include "energies/rigid_inertia.h"
@@ -128,22 +128,7 @@ double SceneStageProblem::EvaluateAt(const std::vector<RigidPose>& poses,
     gPot->segment<6>(o) += w * t.gradient;
     gPot->segment<3>(o) -= m.mass * gravity_;
     if (order < 2) continue;
-    StencilMatrix H = w * t.hessian;
-    // The inertia Hessian is block diagonal: w m I (positive) and the rotation block. When the
-    // rotation block factorizes, the whole matrix is positive definite (its LLT's pivots are the
-    // blocks' own) and ProjectToPsd would return it unchanged.
-    if (projection != PsdProjection::None &&
-        Eigen::LLT<Eigen::Matrix3d>(H.bottomRightCorner<3, 3>()).info() != Eigen::Success)
-      ProjectToPsd(&H, projection == PsdProjection::Abs);
-    // The translation diagonal and the whole rotation block are appended even where an entry is
-    // zero: a body in free flight has rotation-block entries that are exact zeros at one stage and
-    // round-off at the next, and each such change made the assembly rebuild its pattern (the
-    // undamped drop: 1540 of 2037 assemblies). Other entries (the translation–rotation coupling a
-    // projection may leave at round-off level) only where nonzero.
-    for (int c = 0; c < 6; ++c)
-      for (int r = 0; r < 6; ++r)
-        if (r == c || (r >= 3 && c >= 3) || H(r, c) != 0.0)
-          triplets_.emplace_back(o + r, o + c, H(r, c));
+    AppendRigidInertiaHessian(w * t.hessian, projection, o, &triplets_);
   }
   SoftView view;
   if (soft_) {
@@ -277,12 +262,7 @@ void SceneStageProblem::ResidualAndJacobian(const std::vector<RigidPose>& poses,
       if (o < 0) continue;
       Eigen::Vector3d tau = r->segment<3>(o + 3);
       if (dissipationIsPotential) tau += scratch_.segment<3>(o + 3);
-      const Eigen::Matrix3d S = -0.5 * Skew(tau);
-      // Every off-diagonal entry, zero or not, so that the sequence stays the same when τ
-      // changes (the entries are in the rotation block the inertia term always appends).
-      for (int c = 0; c < 3; ++c)
-        for (int k = 0; k < 3; ++k)
-          if (k != c) triplets_.emplace_back(o + 3 + k, o + 3 + c, S(k, c));
+      AppendSpinTrivialization(tau, o + 3, &triplets_);
     }
     if (soft_) AddKindJacobianCorrections(*r, dissipationIsPotential, softX);
     ws_->jacobianAssembly.Assemble(triplets_, ws_->blocks, ws_->blockPosition, numDofs_, J);
@@ -386,12 +366,9 @@ bool SceneStageProblem::TrustStep(Eigen::VectorXd* d) {
   for (size_t i = 0; i < models_.size(); ++i) {
     const int o = dofOffset_[i];
     if (o < 0) continue;
-    const double rho = std::max(models_[i].samplesRadius, RmsRadius(models_[i]));
-    if (!(rho > 0.0)) continue;
-    const double move = d->segment<3>(o).norm() + d->segment<3>(o + 3).norm() * rho;
-    const double trust = kCorrectionTrust * rho;
-    if (!(move > trust)) continue;
-    d->segment<6>(o) *= trust / move;
+    const double f = RigidTrustFraction(models_[i], d->segment<3>(o), d->segment<3>(o + 3));
+    if (!(f < 1.0)) continue;
+    d->segment<6>(o) *= f;
     changed = true;
   }
   if (!soft_) return changed;
@@ -439,9 +416,7 @@ double SceneStageProblem::StepNorm(const Eigen::VectorXd& d) const {
   for (size_t i = 0; i < models_.size(); ++i) {
     const int o = dofOffset_[i];
     if (o < 0) continue;
-    const double radius = RmsRadius(models_[i]);
-    norm = std::max(norm, d.segment<3>(o).lpNorm<Eigen::Infinity>());
-    norm = std::max(norm, d.segment<3>(o + 3).norm() * radius);
+    norm = std::max(norm, RigidStepLength(models_[i], d.segment<3>(o), d.segment<3>(o + 3)));
   }
   if (soft_) {  // soft nodes [m], after every rigid dof and before the kinds' dofs
     int begin = 0;

@@ -1,9 +1,9 @@
 #include "core/dynamics/time_stepper.h"
 
-#include <Eigen/Cholesky>
 #include <algorithm>
 
 #include "core/dynamics/integrators.h"
+#include "core/model/rigid_kind.h"
 #include "core/model/rigid_math.h"
 
 namespace superdex {
@@ -137,15 +137,10 @@ void StepDirk(const std::vector<RigidBodyModel>& models, const StepState& step, 
         torque[st][i].setZero();
         continue;
       }
-      const Eigen::Matrix3d& J = models[i].secondMoment;
-      const Eigen::Matrix3d& Rq = poses[i].R;
-      const Eigen::Matrix3d V = (poses[i].R - start[i].R) / dt;
-      // The stage's world torque on the body: its stationarity makes the rotational inertia
-      // force K = (V − v⁰)/Δt_i balance it, τ = axial(K J Qᵀ − Q J Kᵀ).
-      const Eigen::Matrix3d Kraw = (V - start[i].Rdot) / dt;
-      torque[st][i] = SpinMomentum(Rq, Kraw, J);
-      // The stage velocity, made tangent to SO(3) at Q with the same spin momentum.
-      vk.R = Skew(WorldInertia(Rq, J).ldlt().solve(SpinMomentum(Rq, V, J))) * Rq;
+      const DirkRotationSlope rot = DirkStageRotation(models[i].secondMoment, poses[i].R,
+                                                      start[i].R, start[i].Rdot, dt);
+      torque[st][i] = rot.torque;
+      vk.R = rot.V;
       vk.Rdot = (vk.R - start[i].Rdot) / dt;
     }
   }
@@ -164,11 +159,7 @@ void StepDirk(const std::vector<RigidBodyModel>& models, const StepState& step, 
     next[i].p = end.p;
     next[i].v = end.v;
     next[i].R = T.stifflyAccurate ? Q[T.stages - 1][i].R : NearestRotation(end.R);
-    // Keep the end velocity, corrected along the tangent directions [δω] R so that it carries
-    // exactly the integrated spin momentum.
-    const Eigen::Matrix3d& J = models[i].secondMoment;
-    const Eigen::Vector3d missing = spin - SpinMomentum(next[i].R, end.Rdot, J);
-    next[i].Rdot = end.Rdot + Skew(WorldInertia(next[i].R, J).ldlt().solve(missing)) * next[i].R;
+    next[i].Rdot = SpinCorrectedRate(models[i].secondMoment, next[i].R, end.Rdot, spin);
   }
   std::vector<double>& hb = buffers.stageWeights;  // h b_i
   hb.resize(T.stages);

@@ -15,6 +15,55 @@ Eigen::Map<const Eigen::Matrix3d> RotationOf(const Eigen::VectorXd& q) {
 
 }  // namespace
 
+void AppendRigidInertiaHessian(StencilMatrix H, PsdProjection projection, int offset,
+                               std::vector<Eigen::Triplet<double>>* triplets) {
+  if (projection != PsdProjection::None &&
+      Eigen::LLT<Eigen::Matrix3d>(H.bottomRightCorner<3, 3>()).info() != Eigen::Success)
+    ProjectToPsd(&H, projection == PsdProjection::Abs);
+  for (int c = 0; c < 6; ++c)
+    for (int r = 0; r < 6; ++r)
+      if (r == c || (r >= 3 && c >= 3) || H(r, c) != 0.0)
+        triplets->emplace_back(offset + r, offset + c, H(r, c));
+}
+
+void AppendSpinTrivialization(const Eigen::Vector3d& tau, int row,
+                              std::vector<Eigen::Triplet<double>>* triplets) {
+  const Eigen::Matrix3d S = -0.5 * Skew(tau);
+  for (int c = 0; c < 3; ++c)
+    for (int k = 0; k < 3; ++k)
+      if (k != c) triplets->emplace_back(row + k, row + c, S(k, c));
+}
+
+double RigidTrustFraction(const RigidBodyModel& m, const Eigen::Vector3d& dp,
+                          const Eigen::Vector3d& dtheta) {
+  const double rho = std::max(m.samplesRadius, RmsRadius(m));
+  if (!(rho > 0.0)) return 1.0;
+  const double move = dp.norm() + dtheta.norm() * rho;
+  const double trust = kCorrectionTrust * rho;
+  return move > trust ? trust / move : 1.0;
+}
+
+double RigidStepLength(const RigidBodyModel& m, const Eigen::Vector3d& dp,
+                       const Eigen::Vector3d& dtheta) {
+  return std::max(dp.lpNorm<Eigen::Infinity>(), dtheta.norm() * RmsRadius(m));
+}
+
+DirkRotationSlope DirkStageRotation(const Eigen::Matrix3d& J, const Eigen::Matrix3d& Q,
+                                    const Eigen::Matrix3d& R0, const Eigen::Matrix3d& Rdot0,
+                                    double dt) {
+  const Eigen::Matrix3d V = (Q - R0) / dt;
+  DirkRotationSlope out;
+  out.torque = SpinMomentum(Q, (V - Rdot0) / dt, J);
+  out.V = Skew(WorldInertia(Q, J).ldlt().solve(SpinMomentum(Q, V, J))) * Q;
+  return out;
+}
+
+Eigen::Matrix3d SpinCorrectedRate(const Eigen::Matrix3d& J, const Eigen::Matrix3d& R,
+                                  const Eigen::Matrix3d& Rdot, const Eigen::Vector3d& spin) {
+  const Eigen::Vector3d missing = spin - SpinMomentum(R, Rdot, J);
+  return Rdot + Skew(WorldInertia(R, J).ldlt().solve(missing)) * R;
+}
+
 RigidKind::RigidKind(RigidBodyModel model, const RigidBodyState& state)
     : model_(std::move(model)), initial_(state) {
   contact = model_.contact;
@@ -71,20 +120,7 @@ double RigidKind::StageEnergy(const KindStageData& stage, const Eigen::VectorXd&
   g->head<6>() += w * t.gradient;
   g->head<3>() -= model_.mass * stage.gravity;
   if (order < 2) return value;
-  Eigen::Matrix<double, 6, 6> Hs = w * t.hessian;
-  // Block diagonal: w m I and the rotation block; when the latter factorizes the whole matrix is
-  // positive definite and a projection would return it unchanged.
-  if (projection != PsdProjection::None &&
-      Eigen::LLT<Eigen::Matrix3d>(Hs.bottomRightCorner<3, 3>()).info() != Eigen::Success) {
-    SmallStencilMatrix Hd = Hs;
-    ProjectToPsd(&Hd, projection == PsdProjection::Abs);
-    Hs = Hd;
-  }
-  // The translation diagonal and the whole rotation block always (a stable pattern), other
-  // entries where nonzero.
-  for (int c = 0; c < 6; ++c)
-    for (int r = 0; r < 6; ++r)
-      if (r == c || (r >= 3 && c >= 3) || Hs(r, c) != 0.0) H->emplace_back(r, c, Hs(r, c));
+  AppendRigidInertiaHessian(w * t.hessian, projection, 0, H);
   return value;
 }
 
@@ -105,10 +141,7 @@ void RigidKind::AddResidualJacobianCorrection(const Eigen::VectorXd& /*q*/,
                                               const Eigen::VectorXd& residual,
                                               std::vector<Eigen::Triplet<double>>* J) const {
   if (!model_.dynamic) return;
-  const Eigen::Matrix3d S = -0.5 * Skew(residual.segment<3>(3));
-  for (int c = 0; c < 3; ++c)
-    for (int k = 0; k < 3; ++k)
-      if (k != c) J->emplace_back(3 + k, 3 + c, S(k, c));
+  AppendSpinTrivialization(residual.segment<3>(3), 3, J);
 }
 
 Eigen::MatrixXd RigidKind::ChartTangentMap(const Eigen::VectorXd& delta) const {
@@ -118,16 +151,11 @@ Eigen::MatrixXd RigidKind::ChartTangentMap(const Eigen::VectorXd& delta) const {
 }
 
 double RigidKind::StepLength(const Eigen::VectorXd& /*q*/, const Eigen::VectorXd& delta) const {
-  return std::max(delta.head<3>().lpNorm<Eigen::Infinity>(),
-                  delta.segment<3>(3).norm() * RmsRadius(model_));
+  return RigidStepLength(model_, delta.head<3>(), delta.segment<3>(3));
 }
 
 double RigidKind::TrustFraction(const Eigen::VectorXd& /*q*/, const Eigen::VectorXd& delta) const {
-  const double rho = std::max(model_.samplesRadius, RmsRadius(model_));
-  if (!(rho > 0.0)) return 1.0;
-  const double move = delta.head<3>().norm() + delta.segment<3>(3).norm() * rho;
-  const double trust = kCorrectionTrust * rho;
-  return move > trust ? trust / move : 1.0;
+  return RigidTrustFraction(model_, delta.head<3>(), delta.segment<3>(3));
 }
 
 void RigidKind::DirkStageSlope(const Eigen::VectorXd& x, const KindState& start, double dt,
@@ -143,16 +171,11 @@ void RigidKind::DirkStageSlope(const Eigen::VectorXd& x, const KindState& start,
     vk.v.tail<9>().setZero();
     return;
   }
-  const Eigen::Matrix3d& J = model_.secondMoment;
-  const Eigen::Matrix3d Q = RotationOf(x), R0 = RotationOf(start.x), Rdot0 = RotationOf(start.v);
-  const Eigen::Matrix3d V = (Q - R0) / dt;
-  // The stage's world torque: its stationarity makes the rotational inertia force
-  // K = (V − Ṙ⁰)/Δt_i balance it, τ = axial(K J Qᵀ − Q J Kᵀ).
-  out->extra = SpinMomentum(Q, (V - Rdot0) / dt, J);
-  // The stage velocity, made tangent to SO(3) at Q with the same spin momentum.
-  const Eigen::Matrix3d VR = Skew(WorldInertia(Q, J).ldlt().solve(SpinMomentum(Q, V, J))) * Q;
-  const Eigen::Matrix3d KR = (VR - Rdot0) / dt;
-  vk.x.tail<9>() = Eigen::Map<const Eigen::Matrix<double, 9, 1>>(VR.data());
+  const DirkRotationSlope rot = DirkStageRotation(model_.secondMoment, RotationOf(x),
+                                                  RotationOf(start.x), RotationOf(start.v), dt);
+  out->extra = rot.torque;
+  const Eigen::Matrix3d KR = (rot.V - RotationOf(start.v)) / dt;
+  vk.x.tail<9>() = Eigen::Map<const Eigen::Matrix<double, 9, 1>>(rot.V.data());
   vk.v.tail<9>() = Eigen::Map<const Eigen::Matrix<double, 9, 1>>(KR.data());
 }
 
@@ -165,11 +188,7 @@ void RigidKind::DirkStepEnd(const KindState& start, const Eigen::VectorXd& lastS
   for (size_t st = 0; st < slopes.size(); ++st) spin += hb[st] * slopes[st].extra;  // L̇ = τ
   const Eigen::Matrix3d R =
       stifflyAccurate ? Eigen::Matrix3d(RotationOf(lastStage)) : NearestRotation(RotationOf(end->x));
-  const Eigen::Matrix3d Rdot = RotationOf(end->v);
-  // Keep the end velocity, corrected along the tangent directions [δω] R so that it carries
-  // exactly the integrated spin momentum.
-  const Eigen::Vector3d missing = spin - SpinMomentum(R, Rdot, J);
-  const Eigen::Matrix3d RdotEnd = Rdot + Skew(WorldInertia(R, J).ldlt().solve(missing)) * R;
+  const Eigen::Matrix3d RdotEnd = SpinCorrectedRate(J, R, RotationOf(end->v), spin);
   end->x.tail<9>() = Eigen::Map<const Eigen::Matrix<double, 9, 1>>(R.data());
   end->v.tail<9>() = Eigen::Map<const Eigen::Matrix<double, 9, 1>>(RdotEnd.data());
 }

@@ -20,6 +20,48 @@
 
 namespace superdex {
 
+// --- The rigid body's stage rules, written once for the built-in rigid actor (core/dynamics) and
+// for RigidKind.
+
+/// Appends the stage's inertia Hessian H (6 × 6 in [δp, δθ], block diagonal: w m I and the rotation
+/// block) at stage dof `offset`: projected to PSD per `projection` only when the rotation block
+/// does not factorize (otherwise the whole matrix is positive definite and a projection would
+/// return it unchanged). The translation diagonal and the whole rotation block are appended even
+/// where an entry is zero: a body in free flight has rotation-block entries that are exact zeros
+/// at one stage and round-off at the next, and each such change made the assembly rebuild its
+/// pattern. Other entries (the coupling a projection may leave at round-off level) only where
+/// nonzero.
+void AppendRigidInertiaHessian(StencilMatrix H, PsdProjection projection, int offset,
+                               std::vector<Eigen::Triplet<double>>* triplets);
+/// The residual modes' trivialization of a rotation block at stage dof `row`: along
+/// exp([δθ]×) R the world torque τ of a potential changes by (H − ½[τ]×) δθ; appends −½[τ]×'s
+/// off-diagonal entries, zero or not (so that the pattern stays the same when τ changes).
+void AppendSpinTrivialization(const Eigen::Vector3d& tau, int row,
+                              std::vector<Eigen::Triplet<double>>* triplets);
+/// The fraction (0, 1] of a Newton correction (δp, δθ) a rigid body trusts:
+/// ‖δp‖ + ‖δθ‖ ρ <= kCorrectionTrust ρ, ρ = max(samples' radius, ρ_rms).
+double RigidTrustFraction(const RigidBodyModel& m, const Eigen::Vector3d& dp,
+                          const Eigen::Vector3d& dtheta);
+/// The size of a rigid step as a length: max(‖δp‖∞, ‖δθ‖ ρ_rms) [m].
+double RigidStepLength(const RigidBodyModel& m, const Eigen::Vector3d& dp,
+                       const Eigen::Vector3d& dtheta);
+/// A DIRK stage's rotation (core/dynamics/integrators.h, the three rotation rules), from the
+/// stage's solution Q and its start (R⁰, Ṙ⁰) with step Δt_i [s]: the stage velocity V made
+/// tangent to SO(3) at Q with the spin momentum of (Q − R⁰)/Δt_i, and the stage's world torque
+/// τ = axial(K J Qᵀ − Q J Kᵀ), K = ((Q − R⁰)/Δt_i − Ṙ⁰)/Δt_i, whose stationarity balances the
+/// rotational inertia force [N·m].
+struct DirkRotationSlope {
+  Eigen::Matrix3d V;
+  Eigen::Vector3d torque;
+};
+DirkRotationSlope DirkStageRotation(const Eigen::Matrix3d& J, const Eigen::Matrix3d& Q,
+                                    const Eigen::Matrix3d& R0, const Eigen::Matrix3d& Rdot0,
+                                    double dt);
+/// A DIRK step's end rate: Ṙ corrected along the tangent directions [δω] R so that it carries
+/// exactly the spin momentum `spin` [kg·m²/s] integrated by the method's weights.
+Eigen::Matrix3d SpinCorrectedRate(const Eigen::Matrix3d& J, const Eigen::Matrix3d& R,
+                                  const Eigen::Matrix3d& Rdot, const Eigen::Vector3d& spin);
+
 class RigidKind : public ActorKind {
  public:
   /// A body built by BuildRigidBody (the same model and initial state as Scene::AddRigidActor).
