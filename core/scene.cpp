@@ -361,10 +361,12 @@ void Scene::SolveStage(double dt, const std::vector<RigidBodyState>& start,
   scene.dofOffset = &dofOffset_;
   scene.numDofs = numDofs_;
   scene.pipeline = &pipeline_;
-  scene.hasSoft = !step_.softStates.empty();  // soft actors or kinds: no rigid-only shortcuts
+  scene.hasSoftActors = !softModels_.empty();
   scene.hasDissipation = hasDissipation_;
   scene.states = &step_.states;
   scene.history = &step_.history;
+  scene.vectorStates = &step_.softStates;
+  scene.vectorHistory = &step_.softHistory;
   scene.historyTimes = &step_.historyTimes;
   scene.time = step_.time;
   ContactStats contact;

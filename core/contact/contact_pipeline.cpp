@@ -234,6 +234,9 @@ void ContactPipeline::ConsiderKindPair(bool aKind, int a, bool bKind, int b) {
   if (aKind ? A->NumSamples() == 0 : !IsColliding(models[a])) return;
   if (bKind ? B->Collider() == nullptr : !IsCollider(models[b])) return;
   if (!aKind && !bKind) return;
+  const bool aStatic = aKind ? A->IsStatic() : !models[a].dynamic;
+  const bool bStatic = bKind ? B->IsStatic() : !models[b].dynamic;
+  if (aStatic && bStatic) return;  // neither moves: nothing to solve for
   const int actorA = aKind ? kindActor_[a] : RigidActor(a);
   const int actorB = bKind ? kindActor_[b] : RigidActor(b);
   if (filter_ && !filter_->Allowed(actorA, actorB)) return;
@@ -248,7 +251,7 @@ void ContactPipeline::ConsiderKindPair(bool aKind, int a, bool bKind, int b) {
                models[a].collider.type == ColliderType::PointCloud);
   p.params = CombineContactParams(aKind ? A->contact : models[a].contact,
                                   bKind ? B->contact : models[b].contact,
-                                  !bKind && !models[b].dynamic, aNoCollider);
+                                  bStatic, aNoCollider);
   kindPairs_.push_back(p);
 }
 
@@ -360,10 +363,13 @@ bool ContactPipeline::SplitLastEvaluation(const std::vector<int>& dofOffset,
 
 void ContactPipeline::StepLimits(const std::vector<RigidPose>& poses,
                                  const std::vector<RigidPose>& trial,
-                                 std::vector<double>* alpha) {
+                                 std::vector<double>* alpha, const KindView* now,
+                                 const KindView* next, std::vector<double>* kindAlpha) {
   const std::vector<RigidBodyModel>& models = *models_;
   alpha->assign(models.size(), 1.0);
-  FindPairs(trial, nullptr, nullptr, nullptr);
+  const bool kinds = now && next && kindAlpha && kinds_;
+  if (kinds) kindAlpha->assign(kinds_->size(), 1.0);
+  FindPairs(trial, nullptr, nullptr, nullptr, kinds ? next : nullptr);
   pairLimits_.resize(pairs_.size());
   auto evaluate = [&](size_t k) {
     const ContactPair& cp = pairs_[k];
@@ -378,6 +384,45 @@ void ContactPipeline::StepLimits(const std::vector<RigidPose>& poses,
     double& b = (*alpha)[pairs_[k].collider];
     a = std::min(a, pairLimits_[k]);
     b = std::min(b, pairLimits_[k]);
+  }
+  if (!kinds) return;
+  // Pairs of the generic layer: each side at the trial configuration, with the current one as
+  // its "last" (the samples' yLast, the frame's last pose).
+  kindPairLimits_.resize(kindPairs_.size());
+  kindSamples_.resize(kindPairs_.size());
+  auto q = [](const KindView* v, int k) -> const Eigen::VectorXd& {
+    return (*v->q)[v->first + k];
+  };
+  auto evaluateKind = [&](size_t k) {
+    const KindPair& kp = kindPairs_[k];
+    const PenaltyParams penalty = PenaltyOf(kp.params);
+    RigidStageStart bNow, aNow;
+    FrameSide B;
+    if (kp.bKind) {
+      B = KindFrameSide(*(*kinds_)[kp.b], q(next, kp.b), &q(now, kp.b), nullptr,
+                        (*next->stageDof)[kp.b]);
+    } else {
+      bNow.last = poses[kp.b];
+      B = RigidFrameSide(models[kp.b], trial[kp.b], &bNow, -1);
+    }
+    const double phiLimit = penalty.delta - 0.5 * penalty.eps;
+    std::vector<PairSample>& samples = kindSamples_[k];
+    if (kp.aKind) {
+      GatherKindSamples(*(*kinds_)[kp.a], q(next, kp.a), &q(now, kp.a), nullptr,
+                        (*next->stageDof)[kp.a], B, phiLimit, nullptr, &samples);
+    } else {
+      aNow.last = poses[kp.a];
+      GatherRigidSamples(models[kp.a], trial[kp.a], &aNow, -1, B, phiLimit, nullptr, &samples);
+    }
+    kindPairLimits_[k] = StepLimitOnFrame(samples, B, penalty);
+  };
+  ForEachPair(kindPairs_.size(), true, evaluateKind);
+  for (size_t k = 0; k < kindPairs_.size(); ++k) {
+    const KindPair& kp = kindPairs_[k];
+    double& a = kp.aKind ? (*kindAlpha)[kp.a] : (*alpha)[kp.a];
+    a = std::min(a, kindPairLimits_[k]);
+    double& b = kp.bKind ? (*kindAlpha)[kp.b] : (*alpha)[kp.b];
+    b = std::min(b, kindPairLimits_[k]);
   }
 }
 

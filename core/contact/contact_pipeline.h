@@ -134,8 +134,11 @@ class ContactPipeline {
   /// i's move from `poses` to `trial` that RigidPairStepLimit allows for every pair it is part
   /// of, both moving by the same fraction (1 for bodies without such a pair). Pairs with soft
   /// actors impose no limit. Pairs are found at `trial`; evaluated in parallel, reduced by min.
+  /// With the kinds' views at both configurations (`now`, `next`; may be null), each kind's
+  /// fraction for its pairs of the generic layer (StepLimitOnFrame) into (*kindAlpha)[k].
   void StepLimits(const std::vector<RigidPose>& poses, const std::vector<RigidPose>& trial,
-                  std::vector<double>* alpha);
+                  std::vector<double>* alpha, const KindView* now = nullptr,
+                  const KindView* next = nullptr, std::vector<double>* kindAlpha = nullptr);
 
   /// Every active contact sample at the given poses (serial; for reporting). Records carry actor
   /// indices (see Configure) and, for soft colliding actors, the boundary face.
@@ -214,7 +217,7 @@ class ContactPipeline {
   std::vector<ContactPair> pairs_;
   std::vector<PairStencils> results_;               // per rigid pair
   std::vector<std::vector<PairSample>> rigidSamples_;  // per rigid pair (capacity kept)
-  std::vector<double> pairLimits_;
+  std::vector<double> pairLimits_, kindPairLimits_;
   const std::vector<SoftBodyModel>* softModels_ = nullptr;
   std::vector<int> rigidActor_, softActor_;
   std::vector<SoftContactPair> softPairs_;

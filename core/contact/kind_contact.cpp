@@ -380,6 +380,25 @@ class BallCulling {
   bool loadAtLast_ = false;
 };
 
+double StepLimitOnFrame(const std::vector<PairSample>& samples, const FrameSide& B,
+                        const PenaltyParams& penalty) {
+  const RigidCollider& field = *B.field;
+  const double phiLimit = penalty.delta - 0.5 * penalty.eps;
+  const double reach = field.boundingRadius + phiLimit;
+  const Eigen::Matrix3d RBt1 = B.pose.R.transpose(), RBt0 = B.last.R.transpose();
+  double alpha = 1.0;
+  for (const PairSample& s : samples) {
+    const Eigen::Vector3d Y1 = RBt1 * (s.y - B.pose.p);
+    if (std::isfinite(reach) && Y1.squaredNorm() >= reach * reach) continue;
+    const double s1 = penalty.delta - field.Value(Y1);
+    if (s1 <= 0.5 * penalty.eps) continue;
+    const double s0 = penalty.delta - field.Value(RBt0 * (s.yLast - B.last.p));
+    const double cap = std::max(2.0 * s0, 0.5 * penalty.eps);
+    if (s1 > cap) alpha = std::min(alpha, (cap - s0) / (s1 - s0));
+  }
+  return alpha;
+}
+
 void GatherRigidSamples(const RigidBodyModel& A, const RigidPose& a, const RigidStageStart* start,
                         int aOffset, const FrameSide& B, double delta,
                         const DissipationSetup* dissipation, std::vector<PairSample>* out) {

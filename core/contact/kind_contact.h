@@ -90,6 +90,14 @@ void EvaluateSamplesOnFrame(const std::vector<PairSample>& samples, const FrameS
                             const DissipationSetup* dissipation, int order, PairStencils* out,
                             std::vector<ContactSampleRecord>* records = nullptr);
 
+/// Step limit of Newton's global phase on a frame's field (RigidPairStepLimit's rule,
+/// core/contact/rigid_contact.h, for any pair of the generic layer): the samples' y at the trial
+/// configuration and yLast at the current one, B.pose the frame's trial pose and B.last its current
+/// pose; the largest fraction α ∈ (0, 1] of the move, interpolated linearly per sample, that keeps
+/// every sample's depth s = δ − φ within s₁ <= max(2 s₀, ε/2) [m].
+double StepLimitOnFrame(const std::vector<PairSample>& samples, const FrameSide& B,
+                        const PenaltyParams& penalty);
+
 /// The samples of a rigid colliding body A (dofs at aOffset, −1 when static) that can contribute
 /// on B's field: its sample tree culled by B's Lipschitz bound at the current pose and, with
 /// dissipation, at x_n (the modes' load geometry). `start` (may be null): A's x⁰ and x_n.

@@ -47,6 +47,17 @@ SceneStageProblem::SceneStageProblem(const std::vector<RigidBodyModel>& models,
   ws_->jacobianAssembly.SetKeepSuperset(keepSuperset);
 }
 
+KindView KindViewOf(const SoftStage& soft, const std::vector<Eigen::VectorXd>& x) {
+  KindView kinds;
+  if (soft.kinds.Size() == 0) return kinds;
+  kinds.q = &x;
+  kinds.first = static_cast<int>(soft.targets.size());
+  kinds.qLast = &soft.kinds.qLast;
+  kinds.q0 = &soft.kinds.q0;
+  kinds.stageDof = &soft.kinds.stageDof;
+  return kinds;
+}
+
 DissipationContext ContextOf(const StageDissipation& dissipation, double dt) {
   DissipationContext c;
   c.dt = dt;
@@ -148,14 +159,7 @@ double SceneStageProblem::EvaluateAt(const std::vector<RigidPose>& poses,
     view.dofOffset = &soft_->dofOffset;
   }
   ws_->blockPosition = triplets_.size();
-  KindView kinds;
-  if (soft_ && soft_->kinds.Size() > 0) {
-    kinds.q = &softX;
-    kinds.first = static_cast<int>(soft_->targets.size());
-    kinds.qLast = &soft_->kinds.qLast;
-    kinds.q0 = &soft_->kinds.q0;
-    kinds.stageDof = &soft_->kinds.stageDof;
-  }
+  const KindView kinds = soft_ ? KindViewOf(*soft_, softX) : KindView();
   value += contact_->Evaluate(poses, dofOffset_, order, projection, gPot, &triplets_, &ws_->blocks,
                               stats, dissipation_.enabled ? &context_ : nullptr, rDiss,
                               targets_.start.empty() ? nullptr : &targets_.start,
@@ -385,13 +389,27 @@ bool SceneStageProblem::TrustStep(Eigen::VectorXd* d) {
 
 bool SceneStageProblem::LimitStep(Eigen::VectorXd* d) {
   if (!contact_) return false;
-  Retract(*d, &trial_, nullptr);
-  contact_->StepLimits(*poses_, trial_, &limits_);
+  const bool kinds = soft_ && soft_->kinds.Size() > 0;
+  std::vector<double>& kindLimits = ws_->kindLimits;
+  Retract(*d, &trial_, kinds ? &softTrial_ : nullptr);
+  if (kinds) {
+    const KindView now = KindViewOf(*soft_, *softX_), next = KindViewOf(*soft_, softTrial_);
+    contact_->StepLimits(*poses_, trial_, &limits_, &now, &next, &kindLimits);
+  } else {
+    contact_->StepLimits(*poses_, trial_, &limits_);
+  }
   bool changed = false;
   for (size_t i = 0; i < models_.size(); ++i) {
     const int o = dofOffset_[i];
     if (o < 0 || limits_[i] >= 1.0) continue;
     d->segment<6>(o) *= limits_[i];
+    changed = true;
+  }
+  if (!kinds) return changed;
+  for (size_t k = 0; k < soft_->kinds.Size(); ++k) {
+    if (kindLimits[k] >= 1.0) continue;
+    for (int i : soft_->kinds.stageDof[k])
+      if (i >= 0) (*d)[i] *= kindLimits[k];
     changed = true;
   }
   return changed;

@@ -61,6 +61,10 @@ struct SoftStage {
   bool Empty() const { return targets.empty() && kinds.Size() == 0; }
 };
 
+/// The kinds' part of a contact evaluation at the vector iterate x (soft actors' positions, then
+/// the kinds' configurations); empty (q null) without kinds.
+KindView KindViewOf(const SoftStage& soft, const std::vector<Eigen::VectorXd>& x);
+
 /// The pipeline's dissipation data for a stage of step dt [s] (ContactPipeline::Evaluate).
 DissipationContext ContextOf(const StageDissipation& dissipation, double dt);
 
@@ -71,6 +75,7 @@ struct StageWorkspace {
   std::vector<RigidPose> trial;            ///< the configuration s ⊕ d under evaluation
   std::vector<Eigen::VectorXd> softTrial;  ///< its soft positions
   std::vector<double> limits;              ///< LimitStep's fractions per body
+  std::vector<double> kindLimits;          ///< and per kind of the generic layer
   std::vector<double> bodyValue;           ///< the last evaluation's inertia + gravity per body
   std::vector<double> splitValue;          ///< LastSplit's per-body shares
   Eigen::VectorXd scratch;                 ///< the dissipative residual's part
@@ -131,9 +136,9 @@ class SceneStageProblem : public StageProblem {
   const ContactStats& LastContactStats() const { return lastStats_; }
   /// Smallest det F over the soft tets at the last Evaluate / EvaluateResidual (+∞ without).
   double LastMinDetF() const { return lastMinDetF_; }
-  /// Scales each dynamic rigid body's [δp, δθ] by its ContactPipeline::StepLimits fraction
-  /// (the move's sample depths may at most double, or reach ε/2; core/contact/rigid_contact.h). Soft
-  /// dofs are left as they are.
+  /// Scales each dynamic rigid body's [δp, δθ], and each kind's stage dofs, by its
+  /// ContactPipeline::StepLimits fraction (the move's sample depths may at most double, or reach
+  /// ε/2; core/contact/rigid_contact.h). Soft dofs are left as they are.
   bool LimitStep(Eigen::VectorXd* d) override;
   /// Scales each dynamic rigid body's [δp, δθ] so that no point within the body's radius ρ moves
   /// more than kCorrectionTrust ρ: ‖δp‖ + ‖δθ‖ ρ <= kCorrectionTrust ρ, ρ = max(samples' radius,

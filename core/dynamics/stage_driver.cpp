@@ -86,8 +86,8 @@ SolverStats StageDriver::Solve(const SceneSettings& settings, const StageScene& 
   // persists, and the check (a value-only contact evaluation) made a sliding box's run 16 %
   // longer for nothing. A stage that leaves contact is solved by Newton, the next one tried again.
   if (settings.closedFormFreeStages && settings.stageSolver == StageSolverKind::Newton &&
-      !scene.hasSoft && !recording && !state_.lastStageInContact &&
-      FreeStage(settings, scene, dissipation, poses, &st, contact)) {
+      !scene.hasSoftActors && !recording && !state_.lastStageInContact &&
+      FreeStage(settings, scene, dissipation, soft, poses, softX, &st, contact)) {
     state_.lastPotentialIterations = 0;  // a local stage: the next warm start may try the exact Hessian
     return st;
   }
@@ -99,22 +99,8 @@ SolverStats StageDriver::Solve(const SceneSettings& settings, const StageScene& 
   // alike. (2) Recorded steps (sensitivities, adjoint): their derivatives are evaluated at the
   // recorded solution, which a start reaches only to the solver's tolerance (docs/solver.md).
   const bool warm = settings.stageSolver == StageSolverKind::Newton && predictTime > 0.0 &&
-                    settings.warmStart && !scene.hasSoft && !recording;
-  if (warm) {
-    const std::vector<std::vector<RigidBodyState>>& history = *scene.history;
-    const std::vector<double>& historyTimes = *scene.historyTimes;
-    const bool one = !history.empty() && !historyTimes.empty();
-    PredictStagePoses(models, *scene.states, one ? &history[0] : nullptr,
-                      one ? scene.time - historyTimes[0] : 0.0, predictTime, start, dt,
-                      &predicted_);
-    TangentStep(*scene.dofOffset, scene.numDofs, *poses, predicted_, &warmStep_);
-    const bool two = history.size() >= 2 && historyTimes.size() >= 2;
-    SteadyMotion(models, *scene.states, one ? &history[0] : nullptr,
-                 one ? scene.time - historyTimes[0] : 0.0, two ? &history[1] : nullptr,
-                 two ? historyTimes[0] - historyTimes[1] : 0.0, settings.gravity, &steady_);
-    WarmStart(problem, *scene.dofOffset, steady_, &warmStep_, &warmScratch_,
-              settings.solver.stepTolerance * dt);
-  }
+                    settings.warmStart && !scene.hasSoftActors && !recording;
+  if (warm) WarmStartStage(settings, scene, dt, start, soft, *poses, softX, predictTime, &problem);
   switch (settings.stageSolver) {
     case StageSolverKind::Newton:
       if (problem.IsPotential()) {
@@ -223,8 +209,54 @@ bool StageDriver::SolveResidual(const SceneSettings& settings, const StageInputs
   return true;
 }
 
+void StageDriver::WarmStartStage(const SceneSettings& settings, const StageScene& scene,
+                                 double dt, const std::vector<RigidBodyState>& start,
+                                 const SoftStage* soft, const std::vector<RigidPose>& poses,
+                                 const std::vector<Eigen::VectorXd>* softX, double predictTime,
+                                 SceneStageProblem* problem) {
+  const std::vector<std::vector<RigidBodyState>>& history = *scene.history;
+  const std::vector<double>& historyTimes = *scene.historyTimes;
+  const bool one = !history.empty() && !historyTimes.empty();
+  const bool two = history.size() >= 2 && historyTimes.size() >= 2;
+  const double hPrevious = one ? scene.time - historyTimes[0] : 0.0;
+  const double hBefore = two ? historyTimes[0] - historyTimes[1] : 0.0;
+  PredictStagePoses(*scene.models, *scene.states, one ? &history[0] : nullptr, hPrevious,
+                    predictTime, start, dt, &predicted_);
+  TangentStep(*scene.dofOffset, scene.numDofs, poses, predicted_, &warmStep_);
+  SteadyMotion(*scene.models, *scene.states, one ? &history[0] : nullptr, hPrevious,
+               two ? &history[1] : nullptr, hBefore, settings.gravity, &steady_);
+  const KindStage* kinds = soft && soft->kinds.Size() > 0 ? &soft->kinds : nullptr;
+  if (kinds) {
+    // The kinds' states follow the soft actors' (none here: the warm start is off with them).
+    const size_t ns = soft->targets.size();
+    const std::vector<VectorState>& states = *scene.vectorStates;
+    const std::vector<std::vector<VectorState>>& vectorHistory = *scene.vectorHistory;
+    const double bound = SteadyBound(settings.gravity);
+    kindSteady_.assign(kinds->Size(), 1);
+    for (size_t k = 0; k < kinds->Size(); ++k) {
+      const ActorKind& kind = *(*kinds->kinds)[k];
+      const size_t s = ns + k;
+      const VectorState* previous =
+          one && vectorHistory.size() >= 1 ? &vectorHistory[0][s] : nullptr;
+      kind.PredictStage(states[s], previous, hPrevious, predictTime, kinds->q0[k], dt,
+                        &kindPredicted_);
+      kind.TangentBetween((*softX)[s], kindPredicted_, &kindDelta_);
+      const std::vector<int>& dof = kinds->stageDof[k];
+      for (size_t j = 0; j < dof.size(); ++j)
+        if (dof[j] >= 0) warmStep_[dof[j]] = kindDelta_[j];
+      if (two && vectorHistory.size() >= 2)
+        kindSteady_[k] = kind.ForceChange(states[s], vectorHistory[0][s], hPrevious,
+                                          vectorHistory[1][s], hBefore) <= bound;
+    }
+  }
+  WarmStart(*problem, *scene.dofOffset, steady_, &warmStep_, &warmScratch_,
+            settings.solver.stepTolerance * dt, kinds ? &kinds->stageDof : nullptr,
+            kinds ? &kindSteady_ : nullptr);
+}
+
 bool StageDriver::FreeStage(const SceneSettings& settings, const StageScene& scene,
-                            const StageDissipation& dissipation, std::vector<RigidPose>* poses,
+                            const StageDissipation& dissipation, const SoftStage* soft,
+                            std::vector<RigidPose>* poses, std::vector<Eigen::VectorXd>* softX,
                             SolverStats* stats, ContactStats* contact) {
   const std::vector<RigidBodyModel>& models = *scene.models;
   const std::vector<int>& dofOffset = *scene.dofOffset;
@@ -239,15 +271,28 @@ bool StageDriver::FreeStage(const SceneSettings& settings, const StageScene& sce
     if (!x.p.allFinite() || !x.R.allFinite()) return false;
     free[i] = {x.p, x.R};
   }
+  const KindStage* kinds = soft && soft->kinds.Size() > 0 ? &soft->kinds : nullptr;
+  if (kinds) {
+    freeSoft_ = *softX;
+    const size_t ns = soft->targets.size();
+    for (size_t k = 0; k < kinds->Size(); ++k) {
+      Eigen::VectorXd& q = freeSoft_[ns + k];
+      if (!(*kinds->kinds)[k]->FreeStageMinimizer(kinds->data[k], &q) || !q.allFinite())
+        return false;
+    }
+  }
   // The contact terms as SceneStageProblem evaluates them there (value only): each pair adds its
   // value, gradient and residual only through samples it counts active.
   const DissipationContext context = ContextOf(dissipation, targets.dt);
+  const KindView view = kinds ? KindViewOf(*soft, freeSoft_) : KindView();
   ContactStats found;
   scene.pipeline->Evaluate(free, dofOffset, 0, PsdProjection::None, nullptr, nullptr, nullptr,
                            &found, dissipation.enabled ? &context : nullptr, nullptr,
-                           targets.start.empty() ? nullptr : &targets.start);
+                           targets.start.empty() ? nullptr : &targets.start, nullptr,
+                           kinds ? &view : nullptr);
   if (InContact(found)) return false;
   poses->swap(free);
+  if (kinds) softX->swap(freeSoft_);
   *contact = found;
   *stats = SolverStats();
   stats->status = StageStatus::Converged;

@@ -21,16 +21,19 @@
 namespace superdex {
 
 /// What the stage policy reads of the scene: the rigid models and the stage's dof layout, the
-/// contact pipeline, and the rigid states with their history (the warm start's prediction).
+/// contact pipeline, and the states with their history (the warm start's prediction): the rigid
+/// bodies', and the vector states' (soft actors, then the generic layer's kinds).
 struct StageScene {
   const std::vector<RigidBodyModel>* models = nullptr;
   const std::vector<int>* dofOffset = nullptr;
   int numDofs = 0;
   ContactPipeline* pipeline = nullptr;
-  bool hasSoft = false;
+  bool hasSoftActors = false;  ///< soft actors: no closed-form stage, no warm start
   bool hasDissipation = false;
   const std::vector<RigidBodyState>* states = nullptr;               ///< x_n, v_n
   const std::vector<std::vector<RigidBodyState>>* history = nullptr;  ///< x_{n−1}, x_{n−2}
+  const std::vector<VectorState>* vectorStates = nullptr;             ///< x_n, v_n
+  const std::vector<std::vector<VectorState>>* vectorHistory = nullptr;
   const std::vector<double>* historyTimes = nullptr;
   double time = 0.0;  ///< t_n [s]
 };
@@ -77,11 +80,20 @@ class StageDriver {
 
  private:
   // The closed-form stage of SceneSettings::closedFormFreeStages: true, with *poses set to every
-  // dynamic body's MinimizeRigidInertia and *stats, *contact filled, when no contact sample is
-  // active there (penalty or dissipation); false (nothing changed) otherwise.
+  // dynamic body's MinimizeRigidInertia, the kinds' configurations in *softX to their
+  // FreeStageMinimizer, and *stats, *contact filled, when every kind has it and no contact
+  // sample is active there (penalty or dissipation); false (nothing changed) otherwise.
   bool FreeStage(const SceneSettings& settings, const StageScene& scene,
-                 const StageDissipation& dissipation, std::vector<RigidPose>* poses,
+                 const StageDissipation& dissipation, const SoftStage* soft,
+                 std::vector<RigidPose>* poses, std::vector<Eigen::VectorXd>* softX,
                  SolverStats* stats, ContactStats* contact);
+  // The warm start's tangent step to the predicted solution (rigid bodies and kinds) into
+  // warmStep_, with the steady flags of both, and its application to `problem`.
+  void WarmStartStage(const SceneSettings& settings, const StageScene& scene, double dt,
+                      const std::vector<RigidBodyState>& start, const SoftStage* soft,
+                      const std::vector<RigidPose>& poses,
+                      const std::vector<Eigen::VectorXd>* softX, double predictTime,
+                      SceneStageProblem* problem);
   // The residual modes' Newton solve with its explicit-normals start and fallback. Returns true
   // when the fallback's outcome stands (its contact statistics then in *contact, recorded).
   bool SolveResidual(const SceneSettings& settings, const StageInputs& inputs,
@@ -100,6 +112,9 @@ class StageDriver {
   std::vector<RigidPose> predicted_, guess_, free_, explicitSolution_;
   Eigen::VectorXd warmStep_, warmScratch_;
   std::vector<char> steady_;  // per body: moved steadily over the last two steps (SteadyMotion)
+  std::vector<char> kindSteady_;                // per kind: the same (ActorKind::ForceChange)
+  std::vector<Eigen::VectorXd> freeSoft_;       // the kinds' free-stage configurations
+  Eigen::VectorXd kindPredicted_, kindDelta_;   // one kind's prediction and its tangent step
 };
 
 }  // namespace superdex

@@ -1,5 +1,6 @@
 #include "core/dynamics/warm_start.h"
 
+#include "core/model/rigid_kind.h"
 #include "core/model/rigid_math.h"
 
 namespace superdex {
@@ -16,24 +17,13 @@ void Predict(const std::vector<RigidBodyModel>& models, const std::vector<RigidB
   out.resize(current.size());
   for (size_t i = 0; i < current.size(); ++i) {
     const RigidBodyState& s = current[i];
-    out[i].p = s.p;
-    out[i].R = s.R;
-    if (!models[i].dynamic) continue;
-    Eigen::Vector3d dv = Eigen::Vector3d::Zero(), alpha = Eigen::Vector3d::Zero();
-    const Eigen::Vector3d omega = s.AngularVelocity();
-    if (history) {
-      dv = s.v - (*previous)[i].v;
-      alpha = (omega - (*previous)[i].AngularVelocity()) / hPrevious;
+    if (!models[i].dynamic) {
+      out[i] = {s.p, s.R};
+      continue;
     }
-    if (stageStart && i < stageStart->size()) {
-      Eigen::Vector3d v = s.v;
-      if (history) v += tau * dv / hPrevious;
-      out[i].p = (*stageStart)[i].p + stageDt * v;
-    } else {
-      const Eigen::Vector3d a = history ? Eigen::Vector3d(dv / hPrevious) : dv;
-      out[i].p = s.p + tau * s.v + 0.5 * tau * tau * a;
-    }
-    out[i].R = ExpSo3(tau * omega + 0.5 * tau * tau * alpha) * s.R;
+    const bool staged = stageStart && i < stageStart->size();
+    out[i] = PredictRigidPose(s, history ? &(*previous)[i] : nullptr, hPrevious, tau,
+                              staged ? &(*stageStart)[i].p : nullptr, stageDt);
   }
 }
 
@@ -111,49 +101,53 @@ void SteadyMotion(const std::vector<RigidBodyModel>& models,
   if (!previous || !before || previous->size() != current.size() ||
       before->size() != current.size() || !(hPrevious > 0.0) || !(hBefore > 0.0))
     return;
-  const double bound = kSteadyAcceleration * gravity.norm() + kSteadyFloor;
+  const double bound = SteadyBound(gravity);
   for (size_t i = 0; i < current.size() && i < models.size(); ++i) {
     const RigidBodyModel& m = models[i];
     if (!m.dynamic || !(m.mass > 0.0)) continue;
-    const RigidBodyState& s2 = current[i];
-    const RigidBodyState& s1 = (*previous)[i];
-    const RigidBodyState& s0 = (*before)[i];
-    const Eigen::Vector3d a2 = (s2.v - s1.v) / hPrevious, a1 = (s1.v - s0.v) / hBefore;
-    auto momentum = [&](const RigidBodyState& s) -> Eigen::Vector3d {
-      return WorldInertia(s.R, m.secondMoment) * s.AngularVelocity();
-    };
-    const Eigen::Vector3d L2 = momentum(s2), L1 = momentum(s1), L0 = momentum(s0);
-    const Eigen::Vector3d dTorque = (L2 - L1) / hPrevious - (L1 - L0) / hBefore;
-    const double rho = RmsRadius(m);
-    const double angular = rho > 0.0 ? dTorque.norm() / (m.mass * rho) : 0.0;
-    out[i] = (a2 - a1).norm() + angular <= bound;
+    out[i] = RigidForceChange(m, current[i], (*previous)[i], hPrevious, (*before)[i], hBefore) <=
+             bound;
   }
 }
 
 bool WarmStart(StageProblem& problem, const std::vector<int>& dofOffset,
                const std::vector<char>& steady, Eigen::VectorXd* step,
-               Eigen::VectorXd* scratch, double negligibleStep) {
+               Eigen::VectorXd* scratch, double negligibleStep,
+               const std::vector<std::vector<int>>* kindDofs,
+               const std::vector<char>* kindSteady) {
   Eigen::VectorXd& d = *step;
   const int n = problem.NumDofs();
   if (n == 0 || d.size() != n || !d.allFinite() || problem.StepNorm(d) <= negligibleStep)
     return false;
-  // `bounded` holds the moves of the bodies that did not move steadily and zero elsewhere (a zero
-  // block lies inside any trust region), so that TrustStep shortens those bodies only.
+  // `bounded` holds the moves of the units that did not move steadily and zero elsewhere (a zero
+  // block lies inside any trust region), so that TrustStep shortens those units only.
+  const size_t kinds = kindDofs && kindSteady ? kindDofs->size() : 0;
+  auto unsteadyBody = [&](size_t i) {
+    const int o = dofOffset[i];
+    return o >= 0 && o + 6 <= n && !(i < steady.size() && steady[i]);
+  };
+  auto unsteadyKind = [&](size_t k) { return k < kindSteady->size() && !(*kindSteady)[k]; };
   Eigen::VectorXd& bounded = *scratch;
   bounded.setZero(n);
   bool any = false;
   for (size_t i = 0; i < dofOffset.size(); ++i) {
-    const int o = dofOffset[i];
-    if (o < 0 || o + 6 > n || (i < steady.size() && steady[i])) continue;
-    bounded.segment<6>(o) = d.segment<6>(o);
+    if (!unsteadyBody(i)) continue;
+    bounded.segment<6>(dofOffset[i]) = d.segment<6>(dofOffset[i]);
+    any = true;
+  }
+  for (size_t k = 0; k < kinds; ++k) {
+    if (!unsteadyKind(k)) continue;
+    for (int i : (*kindDofs)[k])
+      if (i >= 0) bounded[i] = d[i];
     any = true;
   }
   if (any && problem.TrustStep(&bounded)) {
-    for (size_t i = 0; i < dofOffset.size(); ++i) {
-      const int o = dofOffset[i];
-      if (o >= 0 && o + 6 <= n && !(i < steady.size() && steady[i]))
-        d.segment<6>(o) = bounded.segment<6>(o);
-    }
+    for (size_t i = 0; i < dofOffset.size(); ++i)
+      if (unsteadyBody(i)) d.segment<6>(dofOffset[i]) = bounded.segment<6>(dofOffset[i]);
+    for (size_t k = 0; k < kinds; ++k)
+      if (unsteadyKind(k))
+        for (int i : (*kindDofs)[k])
+          if (i >= 0) d[i] = bounded[i];
   }
   problem.LimitStep(&d);
   problem.Commit(d);

@@ -99,6 +99,10 @@ void SteadyMotion(const std::vector<RigidBodyModel>& models,
                   const Eigen::Vector3d& gravity, std::vector<char>* steady);
 constexpr double kSteadyAcceleration = 0.01;  ///< fraction of |g| [-]
 constexpr double kSteadyFloor = 1e-6;         ///< round-off floor, for scenes without gravity [m/s²]
+/// The largest change kSteadyAcceleration |g| + kSteadyFloor [m/s²] of a steady motion.
+inline double SteadyBound(const Eigen::Vector3d& gravity) {
+  return kSteadyAcceleration * gravity.norm() + kSteadyFloor;
+}
 
 /// As above for a stage whose rigid bodies own the 6-dof blocks at dofOffset (< 0: none). The
 /// predicted move of a body whose motion was not steady over the last two steps (`steady`, see
@@ -116,8 +120,13 @@ constexpr double kSteadyFloor = 1e-6;         ///< round-off floor, for scenes w
 /// (BDF2 at Δt = 0.1: 2.55 → 3.35 Newton iterations per step); bounding every body's prediction
 /// also cut free flight (the drop at Δt = 1e-2 under BDF2: 1.35 → 1.68); the bound after the
 /// step limit instead of before it did worse on the pile (10.10 and 23.10 with explicit normals).
+/// The kinds of the generic layer are units as the bodies are: kind k's stage dofs are
+/// (*kindDofs)[k] (−1: prescribed) and (*kindSteady)[k] says whether it moved steadily
+/// (ActorKind::ForceChange); both may be null (no kinds).
 bool WarmStart(StageProblem& problem, const std::vector<int>& dofOffset,
                const std::vector<char>& steady, Eigen::VectorXd* step,
-               Eigen::VectorXd* scratch, double negligibleStep);
+               Eigen::VectorXd* scratch, double negligibleStep,
+               const std::vector<std::vector<int>>* kindDofs = nullptr,
+               const std::vector<char>* kindSteady = nullptr);
 
 }  // namespace superdex

@@ -121,6 +121,10 @@ class ActorKind {
                              PsdProjection projection, Eigen::VectorXd* g,
                              std::vector<Eigen::Triplet<double>>* H) const = 0;
 
+  /// A static actor (spec: a static collider, held where it was created for the whole run):
+  /// pairs on its field take the colliding actor's penalty coefficient and friction falloff
+  /// velocity instead of combining them (spec: "Contact Parameter Combination").
+  virtual bool IsStatic() const { return false; }
   /// Prescribed dofs: whether tangent dof i is held on a path (it is then no stage unknown), and
   /// Prescribe writes every prescribed part's value at time t [s] into *q.
   virtual bool IsPrescribed(int /*dof*/) const { return false; }
@@ -171,6 +175,41 @@ class ActorKind {
   virtual void DirkStepEnd(const KindState& /*start*/, const Eigen::VectorXd& /*lastStage*/,
                            bool /*stifflyAccurate*/, const std::vector<KindSlope>& /*slopes*/,
                            const std::vector<double>& /*hb*/, KindState* /*end*/) const {}
+
+  // --- The stage policy's shortcuts (core/dynamics/stage_driver.h; defaults: a vector kind).
+  /// Warm start: the predicted stage solution, the step-start motion continued with the last
+  /// step's mean acceleration through the stage's own slope (core/dynamics/warm_start.h):
+  ///   q = q⁰ + Δt_i (v_n + τ a),   a = (v_n − v_{n−1}) / h_{n−1}   (a = 0 without `previous`),
+  /// τ [s] the stage's time after t_n, q⁰ (`stageStart`) and Δt_i (`stageDt`) the stage's start
+  /// and step. A kind on a manifold predicts onto it.
+  virtual void PredictStage(const KindState& current, const KindState* previous,
+                            double hPrevious, double tau, const Eigen::VectorXd& stageStart,
+                            double stageDt, Eigen::VectorXd* q) const {
+    Eigen::VectorXd v = current.v;
+    if (previous && hPrevious > 0.0) v += tau * (current.v - previous->v) / hPrevious;
+    *q = stageStart + stageDt * v;
+  }
+  /// The tangent step δ (m entries) with from ⊕ δ = to: the inverse of Retract (to − from).
+  virtual void TangentBetween(const Eigen::VectorXd& from, const Eigen::VectorXd& to,
+                              Eigen::VectorXd* delta) const {
+    *delta = to - from;
+  }
+  /// How much the forces on the actor changed over the last two steps (states `before`,
+  /// `previous`, `current`, hBefore and hPrevious seconds apart), as an acceleration [m/s²]; the
+  /// warm start bounds the prediction of an actor whose change exceeds kSteadyAcceleration |g|
+  /// (core/dynamics/warm_start.h) by its TrustFraction. Default: max over entries of
+  /// |a_n − a_{n−1}|, a_n = (v_n − v_{n−1}) / h_{n−1} (a kind whose q is not lengths overrides it).
+  virtual double ForceChange(const KindState& current, const KindState& previous,
+                             double hPrevious, const KindState& before, double hBefore) const {
+    if (current.v.size() == 0) return 0.0;
+    return ((current.v - previous.v) / hPrevious - (previous.v - before.v) / hBefore)
+        .lpNorm<Eigen::Infinity>();
+  }
+  /// The closed-form free stage: the minimizer of StageEnergy alone (no contact) into *q, and
+  /// true, where the kind has it in closed form; false (the default): Newton solves the stage.
+  virtual bool FreeStageMinimizer(const KindStageData& /*stage*/, Eigen::VectorXd* /*q*/) const {
+    return false;
+  }
 
   /// Reporting: kinetic, gravity and internal (elastic, joint) energy [J], linear momentum
   /// [kg·m/s], angular momentum about the world origin [kg·m²/s], centre of mass [m] and its

@@ -64,6 +64,43 @@ Eigen::Matrix3d SpinCorrectedRate(const Eigen::Matrix3d& J, const Eigen::Matrix3
   return Rdot + Skew(WorldInertia(R, J).ldlt().solve(missing)) * R;
 }
 
+RigidPose PredictRigidPose(const RigidBodyState& s, const RigidBodyState* previous,
+                           double hPrevious, double tau, const Eigen::Vector3d* stageStart,
+                           double stageDt) {
+  const bool history = previous && hPrevious > 0.0;
+  Eigen::Vector3d dv = Eigen::Vector3d::Zero(), alpha = Eigen::Vector3d::Zero();
+  const Eigen::Vector3d omega = s.AngularVelocity();
+  if (history) {
+    dv = s.v - previous->v;
+    alpha = (omega - previous->AngularVelocity()) / hPrevious;
+  }
+  RigidPose out;
+  if (stageStart) {
+    Eigen::Vector3d v = s.v;
+    if (history) v += tau * dv / hPrevious;
+    out.p = *stageStart + stageDt * v;
+  } else {
+    const Eigen::Vector3d a = history ? Eigen::Vector3d(dv / hPrevious) : dv;
+    out.p = s.p + tau * s.v + 0.5 * tau * tau * a;
+  }
+  out.R = ExpSo3(tau * omega + 0.5 * tau * tau * alpha) * s.R;
+  return out;
+}
+
+double RigidForceChange(const RigidBodyModel& m, const RigidBodyState& s2,
+                        const RigidBodyState& s1, double hPrevious, const RigidBodyState& s0,
+                        double hBefore) {
+  const Eigen::Vector3d a2 = (s2.v - s1.v) / hPrevious, a1 = (s1.v - s0.v) / hBefore;
+  auto momentum = [&](const RigidBodyState& s) -> Eigen::Vector3d {
+    return WorldInertia(s.R, m.secondMoment) * s.AngularVelocity();
+  };
+  const Eigen::Vector3d L2 = momentum(s2), L1 = momentum(s1), L0 = momentum(s0);
+  const Eigen::Vector3d dTorque = (L2 - L1) / hPrevious - (L1 - L0) / hBefore;
+  const double rho = RmsRadius(m);
+  const double angular = rho > 0.0 ? dTorque.norm() / (m.mass * rho) : 0.0;
+  return (a2 - a1).norm() + angular;
+}
+
 RigidKind::RigidKind(RigidBodyModel model, const RigidBodyState& state)
     : model_(std::move(model)), initial_(state) {
   contact = model_.contact;
@@ -191,6 +228,47 @@ void RigidKind::DirkStepEnd(const KindState& start, const Eigen::VectorXd& lastS
   const Eigen::Matrix3d RdotEnd = SpinCorrectedRate(J, R, RotationOf(end->v), spin);
   end->x.tail<9>() = Eigen::Map<const Eigen::Matrix<double, 9, 1>>(R.data());
   end->v.tail<9>() = Eigen::Map<const Eigen::Matrix<double, 9, 1>>(RdotEnd.data());
+}
+
+void RigidKind::PredictStage(const KindState& current, const KindState* previous,
+                             double hPrevious, double tau, const Eigen::VectorXd& stageStart,
+                             double stageDt, Eigen::VectorXd* q) const {
+  *q = current.x;
+  if (!model_.dynamic) return;
+  const Eigen::Vector3d p0 = stageStart.head<3>();
+  const RigidBodyState prev = previous ? Unpack(*previous) : RigidBodyState();
+  const RigidPose pose =
+      PredictRigidPose(Unpack(current), previous ? &prev : nullptr, hPrevious, tau, &p0, stageDt);
+  q->head<3>() = pose.p;
+  q->tail<9>() = Eigen::Map<const Eigen::Matrix<double, 9, 1>>(pose.R.data());
+}
+
+void RigidKind::TangentBetween(const Eigen::VectorXd& from, const Eigen::VectorXd& to,
+                               Eigen::VectorXd* delta) const {
+  delta->resize(6);
+  delta->head<3>() = to.head<3>() - from.head<3>();
+  delta->tail<3>() = LogSo3(RotationOf(to) * RotationOf(from).transpose());
+}
+
+double RigidKind::ForceChange(const KindState& current, const KindState& previous,
+                              double hPrevious, const KindState& before, double hBefore) const {
+  if (!model_.dynamic || !(model_.mass > 0.0)) return 0.0;
+  return RigidForceChange(model_, Unpack(current), Unpack(previous), hPrevious, Unpack(before),
+                          hBefore);
+}
+
+bool RigidKind::FreeStageMinimizer(const KindStageData& stage, Eigen::VectorXd* q) const {
+  if (!model_.dynamic) {
+    *q = Pack(initial_).x;
+    return true;
+  }
+  const RigidInertiaMinimum x =
+      MinimizeRigidInertia(model_.secondMoment, stage.qHat.head<3>(), RotationOf(stage.qHat),
+                           stage.dt, stage.gravity);
+  q->resize(12);
+  q->head<3>() = x.p;
+  q->tail<9>() = Eigen::Map<const Eigen::Matrix<double, 9, 1>>(x.R.data());
+  return true;
 }
 
 double RigidKind::KineticEnergy(const KindState& s) const {

@@ -62,6 +62,22 @@ DirkRotationSlope DirkStageRotation(const Eigen::Matrix3d& J, const Eigen::Matri
 Eigen::Matrix3d SpinCorrectedRate(const Eigen::Matrix3d& J, const Eigen::Matrix3d& R,
                                   const Eigen::Matrix3d& Rdot, const Eigen::Vector3d& spin);
 
+/// The warm start's predicted pose of a body τ [s] after t_n (core/dynamics/warm_start.h):
+///   R = Exp(τ ω_n + ½ τ² α) R_n,   α = (ω_n − ω_{n−1}) / h_{n−1},
+///   p = p⁰ + Δt_i (v_n + τ a)  with the stage's start p⁰ (`stageStart`, Δt_i = stageDt), or
+///   p = p_n + τ v_n + ½ τ² a   without (null),   a = (v_n − v_{n−1}) / h_{n−1};
+/// a = α = 0 without `previous` (null, or hPrevious <= 0).
+RigidPose PredictRigidPose(const RigidBodyState& s, const RigidBodyState* previous,
+                           double hPrevious, double tau, const Eigen::Vector3d* stageStart,
+                           double stageDt);
+/// How much the force and the torque on a body changed over the last two steps, as an
+/// acceleration [m/s²]: |a_n − a_{n−1}| + |τ_n − τ_{n−1}| / (m ρ), a_n = (v_n − v_{n−1})/h_{n−1},
+/// τ_n = (L_n − L_{n−1})/h_{n−1}, L = I_w ω the world angular momentum [kg·m²/s], ρ the RMS
+/// radius √(tr J/m) [m] (a torque as the acceleration it gives the body's points at ρ).
+double RigidForceChange(const RigidBodyModel& m, const RigidBodyState& current,
+                        const RigidBodyState& previous, double hPrevious,
+                        const RigidBodyState& before, double hBefore);
+
 class RigidKind : public ActorKind {
  public:
   /// A body built by BuildRigidBody (the same model and initial state as Scene::AddRigidActor).
@@ -84,6 +100,7 @@ class RigidKind : public ActorKind {
   double StageEnergy(const KindStageData& stage, const Eigen::VectorXd& q, int order,
                      PsdProjection projection, Eigen::VectorXd* g,
                      std::vector<Eigen::Triplet<double>>* H) const override;
+  bool IsStatic() const override { return !model_.dynamic; }
   bool IsPrescribed(int /*dof*/) const override { return !model_.dynamic; }
   void Prescribe(double t, Eigen::VectorXd* q) const override;
 
@@ -109,6 +126,19 @@ class RigidKind : public ActorKind {
   void DirkStepEnd(const KindState& start, const Eigen::VectorXd& lastStage, bool stifflyAccurate,
                    const std::vector<KindSlope>& slopes, const std::vector<double>& hb,
                    KindState* end) const override;
+  /// PredictRigidPose through the stage's slope (a static body keeps its pose).
+  void PredictStage(const KindState& current, const KindState* previous, double hPrevious,
+                    double tau, const Eigen::VectorXd& stageStart, double stageDt,
+                    Eigen::VectorXd* q) const override;
+  /// [p_to − p_from, Log(R_to R_fromᵀ)].
+  void TangentBetween(const Eigen::VectorXd& from, const Eigen::VectorXd& to,
+                      Eigen::VectorXd* delta) const override;
+  /// RigidForceChange (0 for a static body).
+  double ForceChange(const KindState& current, const KindState& previous, double hPrevious,
+                     const KindState& before, double hBefore) const override;
+  /// The minimizer of inertia and gravity (energies/rigid_inertia.h, MinimizeRigidInertia); a
+  /// static body keeps its pose.
+  bool FreeStageMinimizer(const KindStageData& stage, Eigen::VectorXd* q) const override;
 
   double KineticEnergy(const KindState& s) const override;
   double GravityEnergy(const KindState& s, const Eigen::Vector3d& gravity) const override;

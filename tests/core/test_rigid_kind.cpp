@@ -12,7 +12,12 @@
 //     stage solver's tolerance. Both scenes solve every stage by Newton from the same start (no
 //     warm start, no closed-form free stages), and converge to a gradient of at most 1e-10 of the
 //     first one; the difference of two converged solutions is then of order that residual over the
-//     stage stiffness, far below the tolerances stated per test.
+//     stage stiffness, far below the tolerances stated per test;
+//   - with the stage policy's shortcuts on (the motion's warm start with its trust bound and
+//     contact step limit, the closed-form free stage), through the kind's hooks (PredictStage,
+//     TangentBetween, ForceChange, FreeStageMinimizer, the assembler's step limit), a rigid kind
+//     takes the built-in body's path: the same closed-form stages and Newton iterations, and the
+//     same states to the tolerances above.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <memory>
@@ -60,6 +65,8 @@ struct Twin {
   }
   // Steps both; returns the largest differences over the dynamic actors of position [m], of
   // rotation (‖ΔR‖_F), of velocity [m/s] and of Ṙ [1/s].
+  // Summed over the steps run: Newton iterations and closed-form free stages of each scene.
+  int iterations[2] = {0, 0}, freeStages[2] = {0, 0};
   Eigen::Vector4d Run(int steps, double dt) {
     Eigen::Vector4d worst = Eigen::Vector4d::Zero();
     for (int n = 0; n < steps; ++n) {
@@ -69,6 +76,10 @@ struct Twin {
       REQUIRE(kinds.Step(dt, &rb, &error));
       REQUIRE(ra.status == StageStatus::Converged);
       REQUIRE(rb.status == StageStatus::Converged);
+      iterations[0] += ra.newtonIterations;
+      iterations[1] += rb.newtonIterations;
+      freeStages[0] += ra.freeStages;
+      freeStages[1] += rb.freeStages;
       for (size_t i = 0; i < a.size(); ++i) {
         if (!builtIn.Model(a[i]).dynamic) continue;
         const RigidBodyState& x = builtIn.State(a[i]);
@@ -216,3 +227,46 @@ TEST_CASE("a stack of rigid kinds and built-in boxes follows the all-built-in st
     CHECK(worst[3] < 1e-5);
   }
 }
+
+TEST_CASE("with warm start and closed-form free stages a rigid kind takes the built-in path",
+          "[core][kind][rigid][contact]") {
+  // A tumbling box dropped 0.3 m onto a static ground (free flight in closed form, then the
+  // landing's warm-started, step-limited stages), and a cube sliding sideways on a 0.3 rad incline
+  // (warm start exact for the steady slide), under BDF2 and DIRK22, with the default settings.
+  const double theta = 0.3;
+  const Eigen::Vector3d n(std::sin(theta), 0, std::cos(theta));
+  for (IntegrationMethod method : {IntegrationMethod::BDF2, IntegrationMethod::DIRK22})
+    for (int scene = 0; scene < 2; ++scene) {
+      SceneSettings s;
+      s.integrator = method;
+      Twin twin(s);
+      if (scene == 0) {
+        twin.Add(test::StaticGround(1e8, 0.4), true);
+        RigidActorDesc box = TumblingBox();
+        box.position = Eigen::Vector3d(0.0, 0.0, 0.6);
+        box.linearVelocity = Eigen::Vector3d(0.2, 0.0, 0.0);
+        box.angularVelocity = Eigen::Vector3d(0.3, 2.0, 0.1);
+        box.contact.normalViscousDampingCoefficient = 20.0;
+        twin.Add(box, true);
+      } else {
+        twin.Add(test::Ground(n, 1e8, 0.2, 20.0), true);
+        RigidActorDesc cube = test::CubeOnIncline(theta, 1e8, 0.2, 20.0);
+        cube.linearVelocity = Eigen::Vector3d(0.0, 0.3, 0.0);
+        twin.Add(cube, true);
+      }
+      const Eigen::Vector4d worst = twin.Run(100, 5e-3);
+      INFO("method " << static_cast<int>(method) << (scene == 0 ? ", drop" : ", incline")
+                     << ": |Δp| " << worst[0] << " |ΔR| " << worst[1] << " |Δv| " << worst[2]
+                     << " |ΔṘ| " << worst[3] << "; iterations " << twin.iterations[0] << " / "
+                     << twin.iterations[1] << ", free stages " << twin.freeStages[0] << " / "
+                     << twin.freeStages[1]);
+      CHECK(twin.iterations[1] == twin.iterations[0]);
+      CHECK(twin.freeStages[1] == twin.freeStages[0]);
+      if (scene == 0) CHECK(twin.freeStages[0] > 10);  // the drop's free flight
+      CHECK(worst[0] < 1e-8);
+      CHECK(worst[1] < 1e-7);
+      CHECK(worst[2] < 1e-6);
+      CHECK(worst[3] < 1e-5);
+    }
+}
+
