@@ -35,4 +35,23 @@ inline void RequireMessage(bool ok, const std::string& message) {
   }
 }
 
+/// Reads the file at `path` with `read` (ReadMeshFile, ReadTetMeshFile) and requires a message
+/// when it fails.
+template <typename Mesh>
+void RequireReadMessage(bool (*read)(const std::string&, Mesh*, std::string*),
+                        const std::string& path) {
+  Mesh mesh;
+  std::string error;
+  RequireMessage(read(path, &mesh, &error), error);
+}
+
+/// A mesh reader's fuzz target whose input is the whole file: writes it as
+/// "superdex-fuzz-<pid>-mesh.<ext>" and reads it with `read` (RequireReadMessage).
+template <typename Mesh>
+int FuzzMeshFile(const uint8_t* data, size_t size, const std::string& ext,
+                 bool (*read)(const std::string&, Mesh*, std::string*)) {
+  RequireReadMessage(read, WriteInput(data, size, "mesh", ext));
+  return 0;
+}
+
 }  // namespace superdex::fuzz

@@ -1,14 +1,9 @@
 // Fuzz target: the STL surface mesh reader (ReadMeshFile on a .stl file), ASCII and binary.
 #include <cstdint>
-#include <string>
 
 #include "fuzz/fuzz_input.h"
 #include "geometry/mesh_io.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  const std::string path = superdex::fuzz::WriteInput(data, size, "mesh", "stl");
-  superdex::TriangleMesh mesh;
-  std::string error;
-  superdex::fuzz::RequireMessage(superdex::ReadMeshFile(path, &mesh, &error), error);
-  return 0;
+  return superdex::fuzz::FuzzMeshFile(data, size, "stl", superdex::ReadMeshFile);
 }

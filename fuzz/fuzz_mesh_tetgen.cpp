@@ -13,8 +13,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const size_t eleStart = nul ? nodeSize + 1 : size;
   const std::string path = superdex::fuzz::WriteInput(data, nodeSize, "tetgen", "node");
   superdex::fuzz::WriteInput(data + eleStart, size - eleStart, "tetgen", "ele");
-  superdex::TetMesh mesh;
-  std::string error;
-  superdex::fuzz::RequireMessage(superdex::ReadTetMeshFile(path, &mesh, &error), error);
+  superdex::fuzz::RequireReadMessage(superdex::ReadTetMeshFile, path);
   return 0;
 }
