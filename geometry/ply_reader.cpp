@@ -259,10 +259,9 @@ bool ReadElements(const std::string& text, const Header& h, PolygonSoup* soup) {
 }  // namespace
 
 bool ReadPly(const std::string& path, TriangleMesh* mesh, std::string* error) {
-  std::string text;
-  if (!ReadWholeFile(path, &text, error)) return false;
   PolygonSoup soup(path, error);
-  if (text.empty()) return soup.Fail("", "the file is empty");
+  std::string text;
+  if (!soup.ReadNonEmptyFile(&text)) return false;
   Header h;
   if (!ReadHeader(text, &soup, &h)) return false;
   const double bytes = static_cast<double>(text.size());

@@ -14,6 +14,12 @@ bool PolygonSoup::Fail(const std::string& place, const std::string& what) const 
   return false;
 }
 
+bool PolygonSoup::ReadNonEmptyFile(std::string* text) const {
+  if (!ReadWholeFile(path_, text, error_)) return false;
+  if (text->empty()) return Fail("", "the file is empty");
+  return true;
+}
+
 bool PolygonSoup::AddVertex(double x, double y, double z, const std::string& place) {
   if (!(std::isfinite(x) && std::isfinite(y) && std::isfinite(z)))
     return Fail(place, "vertex coordinates must be finite numbers");

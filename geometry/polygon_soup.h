@@ -27,6 +27,9 @@ class PolygonSoup {
   int NumVertices() const { return static_cast<int>(vertices_.size()); }
   /// Fails with "<path>: <place>: <what>".
   bool Fail(const std::string& place, const std::string& what) const;
+  /// Reads the whole file `path` into *text (ReadWholeFile); an empty file fails with
+  /// "<path>: the file is empty".
+  bool ReadNonEmptyFile(std::string* text) const;
 
  private:
   std::string path_;

@@ -91,10 +91,9 @@ bool ReadAsciiStl(const std::string& text, PolygonSoup* soup) {
 }  // namespace
 
 bool ReadStl(const std::string& path, TriangleMesh* mesh, std::string* error) {
-  std::string text;
-  if (!ReadWholeFile(path, &text, error)) return false;
   PolygonSoup soup(path, error);
-  if (text.empty()) return soup.Fail("", "the file is empty");
+  std::string text;
+  if (!soup.ReadNonEmptyFile(&text)) return false;
   // Binary when the size matches the triangle count of the header (some binary files also
   // begin with "solid"); ASCII when it begins with "solid".
   uint32_t count = 0;
