@@ -30,12 +30,6 @@ double TetMesh::TetVolume(int t) const {
   return (vertices[q[1]] - x0).dot((vertices[q[2]] - x0).cross(vertices[q[3]] - x0)) / 6.0;
 }
 
-Aabb TetMesh::Bounds() const {
-  Aabb b;
-  for (const auto& v : vertices) b.Extend(v);
-  return b;
-}
-
 namespace {
 
 // Shortest decimal text that reads back to exactly v.

@@ -17,17 +17,13 @@ namespace superdex {
 /// A tetrahedral mesh. Tet t has the vertices tets[t][0..3] (0-based indices into `vertices`);
 /// it is positively oriented when its signed volume (see TetVolume) is positive, which every
 /// generator and mesher here produces and ValidateTetMesh requires. Units: metres.
-struct TetMesh {
-  std::vector<Eigen::Vector3d> vertices;
+struct TetMesh : MeshVertices {
   std::vector<Eigen::Vector4i> tets;
 
-  int NumVertices() const { return static_cast<int>(vertices.size()); }
   int NumTets() const { return static_cast<int>(tets.size()); }
   /// Signed volume of tet t [m^3]: (x1 − x0) · ((x2 − x0) × (x3 − x0)) / 6; positive when x3 is
   /// on the side of the plane (x0, x1, x2) that (x1 − x0) × (x2 − x0) points to. No range checks.
   double TetVolume(int t) const;
-  /// Bounding box of all vertices (empty box for an empty mesh).
-  Aabb Bounds() const;
 };
 
 /// Reads a tetrahedral mesh file, the format chosen by the (case-insensitive) extension:

@@ -17,6 +17,12 @@
 
 namespace superdex {
 
+Aabb MeshVertices::Bounds() const {
+  Aabb b;
+  for (const auto& v : vertices) b.Extend(v);
+  return b;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Per-face queries
 
@@ -37,12 +43,6 @@ double TriangleMesh::SurfaceArea() const {
   double a = 0.0;
   for (int f = 0; f < NumFaces(); ++f) a += FaceArea(f);
   return a;
-}
-
-Aabb TriangleMesh::Bounds() const {
-  Aabb b;
-  for (const auto& v : vertices) b.Extend(v);
-  return b;
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -9,20 +9,26 @@
 
 namespace superdex {
 
-/// A triangle surface mesh. Faces are counter-clockwise seen from outside (outward normals by
-/// the right-hand rule) for closed meshes. Units: metres.
-struct TriangleMesh {
+/// The vertices of a mesh (TriangleMesh, TetMesh) [m].
+struct MeshVertices {
   std::vector<Eigen::Vector3d> vertices;
-  std::vector<Eigen::Vector3i> faces;
 
   int NumVertices() const { return static_cast<int>(vertices.size()); }
+  /// Bounding box of all vertices (empty box for an empty mesh).
+  Aabb Bounds() const;
+};
+
+/// A triangle surface mesh. Faces are counter-clockwise seen from outside (outward normals by
+/// the right-hand rule) for closed meshes. Units: metres.
+struct TriangleMesh : MeshVertices {
+  std::vector<Eigen::Vector3i> faces;
+
   int NumFaces() const { return static_cast<int>(faces.size()); }
   /// Area of face f [m^2].
   double FaceArea(int f) const;
   /// Outward unit normal of face f (zero vector for a degenerate face).
   Eigen::Vector3d FaceNormal(int f) const;
   double SurfaceArea() const;
-  Aabb Bounds() const;
 };
 
 /// Icosphere of the given radius [m]: an icosahedron subdivided `subdivisions` times (each
