@@ -200,11 +200,8 @@ bool Scene::EnableActorContactAsymmetric(ActorHandle a, ActorHandle b, bool enab
 
 bool Scene::EnableActorContactSymmetric(ActorHandle a, ActorHandle b, bool enable,
                                         IncludeNestedActors nested, Error* error) {
-  if (!ValidHandle(a, NumActors(), "A", error) || !ValidHandle(b, NumActors(), "B", error))
-    return false;
-  filter_.EnableActors(a.index, b.index, enable, nested == IncludeNestedActors::Yes);
-  filter_.EnableActors(b.index, a.index, enable, nested == IncludeNestedActors::Yes);
-  return true;
+  return EnableActorContactAsymmetric(a, b, enable, nested, error) &&
+         EnableActorContactAsymmetric(b, a, enable, nested, error);
 }
 
 void Scene::DisableAdjacentContact(ActorHandle a, ActorHandle b) {

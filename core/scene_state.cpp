@@ -92,6 +92,15 @@ std::string Scene::ValidateKind(const ActorKind& kind) const {
     if (ks.hasNormal && !(std::abs(ks.n.norm() - 1.0) < 1e-9))
       return sample + ": its colliding normal must be a unit vector";
   }
+  for (int b = 0; b < kind.NumSampleBodies(); ++b) {
+    const std::string body = name + ": sample body " + std::to_string(b);
+    int dof[2];
+    kind.SampleBodyDofs(b, dof);
+    if (!kind.SampleBody(b)) return body + " has no geometry (SampleBody is null)";
+    if (badBlock(dof[0]) || badBlock(dof[1]) ||
+        kind.IsPrescribed(dof[0]) != kind.IsPrescribed(dof[1]))
+      return body + " reads a dof block outside δ or partly prescribed";
+  }
   if (kind.Collider()) {
     const KindFrame f = kind.ColliderFrame(s.x);
     if (f.rigid && f.blocks != 2)

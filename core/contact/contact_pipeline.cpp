@@ -231,7 +231,7 @@ void ContactPipeline::ConsiderKindPair(bool aKind, int a, bool bKind, int b) {
   if (aKind == bKind && a == b) return;  // self-contact of a kind: not in this layer yet
   const ActorKind* A = aKind ? (*kinds_)[a] : nullptr;
   const ActorKind* B = bKind ? (*kinds_)[b] : nullptr;
-  if (aKind ? A->NumSamples() == 0 : !IsColliding(models[a])) return;
+  if (aKind ? !A->IsColliding() : !IsColliding(models[a])) return;
   if (bKind ? B->Collider() == nullptr : !IsCollider(models[b])) return;
   if (!aKind && !bKind) return;
   const bool aStatic = aKind ? A->IsStatic() : !models[a].dynamic;

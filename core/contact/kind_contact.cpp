@@ -399,10 +399,13 @@ double StepLimitOnFrame(const std::vector<PairSample>& samples, const FrameSide&
   return alpha;
 }
 
-void GatherRigidSamples(const RigidBodyModel& A, const RigidPose& a, const RigidStageStart* start,
-                        int aOffset, const FrameSide& B, double delta,
+namespace {
+
+// Appends the samples of rigid body A at pose a ([δp] at stage offset offP, [δθ] at offTheta; −1:
+// none) that can contribute on B's field, their slip keys counted from keyOffset.
+void AppendRigidSamples(const RigidBodyModel& A, const RigidPose& a, const RigidStageStart* start,
+                        int offP, int offTheta, int keyOffset, const FrameSide& B, double delta,
                         const DissipationSetup* dissipation, std::vector<PairSample>* out) {
-  out->clear();
   const RigidPose& an = start ? start->last : a;
   const double spread =
       (B.last.R.transpose() * an.R - B.pose.R.transpose() * a.R).norm();
@@ -423,13 +426,23 @@ void GatherRigidSamples(const RigidBodyModel& A, const RigidPose& a, const Rigid
       s.nLast = an.R * ss.normal;
       s.weight = ss.weight;
       s.map = SamplePointMap::Rigid(r, a.p);
-      s.key = q;
+      s.key = keyOffset + q;
       s.blocks = 2;
-      s.offs[0] = aOffset;
-      s.offs[1] = aOffset < 0 ? -1 : aOffset + 3;
+      s.offs[0] = offP;
+      s.offs[1] = offTheta;
     }
   };
   ForEachSampleRange(A, keep, visit);
+}
+
+}  // namespace
+
+void GatherRigidSamples(const RigidBodyModel& A, const RigidPose& a, const RigidStageStart* start,
+                        int aOffset, const FrameSide& B, double delta,
+                        const DissipationSetup* dissipation, std::vector<PairSample>* out) {
+  out->clear();
+  AppendRigidSamples(A, a, start, aOffset, aOffset < 0 ? -1 : aOffset + 3, 0, B, delta,
+                     dissipation, out);
 }
 
 void GatherKindSamples(const ActorKind& A, const Eigen::VectorXd& q, const Eigen::VectorXd* qLast,
@@ -437,6 +450,25 @@ void GatherKindSamples(const ActorKind& A, const Eigen::VectorXd& q, const Eigen
                        const FrameSide& B, double delta, const DissipationSetup* dissipation,
                        std::vector<PairSample>* out) {
   out->clear();
+  if (A.NumSampleBodies() > 0) {  // rigid bodies' samples: the rigid gather per body
+    int keyOffset = 0;
+    for (int b = 0; b < A.NumSampleBodies(); ++b) {
+      const RigidBodyModel& body = *A.SampleBody(b);
+      int dof[2];
+      A.SampleBodyDofs(b, dof);
+      const RigidPose pose = A.SampleBodyPose(b, q);
+      RigidStageStart start;
+      start.last = qLast ? A.SampleBodyPose(b, *qLast) : pose;
+      const RigidPose p0 = q0 ? A.SampleBodyPose(b, *q0) : pose;  // without x⁰: y⁰ = y
+      start.p = p0.p;
+      start.R = p0.R;
+      start.Rinv = p0.R.inverse();  // R⁰ an affine combination, not always a rotation
+      AppendRigidSamples(body, pose, qLast || q0 ? &start : nullptr, stageDof[dof[0]],
+                         stageDof[dof[1]], keyOffset, B, delta, dissipation, out);
+      keyOffset += static_cast<int>(body.samples.size());
+    }
+    return;
+  }
   // A kind's ball may turn by anything between x_n and now: |ΔY| of a sample within 2 r of its
   // centre's.
   const BallCulling near(B, delta, dissipation, q0 != nullptr, 2.0);

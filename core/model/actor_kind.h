@@ -240,6 +240,19 @@ class ActorKind {
     visit(0, NumSamples());
   }
 
+  /// Colliding samples carried by rigid bodies (instead of Sample's): body b's surface samples
+  /// (RigidBodyModel::samples, X in the body frame, with their bounding-ball tree) move with its
+  /// pose (p_b, R_b)(q), body → world, and the body's [δp, δθ] are the kind's local tangent dofs
+  /// dof[0] .. +2 and dof[1] .. +2 (a rigid body's own pose; a link whose twist follows other dofs
+  /// needs the general map, not in this layer yet). The assembler then chains them as a rigid
+  /// body's samples (regrouped moments, its sample tree, no per-sample call into the kind).
+  virtual int NumSampleBodies() const { return 0; }
+  virtual const RigidBodyModel* SampleBody(int /*b*/) const { return nullptr; }
+  virtual RigidPose SampleBodyPose(int /*b*/, const Eigen::VectorXd& /*q*/) const { return {}; }
+  virtual void SampleBodyDofs(int /*b*/, int dof[2]) const { dof[0] = dof[1] = 0; }
+  /// Whether the kind has a colliding role (samples of its own or on bodies).
+  bool IsColliding() const { return NumSamples() > 0 || NumSampleBodies() > 0; }
+
   // --- Collider role (null: not a collider). The field is in the frame's coordinates.
   virtual const RigidCollider* Collider() const { return nullptr; }
   virtual KindFrame ColliderFrame(const Eigen::VectorXd& /*q*/) const { return {}; }

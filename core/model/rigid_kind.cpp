@@ -291,35 +291,6 @@ Aabb RigidKind::Bounds(const Eigen::VectorXd& q) const {
   return WorldBounds(model_, q.head<3>(), RotationOf(q));
 }
 
-KindSample RigidKind::Sample(int k, const Eigen::VectorXd& q) const {
-  const SurfaceSample& s = model_.samples[k];
-  const Eigen::Matrix3d R = RotationOf(q);
-  KindSample out;
-  const Eigen::Vector3d r = R * s.X;
-  out.y = q.head<3>() + r;
-  out.weight = s.weight;
-  out.map = SamplePointMap::Rigid(r, q.head<3>());
-  out.dof[0] = 0;
-  out.dof[1] = 3;
-  out.hasNormal = true;
-  out.n = R * s.normal;
-  return out;
-}
-
-void RigidKind::ForEachSampleNear(
-    const Eigen::VectorXd& q, const Eigen::VectorXd& qLast,
-    const std::function<bool(const Eigen::Vector3d&, const Eigen::Vector3d&, double)>& keep,
-    const std::function<void(int, int)>& visit) const {
-  const Eigen::Vector3d p = q.head<3>(), pLast = qLast.head<3>();
-  const Eigen::Matrix3d R = RotationOf(q), RLast = RotationOf(qLast);
-  ForEachSampleRange(
-      model_,
-      [&](const Eigen::Vector3d& c, double r) {
-        return keep(p + R * c, pLast + RLast * c, r);
-      },
-      visit);
-}
-
 const RigidCollider* RigidKind::Collider() const {
   return model_.collider.type == ColliderType::None ? nullptr : &model_.collider;
 }

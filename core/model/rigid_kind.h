@@ -150,13 +150,14 @@ class RigidKind : public ActorKind {
   }
   Aabb Bounds(const Eigen::VectorXd& q) const override;
 
-  int NumSamples() const override { return static_cast<int>(model_.samples.size()); }
-  KindSample Sample(int k, const Eigen::VectorXd& q) const override;
-  /// Descends the body's sample tree (its balls carried by the poses at q and qLast).
-  void ForEachSampleNear(
-      const Eigen::VectorXd& q, const Eigen::VectorXd& qLast,
-      const std::function<bool(const Eigen::Vector3d&, const Eigen::Vector3d&, double)>& keep,
-      const std::function<void(int, int)>& visit) const override;
+  /// Colliding: the body's surface samples, on its own pose (δ's two blocks).
+  int NumSampleBodies() const override { return model_.samples.empty() ? 0 : 1; }
+  const RigidBodyModel* SampleBody(int /*b*/) const override { return &model_; }
+  RigidPose SampleBodyPose(int /*b*/, const Eigen::VectorXd& q) const override { return PoseOf(q); }
+  void SampleBodyDofs(int /*b*/, int dof[2]) const override {
+    dof[0] = 0;
+    dof[1] = 3;
+  }
   const RigidCollider* Collider() const override;
   KindFrame ColliderFrame(const Eigen::VectorXd& q) const override;
 
