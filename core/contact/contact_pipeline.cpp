@@ -344,19 +344,35 @@ size_t ContactPipeline::RigidPairWork() const {
 
 bool ContactPipeline::SplitLastEvaluation(const std::vector<int>& dofOffset,
                                           std::vector<double>* share,
-                                          std::vector<std::pair<int, int>>* joins) const {
-  if (!softPairs_.empty() || !softColliderPairs_.empty() || !kindPairs_.empty() ||
-      results_.size() != pairs_.size())
+                                          std::vector<std::pair<int, int>>* joins,
+                                          const std::vector<std::vector<int>>* kindStageDof) const {
+  if (!softPairs_.empty() || !softColliderPairs_.empty() || results_.size() != pairs_.size() ||
+      (!kindPairs_.empty() && (!kindStageDof || kindResults_.size() != kindPairs_.size())))
     return false;
-  for (size_t k = 0; k < pairs_.size(); ++k) {
-    const PairStencils& r = results_[k];
-    if (r.activeSamples == 0 && r.dissipativeSamples == 0) continue;
-    const int a = pairs_[k].colliding, b = pairs_[k].collider;
-    const int owner = dofOffset[a] >= 0 ? a : b;
-    if (dofOffset[owner] < 0) continue;
+  // Each pair's values to its first dynamic actor; two dynamic actors with an active sample join.
+  auto add = [&](const PairStencils& r, int a, bool aDynamic, int b, bool bDynamic) {
+    if (r.activeSamples == 0 && r.dissipativeSamples == 0) return;
+    if (!aDynamic && !bDynamic) return;
+    const int owner = aDynamic ? a : b;
     if (r.activeSamples > 0) (*share)[owner] += r.penaltyValue;
     if (r.dissipativeSamples > 0) (*share)[owner] += r.dissipationValue;
-    if (dofOffset[a] >= 0 && dofOffset[b] >= 0) joins->emplace_back(a, b);
+    if (aDynamic && bDynamic) joins->emplace_back(a, b);
+  };
+  for (size_t k = 0; k < pairs_.size(); ++k) {
+    const int a = pairs_[k].colliding, b = pairs_[k].collider;
+    add(results_[k], a, dofOffset[a] >= 0, b, dofOffset[b] >= 0);
+  }
+  const int n = static_cast<int>(dofOffset.size());
+  auto dynamicKind = [&](int k) {
+    for (int i : (*kindStageDof)[k])
+      if (i >= 0) return true;
+    return false;
+  };
+  for (size_t k = 0; k < kindPairs_.size(); ++k) {
+    const KindPair& kp = kindPairs_[k];
+    add(kindResults_[k], kp.aKind ? n + kp.a : kp.a,
+        kp.aKind ? dynamicKind(kp.a) : dofOffset[kp.a] >= 0, kp.bKind ? n + kp.b : kp.b,
+        kp.bKind ? dynamicKind(kp.b) : dofOffset[kp.b] >= 0);
   }
   return true;
 }

@@ -174,19 +174,23 @@ double SceneStageProblem::EvaluateKindTerms(const std::vector<Eigen::VectorXd>& 
   double value = 0.0;
   Eigen::VectorXd& g = ws_->kindGradient;
   std::vector<Eigen::Triplet<double>>& H = ws_->kindHessian;
+  std::vector<double>& kindValue = ws_->kindValue;
+  kindValue.assign(ks.Size(), 0.0);
   for (size_t k = 0; k < ks.Size(); ++k) {
     const ActorKind& kind = *(*ks.kinds)[k];
     const std::vector<int>& dof = ks.stageDof[k];
     if (order >= 1) g.setZero(kind.NumTangentDofs());
     H.clear();
-    value += kind.StageEnergy(ks.data[k], softX[ns + k], order, projection,
-                              order >= 1 ? &g : nullptr, order >= 2 ? &H : nullptr);
+    kindValue[k] = kind.StageEnergy(ks.data[k], softX[ns + k], order, projection,
+                                    order >= 1 ? &g : nullptr, order >= 2 ? &H : nullptr);
+    value += kindValue[k];
     if (order < 1) continue;
     for (size_t i = 0; i < dof.size(); ++i)
       if (dof[i] >= 0) (*gPot)[dof[i]] += g[i];
+    // Every entry the kind appends, zero or not: the kind keeps its pattern stable.
     for (const Eigen::Triplet<double>& t : H) {
       const int r = dof[t.row()], c = dof[t.col()];
-      if (r >= 0 && c >= 0 && t.value() != 0.0) triplets_.emplace_back(r, c, t.value());
+      if (r >= 0 && c >= 0) triplets_.emplace_back(r, c, t.value());
     }
   }
   return value;
@@ -345,23 +349,42 @@ void SceneStageProblem::Commit(const Eigen::VectorXd& d) {
 }
 
 bool SceneStageProblem::LastSplit(StageSplit* split) {
-  if (soft_) return false;
-  const int units = numDofs_ / 6;
+  // Units: the dynamic rigid bodies (unit = dofOffset / 6: their dofs lead), then one per kind.
+  if (soft_ && !soft_->targets.empty()) return false;  // soft actors: not split
+  const KindStage* kinds = soft_ && soft_->kinds.Size() > 0 ? &soft_->kinds : nullptr;
+  const size_t nk = kinds ? kinds->Size() : 0;
+  int rigidDofs = 0;
+  for (size_t i = 0; i < models_.size(); ++i)
+    if (dofOffset_[i] >= 0) rigidDofs += 6;
+  const int rigidUnits = rigidDofs / 6;
+  const int units = rigidUnits + static_cast<int>(nk);
   if (static_cast<int>(split->unitOfDof.size()) != numDofs_ || split->units != units) {
-    split->unitOfDof.resize(numDofs_);
-    for (int k = 0; k < numDofs_; ++k) split->unitOfDof[k] = k / 6;
+    split->unitOfDof.assign(numDofs_, 0);
+    for (int k = 0; k < rigidDofs; ++k) split->unitOfDof[k] = k / 6;
+    for (size_t k = 0; k < nk; ++k)
+      for (int i : kinds->stageDof[k])
+        if (i >= 0) split->unitOfDof[i] = rigidUnits + static_cast<int>(k);
     split->units = units;
   }
-  if (ws_->bodyValue.size() != models_.size()) return false;
+  if (ws_->bodyValue.size() != models_.size() || ws_->kindValue.size() != nk) return false;
+  // Per actor (rigid models, then kinds): its terms' values, then the contact pairs' shares.
   std::vector<double>& value = ws_->splitValue;
   value = ws_->bodyValue;
+  value.insert(value.end(), ws_->kindValue.begin(), ws_->kindValue.end());
   split->joins.clear();
-  if (contact_ && !contact_->SplitLastEvaluation(dofOffset_, &value, &split->joins)) return false;
+  if (contact_ && !contact_->SplitLastEvaluation(dofOffset_, &value, &split->joins,
+                                                 kinds ? &kinds->stageDof : nullptr))
+    return false;
+  auto unit = [&](int actor) {
+    const int n = static_cast<int>(models_.size());
+    return actor < n ? dofOffset_[actor] / 6 : rigidUnits + actor - n;
+  };
   split->share.assign(units, 0.0);
   for (size_t i = 0; i < models_.size(); ++i)
-    if (dofOffset_[i] >= 0) split->share[dofOffset_[i] / 6] += value[i];
-  for (std::pair<int, int>& j : split->joins)
-    j = {dofOffset_[j.first] / 6, dofOffset_[j.second] / 6};
+    if (dofOffset_[i] >= 0) split->share[unit(static_cast<int>(i))] += value[i];
+  for (size_t k = 0; k < nk; ++k)
+    split->share[rigidUnits + k] += value[models_.size() + k];
+  for (std::pair<int, int>& j : split->joins) j = {unit(j.first), unit(j.second)};
   return true;
 }
 

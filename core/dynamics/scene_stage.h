@@ -77,6 +77,7 @@ struct StageWorkspace {
   std::vector<double> limits;              ///< LimitStep's fractions per body
   std::vector<double> kindLimits;          ///< and per kind of the generic layer
   std::vector<double> bodyValue;           ///< the last evaluation's inertia + gravity per body
+  std::vector<double> kindValue;           ///< and each kind's stage energy
   std::vector<double> splitValue;          ///< LastSplit's per-body shares
   Eigen::VectorXd scratch;                 ///< the dissipative residual's part
   Eigen::VectorXd pendingStep;             ///< the step of the last EvaluateAtStep-like call
@@ -110,9 +111,9 @@ class SceneStageProblem : public StageProblem {
                   PsdProjection projection) override;
   void Commit(const Eigen::VectorXd& d) override;
   bool IsPotential() const override;
-  /// Units are the dynamic rigid bodies (unit = dofOffset / 6); shares their inertia and gravity
-  /// terms plus the contact pairs' values (ContactPipeline::SplitLastEvaluation). False with soft
-  /// actors.
+  /// Units are the dynamic rigid bodies (unit = dofOffset / 6), then the kinds (one each);
+  /// shares their inertia and gravity terms (a kind's stage energy) plus the contact pairs'
+  /// values (ContactPipeline::SplitLastEvaluation). False with soft actors.
   bool LastSplit(StageSplit* split) override;
   void Residual(const Eigen::VectorXd& d, Eigen::VectorXd* r) override;
   /// J = ∂r/∂δ: the (unprojected) Hessian of the potential terms with the rotation blocks'
