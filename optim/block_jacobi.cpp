@@ -39,17 +39,42 @@ bool InvertBlock(Eigen::Matrix<double, N, N>* B) {
 }  // namespace
 
 void BlockJacobi::Layout(Eigen::Index n) {
-  sixEnd_ = 6 * static_cast<Eigen::Index>(leadingSix_);
-  scalar_ = sixEnd_ > n || (n - sixEnd_) % 3 != 0;
+  if (n != laidOut_ || !(layout_ == laidOutLayout_)) {  // the blocks of a new layout
+    laidOut_ = n;
+    laidOutLayout_ = layout_;
+    blocks_.clear();
+    Eigen::Index next = 0;
+    int sixes = 0, threes = 0;
+    scalar_ = false;
+    auto add = [&](int size) {
+      blocks_.push_back({next, size, size == 6 ? sixes++ : threes++});
+      next += size;
+    };
+    for (int size : layout_.sizes) {
+      if ((size != 3 && size != 6) || next + size > n) {
+        scalar_ = true;
+        break;
+      }
+      add(size);
+    }
+    scalar_ = scalar_ || (n - next) % 3 != 0;
+    while (!scalar_ && next < n) add(3);
+    if (scalar_) {
+      blocks_.clear();
+      sixes = threes = 0;
+    }
+    blockOf_.assign(scalar_ ? 0 : n, 0);
+    for (size_t k = 0; k < blocks_.size(); ++k)
+      for (int i = 0; i < blocks_[k].size; ++i) blockOf_[blocks_[k].first + i] = static_cast<int>(k);
+    six_.resize(sixes);
+    three_.resize(threes);
+  }
   if (scalar_) {
-    sixEnd_ = 0;
-    six_.clear();
-    three_.clear();
     diagonal_.setZero(n);
     return;
   }
-  six_.assign(leadingSix_, Matrix6::Zero());
-  three_.assign((n - sixEnd_) / 3, Eigen::Matrix3d::Zero());
+  for (Matrix6& B : six_) B.setZero();
+  for (Eigen::Matrix3d& B : three_) B.setZero();
 }
 
 void BlockJacobi::Invert() {
@@ -71,10 +96,12 @@ void BlockJacobi::Apply(const Eigen::VectorXd& r, Eigen::VectorXd* z) const {
     z->array() = diagonal_.array() * r.array();
     return;
   }
-  for (size_t i = 0; i < six_.size(); ++i)
-    z->segment<6>(6 * i).noalias() = six_[i] * r.segment<6>(6 * i);
-  for (size_t i = 0; i < three_.size(); ++i)
-    z->segment<3>(sixEnd_ + 3 * i).noalias() = three_[i] * r.segment<3>(sixEnd_ + 3 * i);
+  for (const Block& b : blocks_) {
+    if (b.size == 6)
+      z->segment<6>(b.first).noalias() = six_[b.index] * r.segment<6>(b.first);
+    else
+      z->segment<3>(b.first).noalias() = three_[b.index] * r.segment<3>(b.first);
+  }
 }
 
 }  // namespace superdex

@@ -1,8 +1,8 @@
 // Block-Jacobi preconditioner for the Krylov solves of optim/linear_solver.cpp (our conjugate
 // gradients and Eigen's BiCGSTAB, whose preconditioner interface it follows): the inverses of the
 // diagonal blocks of a sparse matrix, as a DofBlockLayout gives them (optim/block_layout.h):
-// blocks of 6 dofs first, then blocks of 3 (StageProblem::BlockLayout). Where the layout does not
-// fit the matrix (6k > n, or n − 6k not a multiple of 3) every block is 1×1 (plain Jacobi).
+// blocks of 6 and 3 dofs in the layout's order, then blocks of 3 (StageProblem::BlockLayout).
+// Where the layout does not fit the matrix every block is 1×1 (plain Jacobi).
 // Measurements: docs/optim-notes.md.
 #pragma once
 
@@ -23,9 +23,7 @@ class BlockJacobi {
 
   BlockJacobi() = default;
   /// The layout of the next factorizations (see the file comment).
-  void SetLayout(const DofBlockLayout& layout) {
-    leadingSix_ = layout.blocksOfSix > 0 ? layout.blocksOfSix : 0;
-  }
+  void SetLayout(const DofBlockLayout& layout) { layout_ = layout; }
 
   template <typename MatrixType>
   BlockJacobi& analyzePattern(const MatrixType&) {
@@ -66,18 +64,27 @@ class BlockJacobi {
       if (row == col) diagonal_[row] = value;
       return;
     }
-    if (row < sixEnd_ && col < sixEnd_) {
-      if (row / 6 == col / 6) six_[row / 6](row % 6, col % 6) = value;
-      return;
-    }
-    if (row >= sixEnd_ && col >= sixEnd_ && (row - sixEnd_) / 3 == (col - sixEnd_) / 3)
-      three_[(row - sixEnd_) / 3]((row - sixEnd_) % 3, (col - sixEnd_) % 3) = value;
+    const Block& b = blocks_[blockOf_[row]];
+    if (blockOf_[col] != blockOf_[row]) return;
+    if (b.size == 6)
+      six_[b.index](row - b.first, col - b.first) = value;
+    else
+      three_[b.index](row - b.first, col - b.first) = value;
   }
   void Invert();
 
-  int leadingSix_ = 0;
+  // A diagonal block: its first dof, its size (3 or 6) and its index in six_ or three_.
+  struct Block {
+    Eigen::Index first = 0;
+    int size = 3;
+    int index = 0;
+  };
+  DofBlockLayout layout_;
   bool scalar_ = false;             // the layout does not fit: 1×1 blocks
-  Eigen::Index sixEnd_ = 0;         // 6 × the number of 6×6 blocks
+  Eigen::Index laidOut_ = -1;       // the n of the blocks below (−1: none yet)
+  DofBlockLayout laidOutLayout_;    // and their layout
+  std::vector<Block> blocks_;
+  std::vector<int> blockOf_;        // per dof: its block
   std::vector<Matrix6> six_;        // the 6×6 blocks, then their inverses
   std::vector<Eigen::Matrix3d> three_;
   Eigen::VectorXd diagonal_;        // scalar_: the diagonal, then its inverse

@@ -3,13 +3,23 @@
 // linear solvers take it (SymmetricSolver / UnsymmetricSolver::SetBlockLayout).
 #pragma once
 
+#include <vector>
+
 namespace superdex {
 
-/// Dofs [0, 6 blocksOfSix) form `blocksOfSix` blocks of 6 coupled dofs; the rest, blocks of 3.
-/// Where that does not tile the n dofs (6 blocksOfSix > n, or n − 6 blocksOfSix not a multiple of
-/// 3) a preconditioner falls back to 1×1 blocks. The default: blocks of 3 throughout.
+/// The sizes of consecutive blocks of coupled dofs from dof 0 on (each 3 or 6: a node's position,
+/// a rigid body's [δp, δθ]); dofs after the listed blocks form blocks of 3. Where that does not
+/// tile the n dofs (the sizes sum to more than n, a size is neither 3 nor 6, or the rest is not a
+/// multiple of 3) a preconditioner falls back to 1×1 blocks. The default: blocks of 3 throughout.
 struct DofBlockLayout {
-  int blocksOfSix = 0;
+  std::vector<int> sizes;
+  /// `count` blocks of 6 first, then blocks of 3.
+  static DofBlockLayout LeadingSix(int count) {
+    DofBlockLayout layout;
+    layout.sizes.assign(count > 0 ? count : 0, 6);
+    return layout;
+  }
+  bool operator==(const DofBlockLayout& o) const { return sizes == o.sizes; }
 };
 
 }  // namespace superdex

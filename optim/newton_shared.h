@@ -53,7 +53,8 @@ class NewtonSetup {
     for (Eigen::VectorXd* v : {&work.gradient, &work.direction, &work.step, &work.limited})
       v->resize(n);
     solver.SetSettings(params.linear);
-    solver.SetBlockLayout(problem.BlockLayout());
+    problem.BlockLayout(&work.layout);
+    solver.SetBlockLayout(work.layout);
     work.search.SetOptions(LineSearchOptions(params));
   }
 

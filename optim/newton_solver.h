@@ -158,6 +158,7 @@ struct NewtonWorkspace {
   Eigen::VectorXd gradient, direction, step, limited, trialGradient;
   Eigen::SparseMatrix<double> matrix, shifted, trialMatrix;
   std::vector<Eigen::Index> diagonal;
+  DofBlockLayout layout;  ///< the problem's block layout (StageProblem::BlockLayout)
   LineSearch search;
   /// Newton iterations of the last solve on this workspace that converged in its main loop;
   /// -1 when the last solve ended otherwise (its Krylov forcing term's start: optim/forcing_term.h).

@@ -122,8 +122,9 @@ class StageProblem {
   virtual double StepNorm(const Eigen::VectorXd& d) const { return d.lpNorm<Eigen::Infinity>(); }
 
   /// The diagonal blocks of the dofs (optim/block_layout.h), which the Krylov solves'
-  /// block-Jacobi preconditioner inverts. Default: blocks of 3 throughout.
-  virtual DofBlockLayout BlockLayout() const { return {}; }
+  /// block-Jacobi preconditioner inverts, into *layout (its storage reused). Default: blocks of
+  /// 3 throughout.
+  virtual void BlockLayout(DofBlockLayout* layout) const { layout->sizes.clear(); }
 };
 
 }  // namespace superdex

@@ -438,18 +438,35 @@ bool SceneStageProblem::LimitStep(Eigen::VectorXd* d) {
   return changed;
 }
 
-DofBlockLayout SceneStageProblem::BlockLayout() const {
-  // Bodies in dof order: offsets 0, 6, 12, … without gaps (else no 6-blocks are claimed).
-  DofBlockLayout layout;
+void SceneStageProblem::BlockLayout(DofBlockLayout* layout) const {
+  // In dof order: the dynamic rigid bodies (6 each, leading without gaps), the free soft nodes
+  // (3 each), then each kind's free dofs in blocks of its DofBlockSize.
+  std::vector<int>& sizes = layout->sizes;
+  sizes.clear();
   int expected = 0;
   for (size_t i = 0; i < models_.size(); ++i) {
     const int o = dofOffset_[i];
     if (o < 0) continue;
-    if (o != expected) return DofBlockLayout();
-    ++layout.blocksOfSix;
+    if (o != expected) {  // not leading in order: no blocks of six claimed
+      sizes.clear();
+      return;
+    }
+    sizes.push_back(6);
     expected += 6;
   }
-  return layout;
+  if (!soft_) return;
+  for (size_t s = 0; s < soft_->targets.size(); ++s)
+    sizes.insert(sizes.end(), (*soft_->models)[s].numFree, 3);
+  for (size_t k = 0; k < soft_->kinds.Size(); ++k) {
+    int free = 0;
+    for (int i : soft_->kinds.stageDof[k]) free += i >= 0;
+    const int size = (*soft_->kinds.kinds)[k]->DofBlockSize();
+    if (free % size != 0) {  // blocks of 3 then; 1×1 if those do not fit
+      sizes.clear();
+      return;
+    }
+    sizes.insert(sizes.end(), free / size, size);
+  }
 }
 
 double SceneStageProblem::StepNorm(const Eigen::VectorXd& d) const {

@@ -148,9 +148,9 @@ class SceneStageProblem : public StageProblem {
   /// max over bodies of ‖δp‖∞ and ‖δθ‖ times the body's RMS radius √(tr J / m), and over soft
   /// nodes of ‖δx‖∞ [m].
   double StepNorm(const Eigen::VectorXd& d) const override;
-  /// Blocks of six: the dynamic rigid bodies, whose six dofs lead the dof vector (dofOffset 0, 6,
-  /// 12, …; none where they do not); blocks of three after them: the soft nodes.
-  DofBlockLayout BlockLayout() const override;
+  /// In dof order: blocks of six for the dynamic rigid bodies (whose dofs lead), blocks of three
+  /// for the free soft nodes, each kind's free dofs in blocks of its DofBlockSize.
+  void BlockLayout(DofBlockLayout* layout) const override;
 
  private:
   double BodyEnergy(size_t i, const RigidPose& pose) const;

@@ -155,6 +155,9 @@ class ActorKind {
   virtual double StepLength(const Eigen::VectorXd& /*q*/, const Eigen::VectorXd& delta) const {
     return delta.size() ? delta.lpNorm<Eigen::Infinity>() : 0.0;
   }
+  /// The size (3 or 6) of the blocks of coupled tangent dofs a block preconditioner inverts over
+  /// the kind's free dofs in order (optim/block_layout.h): 3 for nodes, 6 for a rigid body.
+  virtual int DofBlockSize() const { return 3; }
   /// The fraction (0, 1] of a Newton correction δ the kind trusts (1: all; a rigid body bounds
   /// its move by a quarter of its radius, core/dynamics/scene_stage.h).
   virtual double TrustFraction(const Eigen::VectorXd& /*q*/,

@@ -112,6 +112,7 @@ class RigidKind : public ActorKind {
                                      std::vector<Eigen::Triplet<double>>* J) const override;
   /// I on δp, the left Jacobian J_l(δθ) of SO(3) on δθ.
   Eigen::MatrixXd ChartTangentMap(const Eigen::VectorXd& delta) const override;
+  int DofBlockSize() const override { return 6; }
   /// max(‖δp‖∞, ‖δθ‖ ρ_rms) [m].
   double StepLength(const Eigen::VectorXd& q, const Eigen::VectorXd& delta) const override;
   /// ‖δp‖ + ‖δθ‖ ρ <= kCorrectionTrust ρ, ρ = max(samples' radius, ρ_rms).

@@ -335,7 +335,7 @@ TEST_CASE("block-Jacobi preconditioner: one 6x6 block per rigid body, 3x3 blocks
   H.makeCompressed();
   const Eigen::VectorXd b = Eigen::VectorXd::Random(n);
   BlockJacobi P;
-  P.SetLayout(DofBlockLayout{bodies});
+  P.SetLayout(DofBlockLayout::LeadingSix(bodies));
   P.compute(H);
   CHECK(P.PositiveDefinite());
   CHECK(RelativeResidual(H, P.solve(b), b) < 1e-12);
@@ -351,12 +351,12 @@ TEST_CASE("block-Jacobi preconditioner: one 6x6 block per rigid body, 3x3 blocks
   for (int k : {bodies, 0}) {
     SymmetricSolver s;
     s.SetSettings(iterative);
-    s.SetBlockLayout(DofBlockLayout{k});
+    s.SetBlockLayout(DofBlockLayout::LeadingSix(k));
     REQUIRE(s.Factorize(H));
     CHECK(RelativeResidual(H, s.Solve(b), b) < 1e-8);
     UnsymmetricSolver u;
     u.SetSettings(iterative);
-    u.SetBlockLayout(DofBlockLayout{k});
+    u.SetBlockLayout(DofBlockLayout::LeadingSix(k));
     REQUIRE(u.Factorize(H));
     CHECK(RelativeResidual(H, u.Solve(b), b) < 1e-8);
     CHECK(!s.LastSolve().fellBack);
@@ -371,7 +371,7 @@ TEST_CASE("block-Jacobi preconditioner: one 6x6 block per rigid body, 3x3 blocks
   }
   // A layout that does not fit the matrix (more bodies than unknowns) falls back to the diagonal.
   BlockJacobi P7;
-  P7.SetLayout(DofBlockLayout{n});
+  P7.SetLayout(DofBlockLayout::LeadingSix(n));
   P7.compute(H);
   CHECK(P7.PositiveDefinite());
   const Eigen::VectorXd z = P7.solve(b);
