@@ -687,6 +687,7 @@ void ContactPipeline::EvaluateKindPairs(const Request& q, double* energy, Contac
     const KindPair& kp = kindPairs_[k];
     DissipationSetup setup;
     if (dissipation) setup = MakeSetup(kp.params, *dissipation, q.isotropic);
+    setup.slips = SlipUse(SlipPairKind::Kind, k);
     const FrameSide B = KindPairSides(q, kp, dissipation ? &setup : nullptr, &kindSamples_[k]);
     PairStencils& r = kindResults_[k];
     EvaluateSamplesOnFrame(kindSamples_[k], B, PenaltyOf(kp.params),
@@ -695,7 +696,12 @@ void ContactPipeline::EvaluateKindPairs(const Request& q, double* energy, Contac
     if (q.order < 2) return;
     for (int e = 0; e < r.count; ++e) ProjectStencil(q.potential, q.projection, &r.stencils[e]);
   };
-  ForEachPair(kindPairs_.size(), true, evaluate);
+  const int n = static_cast<int>(models_->size());
+  auto kindId = [&](size_t k) {
+    const KindPair& kp = kindPairs_[k];
+    return std::make_pair(kp.aKind ? n + kp.a : kp.a, kp.bKind ? n + kp.b : kp.b);
+  };
+  SweepPairs(dissipation, SlipPairKind::Kind, kindPairs_.size(), true, kindId, evaluate);
   for (size_t k = 0; k < kindPairs_.size(); ++k)
     ReducePair(q, kindResults_[k], false, -1, false, -1, energy, st);
 }

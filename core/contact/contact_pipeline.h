@@ -245,7 +245,7 @@ class ContactPipeline {
     std::vector<PairSlipUse> use;
     std::vector<PairSlips> record;
   };
-  SlipLists slipLists_[3];
+  SlipLists slipLists_[4];
   /// Sets slipLists_[kind].use for n pairs named by id(k) = (colliding, collider): buffers to
   /// record into or the records to read; left empty without slips in the context (plain
   /// simulation pays no per-pair work for them).

@@ -38,7 +38,9 @@ struct PairSlipUse {
 };
 
 /// The pair kinds of the contact pipeline.
-enum class SlipPairKind { Rigid = 0, SoftOnRigid = 1, OnSoft = 2 };
+/// Kind: a pair of the generic layer, named by actor indices that run over the rigid models, then
+/// the kinds (models + k).
+enum class SlipPairKind { Rigid = 0, SoftOnRigid = 1, OnSoft = 2, Kind = 3 };
 
 /// One stage's record, pairs sorted by (kind, colliding, collider).
 class StageSlips {
