@@ -38,6 +38,13 @@ SceneStageProblem::SceneStageProblem(const std::vector<RigidBodyModel>& models,
   if (soft_) {
     softTrial_ = *softX_;
     if (ws_->soft.size() < soft_->targets.size()) ws_->soft.resize(soft_->targets.size());
+    // The soft nodes' dofs: after every rigid dof, before the kinds'.
+    for (size_t i = 0; i < models_.size(); ++i)
+      if (dofOffset_[i] >= 0) softBegin_ += 6;
+    softEnd_ = numDofs_;
+    for (const std::vector<int>& dof : soft_->kinds.stageDof)
+      for (int i : dof)
+        if (i >= 0) softEnd_ = std::min(softEnd_, i);
   }
   context_ = ContextOf(dissipation_, targets_.dt);
   // Where the linear solves are Krylov by default, the matrices keep a superset pattern while
@@ -476,15 +483,8 @@ double SceneStageProblem::StepNorm(const Eigen::VectorXd& d) const {
     if (o < 0) continue;
     norm = std::max(norm, RigidStepLength(models_[i], d.segment<3>(o), d.segment<3>(o + 3)));
   }
-  if (soft_) {  // soft nodes [m], after every rigid dof and before the kinds' dofs
-    int begin = 0;
-    for (size_t i = 0; i < models_.size(); ++i)
-      if (dofOffset_[i] >= 0) begin += 6;
-    int end = numDofs_;
-    for (const std::vector<int>& dof : soft_->kinds.stageDof)
-      for (int i : dof)
-        if (i >= 0) end = std::min(end, i);
-    norm = std::max(norm, d.segment(begin, end - begin).lpNorm<Eigen::Infinity>());
+  if (soft_) {  // soft nodes [m]
+    norm = std::max(norm, d.segment(softBegin_, softEnd_ - softBegin_).lpNorm<Eigen::Infinity>());
     const size_t ns = soft_->targets.size();
     for (size_t k = 0; k < soft_->kinds.Size(); ++k)
       norm = std::max(norm, (*soft_->kinds.kinds)[k]->StepLength((*softX_)[ns + k],

@@ -216,6 +216,7 @@ class SceneStageProblem : public StageProblem {
   std::vector<Eigen::VectorXd>* softX_ = nullptr;
   std::vector<Eigen::VectorXd> softOrigin_, noSoft_;
   double lastMinDetF_ = INFINITY;
+  int softBegin_ = 0, softEnd_ = 0;  // the soft nodes' dofs [softBegin_, softEnd_)
 };
 
 /// The data of one stage, from which its problem can be built at any configuration (the stage
