@@ -218,6 +218,13 @@ constexpr Field<Class, T> MakeField(const char* name, T Class::*member, const ch
   return {name, nullptr, member, unit, rule, doc};
 }
 
+/// A row without a rule: a figure a run reports (RunSummary), never read from input.
+template <typename Class, typename T>
+constexpr Field<Class, T> MakeField(const char* name, T Class::*member, const char* unit,
+                                    const char* doc) {
+  return MakeField(name, member, unit, NoRule(), doc);
+}
+
 /// A struct member with its own table (`table`, its Validate), named `typeName` in the docs.
 template <typename Class, typename Inner, typename Table>
 struct NestedField {

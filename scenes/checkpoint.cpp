@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <type_traits>
 
 #include "scenes/json_text.h"
 
@@ -67,25 +68,20 @@ json ToJson(const Checkpoint& c) {
   j["version"] = kVersion;
   j["scene_hash"] = HashText(c.sceneHash);
   j["scene"] = c.scenePath;
-  j["run"] = {{"step", r.step},
+  json run = {{"step", r.step},
               {"dt", Hex(r.dt)},
               {"integrator", r.integrator},
               {"trajectory", r.trajectoryPath},
-              {"trajectory_bytes", r.trajectoryBytes},
-              {"vtk_frames", r.vtkFrames},
-              {"newton_iterations", r.newtonIterations},
-              {"stages", r.stages},
-              {"free_stages", r.freeStages},
-              {"krylov_iterations", r.krylovIterations},
-              {"krylov_fallbacks", r.krylovFallbacks},
-              {"fallbacks", r.fallbacks},
-              {"max_newton_iterations", r.maxNewtonIterations},
-              {"converged", r.converged},
-              {"stopped", r.stopped},
-              {"diverged", r.diverged},
-              {"max_penetration", Hex(r.maxPenetration)},
-              {"min_det_f", Hex(r.minDetF)},
-              {"initial_energy", Hex(r.initialEnergy)}};
+              {"trajectory_bytes", r.trajectoryBytes}};
+  // The summary's accumulators: integers as JSON integers, doubles as hex floats (the object's
+  // keys are sorted when written).
+  ForEachField(kRunAccumulatorFields, [&](const auto& f) {
+    if constexpr (std::is_integral_v<typename std::decay_t<decltype(f)>::ValueType>)
+      run[f.name] = f.Of(r);
+    else
+      run[f.name] = Hex(f.Of(r));
+  });
+  j["run"] = run;
   const StageDriver::State& d = c.snapshot.driver;
   j["driver"] = {{"explicit_first_stages", d.explicitFirstStages},
                  {"explicit_first_run", d.explicitFirstRun},
@@ -205,20 +201,13 @@ void ReadRun(const json& j, CheckpointRun* r) {
   r->integrator = StringAt(run, "run", "integrator");
   r->trajectoryPath = StringAt(run, "run", "trajectory");
   r->trajectoryBytes = IntegerAt(run, "run", "trajectory_bytes", 0);
-  r->vtkFrames = static_cast<int>(IntegerAt(run, "run", "vtk_frames", 0));
-  r->newtonIterations = IntegerAt(run, "run", "newton_iterations", 0);
-  r->stages = IntegerAt(run, "run", "stages", 0);
-  r->freeStages = IntegerAt(run, "run", "free_stages", 0);
-  r->krylovIterations = IntegerAt(run, "run", "krylov_iterations", 0);
-  r->krylovFallbacks = IntegerAt(run, "run", "krylov_fallbacks", 0);
-  r->fallbacks = static_cast<int>(IntegerAt(run, "run", "fallbacks", 0));
-  r->maxNewtonIterations = static_cast<int>(IntegerAt(run, "run", "max_newton_iterations", 0));
-  r->converged = static_cast<int>(IntegerAt(run, "run", "converged", 0));
-  r->stopped = static_cast<int>(IntegerAt(run, "run", "stopped", 0));
-  r->diverged = static_cast<int>(IntegerAt(run, "run", "diverged", 0));
-  r->maxPenetration = HexAt(run, "run", "max_penetration");
-  r->minDetF = HexAt(run, "run", "min_det_f");
-  r->initialEnergy = HexAt(run, "run", "initial_energy");
+  ForEachField(kRunAccumulatorFields, [&](const auto& f) {
+    using T = typename std::decay_t<decltype(f)>::ValueType;
+    if constexpr (std::is_integral_v<T>)
+      f.Of(*r) = static_cast<T>(IntegerAt(run, "run", f.name, 0));
+    else
+      f.Of(*r) = HexAt(run, "run", f.name);
+  });
 }
 
 void FromJson(const json& j, Checkpoint* c) {

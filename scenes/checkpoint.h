@@ -13,23 +13,19 @@
 #include <string>
 
 #include "core/scene.h"
+#include "scenes/run_accumulators.h"
 
 namespace superdex {
 
 /// The run's side of a checkpoint: what the runner needs besides the scene's state to continue
-/// the run, its outputs and its summary as if it had not stopped.
-struct CheckpointRun {
+/// the run, its outputs and its summary as if it had not stopped. The summary's accumulators
+/// over steps 1..step (RunAccumulators) are written and read through kRunAccumulatorFields.
+struct CheckpointRun : RunAccumulators {
   long long step = 0;      ///< steps done; the resumed run continues with step + 1
   double dt = 0.0;         ///< [s], as run (refused on resume when it differs)
   std::string integrator;  ///< as run (refused on resume when it differs)
   std::string trajectoryPath;     ///< "" = none
   long long trajectoryBytes = 0;  ///< its length after the frames due by `step` (resume truncates)
-  int vtkFrames = 0;
-  // The summary's accumulators over steps 1..step.
-  long newtonIterations = 0, stages = 0, freeStages = 0, krylovIterations = 0,
-       krylovFallbacks = 0;
-  int fallbacks = 0, maxNewtonIterations = 0, converged = 0, stopped = 0, diverged = 0;
-  double maxPenetration = 0.0, minDetF = 0.0, initialEnergy = 0.0;  ///< [m], [-], [J]
 };
 
 struct Checkpoint {

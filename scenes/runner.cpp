@@ -101,20 +101,7 @@ bool SaveCheckpoint(const SceneFile& file, const RunOptions& options, const RunS
   r.integrator = ToString(file.scene->Settings().integrator);
   r.trajectoryPath = s.trajectoryPath;
   r.trajectoryBytes = outputs.ScheduledBytes();
-  r.vtkFrames = s.vtkFrames;
-  r.newtonIterations = s.newtonIterations;
-  r.stages = s.stages;
-  r.freeStages = s.freeStages;
-  r.krylovIterations = s.krylovIterations;
-  r.krylovFallbacks = s.krylovFallbacks;
-  r.fallbacks = s.fallbacks;
-  r.maxNewtonIterations = s.maxNewtonIterations;
-  r.converged = s.converged;
-  r.stopped = s.stopped;
-  r.diverged = s.diverged;
-  r.maxPenetration = s.maxPenetration;
-  r.minDetF = s.minDetF;
-  r.initialEnergy = s.initialEnergy;
+  static_cast<RunAccumulators&>(r) = s;  // the summary's accumulators (kRunAccumulatorFields)
   return WriteCheckpoint(options.checkpointPath, c, error);
 }
 
@@ -123,20 +110,7 @@ void Resume(const Checkpoint& c, Scene& scene, RunSummary* s) {
   scene.Restore(c.snapshot);
   const CheckpointRun& r = c.run;
   s->steps = static_cast<int>(r.step);
-  s->vtkFrames = r.vtkFrames;
-  s->newtonIterations = r.newtonIterations;
-  s->stages = r.stages;
-  s->freeStages = r.freeStages;
-  s->krylovIterations = r.krylovIterations;
-  s->krylovFallbacks = r.krylovFallbacks;
-  s->fallbacks = r.fallbacks;
-  s->maxNewtonIterations = r.maxNewtonIterations;
-  s->converged = r.converged;
-  s->stopped = r.stopped;
-  s->diverged = r.diverged;
-  s->maxPenetration = r.maxPenetration;
-  s->minDetF = r.minDetF;
-  s->initialEnergy = r.initialEnergy;
+  static_cast<RunAccumulators&>(*s) = r;  // the summary's accumulators (kRunAccumulatorFields)
 }
 
 void CheckExpectations(const SceneFile& file, const Scene& scene, RunSummary* s) {

@@ -5,8 +5,11 @@
 #include <functional>
 #include <ostream>
 #include <string>
+#include <tuple>
+#include <vector>
 
 #include "scenes/checkpoint.h"
+#include "scenes/run_accumulators.h"
 #include "scenes/scene_file.h"
 
 namespace superdex {
@@ -49,33 +52,45 @@ enum class RunEnd {
 /// the limit in *error when it is beyond limits::kMaxSteps (or dt, duration are not positive).
 bool PlanSteps(double duration, double dt, long long* steps, std::string* error);
 
-struct RunSummary {
+/// The figures of a run: the accumulators over its steps (RunAccumulators, which checkpoints
+/// carry) and the others. Every number and text is named, with its unit, in kRunSummaryFields;
+/// how the run ended (end, endMessage, signal) and the expectation failures are not.
+struct RunSummary : RunAccumulators {
   RunEnd end = RunEnd::Completed;
   std::string endMessage;  ///< why the run ended early (Unphysical, OutputFailed, Interrupted)
   int signal = 0;          ///< Interrupted: the signal's number
   int steps = 0;           ///< steps run (at most limits::kMaxSteps)
-  double simulatedSeconds = 0.0;
-  double wallSeconds = 0.0;    ///< in Scene::Step only (what the benchmarks compare)
-  double outputSeconds = 0.0;  ///< writing trajectory frames and VTK files, and progress calls
-  long newtonIterations = 0;
-  int fallbacks = 0;  ///< stages re-solved with explicit normals after a failed residual solve
-  long stages = 0;      ///< stages solved, summed over steps
-  long freeStages = 0;  ///< of those, solved in closed form (StepReport::freeStages)
-  long krylovIterations = 0;  ///< iterative linear solves: their iterations, summed
-  long krylovFallbacks = 0;   ///< iterative linear solves that fell back to the direct solve
-  double assemblySeconds = 0.0, factorizationSeconds = 0.0, lineSearchSeconds = 0.0;
-  int maxNewtonIterations = 0;
-  int converged = 0, stopped = 0, diverged = 0;  ///< stages by outcome
-  double maxPenetration = 0.0;        ///< max over steps of max(0, −min φ) [m]
-  double minDetF = INFINITY;          ///< smallest det F over soft tets at step ends (+∞: none)
-  double initialEnergy = 0.0, finalEnergy = 0.0;  ///< total mechanical energy [J]
-  std::vector<std::string> expectationFailures;   ///< empty when every expectation holds
-  std::string trajectoryPath;
-  std::string viewerPage;    ///< the viewer page written ("" = none)
-  double viewerSeconds = 0.0;  ///< writing it
-  std::string vtkDirectory;  ///< where the VTK frames went ("" = none)
-  int vtkFrames = 0;
+  double simulatedSeconds = 0.0;  ///< [s]
+  double wallSeconds = 0.0;    ///< in Scene::Step only (what the benchmarks compare) [s]
+  double outputSeconds = 0.0;  ///< writing trajectory frames and VTK files, and progress calls [s]
+  double assemblySeconds = 0.0, factorizationSeconds = 0.0, lineSearchSeconds = 0.0;  ///< [s]
+  double finalEnergy = 0.0;  ///< total mechanical energy at the end [J]
+  std::vector<std::string> expectationFailures;  ///< empty when every expectation holds
+  std::string trajectoryPath;  ///< "" = none
+  std::string viewerPage;      ///< the viewer page written ("" = none)
+  double viewerSeconds = 0.0;  ///< writing it [s]
+  std::string vtkDirectory;    ///< where the VTK frames went ("" = none)
 };
+
+/// The summary's figures (optim/field_table.h), one row per line: snake_case name (the Python
+/// property), member, unit, description: the accumulators' rows (kRunAccumulatorFields), then
+/// the others.
+inline constexpr auto kRunSummaryFields = [] {
+  using S = RunSummary;
+  return std::tuple_cat(kRunAccumulatorFields, std::make_tuple(
+      MakeField("steps", &S::steps, "", "Steps run"),
+      MakeField("simulated_seconds", &S::simulatedSeconds, "s", "Simulated time"),
+      MakeField("wall_seconds", &S::wallSeconds, "s", "In the steps only (Scene::Step)"),
+      MakeField("output_seconds", &S::outputSeconds, "s", "Output files and progress calls"),
+      MakeField("assembly_seconds", &S::assemblySeconds, "s", "Assembly of energies, derivatives"),
+      MakeField("factorization_seconds", &S::factorizationSeconds, "s", "Linear solves"),
+      MakeField("line_search_seconds", &S::lineSearchSeconds, "s", "Line-search evaluations"),
+      MakeField("final_energy", &S::finalEnergy, "J", "Total mechanical energy at the end"),
+      MakeField("trajectory_path", &S::trajectoryPath, "", "The trajectory file ('' = none)"),
+      MakeField("viewer_page", &S::viewerPage, "", "The viewer page written ('' = none)"),
+      MakeField("viewer_seconds", &S::viewerSeconds, "s", "Writing the viewer page"),
+      MakeField("vtk_directory", &S::vtkDirectory, "", "Where the VTK frames went ('' = none)")));
+}();
 
 /// Runs to the end, or to the first failed check, failed write or interruption. True when every
 /// step ran (summary->end == Completed); otherwise summary->end says why and *error the details

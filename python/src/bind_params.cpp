@@ -3,7 +3,6 @@
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
-#include <list>
 #include <string>
 
 #include "bindings.h"
@@ -39,12 +38,6 @@ void BindEnum(py::module_& m, const char* name, const char* doc) {
   static_assert(kPythonEnum<E>);
   py::enum_<E> e(m, name, doc);
   for (const EnumName<E>& n : NamesOf(E())) e.value(n.name, n.value, *n.doc ? n.doc : nullptr);
-}
-
-// Docstrings live as long as the module (pybind11 keeps the pointers).
-const char* Keep(std::string s) {
-  static std::list<std::string> kept;
-  return kept.emplace_back(std::move(s)).c_str();
 }
 
 template <typename T>

@@ -11,38 +11,20 @@
 namespace superdex::python {
 
 void BindRunSummary(py::module_& m) {
-  py::class_<RunSummary>(m, "RunSummary",
-                         "The figures of a run of a scene file (what `superdex run` prints).")
-      .def_readonly("steps", &RunSummary::steps)
-      .def_readonly("simulated_seconds", &RunSummary::simulatedSeconds, "[s]")
-      .def_readonly("wall_seconds", &RunSummary::wallSeconds, "in the steps only [s]")
-      .def_readonly("output_seconds", &RunSummary::outputSeconds,
-                    "writing trajectory frames and VTK files, and progress calls [s]")
-      .def_readonly("newton_iterations", &RunSummary::newtonIterations, "summed over steps")
-      .def_readonly("max_newton_iterations", &RunSummary::maxNewtonIterations, "in one step")
-      .def_readonly("fallbacks", &RunSummary::fallbacks,
-                    "stages re-solved with explicit normals after a failed residual solve")
-      .def_readonly("stages", &RunSummary::stages, "stages solved, summed over steps")
-      .def_readonly("free_stages", &RunSummary::freeStages, "of those, solved in closed form")
-      .def_readonly("converged", &RunSummary::converged, "steps whose stages converged")
-      .def_readonly("stopped", &RunSummary::stopped, "steps with a stage Stopped")
-      .def_readonly("diverged", &RunSummary::diverged, "steps with a stage Diverged")
-      .def_readonly("max_penetration", &RunSummary::maxPenetration,
-                    "max over steps of max(0, -min phi) [m]")
-      .def_readonly("min_det_f", &RunSummary::minDetF,
-                    "smallest det F over soft tets at step ends (inf: no soft actor)")
-      .def_readonly("initial_energy", &RunSummary::initialEnergy, "total mechanical energy [J]")
-      .def_readonly("final_energy", &RunSummary::finalEnergy, "total mechanical energy [J]")
-      .def_readonly("expectation_failures", &RunSummary::expectationFailures,
-                    "one message per failed expectation of the scene file (empty: all hold)")
-      .def_readonly("trajectory_path", &RunSummary::trajectoryPath, "'' when none was written")
-      .def_readonly("vtk_directory", &RunSummary::vtkDirectory, "'' when none was written")
-      .def_readonly("vtk_frames", &RunSummary::vtkFrames)
-      .def("__repr__", [](const RunSummary& s) {
-        return "<superdex.RunSummary " + std::to_string(s.steps) + " steps, " +
-               std::to_string(s.stopped + s.diverged) + " not converged, " +
-               std::to_string(s.expectationFailures.size()) + " expectations failed>";
-      });
+  py::class_<RunSummary> c(m, "RunSummary",
+                           "The figures of a run of a scene file (what `superdex run` prints).");
+  // A read-only property per row of the summary's table: "<description> [<unit>]".
+  ForEachField(kRunSummaryFields, [&](const auto& f) {
+    c.def_readonly(f.name, f.member,
+                   Keep(std::string(f.doc) + (*f.unit ? std::string(" [") + f.unit + "]" : "")));
+  });
+  c.def_readonly("expectation_failures", &RunSummary::expectationFailures,
+                 "One message per failed expectation of the scene file (empty: all hold)");
+  c.def("__repr__", [](const RunSummary& s) {
+    return "<superdex.RunSummary " + std::to_string(s.steps) + " steps, " +
+           std::to_string(s.stopped + s.diverged) + " not converged, " +
+           std::to_string(s.expectationFailures.size()) + " expectations failed>";
+  });
 }
 
 void BindRunScene(py::module_& m) {

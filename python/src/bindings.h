@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <list>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,12 @@ template <typename Call>
 auto WithoutGil(Call&& call) {
   py::gil_scoped_release release;
   return call();
+}
+
+/// A docstring built at binding time, kept as long as the module (pybind11 keeps the pointers).
+inline const char* Keep(std::string s) {
+  static std::list<std::string> kept;
+  return kept.emplace_back(std::move(s)).c_str();
 }
 
 /// Raises ValueError(message) when message is not empty.

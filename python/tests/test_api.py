@@ -55,6 +55,19 @@ def test_help_shows_units_and_defaults():
     assert "[s/m]" in sd.ContactParams.normal_viscous_damping_coefficient.__doc__
 
 
+def test_run_summary_figures_and_their_units():
+    f = sd.load_scene(os.path.join(SOURCE, "scenes", "data", "drop.json"))
+    s = sd.run_scene(f, dt=0.005, duration=0.05, out="", vtk="")
+    assert s.steps == 10 and s.converged == 10 and s.stopped == s.diverged == 0
+    assert s.stages >= s.steps and s.krylov_fallbacks == 0
+    assert s.simulated_seconds == pytest.approx(0.05) and s.wall_seconds >= 0
+    assert s.trajectory_path == "" and s.vtk_frames == 0 and math.isinf(s.min_det_f)
+    assert list(s.expectation_failures) == []
+    assert "[m]" in sd.RunSummary.max_penetration.__doc__
+    assert "[s]" in sd.RunSummary.wall_seconds.__doc__
+    assert "[J]" in sd.RunSummary.initial_energy.__doc__
+
+
 def test_bad_values_raise_value_error_naming_the_field_and_rule():
     c = sd.ContactParams()
     with pytest.raises(ValueError, match=r"^penalty_coefficient: must be > 0, got -3$"):
