@@ -1,6 +1,7 @@
 // Tables that write a name once: the names of an enum's values (EnumName), and the fields of a
 // parameter struct (Field: snake_case name, member, unit, rule, description; the default is the
-// struct's own initializer). Validation is generated here (ValidateFields); the scene-file reader
+// struct's own initializer). Validation is generated here (ValidateFields, and Validate for a
+// struct that names its table with FieldsOf); the scene-file reader
 // (scenes/scene_file.cpp), the Python properties (python/src/bind_params.cpp) and
 // docs/parameters.md (`superdex params --markdown`) iterate the same tables.
 //
@@ -405,6 +406,18 @@ std::string ValidateFields(const Table& table, const Class& c, const std::string
     return !message.empty();
   });
   return message;
+}
+
+// A struct S validated by its table alone declares the table next to itself (found by
+// argument-dependent lookup, as NamesOf is):
+//   constexpr const auto& FieldsOf(const S&) { return kSFields; }
+// A struct with rules beyond its rows (ExperimentalEvalParams) declares its own Validate instead.
+
+/// "" when every row of the struct's table (FieldsOf) is valid, else
+/// "<prefix><field>: must be <rule>, got <value>" for the first invalid row (ValidateFields).
+template <typename Class, typename = decltype(FieldsOf(std::declval<const Class&>()))>
+std::string Validate(const Class& c, const std::string& prefix = "") {
+  return ValidateFields(FieldsOf(c), c, prefix);
 }
 
 }  // namespace superdex

@@ -522,8 +522,4 @@ SUPERDEX_ENUM_NAMES(LinearSolverKind,
     {LinearSolverKind::Direct, "direct", "sparse Cholesky / LU on every system"},
     {LinearSolverKind::Iterative, "iterative", "block-Jacobi CG / BiCGSTAB, direct fallback"})
 
-std::string Validate(const LinearSolverSettings& s) {
-  return ValidateFields(kLinearSolverFields, s);
-}
-
 }  // namespace superdex

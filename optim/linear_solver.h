@@ -53,8 +53,8 @@ inline constexpr auto kLinearSolverFields = std::make_tuple(
     MakeField("linear_max_iterations", &LinearSolverSettings::maxIterations, "",
               AtLeast(1, 100000000), "Krylov iterations before the direct fallback"));
 
-/// "" if valid, else "<field>: <rule>, got <value>" (kLinearSolverFields).
-std::string Validate(const LinearSolverSettings& settings);
+/// The table of Validate (optim/field_table.h).
+constexpr const auto& FieldsOf(const LinearSolverSettings&) { return kLinearSolverFields; }
 
 /// What the last solve did.
 struct LinearSolveInfo {

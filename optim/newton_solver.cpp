@@ -113,10 +113,6 @@ SUPERDEX_ENUM_NAMES(StageStatus,
     {StageStatus::Stopped, "Stopped", "the iteration cap was reached first"},
     {StageStatus::Diverged, "Diverged", "non-finite values, or no step the line search accepts"})
 
-std::string Validate(const NonlinearSolverParams& p) {
-  return ValidateFields(kNonlinearSolverFields, p);
-}
-
 std::string ValidateSolverInput(const NonlinearSolverParams& params, double timeScale) {
   if (std::string m = Validate(params); !m.empty()) return "invalid parameters: " + m;
   if (!(std::isfinite(timeScale) && timeScale > 0.0)) {

@@ -186,10 +186,9 @@ SolverStats MinimizeNewton(StageProblem& problem, const NonlinearSolverParams& p
                            double timeScale, SymmetricSolver* solver = nullptr,
                            NewtonWorkspace* work = nullptr, NewtonStart start = {});
 
-/// Validates the parameters; returns an empty string if valid, else a message for the first
-/// invalid field of kNonlinearSolverFields: "<field>: <rule>, got <value>", e.g.
+/// The table of Validate (optim/field_table.h): its message names the first invalid field, e.g.
 /// "max_iterations: must be >= 1, got 0".
-std::string Validate(const NonlinearSolverParams& params);
+constexpr const auto& FieldsOf(const NonlinearSolverParams&) { return kNonlinearSolverFields; }
 
 /// The input checks every stage solver makes first: "" if valid, else "invalid parameters: ..."
 /// or "invalid time scale: must be > 0, got ...".

@@ -35,10 +35,8 @@ inline constexpr auto kOutputSpecFields = std::make_tuple(
               "Every frame carries the active contact samples (what the viewer page draws). "
               "`--contacts` sets it"));
 
-/// "" when valid, else "<prefix><field>: must be <rule>, got <value>" (kOutputSpecFields).
-inline std::string Validate(const OutputSpec& output, const std::string& prefix = "") {
-  return ValidateFields(kOutputSpecFields, output, prefix);
-}
+/// The table of Validate (optim/field_table.h).
+constexpr const auto& FieldsOf(const OutputSpec&) { return kOutputSpecFields; }
 
 /// Expected figures of a shipped scene (regression checks run by `superdex run` and the tests).
 struct SceneExpectations {

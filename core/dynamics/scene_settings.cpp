@@ -4,10 +4,6 @@
 
 namespace superdex {
 
-std::string Validate(const SceneSettings& s, const std::string& prefix) {
-  return ValidateFields(kSceneSettingsFields, s, prefix);
-}
-
 SUPERDEX_ENUM_NAMES(
     StageSolverKind,
     {StageSolverKind::Newton, "newton", "projected Newton (potential stages), residual Newton"},

@@ -60,9 +60,9 @@ inline constexpr auto kSceneSettingsFields = std::make_tuple(
               "A Newton stage with no contact sample active at the minimizer of inertia and "
               "gravity is solved in closed form (0 Newton iterations)"));
 
-/// "" when valid, else "<prefix><field>: must be <rule>, got <value>" for the first invalid row
-/// of kSceneSettingsFields (a nested row's message after "<prefix><field>.").
-std::string Validate(const SceneSettings& settings, const std::string& prefix = "");
+/// The table of Validate (optim/field_table.h); a nested row's message follows
+/// "<prefix><field>.".
+constexpr const auto& FieldsOf(const SceneSettings&) { return kSceneSettingsFields; }
 
 /// The dissipation mode the settings select (ExperimentalEvalParams' supported combinations).
 DissipationMode ModeOf(const ExperimentalEvalParams& eval);

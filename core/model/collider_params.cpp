@@ -10,14 +10,6 @@ SUPERDEX_ENUM_NAMES(GridSdfResolutionMode,
     {GridSdfResolutionMode::BoundingExtent, "BoundingExtent",
      "the longest side of the shape's bounding box, divided by 64"})
 
-std::string Validate(const GridSdfParams& p, const std::string& prefix) {
-  return ValidateFields(kGridSdfFields, p, prefix);
-}
-
-std::string Validate(const PointCloudColliderParams& p, const std::string& prefix) {
-  return ValidateFields(kPointCloudColliderFields, p, prefix);
-}
-
 std::shared_ptr<GridSdf> BuildGridSdf(const TriangleMesh& mesh,
                                       const std::function<double(const Eigen::Vector3d&)>& phi,
                                       const GridSdfParams& g, std::string* error) {

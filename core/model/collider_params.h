@@ -66,9 +66,11 @@ inline constexpr auto kPointCloudColliderFields = std::make_tuple(
               &PointCloudColliderParams::colliderTriangleElementType, "", NoRule(),
               "Quadrature-based collider discretization for surfaces; none: the mesh nodes"));
 
-/// "" when valid, else "<prefix><snake_case field>: must be <rule>, got <value>".
-std::string Validate(const GridSdfParams& params, const std::string& prefix = "");
-std::string Validate(const PointCloudColliderParams& params, const std::string& prefix = "");
+/// The tables of Validate (optim/field_table.h).
+constexpr const auto& FieldsOf(const GridSdfParams&) { return kGridSdfFields; }
+constexpr const auto& FieldsOf(const PointCloudColliderParams&) {
+  return kPointCloudColliderFields;
+}
 
 /// A grid SDF of the solid bounded by `mesh` (its frame), sampling `phi` (the exact field): voxel
 /// h = resolutionDelta × reference length (MeanEdgeLength: the mesh's mean edge length;

@@ -4,10 +4,6 @@
 
 namespace superdex {
 
-std::string Validate(const ContactParams& p, const std::string& prefix) {
-  return ValidateFields(kContactParamsFields, p, prefix);
-}
-
 PairContactParams CombineContactParams(const ContactParams& a, const ContactParams& b,
                                        bool colliderIsStatic,
                                        bool collidingHasNoColliderOrPointCloud) {

@@ -56,8 +56,9 @@ inline constexpr auto kContactParamsFields = std::make_tuple(
               "Experimental: penalty correction scale for lower-dimensional colliding manifolds; "
               "taken from the colliding actor"));
 
-/// Returns "" when valid, else "<prefix><snake_case field>: must be <rule>, got <value>".
-std::string Validate(const ContactParams& params, const std::string& prefix = "");
+/// The table of Validate (optim/field_table.h): "" when valid, else
+/// "<prefix><snake_case field>: must be <rule>, got <value>".
+constexpr const auto& FieldsOf(const ContactParams&) { return kContactParamsFields; }
 
 /// Parameters of one ordered pair (A colliding, B collider) after combination.
 struct PairContactParams {

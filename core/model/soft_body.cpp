@@ -21,10 +21,6 @@ Eigen::Vector3d NodeConstraint::Displacement(double t) const {
   return path.back().second;
 }
 
-std::string Validate(const SoftMaterial& material, const std::string& prefix) {
-  return ValidateFields(kSoftMaterialFields, material, prefix);
-}
-
 bool BuildSoftBody(const SoftActorDesc& d, const std::string& prefix, SoftBodyModel* m,
                    SoftBodyState* st, Error* error) {
   if (!d.mesh) return Fail(error, prefix + "mesh: a tet mesh is required");

@@ -41,8 +41,8 @@ inline constexpr auto kSoftMaterialFields = std::make_tuple(
               NonNegativeRule().Worded(">= 0 and finite"),
               "Rayleigh stiffness damping β (dissipation R = β/2 vᵀ K v)"));
 
-/// "" when valid, else "<prefix><snake_case field>: must be <rule>, got <value>".
-std::string Validate(const SoftMaterial& material, const std::string& prefix = "");
+/// The table of Validate (optim/field_table.h).
+constexpr const auto& FieldsOf(const SoftMaterial&) { return kSoftMaterialFields; }
 
 /// A set of nodes whose positions are prescribed: pinned (held at their initial positions) or
 /// driven along a piecewise-linear path of displacements from the initial positions.
