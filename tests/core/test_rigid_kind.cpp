@@ -96,6 +96,14 @@ struct Twin {
   }
 };
 
+// The tolerances of a contact scene's twins: |Δp| [m], ‖ΔR‖_F, |Δv| [m/s], |ΔṘ| [1/s].
+void CheckFollowsInContact(const Eigen::Vector4d& worst) {
+  CHECK(worst[0] < 1e-8);
+  CHECK(worst[1] < 1e-7);
+  CHECK(worst[2] < 1e-6);
+  CHECK(worst[3] < 1e-5);
+}
+
 RigidActorDesc TumblingBox() {
   RigidActorDesc d;
   d.name = "box";
@@ -192,10 +200,7 @@ TEST_CASE("a rigid kind cube lands and slides on a plane as the built-in cube do
       INFO(test::kModeNames[mode] << (groundAsKind ? ", kind ground" : ", built-in ground")
                                   << ": |Δp| " << worst[0] << " |ΔR| " << worst[1] << " |Δv| "
                                   << worst[2] << " |ΔṘ| " << worst[3]);
-      CHECK(worst[0] < 1e-8);
-      CHECK(worst[1] < 1e-7);
-      CHECK(worst[2] < 1e-6);
-      CHECK(worst[3] < 1e-5);
+      CheckFollowsInContact(worst);
       // It slides: friction opposes the whole slip velocity, of which the downhill part is one
       // component, so the downhill acceleration lies between g (sin θ − μ cos θ) (pure downhill
       // slip) and g sin θ (no friction); 0.95 allows for the landing's first steps.
@@ -223,10 +228,7 @@ TEST_CASE("a stack of rigid kinds and built-in boxes follows the all-built-in st
     const Eigen::Vector4d worst = twin.Run(60, 5e-3);
     INFO(test::kModeNames[mode] << ": |Δp| " << worst[0] << " |ΔR| " << worst[1] << " |Δv| "
                                 << worst[2] << " |ΔṘ| " << worst[3]);
-    CHECK(worst[0] < 1e-8);
-    CHECK(worst[1] < 1e-7);
-    CHECK(worst[2] < 1e-6);
-    CHECK(worst[3] < 1e-5);
+    CheckFollowsInContact(worst);
   }
 }
 
@@ -285,13 +287,9 @@ TEST_CASE("with warm start and closed-form free stages a rigid kind takes the bu
       CHECK(twin.krylov[1] == twin.krylov[0]);
       if (scene == 3) CHECK(twin.krylov[0] > 0);
       if (scene == 0) CHECK(twin.freeStages[0] > 10);  // the drop's free flight
-      CHECK(worst[0] < 1e-8);
-      CHECK(worst[1] < 1e-7);
-      CHECK(worst[2] < 1e-6);
-      CHECK(worst[3] < 1e-5);
+      CheckFollowsInContact(worst);
     }
 }
-
 
 TEST_CASE("the slips of a rigid kind's pairs are recorded and evaluated about the record",
           "[core][kind][rigid][sensitivity]") {
