@@ -101,7 +101,10 @@ std::string Scene::ValidateKind(const ActorKind& kind) const {
         kind.IsPrescribed(dof[0]) != kind.IsPrescribed(dof[1]))
       return body + " reads a dof block outside δ or partly prescribed";
   }
-  if (kind.Collider()) {
+  if (const RigidCollider* c = kind.Collider()) {
+    // The assembler and the step limit take φ >= |Y| − boundingRadius (the shape within it).
+    if (!(c->boundingRadius > 0.0))
+      return name + ": the collider's boundingRadius must be > 0 (max |X| over its shape, m)";
     const KindFrame f = kind.ColliderFrame(s.x);
     if (f.rigid && f.blocks != 2)
       return name + ": a rigid collider frame moves with 2 blocks, [δp] and [δθ]";

@@ -528,7 +528,6 @@ void ContactPipeline::EvaluateRigidPairs(const Request& q, double* energy, Conta
   const DissipationContext* dissipation = q.dissipation;
   const bool potential = q.potential;
   results_.resize(pairs_.size());
-  rigidSamples_.resize(pairs_.size());
   const std::vector<RigidStageStart>* start = q.stageStart;
   const auto rigidId = [&](size_t k) { return std::make_pair(pairs_[k].colliding, pairs_[k].collider); };
   auto evaluate = [&](size_t k) {
@@ -541,11 +540,12 @@ void ContactPipeline::EvaluateRigidPairs(const Request& q, double* energy, Conta
     const int a = cp.colliding, b = cp.collider;
     const FrameSide B = RigidFrameSide(models[b], poses[b], start ? &(*start)[b] : nullptr,
                                        dofOffset[b]);
-    GatherRigidSamples(models[a], poses[a], start ? &(*start)[a] : nullptr, dofOffset[a], B,
-                       cp.params.threshold, dissipation ? &setup : nullptr, &rigidSamples_[k]);
     PairStencils& r = results_[k];
-    EvaluateSamplesOnFrame(rigidSamples_[k], B, PenaltyOf(cp.params), cp.params.maxAlignmentNormals,
-                           dissipation ? &setup : nullptr, order, &r);
+    FrameEvaluation evaluation(B, PenaltyOf(cp.params), cp.params.maxAlignmentNormals,
+                               dissipation ? &setup : nullptr, order, &r);
+    GatherRigidSamples(models[a], poses[a], start ? &(*start)[a] : nullptr, dofOffset[a], B,
+                       cp.params.threshold, dissipation ? &setup : nullptr, &evaluation);
+    evaluation.Finish();
     if (order < 2) return;
     for (int e = 0; e < r.count; ++e) ProjectStencil(potential, q.projection, &r.stencils[e]);
   };
@@ -654,45 +654,46 @@ void ContactPipeline::EvaluateOnSoftPairs(const Request& q, double* energy, Cont
   }
 }
 
-FrameSide ContactPipeline::KindPairSides(const Request& q, const KindPair& kp,
-                                         const DissipationSetup* setup,
-                                         std::vector<PairSample>* samples) const {
+FrameSide ContactPipeline::KindPairCollider(const Request& q, const KindPair& kp) const {
   const KindView& kv = *q.kinds;
   auto at = [](const std::vector<Eigen::VectorXd>* v, int k) { return v ? &(*v)[k] : nullptr; };
-  FrameSide B;
-  if (kp.bKind) {
-    B = KindFrameSide(*(*kinds_)[kp.b], (*kv.q)[kv.first + kp.b], at(kv.qLast, kp.b),
-                      q.dissipation ? at(kv.q0, kp.b) : nullptr, (*kv.stageDof)[kp.b]);
-  } else {
-    B = RigidFrameSide((*models_)[kp.b], (*q.poses)[kp.b],
-                       q.stageStart ? &(*q.stageStart)[kp.b] : nullptr, (*q.dofOffset)[kp.b]);
-  }
+  if (kp.bKind)
+    return KindFrameSide(*(*kinds_)[kp.b], (*kv.q)[kv.first + kp.b], at(kv.qLast, kp.b),
+                         q.dissipation ? at(kv.q0, kp.b) : nullptr, (*kv.stageDof)[kp.b]);
+  return RigidFrameSide((*models_)[kp.b], (*q.poses)[kp.b],
+                        q.stageStart ? &(*q.stageStart)[kp.b] : nullptr, (*q.dofOffset)[kp.b]);
+}
+
+void ContactPipeline::GatherKindPairSamples(const Request& q, const KindPair& kp,
+                                            const FrameSide& B, const DissipationSetup* setup,
+                                            SampleSink* sink) const {
+  const KindView& kv = *q.kinds;
+  auto at = [](const std::vector<Eigen::VectorXd>* v, int k) { return v ? &(*v)[k] : nullptr; };
   if (kp.aKind) {
     GatherKindSamples(*(*kinds_)[kp.a], (*kv.q)[kv.first + kp.a], at(kv.qLast, kp.a),
                       q.dissipation ? at(kv.q0, kp.a) : nullptr, (*kv.stageDof)[kp.a], B,
-                      kp.params.threshold, setup, samples);
+                      kp.params.threshold, setup, sink);
   } else {
     GatherRigidSamples((*models_)[kp.a], (*q.poses)[kp.a],
                        q.stageStart ? &(*q.stageStart)[kp.a] : nullptr, (*q.dofOffset)[kp.a], B,
-                       kp.params.threshold, setup, samples);
+                       kp.params.threshold, setup, sink);
   }
-  return B;
 }
 
 void ContactPipeline::EvaluateKindPairs(const Request& q, double* energy, ContactStats* st) {
   const DissipationContext* dissipation = q.dissipation;
   kindResults_.resize(kindPairs_.size());
-  kindSamples_.resize(kindPairs_.size());
   auto evaluate = [&](size_t k) {
     const KindPair& kp = kindPairs_[k];
     DissipationSetup setup;
     if (dissipation) setup = MakeSetup(kp.params, *dissipation, q.isotropic);
     setup.slips = SlipUse(SlipPairKind::Kind, k);
-    const FrameSide B = KindPairSides(q, kp, dissipation ? &setup : nullptr, &kindSamples_[k]);
+    const FrameSide B = KindPairCollider(q, kp);
     PairStencils& r = kindResults_[k];
-    EvaluateSamplesOnFrame(kindSamples_[k], B, PenaltyOf(kp.params),
-                           kp.params.maxAlignmentNormals, dissipation ? &setup : nullptr, q.order,
-                           &r);
+    FrameEvaluation evaluation(B, PenaltyOf(kp.params), kp.params.maxAlignmentNormals,
+                               dissipation ? &setup : nullptr, q.order, &r);
+    GatherKindPairSamples(q, kp, B, dissipation ? &setup : nullptr, &evaluation);
+    evaluation.Finish();
     if (q.order < 2) return;
     for (int e = 0; e < r.count; ++e) ProjectStencil(q.potential, q.projection, &r.stencils[e]);
   };
@@ -713,15 +714,15 @@ void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,
   FindPairs(poses, nullptr, nullptr, soft, kinds);
   records->clear();
   PairStencils scratch;
-  std::vector<PairSample> rigidSamples;
   for (const ContactPair& cp : pairs_) {
     const PenaltyParams pp = PenaltyOf(cp.params);
     const size_t first = records->size();
     const FrameSide B = RigidFrameSide(models[cp.collider], poses[cp.collider], nullptr, -1);
+    FrameEvaluation evaluation(B, pp, cp.params.maxAlignmentNormals, nullptr, 0, &scratch,
+                               records);
     GatherRigidSamples(models[cp.colliding], poses[cp.colliding], nullptr, -1, B, pp.delta,
-                       nullptr, &rigidSamples);
-    EvaluateSamplesOnFrame(rigidSamples, B, pp, cp.params.maxAlignmentNormals, nullptr, 0,
-                           &scratch, records);
+                       nullptr, &evaluation);
+    evaluation.Finish();
     for (size_t k = first; k < records->size(); ++k) {
       (*records)[k].colliding = RigidActor(cp.colliding);
       (*records)[k].collider = RigidActor(cp.collider);
@@ -766,14 +767,15 @@ void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,
   q.poses = &poses;
   q.kinds = kinds;
   PairStencils scratchKind;
-  std::vector<PairSample> samples;
   const std::vector<int> noDofs(models.size(), -1);
   q.dofOffset = &noDofs;
   for (const KindPair& kp : kindPairs_) {
-    const FrameSide B = KindPairSides(q, kp, nullptr, &samples);
+    const FrameSide B = KindPairCollider(q, kp);
     const size_t first = records->size();
-    EvaluateSamplesOnFrame(samples, B, PenaltyOf(kp.params),
-                           kp.params.maxAlignmentNormals, nullptr, 0, &scratchKind, records);
+    FrameEvaluation evaluation(B, PenaltyOf(kp.params), kp.params.maxAlignmentNormals, nullptr, 0,
+                               &scratchKind, records);
+    GatherKindPairSamples(q, kp, B, nullptr, &evaluation);
+    evaluation.Finish();
     for (size_t k = first; k < records->size(); ++k) {
       (*records)[k].colliding = kp.aKind ? kindActor_[kp.a] : RigidActor(kp.a);
       (*records)[k].collider = kp.bKind ? kindActor_[kp.b] : RigidActor(kp.b);

@@ -191,9 +191,11 @@ class ContactPipeline {
                  const KindView* kinds = nullptr);
   // The generic layer's ordered pair (a, b) when the roles, the filter and the motion allow it.
   void ConsiderKindPair(bool aKind, int a, bool bKind, int b);
-  // A kind pair's two sides at the request's configuration (samples into *samples).
-  FrameSide KindPairSides(const Request& q, const KindPair& kp, const DissipationSetup* setup,
-                          std::vector<PairSample>* samples) const;
+  // A kind pair's collider side at the request's configuration, and the colliding side's samples
+  // that can contribute on it.
+  FrameSide KindPairCollider(const Request& q, const KindPair& kp) const;
+  void GatherKindPairSamples(const Request& q, const KindPair& kp, const FrameSide& B,
+                             const DissipationSetup* setup, SampleSink* sink) const;
   int RigidActor(int i) const { return rigidActor_.empty() ? i : rigidActor_[i]; }
   /// Samples of the colliding actors over pairs_: whether a sweep pays for parallel workers.
   size_t RigidPairWork() const;
@@ -221,7 +223,6 @@ class ContactPipeline {
   OverlapCache overlapCache_;  // the broad phase's candidates, kept while the boxes stay inside
   std::vector<ContactPair> pairs_;
   std::vector<PairStencils> results_;               // per rigid pair
-  std::vector<std::vector<PairSample>> rigidSamples_;  // per rigid pair (capacity kept)
   std::vector<double> pairLimits_, kindPairLimits_;
   const std::vector<SoftBodyModel>* softModels_ = nullptr;
   std::vector<int> rigidActor_, softActor_;

@@ -112,60 +112,8 @@ void AddCurrentModeJacobianOfSize(const PairSample& s, const FrameSide& B, const
   AddCurrentModeJacobian<kMaxStencil>(s, B, field, Y, Yn, Y0, ds, J);
 }
 
-/// The regrouped chain of one rigid body's samples on a rigid or static frame (one stencil
-/// [δp_A, δθ_A (, δp_B, δθ_B)]): gradients and residuals per sample by AddFunctionOfPullback into
-/// fixed-size vectors, second derivatives as moments in B's frame, mapped at Flush.
-struct RigidSums {
-  bool on = false;
-  bool bDynamic = false;
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();  ///< p_A − p_B [m]
-  PairVector penaltyGradient, dissipationResidual;
-  PairHessianSums penalty, potentialDissipation;
-  PairForceJacobianSums force{true};
-
-  /// Starts a stencil: on when its samples are a Rigid map's and B does not deform.
-  void Begin(const PairSample& s, const FrameSide& B) {
-    on = s.map.kind == SamplePointMap::Kind::Rigid && s.hasNormal &&
-         B.motion != FrameSide::Motion::Translation;
-    if (!on) return;
-    bDynamic = B.motion == FrameSide::Motion::Rigid;
-    c = s.map.origin - B.pose.p;
-    penaltyGradient.setZero();
-    dissipationResidual.setZero();
-    penalty = PairHessianSums();
-    potentialDissipation = PairHessianSums();
-    force = PairForceJacobianSums(bDynamic);
-  }
-  /// Writes the sums into the stencil (its parts zero on n dofs).
-  void Flush(const FrameSide& B, int order, ContactStencil* st) const {
-    if (!on || order < 1) return;
-    const int n = bDynamic ? 12 : 6;
-    if (st->penaltyActive) st->penaltyGradient = penaltyGradient.head(n);
-    if (st->dissipationActive) st->dissipationResidual = dissipationResidual.head(n);
-    if (order < 2) return;
-    PairMatrix M;
-    if (st->penaltyActive) {
-      M.setZero();
-      penalty.AddTo(B.pose.R, c, bDynamic, &M);
-      st->penaltyHessian = M.topLeftCorner(n, n);
-    }
-    if (st->dissipationActive) {
-      M.setZero();
-      potentialDissipation.AddTo(B.pose.R, c, bDynamic, &M);
-      force.AddTo(B.pose.R, c, &M);
-      st->dissipationJacobian = M.topLeftCorner(n, n);
-    }
-  }
-};
-
-/// The sample's pullbacks: Y now, Y_n at x_n, and the colliding normal N_A in B's coordinates at
-/// both (zero without a normal).
-struct Pullback {
-  Eigen::Vector3d d, Y, Yn, NA, NAn;
-};
-
-Pullback PullbackOf(const PairSample& s, const FrameSide& B) {
-  Pullback p;
+SamplePullback PullbackOf(const PairSample& s, const FrameSide& B) {
+  SamplePullback p;
   const Eigen::Matrix3d RBt = B.pose.R.transpose(), RnBt = B.last.R.transpose();
   p.d = s.y - B.pose.p;
   p.Y = RBt * p.d;
@@ -176,9 +124,9 @@ Pullback PullbackOf(const PairSample& s, const FrameSide& B) {
 }
 
 /// The penalty of one sample into stencil *st; returns whether it was active.
-bool AddPenalty(const PairSample& s, const FrameSide& B, const Pullback& p, const SdfSample& field,
+bool AddPenalty(const PairSample& s, const FrameSide& B, const SamplePullback& p, const SdfSample& field,
                 const PenaltyParams& penalty, double m, int order, PairStencils* out,
-                ContactStencil* st, RigidSums* sums, std::vector<ContactSampleRecord>* records) {
+                ContactStencil* st, RigidSampleSums* sums, std::vector<ContactSampleRecord>* records) {
   if (!(field.value < penalty.delta)) return false;
   if (s.hasNormal && std::isfinite(m)) {
     const Eigen::Vector3d G = B.hasStart ? B.field->Evaluate(p.Yn).gradient : field.gradient;
@@ -218,9 +166,9 @@ bool AddPenalty(const PairSample& s, const FrameSide& B, const Pullback& p, cons
 }
 
 /// The dissipation of one sample (sample index k, the slip key) into stencil *st.
-void AddDissipation(const PairSample& s, int k, const FrameSide& B, const Pullback& p,
+void AddDissipation(const PairSample& s, int k, const FrameSide& B, const SamplePullback& p,
                     const SdfSample& field, const DissipationSetup& ds, int order,
-                    PairStencils* out, ContactStencil* st, RigidSums* sums) {
+                    PairStencils* out, ContactStencil* st, RigidSampleSums* sums) {
   const bool explicitNormals = ds.mode == DissipationMode::ExplicitNormals;
   const double m = ds.maxAlignment, delta = ds.penalty.delta;
   double lambdaHat = 0.0;
@@ -287,55 +235,107 @@ void SetBlocks(const PairSample& s, const FrameSide& B, ContactStencil* st) {
 
 }  // namespace
 
+FrameEvaluation::FrameEvaluation(const FrameSide& B, const PenaltyParams& penalty,
+                                 double maxAlignment, const DissipationSetup* dissipation,
+                                 int order, PairStencils* out,
+                                 std::vector<ContactSampleRecord>* records)
+    : B_(B), penalty_(penalty), maxAlignment_(maxAlignment), dissipation_(dissipation),
+      order_(order), out_(out), records_(records) {
+  out->Reset();
+  withDissipation_ = dissipation && dissipation->coefficients.Any() && B.hasStart;
+  // Samples without a colliding normal: no fading, friction split on the collider's normal.
+  if (withDissipation_) {
+    noNormal_ = *dissipation;
+    noNormal_.fadeFriction = false;
+    noNormal_.frictionWithColliderNormal = true;
+  }
+  explicitNormals_ = withDissipation_ && dissipation->mode == DissipationMode::ExplicitNormals;
+  reconstructed_ = withDissipation_ && dissipation->mode == DissipationMode::ReconstructedLoad;
+  RBt_ = B.pose.R.transpose();
+  RnBt_ = B.last.R.transpose();
+}
+
+void FrameEvaluation::Close() {  // kept when it has a contribution, else its slot is taken again
+  if (st_ && (st_->penaltyActive || st_->dissipationActive)) {
+    sums_.Flush(B_, order_, st_);
+    out_->Keep();
+  }
+  st_ = nullptr;
+}
+
+void FrameEvaluation::Open(const PairSample& s) {
+  if (st_ && std::equal(s.offs, s.offs + s.blocks, st_->offs) && s.face == st_->aFace) return;
+  Close();
+  st_ = &out_->Slot(s.face, -1, s.map.Dofs() + B_.Dofs(), order_);
+  SetBlocks(s, B_, st_);
+  sums_.Begin(s, B_);
+}
+
+void FrameEvaluation::AddTerms(const PairSample& s, const SamplePullback& p, const SdfSample& field,
+                               bool below) {
+  out_->minPhi = std::min(out_->minPhi, field.value);
+  if (!below && !(withDissipation_ && explicitNormals_)) return;
+  Open(s);  // stencils only for samples that may contribute
+  if (below)
+    AddPenalty(s, B_, p, field, penalty_, maxAlignment_, order_, out_, st_, &sums_, records_);
+  if (withDissipation_ && (below || explicitNormals_))
+    AddDissipation(s, s.key, B_, p, field, s.hasNormal ? *dissipation_ : noNormal_, order_, out_,
+                   st_, &sums_);
+}
+
+void FrameEvaluation::Add(const PairSample& s) {
+  const SamplePullback p = PullbackOf(s, B_);
+  // The field's derivatives only where a term can use them: φ < δ for the penalty and the
+  // current load; the reconstructed load φ + G·(Y_n − Y) >= φ − L|Y_n − Y| needs φ below
+  // δ + L|Y_n − Y|. Explicit normals read the field at Y_n by themselves.
+  double bound = penalty_.delta;
+  if (reconstructed_) bound += B_.field->lipschitz * (p.Yn - p.Y).norm();
+  if (Beyond(p.Y, bound)) return;
+  SdfSample field;
+  const bool below = B_.field->EvaluateBelow(p.Y, bound, &field);
+  AddTerms(s, p, field, below);
+}
+
+bool FrameEvaluation::Beyond(const Eigen::Vector3d& Y, double bound) const {
+  if (withDissipation_ && explicitNormals_) return false;  // its load is read at Y_n
+  const double reach = B_.field->boundingRadius + bound;
+  return Y.squaredNorm() >= reach * reach;
+}
+
+void FrameEvaluation::AddRigidSample(const SurfaceSample& ss, int key) {
+  // The same arithmetic as Add on the formed sample (PullbackOf), in the order a term needs it.
+  SamplePullback p;
+  p.d = (a_.p + a_.R * ss.X) - B_.pose.p;
+  p.Y = RBt_ * p.d;
+  double bound = penalty_.delta;
+  const bool yn = reconstructed_;
+  if (yn) {
+    p.Yn = RnBt_ * ((an_.p + an_.R * ss.X) - B_.last.p);
+    bound += B_.field->lipschitz * (p.Yn - p.Y).norm();
+  }
+  if (Beyond(p.Y, bound)) return;
+  SdfSample field;
+  const bool below = B_.field->EvaluateBelow(p.Y, bound, &field);
+  if (!below && !(withDissipation_ && explicitNormals_)) {
+    out_->minPhi = std::min(out_->minPhi, field.value);
+    return;
+  }
+  const PairSample& s = FormRigidSample(ss, key);
+  if (!yn) p.Yn = RnBt_ * (s.yLast - B_.last.p);
+  p.NA = RBt_ * s.n;
+  p.NAn = RnBt_ * s.nLast;
+  AddTerms(s, p, field, below);
+}
+
+void FrameEvaluation::Finish() { Close(); }
+
 void EvaluateSamplesOnFrame(const std::vector<PairSample>& samples, const FrameSide& B,
                             const PenaltyParams& penalty, double maxAlignment,
                             const DissipationSetup* dissipation, int order, PairStencils* out,
                             std::vector<ContactSampleRecord>* records) {
-  out->Reset();
-  const bool withDissipation = dissipation && dissipation->coefficients.Any() && B.hasStart;
-  // Samples without a colliding normal: no fading, friction split on the collider's normal.
-  DissipationSetup noNormal;
-  if (withDissipation) {
-    noNormal = *dissipation;
-    noNormal.fadeFriction = false;
-    noNormal.frictionWithColliderNormal = true;
-  }
-  const bool explicitNormals =
-      withDissipation && dissipation->mode == DissipationMode::ExplicitNormals;
-  const bool reconstructed =
-      withDissipation && dissipation->mode == DissipationMode::ReconstructedLoad;
-  ContactStencil* st = nullptr;
-  RigidSums sums;
-  auto close = [&]() {  // kept when it has a contribution, else its slot is taken again
-    if (st && (st->penaltyActive || st->dissipationActive)) {
-      sums.Flush(B, order, st);
-      out->Keep();
-    }
-    st = nullptr;
-  };
-  for (const PairSample& s : samples) {
-    const int n = s.map.Dofs() + B.Dofs();
-    if (!st || !std::equal(s.offs, s.offs + s.blocks, st->offs) || s.face != st->aFace) {
-      close();
-      st = &out->Slot(s.face, -1, n, order);
-      SetBlocks(s, B, st);
-      sums.Begin(s, B);
-    }
-    const Pullback p = PullbackOf(s, B);
-    // The field's derivatives only where a term can use them: φ < δ for the penalty and the
-    // current load; the reconstructed load φ + G·(Y_n − Y) >= φ − L|Y_n − Y| needs φ below
-    // δ + L|Y_n − Y|. Explicit normals read the field at Y_n by themselves.
-    double bound = penalty.delta;
-    if (reconstructed) bound += B.field->lipschitz * (p.Yn - p.Y).norm();
-    SdfSample field;
-    const bool below = B.field->EvaluateBelow(p.Y, bound, &field);
-    out->minPhi = std::min(out->minPhi, field.value);
-    if (below) AddPenalty(s, B, p, field, penalty, maxAlignment, order, out, st, &sums, records);
-    if (withDissipation && (below || explicitNormals))
-      AddDissipation(s, s.key, B, p, field, s.hasNormal ? *dissipation : noNormal, order, out,
-                     st, &sums);
-  }
-  close();
+  FrameEvaluation evaluation(B, penalty, maxAlignment, dissipation, order, out, records);
+  for (const PairSample& s : samples) evaluation.Add(s);
+  evaluation.Finish();
 }
 
 /// Whether a ball of colliding samples (radius r [m], centred at c now and at cLast at x_n, world)
@@ -405,7 +405,7 @@ namespace {
 // none) that can contribute on B's field, their slip keys counted from keyOffset.
 void AppendRigidSamples(const RigidBodyModel& A, const RigidPose& a, const RigidStageStart* start,
                         int offP, int offTheta, int keyOffset, const FrameSide& B, double delta,
-                        const DissipationSetup* dissipation, std::vector<PairSample>* out) {
+                        const DissipationSetup* dissipation, SampleSink* sink) {
   const RigidPose& an = start ? start->last : a;
   const double spread =
       (B.last.R.transpose() * an.R - B.pose.R.transpose() * a.R).norm();
@@ -413,43 +413,65 @@ void AppendRigidSamples(const RigidBodyModel& A, const RigidPose& a, const Rigid
   auto keep = [&](const Eigen::Vector3d& c, double r) {
     return near(a.p + a.R * c, an.p + an.R * c, r);
   };
+  sink->BeginRigidBody(a, an, start, offP, offTheta);
   auto visit = [&](int begin, int end) {
-    for (int q = begin; q < end; ++q) {
-      const SurfaceSample& ss = A.samples[q];
-      const Eigen::Vector3d r = a.R * ss.X;
-      PairSample& s = out->emplace_back();
-      s.y = a.p + r;
-      s.yLast = an.p + an.R * ss.X;
-      s.y0 = start ? Eigen::Vector3d(start->p + start->R * ss.X) : s.y;
-      s.hasNormal = true;
-      s.n = a.R * ss.normal;
-      s.nLast = an.R * ss.normal;
-      s.weight = ss.weight;
-      s.map = SamplePointMap::Rigid(r, a.p);
-      s.key = keyOffset + q;
-      s.blocks = 2;
-      s.offs[0] = offP;
-      s.offs[1] = offTheta;
-    }
+    for (int q = begin; q < end; ++q) sink->AddRigidSample(A.samples[q], keyOffset + q);
   };
   ForEachSampleRange(A, keep, visit);
 }
 
 }  // namespace
 
+void SampleSink::BeginRigidBody(const RigidPose& a, const RigidPose& an,
+                                const RigidStageStart* start, int offP, int offTheta) {
+  a_ = a;
+  an_ = an;
+  start_ = start;
+  rigid_ = PairSample();
+  rigid_.hasNormal = true;
+  rigid_.map = SamplePointMap::Rigid(Eigen::Vector3d::Zero(), a.p);
+  rigid_.blocks = 2;
+  rigid_.offs[0] = offP;
+  rigid_.offs[1] = offTheta;
+}
+
+const PairSample& SampleSink::FormRigidSample(const SurfaceSample& ss, int key) {
+  PairSample& s = rigid_;
+  const Eigen::Vector3d r = a_.R * ss.X;
+  s.y = a_.p + r;
+  s.yLast = an_.p + an_.R * ss.X;
+  s.y0 = start_ ? Eigen::Vector3d(start_->p + start_->R * ss.X) : s.y;
+  s.n = a_.R * ss.normal;
+  s.nLast = an_.R * ss.normal;
+  s.weight = ss.weight;
+  s.map.r = r;
+  s.key = key;
+  return s;
+}
+
+void SampleSink::AddRigidSample(const SurfaceSample& ss, int key) {
+  Add(FormRigidSample(ss, key));
+}
+
+void GatherRigidSamples(const RigidBodyModel& A, const RigidPose& a, const RigidStageStart* start,
+                        int aOffset, const FrameSide& B, double delta,
+                        const DissipationSetup* dissipation, SampleSink* sink) {
+  AppendRigidSamples(A, a, start, aOffset, aOffset < 0 ? -1 : aOffset + 3, 0, B, delta,
+                     dissipation, sink);
+}
+
 void GatherRigidSamples(const RigidBodyModel& A, const RigidPose& a, const RigidStageStart* start,
                         int aOffset, const FrameSide& B, double delta,
                         const DissipationSetup* dissipation, std::vector<PairSample>* out) {
   out->clear();
-  AppendRigidSamples(A, a, start, aOffset, aOffset < 0 ? -1 : aOffset + 3, 0, B, delta,
-                     dissipation, out);
+  SampleList list(out);
+  GatherRigidSamples(A, a, start, aOffset, B, delta, dissipation, &list);
 }
 
 void GatherKindSamples(const ActorKind& A, const Eigen::VectorXd& q, const Eigen::VectorXd* qLast,
                        const Eigen::VectorXd* q0, const std::vector<int>& stageDof,
                        const FrameSide& B, double delta, const DissipationSetup* dissipation,
-                       std::vector<PairSample>* out) {
-  out->clear();
+                       SampleSink* sink) {
   if (A.NumSampleBodies() > 0) {  // rigid bodies' samples: the rigid gather per body
     int keyOffset = 0;
     for (int b = 0; b < A.NumSampleBodies(); ++b) {
@@ -464,7 +486,7 @@ void GatherKindSamples(const ActorKind& A, const Eigen::VectorXd& q, const Eigen
       start.R = p0.R;
       start.Rinv = p0.R.inverse();  // R⁰ an affine combination, not always a rotation
       AppendRigidSamples(body, pose, qLast || q0 ? &start : nullptr, stageDof[dof[0]],
-                         stageDof[dof[1]], keyOffset, B, delta, dissipation, out);
+                         stageDof[dof[1]], keyOffset, B, delta, dissipation, sink);
       keyOffset += static_cast<int>(body.samples.size());
     }
     return;
@@ -473,17 +495,26 @@ void GatherKindSamples(const ActorKind& A, const Eigen::VectorXd& q, const Eigen
   // centre's.
   const BallCulling near(B, delta, dissipation, q0 != nullptr, 2.0);
   A.ForEachSampleNear(q, qLast ? *qLast : q, near, [&](int begin, int end) {
-    GatherKindSampleRange(A, q, qLast, q0, stageDof, begin, end, out);
+    GatherKindSampleRange(A, q, qLast, q0, stageDof, begin, end, sink);
   });
+}
+
+void GatherKindSamples(const ActorKind& A, const Eigen::VectorXd& q, const Eigen::VectorXd* qLast,
+                       const Eigen::VectorXd* q0, const std::vector<int>& stageDof,
+                       const FrameSide& B, double delta, const DissipationSetup* dissipation,
+                       std::vector<PairSample>* out) {
+  out->clear();
+  SampleList list(out);
+  GatherKindSamples(A, q, qLast, q0, stageDof, B, delta, dissipation, &list);
 }
 
 void GatherKindSampleRange(const ActorKind& A, const Eigen::VectorXd& q,
                            const Eigen::VectorXd* qLast, const Eigen::VectorXd* q0,
                            const std::vector<int>& stageDof, int begin, int end,
-                           std::vector<PairSample>* out) {
+                           SampleSink* sink) {
+  PairSample s;
   for (int k = begin; k < end; ++k) {
     const KindSample ks = A.Sample(k, q);
-    PairSample& s = out->emplace_back();
     s.y = ks.y;
     s.hasNormal = ks.hasNormal;
     s.n = ks.n;
@@ -501,6 +532,7 @@ void GatherKindSampleRange(const ActorKind& A, const Eigen::VectorXd& q,
     s.key = k;
     s.blocks = ks.Blocks();
     for (int b = 0; b < s.blocks; ++b) s.offs[b] = stageDof[ks.dof[b]];
+    sink->Add(s);
   }
 }
 

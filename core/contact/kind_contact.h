@@ -30,6 +30,7 @@
 #include "core/contact/contact_stencil.h"
 #include "core/contact/dissipation_setup.h"
 #include "core/contact/rigid_contact.h"
+#include "core/contact/rigid_dissipation.h"
 #include "core/model/actor_kind.h"
 #include "core/model/rigid_body.h"
 
@@ -76,6 +77,127 @@ struct FrameSide {
   }
 };
 
+/// Receives a gather's samples one at a time (a sample is valid only during the call).
+class SampleSink {
+ public:
+  virtual void Add(const PairSample& s) = 0;
+  /// A rigid body's samples, announced by body (pose a now, an at x_n, the stage start `start`
+  /// or null; [δp] at stage dof offP, [δθ] at offTheta, −1: none), then one at a time in the
+  /// body frame. The default forms each as a PairSample (a Rigid map, its normal turning with the
+  /// body) and passes it to Add; a sink may form only what it needs.
+  virtual void BeginRigidBody(const RigidPose& a, const RigidPose& an,
+                              const RigidStageStart* start, int offP, int offTheta);
+  virtual void AddRigidSample(const SurfaceSample& ss, int key);
+
+ protected:
+  ~SampleSink() = default;
+  /// The body's sample at `ss` as a PairSample, in rigid_ (its per-body fields set by
+  /// BeginRigidBody).
+  const PairSample& FormRigidSample(const SurfaceSample& ss, int key);
+  PairSample rigid_;
+  RigidPose a_, an_;
+  const RigidStageStart* start_ = nullptr;
+};
+
+/// A sink that appends the samples to a list.
+class SampleList final : public SampleSink {
+ public:
+  explicit SampleList(std::vector<PairSample>* list) : list_(list) {}
+  void Add(const PairSample& s) override { list_->push_back(s); }
+
+ private:
+  std::vector<PairSample>* list_;
+};
+
+/// The regrouped chain of one rigid body's samples on a rigid or static frame (one stencil
+/// [δp_A, δθ_A (, δp_B, δθ_B)]): gradients and residuals per sample by AddFunctionOfPullback into
+/// fixed-size vectors, second derivatives as moments in B's frame, mapped at Flush.
+struct RigidSampleSums {
+  bool on = false;
+  bool bDynamic = false;
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();  ///< p_A − p_B [m]
+  PairVector penaltyGradient, dissipationResidual;
+  PairHessianSums penalty, potentialDissipation;
+  PairForceJacobianSums force{true};
+
+  /// Starts a stencil: on when its samples are a Rigid map's and B does not deform.
+  void Begin(const PairSample& s, const FrameSide& B) {
+    on = s.map.kind == SamplePointMap::Kind::Rigid && s.hasNormal &&
+         B.motion != FrameSide::Motion::Translation;
+    if (!on) return;
+    bDynamic = B.motion == FrameSide::Motion::Rigid;
+    c = s.map.origin - B.pose.p;
+    penaltyGradient.setZero();
+    dissipationResidual.setZero();
+    penalty = PairHessianSums();
+    potentialDissipation = PairHessianSums();
+    force = PairForceJacobianSums(bDynamic);
+  }
+  /// Writes the sums into the stencil (its parts zero on n dofs).
+  void Flush(const FrameSide& B, int order, ContactStencil* st) const {
+    if (!on || order < 1) return;
+    const int n = bDynamic ? 12 : 6;
+    if (st->penaltyActive) st->penaltyGradient = penaltyGradient.head(n);
+    if (st->dissipationActive) st->dissipationResidual = dissipationResidual.head(n);
+    if (order < 2) return;
+    PairMatrix M;
+    if (st->penaltyActive) {
+      M.setZero();
+      penalty.AddTo(B.pose.R, c, bDynamic, &M);
+      st->penaltyHessian = M.topLeftCorner(n, n);
+    }
+    if (st->dissipationActive) {
+      M.setZero();
+      potentialDissipation.AddTo(B.pose.R, c, bDynamic, &M);
+      force.AddTo(B.pose.R, c, &M);
+      st->dissipationJacobian = M.topLeftCorner(n, n);
+    }
+  }
+};
+
+/// A sample's pullbacks into B's frame: d = y − p_B (world) [m], Y now and Y_n at x_n [m], and
+/// the colliding normal N_A in B's coordinates at both (zero without one).
+struct SamplePullback {
+  Eigen::Vector3d d, Y, Yn, NA, NAn;
+};
+
+/// EvaluateSamplesOnFrame one sample at a time, as a sink: a gather feeds it directly, so that a
+/// pair's samples are evaluated where they are formed and never stored (a sampled sphere of a
+/// pile keeps hundreds per pair). B must outlive it; Finish closes the last stencil.
+class FrameEvaluation final : public SampleSink {
+ public:
+  FrameEvaluation(const FrameSide& B, const PenaltyParams& penalty, double maxAlignment,
+                  const DissipationSetup* dissipation, int order, PairStencils* out,
+                  std::vector<ContactSampleRecord>* records = nullptr);
+  void Add(const PairSample& s) override;
+  /// A rigid body's sample: its pullback Y, and Y_n where the bound needs it, first; the rest
+  /// only when the field says it can contribute (most samples a pile's culling keeps do not).
+  void AddRigidSample(const SurfaceSample& ss, int key) override;
+  void Finish();
+
+ private:
+  void Close();
+  // Whether the field is at least `bound` at Y by B's bounding radius alone (|Y| >= radius +
+  // bound; the sample then has no term and no field evaluation). Never with explicit normals.
+  bool Beyond(const Eigen::Vector3d& Y, double bound) const;
+  // Opens the stencil of sample s when it does not share the open one's blocks.
+  void Open(const PairSample& s);
+  // The terms of sample s with pullback p at field value `field` (`below`: within the bound).
+  void AddTerms(const PairSample& s, const SamplePullback& p, const SdfSample& field, bool below);
+  Eigen::Matrix3d RBt_, RnBt_;  // B's rotations now and at x_n, transposed
+  const FrameSide& B_;
+  PenaltyParams penalty_;
+  double maxAlignment_;
+  const DissipationSetup* dissipation_;
+  DissipationSetup noNormal_;
+  int order_;
+  PairStencils* out_;
+  std::vector<ContactSampleRecord>* records_;
+  bool withDissipation_ = false, explicitNormals_ = false, reconstructed_ = false;
+  ContactStencil* st_ = nullptr;
+  RigidSampleSums sums_;
+};
+
 /// Evaluates every sample on the frame's field into stencils: consecutive samples with the same
 /// blocks share one (a rigid body's samples, a soft face's). order 0: value;
 /// 1: gradient and residual; 2: Hessian and Jacobian (unprojected). The samples of a Rigid map on
@@ -103,6 +225,10 @@ double StepLimitOnFrame(const std::vector<PairSample>& samples, const FrameSide&
 /// dissipation, at x_n (the modes' load geometry). `start` (may be null): A's x⁰ and x_n.
 void GatherRigidSamples(const RigidBodyModel& A, const RigidPose& a, const RigidStageStart* start,
                         int aOffset, const FrameSide& B, double delta,
+                        const DissipationSetup* dissipation, SampleSink* sink);
+/// The same into a list (cleared first).
+void GatherRigidSamples(const RigidBodyModel& A, const RigidPose& a, const RigidStageStart* start,
+                        int aOffset, const FrameSide& B, double delta,
                         const DissipationSetup* dissipation, std::vector<PairSample>* out);
 
 /// The samples of a kind's actor at q (x_n: qLast, x⁰: q0, either may be null), with the stage
@@ -112,12 +238,17 @@ void GatherRigidSamples(const RigidBodyModel& A, const RigidPose& a, const Rigid
 void GatherKindSamples(const ActorKind& A, const Eigen::VectorXd& q, const Eigen::VectorXd* qLast,
                        const Eigen::VectorXd* q0, const std::vector<int>& stageDof,
                        const FrameSide& B, double delta, const DissipationSetup* dissipation,
+                       SampleSink* sink);
+/// The same into a list (cleared first).
+void GatherKindSamples(const ActorKind& A, const Eigen::VectorXd& q, const Eigen::VectorXd* qLast,
+                       const Eigen::VectorXd* q0, const std::vector<int>& stageDof,
+                       const FrameSide& B, double delta, const DissipationSetup* dissipation,
                        std::vector<PairSample>* out);
-/// Appends the kind's samples begin .. end−1 (no culling).
+/// The kind's samples begin .. end−1 (no culling).
 void GatherKindSampleRange(const ActorKind& A, const Eigen::VectorXd& q,
                            const Eigen::VectorXd* qLast, const Eigen::VectorXd* q0,
                            const std::vector<int>& stageDof, int begin, int end,
-                           std::vector<PairSample>* out);
+                           SampleSink* sink);
 
 /// A kind's collider frame as a FrameSide (its F moves the frame by translation only), at q, x_n
 /// (qLast; null: q) and x⁰ (q0; null: no stage start).

@@ -101,6 +101,7 @@ Setup MakeSetup(std::mt19937& rng, Side side, bool rigidB) {
   s.rigidB = rigidB;
   s.field.type = ColliderType::Sphere;
   s.field.sphere.radius = 1.0;
+  s.field.boundingRadius = 1.0;
   s.RB = ExpSo3(vec());
   s.pB = 0.1 * vec();
   // The sample sits 1 cm inside the unit sphere, its normal facing the centre (s = G·N_A < 0).
