@@ -26,6 +26,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/model/contact_params.h"
@@ -95,6 +96,28 @@ struct KindSlope {
   KindState slope;        ///< x: V_i, v: K_i
   Eigen::VectorXd extra;  ///< the kind's (empty for a vector kind)
 };
+
+/// Sensitivities (core/sensitivity/step_linearization.h): a group of an actor's coordinates that
+/// the step linearization moves together, as a rigid body's pose and velocity or one node's.
+struct KindDifferenceGroup {
+  /// A direction of the state [q; v] (2n local entries, v from n) along which trajectories vary:
+  /// its entries and weights, whether it is a velocity direction (all entries in v), and the
+  /// length [m] one unit of it moves the actor's points (1 for a coordinate that is a length, a
+  /// radius for a rotation). The directions of a group are mutually orthogonal.
+  struct Direction {
+    std::vector<std::pair<int, double>> entries;
+    bool velocity = false;
+    double length = 1.0;
+  };
+  std::vector<Direction> directions;
+  std::vector<int> entries;          ///< the local entries of [q; v] the group owns
+  std::vector<int> tangentDofs;      ///< its free local tangent dofs (the stage's unknowns)
+  std::vector<double> tangentLength; ///< [m] per unit of each of them
+};
+
+/// Sensitivities and fitting: the initial-state parameters of an actor (component c of the
+/// centre of mass's position [m], of its velocity [m/s], or of the angular velocity [rad/s]).
+enum class KindMotion { Position, Velocity, AngularVelocity };
 
 class ActorKind {
  public:
@@ -259,6 +282,25 @@ class ActorKind {
   // --- Collider role (null: not a collider). The field is in the frame's coordinates.
   virtual const RigidCollider* Collider() const { return nullptr; }
   virtual KindFrame ColliderFrame(const Eigen::VectorXd& /*q*/) const { return {}; }
+
+  // --- Sensitivities (core/sensitivity/; defaults: a vector kind whose q are lengths).
+  /// The groups of coordinates the step linearization moves together at state s. Default: one
+  /// group of every entry of q and v (each a direction of length 1) and every free tangent dof.
+  /// A kind whose state lies on a manifold gives only the directions its trajectories take (a
+  /// rotation R varies by [ξ]× R only); a kind of many nodes gives a group per node, so that
+  /// nodes far apart are differenced in one run.
+  virtual void DifferenceGroups(const KindState& s, std::vector<KindDifferenceGroup>* groups) const;
+  /// An initial-state parameter at s: its value, and the direction d (2n entries over [q; v])
+  /// along which the state moves per unit of it (the state with the value moved by t is s + t d).
+  /// Default: none (false). Position and Velocity move every point of the actor alike.
+  virtual bool MotionParameter(KindMotion /*motion*/, int /*component*/, const KindState& /*s*/,
+                               double* /*value*/, Eigen::VectorXd* /*direction*/) const {
+    return false;
+  }
+  /// ∂c/∂q (3 × n) of the centre of mass c = CenterOfMass(s) at s. Default: central differences
+  /// of CenterOfMass with steps of 1e-6 (1 + |q_i|) m (exact to round-off where c is linear in
+  /// q, as it is for a body of nodes).
+  virtual Eigen::MatrixXd CenterOfMassJacobian(const KindState& s) const;
 
   /// The actor's contact parameters (combined with the other actor's by the spec's rules).
   ContactParams contact;

@@ -271,6 +271,55 @@ bool RigidKind::FreeStageMinimizer(const KindStageData& stage, Eigen::VectorXd* 
   return true;
 }
 
+void RigidKind::DifferenceGroups(const KindState& s,
+                                 std::vector<KindDifferenceGroup>* groups) const {
+  groups->clear();
+  if (!model_.dynamic) return;
+  const double radius = std::max(RmsRadius(model_), 1e-6);
+  const Eigen::Matrix3d R = Eigen::Map<const Eigen::Matrix3d>(s.x.data() + 3);
+  KindDifferenceGroup g;
+  for (int c = 0; c < 3; ++c) g.directions.push_back({{{c, 1.0}}, false, 1.0});
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Matrix3d V = Skew(Eigen::Vector3d::Unit(k)) * R;
+    KindDifferenceGroup::Direction d{{}, false, radius};
+    for (int e = 0; e < 9; ++e) d.entries.emplace_back(3 + e, V.data()[e]);
+    g.directions.push_back(std::move(d));
+  }
+  for (int c = 0; c < 3; ++c) g.directions.push_back({{{12 + c, 1.0}}, true, 1.0});
+  for (int e = 0; e < 9; ++e) g.directions.push_back({{{15 + e, 1.0}}, true, radius});
+  for (int i = 0; i < 24; ++i) g.entries.push_back(i);
+  for (int i = 0; i < 6; ++i) {
+    g.tangentDofs.push_back(i);
+    g.tangentLength.push_back(i < 3 ? 1.0 : radius);
+  }
+  groups->push_back(std::move(g));
+}
+
+bool RigidKind::MotionParameter(KindMotion motion, int component, const KindState& s,
+                                double* value, Eigen::VectorXd* direction) const {
+  if (!model_.dynamic || component < 0 || component > 2) return false;
+  direction->setZero(24);
+  if (motion == KindMotion::Position) {
+    *value = s.x[component];
+    (*direction)[component] = 1.0;
+  } else if (motion == KindMotion::Velocity) {
+    *value = s.v[component];
+    (*direction)[12 + component] = 1.0;
+  } else {  // Ṙ = [ω]× R
+    const RigidBodyState b = Unpack(s);
+    *value = b.AngularVelocity()[component];
+    const Eigen::Matrix3d dRdot = Skew(Eigen::Vector3d::Unit(component)) * b.R;
+    direction->segment<9>(15) = Eigen::Map<const Eigen::Matrix<double, 9, 1>>(dRdot.data());
+  }
+  return true;
+}
+
+Eigen::MatrixXd RigidKind::CenterOfMassJacobian(const KindState& /*s*/) const {
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(3, 12);
+  C.leftCols<3>().setIdentity();
+  return C;
+}
+
 double RigidKind::KineticEnergy(const KindState& s) const {
   return model_.dynamic ? superdex::KineticEnergy(model_, Unpack(s)) : 0.0;
 }

@@ -141,6 +141,18 @@ class RigidKind : public ActorKind {
   /// static body keeps its pose.
   bool FreeStageMinimizer(const KindStageData& stage, Eigen::VectorXd* q) const override;
 
+  /// One group (none for a static body): p, the three tangent directions vec([e_k]× R) of R
+  /// (length ρ = ρ_rms, the only variations of R a trajectory has), v and Ṙ; δ = [δp, δθ] with
+  /// lengths 1 and ρ.
+  void DifferenceGroups(const KindState& s,
+                        std::vector<KindDifferenceGroup>* groups) const override;
+  /// p_c, v_c (unit directions) and ω_c = axial(Ṙ Rᵀ)_c (direction vec([e_c]× R) in Ṙ); none
+  /// for a static body.
+  bool MotionParameter(KindMotion motion, int component, const KindState& s, double* value,
+                       Eigen::VectorXd* direction) const override;
+  /// [I 0]: the centre of mass is p.
+  Eigen::MatrixXd CenterOfMassJacobian(const KindState& s) const override;
+
   double KineticEnergy(const KindState& s) const override;
   double GravityEnergy(const KindState& s, const Eigen::Vector3d& gravity) const override;
   Eigen::Vector3d LinearMomentum(const KindState& s) const override;

@@ -51,6 +51,19 @@ const char* NameOf(const KindRow& k) {
 
 bool IsContactKind(SceneParameterKind k) { return RowOf(k).contact != nullptr; }
 
+KindMotion MotionOf(SceneParameterKind k) {
+  return k == SceneParameterKind::Position   ? KindMotion::Position
+         : k == SceneParameterKind::Velocity ? KindMotion::Velocity
+                                             : KindMotion::AngularVelocity;
+}
+
+// An initial-state parameter of a kind's actor: its value and direction over the actor's [q; v].
+bool KindMotionParameter(const Scene& scene, const SceneParameter& p, double* value,
+                         Eigen::VectorXd* direction) {
+  return scene.Kind(p.actor).MotionParameter(MotionOf(p.kind), p.component,
+                                             scene.KindStateOf(p.actor), value, direction);
+}
+
 }  // namespace
 
 bool ParseSceneParameter(const Scene& scene, const std::string& text, SceneParameter* p,
@@ -82,22 +95,29 @@ bool ParseSceneParameter(const Scene& scene, const std::string& text, SceneParam
     for (const KindRow& k : kKinds) all += std::string(all.empty() ? "" : ", ") + NameOf(k);
     return Fail(error, "parameter '" + text + "': unknown name '" + name + "'; one of " + all);
   }
-  const bool soft = scene.IsSoft(p->actor);
+  const bool soft = scene.IsSoft(p->actor), kind = scene.IsKind(p->actor);
   if (p->IsInitialState()) {
     if (axis != "x" && axis != "y" && axis != "z")
       return Fail(error, "parameter '" + text + "': " + name + " needs a component .x, .y or .z");
     p->component = axis[0] - 'x';
     if (soft && p->kind == SceneParameterKind::AngularVelocity)
       return Fail(error, "parameter '" + text + "': angular_velocity is for rigid actors");
-    if (!soft && !scene.Model(p->actor).dynamic)
+    if (!soft && !kind && !scene.Model(p->actor).dynamic)
       return Fail(error, "parameter '" + text + "': actor '" + actor + "' is static");
+    double value = 0.0;
+    Eigen::VectorXd direction;
+    if (kind && !KindMotionParameter(scene, *p, &value, &direction))
+      return Fail(error, "parameter '" + text + "': actor '" + actor + "' (" +
+                             scene.Kind(p->actor).KindName() + ") has no " + name +
+                             (scene.Kind(p->actor).IsStatic() ? " (it is static)" : ""));
   } else {
     if (!axis.empty())
       return Fail(error, "parameter '" + text + "': " + name + " has no components");
     if (!soft && (p->kind == SceneParameterKind::YoungsModulus ||
                   p->kind == SceneParameterKind::Density))
       return Fail(error, "parameter '" + text + "': " + name + " is a soft-actor material "
-                        "parameter and '" + actor + "' is rigid");
+                        "parameter and '" + actor + "' is " +
+                        (kind ? "a " + scene.Kind(p->actor).KindName() + " actor" : "rigid"));
   }
   return true;
 }
@@ -121,6 +141,12 @@ double ParameterValue(const Scene& scene, const SceneParameter& p) {
   if (p.kind == SceneParameterKind::YoungsModulus)
     return scene.SoftModel(p.actor).material.youngsModulus;
   if (p.kind == SceneParameterKind::Density) return scene.SoftModel(p.actor).material.density;
+  if (scene.IsKind(p.actor)) {
+    double value = NAN;
+    Eigen::VectorXd direction;
+    KindMotionParameter(scene, p, &value, &direction);
+    return value;
+  }
   if (scene.IsSoft(p.actor)) {  // the mean over the nodes
     const SoftBodyState& s = scene.SoftState(p.actor);
     const Eigen::VectorXd& v = p.kind == SceneParameterKind::Position ? s.x : s.v;
@@ -149,6 +175,17 @@ bool SetParameterValue(Scene* scene, const SceneParameter& p, double value, Erro
   if (!std::isfinite(value))
     return Fail(error, ToString(*scene, p) + ": must be finite");
   const double shift = value - ParameterValue(*scene, p);
+  if (scene->IsKind(p.actor)) {
+    double current = 0.0;
+    Eigen::VectorXd d;
+    if (!KindMotionParameter(*scene, p, &current, &d))
+      return Fail(error, ToString(*scene, p) + ": the actor's kind has no such parameter");
+    KindState s = scene->KindStateOf(p.actor);
+    const Eigen::Index n = s.x.size();
+    s.x += shift * d.head(n);
+    s.v += shift * d.tail(n);
+    return scene->SetKindState(p.actor, s, error);
+  }
   if (scene->IsSoft(p.actor)) {
     SoftBodyState s = scene->SoftState(p.actor);
     Eigen::VectorXd& v = p.kind == SceneParameterKind::Position ? s.x : s.v;
@@ -221,7 +258,12 @@ Eigen::VectorXd InitialStateDirection(Scene& scene, const SceneParameter& p) {
   if (!p.IsInitialState()) return d;
   const int o = scene.StateOffset(p.actor);
   const int c = p.component;
-  if (scene.IsSoft(p.actor)) {
+  if (scene.IsKind(p.actor)) {
+    double value = 0.0;
+    Eigen::VectorXd direction;
+    if (KindMotionParameter(scene, p, &value, &direction))
+      d.segment(o, direction.size()) = direction;
+  } else if (scene.IsSoft(p.actor)) {
     const int n = 3 * scene.SoftModel(p.actor).NumNodes();
     const int base = p.kind == SceneParameterKind::Position ? o : o + n;
     for (int i = c; i < n; i += 3) d[base + i] = 1.0;
@@ -241,7 +283,12 @@ Eigen::SparseMatrix<double> CenterOfMassMap(Scene& scene, ActorHandle a) {
   const int o = scene.StateOffset(a);
   if (o < 0) return C;
   std::vector<Eigen::Triplet<double>> t;
-  if (!scene.IsSoft(a)) {
+  if (scene.IsKind(a)) {
+    const Eigen::MatrixXd J = scene.Kind(a).CenterOfMassJacobian(scene.KindStateOf(a));
+    for (int c = 0; c < 3; ++c)
+      for (Eigen::Index i = 0; i < J.cols(); ++i)
+        if (J(c, i) != 0.0) t.emplace_back(c, o + i, J(c, i));
+  } else if (!scene.IsSoft(a)) {
     for (int c = 0; c < 3; ++c) t.emplace_back(c, o + c, 1.0);
   } else {
     const SoftBodyModel& m = scene.SoftModel(a);

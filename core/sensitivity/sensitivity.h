@@ -48,9 +48,11 @@ enum class SceneParameterKind {
   FrictionFalloffVel,            ///< V_f [m/s]
   YoungsModulus,                 ///< soft actors: E [Pa]
   Density,                       ///< soft actors: ρ [kg/m³]
-  Position,                      ///< initial position, one component [m] (soft: every node)
-  Velocity,                      ///< initial velocity, one component [m/s] (soft: every node)
-  AngularVelocity,               ///< rigid: initial angular velocity, one component [rad/s]
+  Position,         ///< initial position, one component [m] (soft: every node; a kind: its
+                    ///< ActorKind::MotionParameter)
+  Velocity,         ///< initial velocity, one component [m/s] (soft: every node; a kind: ditto)
+  AngularVelocity,  ///< rigid and kinds that have one: initial angular velocity, one component
+                    ///< [rad/s]
 };
 
 /// One differentiable parameter: "ACTOR.NAME" with NAME one of SceneParameterNames(): the contact
@@ -80,11 +82,12 @@ bool SetParameterValue(Scene* scene, const SceneParameter& parameter, double val
 /// initial-state parameter only before the first step. `index` names it in the message.
 bool CheckDifferentiable(Scene& scene, const SceneParameter& p, int index, Error* error);
 /// ∂S/∂θ of the current packed state (Scene::PackState) for an initial-state parameter: unit
-/// entries (soft: every node's component), Ṙ = [e_c]× R for an angular velocity; zero for a model
-/// parameter.
+/// entries (soft: every node's component), Ṙ = [e_c]× R for an angular velocity, a kind's
+/// ActorKind::MotionParameter direction; zero for a model parameter.
 Eigen::VectorXd InitialStateDirection(Scene& scene, const SceneParameter& p);
 /// C with centre of mass of actor a = C S for the packed state S (3 × StateSize; soft: the node
-/// masses' weights; all zero for a static actor).
+/// masses' weights; a kind: its ActorKind::CenterOfMassJacobian at the current state; all zero
+/// for a static rigid actor).
 Eigen::SparseMatrix<double> CenterOfMassMap(Scene& scene, ActorHandle a);
 /// The state step η of the central differences of the step map [m] (velocities: η/dt [m/s]):
 /// 0.024 V_f min Δt_i, smallest V_f over the actors, smallest stage step of the method.

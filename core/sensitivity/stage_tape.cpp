@@ -54,11 +54,6 @@ void TapeRecorder::Supply(const StageInputs& inputs, const StageDissipation& dis
 }
 
 bool StepAndRecord(Scene* scene, double dt, StepTape* tape, StepReport* report, Error* error) {
-  for (int a = 0; a < scene->NumActors(); ++a)
-    if (scene->IsKind({a}))
-      return Fail(error, "actor " + scene->ActorName({a}) + " (" + scene->Kind({a}).KindName() +
-                             "): sensitivities through actors of the generic layer are not "
-                             "supported yet");
   StepReport rep;
   TapeRecorder recorder(tape, TapeRecorder::Mode::Record);
   const bool ok = scene->Step(dt, &rep, error, &recorder);

@@ -77,6 +77,65 @@ StepSizes SizesOf(const Scene& scene, const StepTape& tape, const Eigen::VectorX
   return {s, nd, ns, static_cast<int>(model.size()), ns + s * nd, s * nd + ns};
 }
 
+// The movers of the generic layer's actors: their kinds' groups (ActorKind::DifferenceGroups),
+// each state block's directions at that block's state; a direction's derivative is spread back
+// over its entries as D dᵀ/|d|² (the directions of a group are orthogonal). Returns, per actor,
+// the mover of a kind of one group (−1 otherwise): its contact parameters move with it.
+std::vector<int> AddKindMovers(Scene& scene, const Eigen::VectorXd& S0, const StepSizes& z,
+                               int blocks, double h, double dt, std::vector<Mover>* movers,
+                               std::vector<int>* rowUnit, std::vector<int>* dofUnit) {
+  const int s = z.s, nd = z.nd, ns = z.ns, blockSize = ns / blocks;
+  std::vector<int> moverOfKind(scene.NumActors(), -1);
+  for (int a = 0; a < scene.NumActors(); ++a) {
+    if (!scene.IsKind({a})) continue;
+    const ActorKind& kind = scene.Kind({a});
+    const int n = kind.NumDofs(), o = scene.StateOffset({a});
+    std::vector<int> stageDof(kind.NumTangentDofs(), -1);
+    for (int i = 0, next = scene.StageDofOffset({a}); i < kind.NumTangentDofs(); ++i)
+      if (!kind.IsPrescribed(i)) stageDof[i] = next++;
+    std::vector<std::vector<KindDifferenceGroup>> groups(blocks);
+    for (int b = 0; b < blocks; ++b)
+      kind.DifferenceGroups(
+          KindState{S0.segment(b * blockSize + o, n), S0.segment(b * blockSize + o + n, n)},
+          &groups[b]);
+    for (size_t g = 0; g < groups[0].size(); ++g) {
+      const int u = static_cast<int>(movers->size());
+      Mover mv;
+      for (int b = 0; b < blocks; ++b) {
+        if (g >= groups[b].size()) continue;
+        for (const KindDifferenceGroup::Direction& d : groups[b][g].directions) {
+          Direction dir;
+          double norm2 = 0.0;
+          for (const auto& [e, w] : d.entries) norm2 += w * w;
+          for (const auto& [e, w] : d.entries) {
+            dir.move.emplace_back(b * blockSize + o + e, w);
+            dir.spread.emplace_back(b * blockSize + o + e, w / norm2);
+          }
+          dir.step = h / (d.length * (d.velocity ? dt : 1.0));
+          mv.directions.push_back(std::move(dir));
+        }
+      }
+      const KindDifferenceGroup& group = groups[0][g];
+      for (int e : group.entries)
+        for (int b = 0; b < blocks; ++b) (*rowUnit)[s * nd + b * blockSize + o + e] = u;
+      mv.alone = true;
+      for (int t : group.tangentDofs)
+        if (stageDof[t] >= 0) (*dofUnit)[stageDof[t]] = u, mv.alone = false;
+      for (int st = 0; st < s; ++st)
+        for (size_t t = 0; t < group.tangentDofs.size(); ++t) {
+          const int dof = stageDof[group.tangentDofs[t]];
+          if (dof < 0) continue;
+          const int column = ns + st * nd + dof;
+          mv.directions.push_back({{{column, 1.0}}, {{column, 1.0}}, h / group.tangentLength[t]});
+          (*rowUnit)[st * nd + dof] = u;
+        }
+      if (groups[0].size() == 1 && !mv.alone) moverOfKind[a] = u;
+      movers->push_back(std::move(mv));
+    }
+  }
+  return moverOfKind;
+}
+
 // The movers of one recorded step's differences, the unit of each output row (ρ_i rows by dof,
 // S_{n+1} rows by state entry), their colour classes, the model parameters moved alone and every
 // parameter's difference step.
@@ -181,6 +240,8 @@ MoverLayout LayOutMovers(Scene& scene, const StepTape& tape,
       movers.push_back(std::move(mv));
     }
   }
+  const std::vector<int> moverOfKind =
+      AddKindMovers(scene, S0, z, blocks, h, dt, &movers, &rowUnit, &dofUnit);
   const int U = static_cast<int>(movers.size());
 
   // Reach: the units coupled in any stage's Jacobian (column unit reaches row unit), and itself.
@@ -193,12 +254,13 @@ MoverLayout LayOutMovers(Scene& scene, const StepTape& tape,
   }
   const std::vector<std::vector<int>> members = ColourMovers(&movers);
 
-  // Model parameters of a dynamic rigid actor reach the rows its mover reaches (the pair values
-  // of its contacts): they are moved with its colour. Others (static and soft actors') alone.
+  // Model parameters of a dynamic rigid actor, or of a kind's actor of one group, reach the rows
+  // its mover reaches (the pair values of its contacts): they are moved with its colour. Others
+  // (static and soft actors') alone.
   std::vector<std::vector<int>> owned(U);
   std::vector<int> aloneParameters;
   {
-    std::vector<int> moverOfActor(scene.NumActors(), -1);  // dynamic rigid actors' movers
+    std::vector<int> moverOfActor = moverOfKind;  // and the dynamic rigid actors' movers
     int u = 0;
     for (size_t i = 0; i < scene.Models().size(); ++i)
       if (scene.Models()[i].dynamic) moverOfActor[rigid[i].index] = u++;

@@ -33,7 +33,9 @@
 // actors with fitted contact parameters. (Local coordinates: 18 per rigid body — p, v, Ṙ and the
 // three tangent directions of R, the only variations of R a trajectory has — and 6 per soft node
 // for each state block, plus 6 or 3 per stage. Prescribed soft nodes, which have no column in
-// J_i, are moved alone.)
+// J_i, are moved alone.) An actor of the generic layer is moved by the groups its kind gives
+// (ActorKind::DifferenceGroups: a RigidKind as the built-in body, a vector kind as one group of
+// all its entries); the contact parameters of a kind of one group are moved with its colour.
 #pragma once
 
 #include <vector>

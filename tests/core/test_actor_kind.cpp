@@ -15,7 +15,10 @@
 #include <memory>
 
 #include "core/scene.h"
+#include "core/sensitivity/adjoint.h"
+#include "core/sensitivity/sensitivity.h"
 #include "scene_builders.h"
+#include "sensitivity_scenes.h"
 
 using namespace superdex;
 
@@ -124,6 +127,35 @@ SceneSettings Settings(int mode) {
   return s;
 }
 
+// A 0.2 kg point mass (w = 1e-4 m²) on a static box tilted by θ = 20° about x, released at the
+// penalty balance with 0.5 m/s downhill; friction μ on both actors.
+constexpr double kSlope = 20.0 * M_PI / 180.0;
+const Eigen::Matrix3d kSlopeR =
+    Eigen::AngleAxisd(kSlope, Eigen::Vector3d::UnitX()).toRotationMatrix();
+const Eigen::Vector3d kSlopeNormal = kSlopeR.col(2), kDownhill = -kSlopeR.col(1);
+
+Scene ParticleOnSlope(const SceneSettings& settings, double mu) {
+  const double m = 0.2, w = 1e-4;
+  Scene scene(settings);
+  Error error;
+  RigidActorDesc box;
+  box.name = "slope";
+  box.dynamic = false;
+  box.shape.kind = RigidShapeKind::Box;
+  box.shape.halfExtents = Eigen::Vector3d(2.0, 2.0, 0.1);
+  box.orientation = Eigen::Quaterniond(kSlopeR);
+  box.position = -0.1 * kSlopeNormal;  // top face through the origin
+  box.contact.coulombFrictionCoefficient = mu;
+  REQUIRE(scene.AddRigidActor(box, &error).IsValid());
+  const PenaltyParams pp = PairPenalty(ContactParams(), ContactParams());
+  const double phi = BalanceDepth(m * kG * std::cos(kSlope), w, pp);
+  auto particle =
+      std::make_unique<PointMass>(m, w, 0.01, phi * kSlopeNormal, 0.5 * kDownhill);
+  particle->contact.coulombFrictionCoefficient = mu;
+  REQUIRE(scene.AddActor(std::move(particle), &error).IsValid());
+  return scene;
+}
+
 }  // namespace
 
 TEST_CASE("a point-mass kind written in a test rests on a plane at the penalty balance",
@@ -200,42 +232,26 @@ TEST_CASE("two point masses stack: the collider role of a kind (its sphere field
 
 TEST_CASE("a point mass slides down a tilted rigid box at g (sin θ − μ cos θ)",
           "[core][kind][friction][physics]") {
-  const double theta = 20.0 * M_PI / 180.0, mu = 0.2, m = 0.2, w = 1e-4;
-  const Eigen::Matrix3d R = Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitX()).toRotationMatrix();
-  const Eigen::Vector3d n = R.col(2), down = -R.col(1);  // slope normal, downhill direction
+  const double mu = 0.2;
   for (int mode : {0, 1, 2}) {
-    Scene scene(Settings(mode));
+    Scene scene = ParticleOnSlope(Settings(mode), mu);
+    const ActorHandle p = scene.FindActor("particle");
     Error error;
-    RigidActorDesc box;
-    box.name = "slope";
-    box.dynamic = false;
-    box.shape.kind = RigidShapeKind::Box;
-    box.shape.halfExtents = Eigen::Vector3d(2.0, 2.0, 0.1);
-    box.orientation = Eigen::Quaterniond(R);
-    box.position = -0.1 * n;  // top face through the origin
-    box.contact.coulombFrictionCoefficient = mu;
-    REQUIRE(scene.AddRigidActor(box, &error).IsValid());
-    const PenaltyParams pp = PairPenalty(ContactParams(), ContactParams());
-    const double phi = BalanceDepth(m * kG * std::cos(theta), w, pp);
-    auto particle = std::make_unique<PointMass>(m, w, 0.01, phi * n, 0.5 * down);
-    particle->contact.coulombFrictionCoefficient = mu;
-    const ActorHandle p = scene.AddActor(std::move(particle), &error);
-    REQUIRE(p.IsValid());
     const double dt = 1e-3;
     double v1 = 0.0;
     for (int i = 1; i <= 400; ++i) {
       StepReport rep;
       REQUIRE(scene.Step(dt, &rep, &error));
       REQUIRE(rep.status == StageStatus::Converged);
-      if (i == 100) v1 = scene.KindStateOf(p).v.dot(down);
+      if (i == 100) v1 = scene.KindStateOf(p).v.dot(kDownhill);
     }
-    const double v2 = scene.KindStateOf(p).v.dot(down);
+    const double v2 = scene.KindStateOf(p).v.dot(kDownhill);
     const double a = (v2 - v1) / (300 * dt);
-    const double expected = kG * (std::sin(theta) - mu * std::cos(theta));
+    const double expected = kG * (std::sin(kSlope) - mu * std::cos(kSlope));
     INFO(test::kModeNames[mode] << ": a = " << a << " m/s², expected " << expected);
     // Friction at |v_t|/V_f >= 50 is μ λ_n to the falloff's 1e-3; the normal load balances gravity.
     CHECK(std::abs(a - expected) <= 2e-3 * expected);
-    CHECK(std::abs(scene.KindStateOf(p).v.dot(n)) < 1e-6);
+    CHECK(std::abs(scene.KindStateOf(p).v.dot(kSlopeNormal)) < 1e-6);
   }
 }
 
@@ -251,4 +267,86 @@ TEST_CASE("an actor kind is validated when added", "[core][kind][validation]") {
   badContact->contact.penaltyCoefficient = -1.0;
   CHECK_FALSE(scene.AddActor(std::move(badContact), &error).IsValid());
   CHECK(error.message.find("contact.penalty_coefficient") != std::string::npos);
+  // A collider field must say how far its shape reaches (the assembler's cheap rejection).
+  auto noReach = std::make_unique<PointMass>(1.0, 1e-4, 0.0, Eigen::Vector3d::Zero(),
+                                             Eigen::Vector3d::Zero());
+  CHECK_FALSE(scene.AddActor(std::move(noReach), &error).IsValid());
+  CHECK(error.message.find("boundingRadius must be > 0") != std::string::npos);
+}
+
+TEST_CASE("sensitivities reach a kind written in a test through the layer's default hooks",
+          "[core][kind][sensitivity]") {
+  // The particle slides down the slope throughout (|v_t| ≫ V_f). Backward Euler gives
+  //   s_N = s_0 + N dt v_0 + a dt² N(N+1)/2,   a = g (sin θ − μ cos θ),
+  // for its distance s downhill, and the pair's μ is √(μ_particle μ_slope), so
+  //   ds_N/dμ_particle = −½ g cos θ dt² N(N+1)/2
+  // to the friction falloff's 1e-3. The forward sensitivities are also checked against
+  // trajectory differences (1e-5, as tests/core/test_sensitivity.cpp) and the adjoint gradient
+  // against the forward one (1e-6: the same partials, transposed).
+  const double mu = 0.2, dt = 1e-3;
+  const int N = 200;
+  const std::vector<std::string> names = {"particle.coulomb_friction_coefficient",
+                                          "particle.penalty_coefficient"};
+  for (int mode : {0, 1}) {
+    INFO(test::kModeNames[mode]);
+    SceneSettings settings = Settings(mode);
+    settings.solver.absoluteTolerance = 1e-18;
+    settings.solver.relativeTolerance = 1e-14;
+    settings.solver.stepTolerance = 1e-14;
+    Scene scene = ParticleOnSlope(settings, mu);
+    const ActorHandle p = scene.FindActor("particle");
+    const std::vector<SceneParameter> params = test::ParseParameters(scene, names);
+    const Eigen::SparseMatrix<double> C = CenterOfMassMap(scene, p);
+    // The default ∂c/∂q, by differences: c = q, so C = [I 0] over the particle's [q; v].
+    CHECK((Eigen::MatrixXd(C) - Eigen::MatrixXd::Identity(3, 6)).cwiseAbs().maxCoeff() < 1e-9);
+    Error error;
+    ForwardSensitivity forward;
+    REQUIRE(forward.Begin(&scene, params, &error));
+    for (int n = 0; n < N; ++n) {
+      StepReport rep;
+      INFO(error.message);
+      REQUIRE(forward.Step(dt, &rep, &error));
+    }
+    const Eigen::MatrixXd J = forward.CenterOfMassJacobian(p);
+    const double dsdmu = kDownhill.dot(J.col(0));
+    const double expected = -0.5 * kG * std::cos(kSlope) * dt * dt * N * (N + 1) / 2.0;
+    INFO("ds/dmu = " << dsdmu << " m, expected " << expected);
+    CHECK(std::abs(dsdmu - expected) <= 2e-3 * std::abs(expected));
+    for (size_t j = 0; j < names.size(); ++j) {
+      auto finalCom = [&](double value) {
+        Scene probe = ParticleOnSlope(settings, mu);
+        REQUIRE(SetParameterValue(&probe, params[j], value, &error));
+        for (int n = 0; n < N; ++n) {
+          StepReport rep;
+          REQUIRE(probe.Step(dt, &rep, &error));
+        }
+        return probe.CenterOfMass(p);
+      };
+      const double theta = ParameterValue(scene, params[j]), h = 1e-5 * theta;
+      const Eigen::Vector3d fd = (finalCom(theta + h) - finalCom(theta - h)) / (2 * h);
+      INFO(names[j] << ": " << J.col(j).transpose() << " against " << fd.transpose());
+      CHECK((J.col(j) - fd).lpNorm<Eigen::Infinity>() <= 1e-5 * fd.lpNorm<Eigen::Infinity>());
+    }
+    // The adjoint of L = downhill · c(S_N).
+    Scene again = ParticleOnSlope(settings, mu);
+    AdjointSensitivity adjoint;
+    REQUIRE(adjoint.Run(&again, std::vector<double>(N, dt), nullptr, &error));
+    Eigen::VectorXd g;
+    REQUIRE(adjoint.Gradient(
+        params,
+        [&](int n, Scene& s, Eigen::VectorXd* dL) {
+          if (n == N) *dL += CenterOfMassMap(s, p).transpose() * kDownhill;
+        },
+        &g, &error));
+    const Eigen::VectorXd gForward = J.transpose() * kDownhill;
+    INFO("adjoint " << g.transpose() << ", forward " << gForward.transpose());
+    for (int j = 0; j < g.size(); ++j)
+      CHECK(std::abs(g[j] - gForward[j]) <= 1e-6 * std::abs(gForward[j]));
+  }
+  // Initial-state parameters need the kind's MotionParameter, which the point mass leaves out.
+  Scene scene = ParticleOnSlope(Settings(0), mu);
+  SceneParameter param;
+  Error error;
+  CHECK_FALSE(ParseSceneParameter(scene, "particle.velocity.x", &param, &error));
+  CHECK(error.message.find("(point mass) has no velocity") != std::string::npos);
 }

@@ -25,8 +25,11 @@
 #include "core/model/rigid_kind.h"
 #include "core/model/rigid_math.h"
 #include "core/scene.h"
+#include "core/sensitivity/adjoint.h"
+#include "core/sensitivity/sensitivity.h"
 #include "derivative_check.h"
 #include "scene_builders.h"
+#include "sensitivity_scenes.h"
 
 using namespace superdex;
 
@@ -340,4 +343,101 @@ TEST_CASE("the slips of a rigid kind's pairs are recorded and evaluated about th
   INFO("recorded " << recorded.transpose() << ", about the record " << about.transpose());
   CHECK(recorded[0] > 0.1);  // friction against the +x slip (the residual is −force) [N]
   CHECK((about - recorded).norm() <= 1e-12 * recorded.norm());
+}
+
+namespace {
+
+// The sensitivity suite's boxes (tests/sensitivity_scenes.h) as twins: the cube as a rigid kind,
+// and the ground as one too where `groundAsKind`. Sliding: 0.5 mm into the ground at 0.5 m/s
+// along x; bouncing: dropped tilted from 2 cm, moving sideways.
+Twin SensitivityTwin(IntegrationMethod method, DissipationMode mode, bool bouncing,
+                     bool groundAsKind) {
+  Twin twin(test::TightSettings(method, mode));
+  RigidActorDesc ground = test::Ground(Eigen::Vector3d::UnitZ(), 1e7, 0.5, 1.0);
+  ground.contact.viscousFrictionCoefficient = 0.2;
+  twin.Add(ground, groundAsKind);
+  RigidActorDesc box = test::Cube(1e7, 0.5, 1.0);
+  box.contact.viscousFrictionCoefficient = 0.2;
+  box.position = Eigen::Vector3d(0, 0, 0.1 - 5e-4);
+  box.linearVelocity = Eigen::Vector3d(0.5, 0, 0);
+  if (bouncing) {
+    box.position = Eigen::Vector3d(0, 0, 0.13);
+    box.orientation =
+        Eigen::Quaterniond(Eigen::AngleAxisd(0.2, Eigen::Vector3d(1, 1, 0).normalized()));
+    box.linearVelocity = Eigen::Vector3d(0.3, 0, -0.5);
+  }
+  twin.Add(box, true);
+  return twin;
+}
+
+}  // namespace
+
+TEST_CASE("sensitivities through a rigid kind equal the built-in rigid actor's",
+          "[core][kind][sensitivity]") {
+  // The cube's packed block has the same layout in both scenes (p, R, v, Ṙ), so the forward
+  // sensitivities dS/dθ of the twins compare entry by entry, and the adjoint gradients of
+  // L = w · c_cube(S_N) compare directly. Both differentiate the same discrete map by the same
+  // differences (the kind's DifferenceGroups are the built-in body's directions and steps); they
+  // differ by the round-off of two assemblies (the ground's pairs take the built-in rigid path in
+  // one scene and the kind pair path in the other), which the differences divide by their steps
+  // (η ≈ 1e-7 m, 1e-4 of a parameter). They agree to the accuracy the differences are checked to
+  // against trajectory differences (1e-5 relative, tests/core/test_sensitivity.cpp).
+  const std::vector<std::string> names = {
+      "cube.coulomb_friction_coefficient", "cube.penalty_coefficient", "cube.velocity.x",
+      "cube.angular_velocity.y",           "cube.position.z",          "ground.coulomb_friction_coefficient"};
+  const Eigen::Vector3d w(1.0, -0.5, 2.0);
+  struct Case {
+    IntegrationMethod method;
+    DissipationMode mode;
+    bool bouncing, groundAsKind;
+  };
+  for (const Case c : {Case{IntegrationMethod::BDF2, DissipationMode::ReconstructedLoad, false, false},
+                       Case{IntegrationMethod::DIRK22, DissipationMode::ImplicitLoad, false, true},
+                       Case{IntegrationMethod::BackwardEuler, DissipationMode::ExplicitNormals, true,
+                            true}}) {
+    INFO(ToString(c.method) << (c.bouncing ? ", bouncing" : ", sliding")
+                            << (c.groundAsKind ? ", ground a kind too" : ""));
+    const int steps = 60;
+    const double dt = 2e-3;
+    Twin twin = SensitivityTwin(c.method, c.mode, c.bouncing, c.groundAsKind);
+    Scene* scenes[2] = {&twin.builtIn, &twin.kinds};
+    Eigen::MatrixXd block[2], com[2];
+    Eigen::VectorXd gradient[2];
+    for (int k = 0; k < 2; ++k) {
+      Scene& scene = *scenes[k];
+      const ActorHandle cube = scene.FindActor("cube");
+      const std::vector<SceneParameter> params = test::ParseParameters(scene, names);
+      Error error;
+      ForwardSensitivity forward;
+      REQUIRE(forward.Begin(&scene, params, &error));
+      for (int n = 0; n < steps; ++n) {
+        INFO(error.message);
+        REQUIRE(forward.Step(dt, nullptr, &error));
+      }
+      block[k] = forward.StateJacobian().middleRows(scene.StateOffset(cube), 24);
+      com[k] = forward.CenterOfMassJacobian(cube);
+      Twin fresh = SensitivityTwin(c.method, c.mode, c.bouncing, c.groundAsKind);
+      Scene& again = k == 0 ? fresh.builtIn : fresh.kinds;
+      AdjointSensitivity adjoint;
+      REQUIRE(adjoint.Run(&again, std::vector<double>(steps, dt), nullptr, &error));
+      const bool ok = adjoint.Gradient(
+          test::ParseParameters(again, names),
+          [&](int n, Scene& s, Eigen::VectorXd* dL) {
+            if (n == steps) *dL += CenterOfMassMap(s, cube).transpose() * w;
+          },
+          &gradient[k], &error);
+      INFO(error.message);
+      REQUIRE(ok);
+    }
+    for (size_t j = 0; j < names.size(); ++j) {
+      const double scale = block[0].col(j).lpNorm<Eigen::Infinity>();
+      const double err = (block[1].col(j) - block[0].col(j)).lpNorm<Eigen::Infinity>();
+      INFO(names[j] << ": dS/dθ of the cube, largest " << scale << ", twins differ by " << err
+                    << "; d(com)/dθ " << com[0].col(j).transpose() << " and "
+                    << com[1].col(j).transpose() << "; adjoint " << gradient[0][j] << " and "
+                    << gradient[1][j]);
+      CHECK(err <= 1e-5 * scale);
+      CHECK(std::abs(gradient[1][j] - gradient[0][j]) <= 1e-5 * std::abs(gradient[0][j]));
+    }
+  }
 }
