@@ -271,10 +271,23 @@ void FrameEvaluation::Open(const PairSample& s) {
   sums_.Begin(s, B_);
 }
 
+bool FrameEvaluation::OutOfReach(const Eigen::Vector3d& Y, double bound) const {
+  const double reach = B_.field->boundingRadius + bound;
+  return Y.squaredNorm() >= reach * reach;
+}
+
+bool FrameEvaluation::Candidate(const SamplePullback& p, double bound, SdfSample* field,
+                                bool* below) {
+  *below = false;
+  if (!OutOfReach(p.Y, bound)) {
+    *below = B_.field->EvaluateBelow(p.Y, bound, field);
+    out_->minPhi = std::min(out_->minPhi, field->value);
+  }
+  return *below || (withDissipation_ && explicitNormals_ && !OutOfReach(p.Yn, penalty_.delta));
+}
+
 void FrameEvaluation::AddTerms(const PairSample& s, const SamplePullback& p, const SdfSample& field,
                                bool below) {
-  out_->minPhi = std::min(out_->minPhi, field.value);
-  if (!below && !(withDissipation_ && explicitNormals_)) return;
   Open(s);  // stencils only for samples that may contribute
   if (below)
     AddPenalty(s, B_, p, field, penalty_, maxAlignment_, order_, out_, st_, &sums_, records_);
@@ -290,36 +303,25 @@ void FrameEvaluation::Add(const PairSample& s) {
   // δ + L|Y_n − Y|. Explicit normals read the field at Y_n by themselves.
   double bound = penalty_.delta;
   if (reconstructed_) bound += B_.field->lipschitz * (p.Yn - p.Y).norm();
-  if (Beyond(p.Y, bound)) return;
   SdfSample field;
-  const bool below = B_.field->EvaluateBelow(p.Y, bound, &field);
-  AddTerms(s, p, field, below);
-}
-
-bool FrameEvaluation::Beyond(const Eigen::Vector3d& Y, double bound) const {
-  if (withDissipation_ && explicitNormals_) return false;  // its load is read at Y_n
-  const double reach = B_.field->boundingRadius + bound;
-  return Y.squaredNorm() >= reach * reach;
+  bool below;
+  if (Candidate(p, bound, &field, &below)) AddTerms(s, p, field, below);
 }
 
 void FrameEvaluation::AddRigidSample(const SurfaceSample& ss, int key) {
-  // The same arithmetic as Add on the formed sample (PullbackOf), in the order a term needs it.
+  // The same arithmetic as Add on the formed sample (PullbackOf), in the order a term needs it:
+  // Y, and Y_n where the reconstructed bound or the explicit normals' load reads it; the rest
+  // only for a candidate.
   SamplePullback p;
   p.d = (a_.p + a_.R * ss.X) - B_.pose.p;
   p.Y = RBt_ * p.d;
   double bound = penalty_.delta;
-  const bool yn = reconstructed_;
-  if (yn) {
-    p.Yn = RnBt_ * ((an_.p + an_.R * ss.X) - B_.last.p);
-    bound += B_.field->lipschitz * (p.Yn - p.Y).norm();
-  }
-  if (Beyond(p.Y, bound)) return;
+  const bool yn = reconstructed_ || (withDissipation_ && explicitNormals_);
+  if (yn) p.Yn = RnBt_ * ((an_.p + an_.R * ss.X) - B_.last.p);
+  if (reconstructed_) bound += B_.field->lipschitz * (p.Yn - p.Y).norm();
   SdfSample field;
-  const bool below = B_.field->EvaluateBelow(p.Y, bound, &field);
-  if (!below && !(withDissipation_ && explicitNormals_)) {
-    out_->minPhi = std::min(out_->minPhi, field.value);
-    return;
-  }
+  bool below;
+  if (!Candidate(p, bound, &field, &below)) return;
   const PairSample& s = FormRigidSample(ss, key);
   if (!yn) p.Yn = RnBt_ * (s.yLast - B_.last.p);
   p.NA = RBt_ * s.n;

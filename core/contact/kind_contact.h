@@ -177,12 +177,16 @@ class FrameEvaluation final : public SampleSink {
 
  private:
   void Close();
-  // Whether the field is at least `bound` at Y by B's bounding radius alone (|Y| >= radius +
-  // bound; the sample then has no term and no field evaluation). Never with explicit normals.
-  bool Beyond(const Eigen::Vector3d& Y, double bound) const;
+  // Whether the field is at least `bound` at Y by B's bounding radius alone: |Y| >= radius +
+  // bound (no field evaluation needed to say so).
+  bool OutOfReach(const Eigen::Vector3d& Y, double bound) const;
+  // Whether a sample with pullbacks p may contribute: its field at Y below `bound` (*field and
+  // *below, evaluated only within reach), or explicit normals' load at a Y_n within δ's reach.
+  bool Candidate(const SamplePullback& p, double bound, SdfSample* field, bool* below);
   // Opens the stencil of sample s when it does not share the open one's blocks.
   void Open(const PairSample& s);
-  // The terms of sample s with pullback p at field value `field` (`below`: within the bound).
+  // The terms of a candidate sample s with pullback p at field value `field` (`below`: within
+  // the bound; else the field is not read).
   void AddTerms(const PairSample& s, const SamplePullback& p, const SdfSample& field, bool below);
   Eigen::Matrix3d RBt_, RnBt_;  // B's rotations now and at x_n, transposed
   const FrameSide& B_;
