@@ -538,9 +538,13 @@ std::vector<std::string> Scene::Notices() const {
     if (!m.notice.empty()) out.push_back(m.notice);
   for (const auto& m : softModels_)
     if (!m.notice.empty()) out.push_back(m.notice);
-  if (!kinds_.empty() && !softModels_.empty())
+  bool kindColliding = false, softCollider = false;
+  for (const auto& k : kinds_) kindColliding = kindColliding || k->IsColliding();
+  for (const auto& m : softModels_) softCollider = softCollider || m.collider == ColliderType::Sdf;
+  if (kindColliding && softCollider)
     out.push_back("actors of the generic layer (" + kinds_.front()->KindName() +
-                  ", ...) and soft actors do not touch: that pair is not supported yet");
+                  ", ...) do not collide on a soft actor's field: that pair is not supported yet "
+                  "(soft actors do collide on theirs)");
   return out;
 }
 

@@ -203,7 +203,14 @@ void ContactPipeline::FindPairs(const std::vector<RigidPose>& poses,
   for (const auto& [i, j] : overlaps_) {
     if (i >= firstKind || j >= firstKind) {  // a kind's actor with a rigid one or another kind's
       const bool ki = i >= firstKind, kj = j >= firstKind;
-      if ((!ki && i >= static_cast<int>(n)) || (!kj && j >= static_cast<int>(n))) continue;
+      if (!ki && i >= static_cast<int>(n)) {  // soft i on kind j's field
+        ConsiderSoftOnKind(i - static_cast<int>(n), j - firstKind);
+        continue;
+      }
+      if (!kj && j >= static_cast<int>(n)) {
+        ConsiderSoftOnKind(j - static_cast<int>(n), i - firstKind);
+        continue;
+      }
       const int a = ki ? i - firstKind : i, b = kj ? j - firstKind : j;
       ConsiderKindPair(ki, a, kj, b);
       ConsiderKindPair(kj, b, ki, a);
@@ -252,6 +259,24 @@ void ContactPipeline::ConsiderKindPair(bool aKind, int a, bool bKind, int b) {
   p.params = CombineContactParams(aKind ? A->contact : models[a].contact,
                                   bKind ? B->contact : models[b].contact,
                                   bStatic, aNoCollider);
+  kindPairs_.push_back(p);
+}
+
+void ContactPipeline::ConsiderSoftOnKind(int s, int k) {
+  const ActorKind& B = *(*kinds_)[k];
+  if (B.Collider() == nullptr) return;
+  if (filter_ && !filter_->Allowed(softActor_[s], kindActor_[k])) return;
+  KindPair p;
+  p.aSoft = true;
+  p.bKind = true;
+  p.a = s;
+  p.b = k;
+  // The threshold padding applies when A's own collider is None or PointCloud (spec,
+  // penaltyThresholdExtraPadding), not when it is a grid Sdf.
+  const SoftBodyModel& A = (*softModels_)[s];
+  p.params = CombineContactParams(
+      A.contact, B.contact, B.IsStatic(),
+      A.collider == ColliderType::None || A.collider == ColliderType::PointCloud);
   kindPairs_.push_back(p);
 }
 
@@ -411,6 +436,8 @@ void ContactPipeline::StepLimits(const std::vector<RigidPose>& poses,
   };
   auto evaluateKind = [&](size_t k) {
     const KindPair& kp = kindPairs_[k];
+    kindPairLimits_[k] = 1.0;
+    if (kp.aSoft) return;  // soft nodes take no step limit (SceneStageProblem::LimitStep)
     const PenaltyParams penalty = PenaltyOf(kp.params);
     RigidStageStart bNow, aNow;
     FrameSide B;
@@ -435,6 +462,7 @@ void ContactPipeline::StepLimits(const std::vector<RigidPose>& poses,
   ForEachPair(kindPairs_.size(), true, evaluateKind);
   for (size_t k = 0; k < kindPairs_.size(); ++k) {
     const KindPair& kp = kindPairs_[k];
+    if (kp.aSoft) continue;
     double& a = kp.aKind ? (*kindAlpha)[kp.a] : (*alpha)[kp.a];
     a = std::min(a, kindPairLimits_[k]);
     double& b = kp.bKind ? (*kindAlpha)[kp.b] : (*alpha)[kp.b];
@@ -580,7 +608,6 @@ void ContactPipeline::EvaluateSoftPairs(const Request& q, double* energy, Contac
   const auto softId = [&](size_t k) { return std::make_pair(softPairs_[k].soft, softPairs_[k].collider); };
   // Soft colliding actors against rigid colliders, face by face.
   softResults_.resize(softPairs_.size());
-  softSamples_.resize(softPairs_.size());
   auto evaluateSoft = [&](size_t k) {
     const SoftContactPair& sp = softPairs_[k];
     const PenaltyParams pp = PenaltyOf(sp.params);
@@ -598,7 +625,7 @@ void ContactPipeline::EvaluateSoftPairs(const Request& q, double* energy, Contac
     PairStencils& r = softResults_[k];
     EvaluateSoftRigidPair(in, B, (*q.poses)[sp.collider], b0, (*q.dofOffset)[sp.collider], pp,
                           sp.params.maxAlignmentNormals, dissipation ? &setup : nullptr, q.order,
-                          &softSamples_[k], &r);
+                          &r);
     if (q.order < 2) return;
     for (int f = 0; f < r.count; ++f) ProjectStencil(q.potential, q.projection, &r.stencils[f]);
   };
@@ -669,7 +696,16 @@ void ContactPipeline::GatherKindPairSamples(const Request& q, const KindPair& kp
                                             SampleSink* sink) const {
   const KindView& kv = *q.kinds;
   auto at = [](const std::vector<Eigen::VectorXd>* v, int k) { return v ? &(*v)[k] : nullptr; };
-  if (kp.aKind) {
+  if (kp.aSoft) {
+    const SoftView& soft = *q.soft;
+    SoftPairInput in;
+    in.model = &(*softModels_)[kp.a];
+    in.x = &(*soft.x)[kp.a];
+    in.xLast = at(soft.xLast, kp.a);
+    in.x0 = q.dissipation ? at(soft.x0, kp.a) : nullptr;
+    in.dofOffset = soft.dofOffset ? (*soft.dofOffset)[kp.a] : 0;  // none: value only
+    GatherSoftSamples(in, B, kp.params.threshold, setup, sink);
+  } else if (kp.aKind) {
     GatherKindSamples(*(*kinds_)[kp.a], (*kv.q)[kv.first + kp.a], at(kv.qLast, kp.a),
                       q.dissipation ? at(kv.q0, kp.a) : nullptr, (*kv.stageDof)[kp.a], B,
                       kp.params.threshold, setup, sink);
@@ -698,9 +734,11 @@ void ContactPipeline::EvaluateKindPairs(const Request& q, double* energy, Contac
     for (int e = 0; e < r.count; ++e) ProjectStencil(q.potential, q.projection, &r.stencils[e]);
   };
   const int n = static_cast<int>(models_->size());
-  auto kindId = [&](size_t k) {
+  const int nk = static_cast<int>(kinds_ ? kinds_->size() : 0);
+  auto kindId = [&](size_t k) {  // rigid models, then kinds, then soft actors
     const KindPair& kp = kindPairs_[k];
-    return std::make_pair(kp.aKind ? n + kp.a : kp.a, kp.bKind ? n + kp.b : kp.b);
+    return std::make_pair(kp.aSoft ? n + nk + kp.a : kp.aKind ? n + kp.a : kp.a,
+                          kp.bKind ? n + kp.b : kp.b);
   };
   SweepPairs(dissipation, SlipPairKind::Kind, kindPairs_.size(), true, kindId, evaluate);
   for (size_t k = 0; k < kindPairs_.size(); ++k)
@@ -729,7 +767,6 @@ void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,
     }
   }
   PairStencils scratchSoft;
-  std::vector<PairSample> softSamples;
   for (const SoftContactPair& sp : softPairs_) {
     const PenaltyParams pp = PenaltyOf(sp.params);
     SoftPairInput in;
@@ -737,8 +774,7 @@ void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,
     in.x = &(*soft->x)[sp.soft];
     const size_t first = records->size();
     EvaluateSoftRigidPair(in, models[sp.collider], poses[sp.collider], nullptr, -1, pp,
-                          sp.params.maxAlignmentNormals, nullptr, 0, &softSamples, &scratchSoft,
-                          records);
+                          sp.params.maxAlignmentNormals, nullptr, 0, &scratchSoft, records);
     for (size_t k = first; k < records->size(); ++k) {
       (*records)[k].colliding = softActor_[sp.soft];
       (*records)[k].collider = RigidActor(sp.collider);
@@ -766,6 +802,7 @@ void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,
   Request q;
   q.poses = &poses;
   q.kinds = kinds;
+  q.soft = soft;
   PairStencils scratchKind;
   const std::vector<int> noDofs(models.size(), -1);
   q.dofOffset = &noDofs;
@@ -777,7 +814,8 @@ void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,
     GatherKindPairSamples(q, kp, B, nullptr, &evaluation);
     evaluation.Finish();
     for (size_t k = first; k < records->size(); ++k) {
-      (*records)[k].colliding = kp.aKind ? kindActor_[kp.a] : RigidActor(kp.a);
+      (*records)[k].colliding =
+          kp.aSoft ? softActor_[kp.a] : kp.aKind ? kindActor_[kp.a] : RigidActor(kp.a);
       (*records)[k].collider = kp.bKind ? kindActor_[kp.b] : RigidActor(kp.b);
     }
   }

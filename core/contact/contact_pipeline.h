@@ -92,7 +92,8 @@ struct KindView {
 /// actor, at least one a kind's), evaluated by the one assembler of core/contact/kind_contact.h.
 struct KindPair {
   bool aKind = false, bKind = false;
-  int a = -1, b = -1;  ///< index into the rigid models or the kinds' actors
+  bool aSoft = false;  ///< A is a soft actor (its face samples) on a kind's field
+  int a = -1, b = -1;  ///< index into the rigid models, the soft models or the kinds' actors
   PairContactParams params;
 };
 
@@ -191,6 +192,8 @@ class ContactPipeline {
                  const KindView* kinds = nullptr);
   // The generic layer's ordered pair (a, b) when the roles, the filter and the motion allow it.
   void ConsiderKindPair(bool aKind, int a, bool bKind, int b);
+  // Soft actor s colliding on kind k's field, when the filter allows it.
+  void ConsiderSoftOnKind(int s, int k);
   // A kind pair's collider side at the request's configuration, and the colliding side's samples
   // that can contribute on it.
   FrameSide KindPairCollider(const Request& q, const KindPair& kp) const;
@@ -228,7 +231,6 @@ class ContactPipeline {
   std::vector<int> rigidActor_, softActor_;
   std::vector<SoftContactPair> softPairs_;
   std::vector<PairStencils> softResults_;
-  std::vector<std::vector<PairSample>> softSamples_;  // per soft pair (capacity kept)
   std::vector<SoftColliderPair> softColliderPairs_;
   std::vector<PairStencils> softColliderResults_;
   std::vector<TetLocator> locators_, locatorsLast_;  // per soft actor

@@ -19,23 +19,23 @@ Eigen::Vector3d UnitFaceNormal(const Eigen::Vector3d& a, const Eigen::Vector3d& 
 /// of both faces against B's L-Lipschitz field: the penalty looks at the current face only; with
 /// `dissipation`, explicit normals at the last face, the reconstructed load at the current
 /// distance shifted by the move (φ + G·(Y_n − Y) >= φ − L|Y_n − Y| for every sample).
-bool FaceNeeded(const RigidBodyModel& B, const RigidPose& b, const RigidPose& bn,
-                const Eigen::Vector3d xs[3], const Eigen::Vector3d xns[3], double delta,
-                const DissipationSetup* dissipation) {
-  const double L = B.collider.lipschitz;
-  const Eigen::Matrix3d RBt = b.R.transpose(), RnBt = bn.R.transpose();
+bool FaceNeeded(const FrameSide& B, const Eigen::Vector3d xs[3], const Eigen::Vector3d xns[3],
+                double delta, const DissipationSetup* dissipation) {
+  const RigidCollider& field = *B.field;
+  const double L = field.lipschitz;
+  const Eigen::Matrix3d RBt = B.pose.R.transpose(), RnBt = B.last.R.transpose();
   const Eigen::Vector3d c = (xs[0] + xs[1] + xs[2]) / 3.0;
   const double rad = std::max({(xs[0] - c).norm(), (xs[1] - c).norm(), (xs[2] - c).norm()});
   const Eigen::Vector3d cn = (xns[0] + xns[1] + xns[2]) / 3.0;
   const double radn =
       std::max({(xns[0] - cn).norm(), (xns[1] - cn).norm(), (xns[2] - cn).norm()});
-  const double phiNow = B.collider.Value(RBt * (c - b.p)) - L * rad;
+  const double phiNow = field.Value(RBt * (c - B.pose.p)) - L * rad;
   if (phiNow < delta) return true;
   if (!dissipation) return false;
   if (dissipation->mode == DissipationMode::ExplicitNormals)
-    return B.collider.Value(RnBt * (cn - bn.p)) - L * radn < delta;
+    return field.Value(RnBt * (cn - B.last.p)) - L * radn < delta;
   if (dissipation->mode == DissipationMode::ReconstructedLoad) {
-    const double shift = (RnBt * (cn - bn.p) - RBt * (c - b.p)).norm() + rad + radn;
+    const double shift = (RnBt * (cn - B.last.p) - RBt * (c - B.pose.p)).norm() + rad + radn;
     return phiNow - L * shift < delta;
   }
   return false;
@@ -43,30 +43,24 @@ bool FaceNeeded(const RigidBodyModel& B, const RigidPose& b, const RigidPose& bn
 
 }  // namespace
 
-void EvaluateSoftRigidPair(const SoftPairInput& in, const RigidBodyModel& B, const RigidPose& b,
-                           const RigidStageStart* b0, int bOffset, const PenaltyParams& penalty,
-                           double maxAlignment, const DissipationSetup* diss, int order,
-                           std::vector<PairSample>* samples, PairStencils* out,
-                           std::vector<ContactSampleRecord>* records) {
+void GatherSoftSamples(const SoftPairInput& in, const FrameSide& side, double delta,
+                       const DissipationSetup* diss, SampleSink* sink) {
   const SoftBodyModel& A = *in.model;
   const Eigen::VectorXd& x = *in.x;
   const Eigen::VectorXd& xn = in.xLast ? *in.xLast : x;
-  const FrameSide side = RigidFrameSide(B, b, b0, B.dynamic ? bOffset : -1);
-  const RigidPose& bn = side.last;
-  const bool withDissipation = diss && diss->coefficients.Any() && b0 && in.x0;
-  samples->clear();
+  const bool withDissipation = diss && diss->coefficients.Any() && side.hasStart && in.x0;
+  PairSample s;
+  s.hasNormal = true;
+  s.faceNormal = true;
+  s.blocks = 3;
   for (size_t f = 0; f < A.faces.size(); ++f) {
     const Eigen::Vector3i& F = A.faces[f];
     const Eigen::Vector3d xs[3] = {Node(x, F[0]), Node(x, F[1]), Node(x, F[2])};
     const Eigen::Vector3d xns[3] = {Node(xn, F[0]), Node(xn, F[1]), Node(xn, F[2])};
-    if (!FaceNeeded(B, b, bn, xs, xns, penalty.delta, withDissipation ? diss : nullptr)) continue;
-    PairSample s;
-    s.hasNormal = true;
-    s.faceNormal = true;
+    if (!FaceNeeded(side, xs, xns, delta, withDissipation ? diss : nullptr)) continue;
     s.n = UnitFaceNormal(xs[0], xs[1], xs[2]);
     s.nLast = UnitFaceNormal(xns[0], xns[1], xns[2]);
     s.face = static_cast<int>(f);
-    s.blocks = 3;
     for (int a = 0; a < 3; ++a) {
       s.faceNodes[a] = xs[a];
       const int free = A.freeIndex[F[a]];
@@ -83,11 +77,21 @@ void EvaluateSoftRigidPair(const SoftPairInput& in, const RigidBodyModel& B, con
                              : s.y;
       s.weight = A.samples[q].weight;
       s.key = q;
-      samples->push_back(s);
+      sink->Add(s);
     }
   }
-  EvaluateSamplesOnFrame(*samples, side, penalty, maxAlignment,
-                         withDissipation ? diss : nullptr, order, out, records);
+}
+
+void EvaluateSoftRigidPair(const SoftPairInput& in, const RigidBodyModel& B, const RigidPose& b,
+                           const RigidStageStart* b0, int bOffset, const PenaltyParams& penalty,
+                           double maxAlignment, const DissipationSetup* diss, int order,
+                           PairStencils* out, std::vector<ContactSampleRecord>* records) {
+  const FrameSide side = RigidFrameSide(B, b, b0, B.dynamic ? bOffset : -1);
+  const bool withDissipation = diss && diss->coefficients.Any() && b0 && in.x0;
+  FrameEvaluation evaluation(side, penalty, maxAlignment, withDissipation ? diss : nullptr, order,
+                             out, records);
+  GatherSoftSamples(in, side, penalty.delta, withDissipation ? diss : nullptr, &evaluation);
+  evaluation.Finish();
 }
 
 }  // namespace superdex

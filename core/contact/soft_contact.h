@@ -33,14 +33,19 @@ struct SoftPairInput {
   int dofOffset = 0;  ///< the actor's first stage dof (node a: dofOffset + 3 freeIndex[a])
 };
 
+/// The soft actor's face samples that can contribute on B's field (any frame: a rigid body's, a
+/// kind's), culled face by face by the faces' bounding spheres against the field's Lipschitz
+/// bound; with dissipation (B.hasStart and A's x⁰) also by the mode's load geometry.
+void GatherSoftSamples(const SoftPairInput& A, const FrameSide& B, double delta,
+                       const DissipationSetup* dissipation, SampleSink* sink);
+
 /// order: 0 value only, 1 with gradient/residual, 2 with Hessian/Jacobian. `dissipation` null:
 /// penalty only. One stencil per face with a contribution (carrying its blocks: the face's nodes,
-/// then B's [δp, δθ] at bOffset when B is dynamic, bOffset >= 0), unprojected. `samples`: the
-/// pair's scratch (capacity kept). `records` (order 0 only) collects the active penalty samples.
+/// then B's [δp, δθ] at bOffset when B is dynamic, bOffset >= 0), unprojected. `records` (order 0
+/// only) collects the active penalty samples.
 void EvaluateSoftRigidPair(const SoftPairInput& A, const RigidBodyModel& B, const RigidPose& b,
                            const RigidStageStart* b0, int bOffset, const PenaltyParams& penalty,
                            double maxAlignment, const DissipationSetup* dissipation, int order,
-                           std::vector<PairSample>* samples, PairStencils* out,
-                           std::vector<ContactSampleRecord>* records = nullptr);
+                           PairStencils* out, std::vector<ContactSampleRecord>* records = nullptr);
 
 }  // namespace superdex
