@@ -393,6 +393,7 @@ int ViewCommand(const std::string& trajectory, const std::string& out) {
 int Main(int argc, char** argv) {
   CLI::App app{"superdex: compliant-contact simulation by incremental potentials"};
   app.footer(kExitCodes);
+  app.set_version_flag("--version", SUPERDEX_VERSION, "Print the version and exit");
   app.require_subcommand(1);
   RunArgs runArgs;
   CLI::App* run = AddRunCommand(&app, &runArgs);

@@ -8,6 +8,7 @@ PYBIND11_MODULE(_superdex, m) {
       "Units are SI throughout (m, kg, s, N, Pa). Build a Scene, add actors, step or run it;\n"
       "states and trajectories come back as numpy arrays. Bad values raise ValueError with the\n"
       "field and the rule; a stage that does not converge raises RuntimeError.";
+  m.attr("__version__") = SUPERDEX_VERSION;  // the CMake project version, as `superdex --version`
   using namespace superdex::python;
   BindParams(m);
   BindTetMesh(m);

@@ -9,6 +9,7 @@ on dask.distributed workers (docs/sweeps.md).
 """
 from . import _superdex
 from ._superdex import *  # noqa: F401,F403  (the compiled API)
+from ._superdex import __version__  # noqa: F401  (the CMake project version)
 from ._sweep import fit_batch, sweep  # noqa: F401
 
 # The compiled classes present themselves by their public name, superdex.NAME.

@@ -9,6 +9,12 @@ import superdex as sd
 SOURCE = os.environ.get("SUPERDEX_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
 
 
+def test_version_is_the_cmake_project_version():
+    with open(os.path.join(SOURCE, "CMakeLists.txt")) as f:
+        version = re.search(r"project\(superdex VERSION (\S+)", f.read()).group(1)
+    assert sd.__version__ == version
+
+
 def test_contact_params_defaults_match_the_spec_table():
     c = sd.ContactParams()
     assert c.penalty_coefficient == 1e9

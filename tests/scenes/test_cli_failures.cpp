@@ -96,6 +96,18 @@ TEST_CASE("command line: exit codes are in the help", "[scenes][cli][bad_input]"
   CHECK(r.out.find("130 / 143 stopped by SIGINT / SIGTERM") != std::string::npos);
 }
 
+TEST_CASE("command line: --version prints the CMake project's version", "[scenes][cli]") {
+  const std::string cmake = Read(std::string(SUPERDEX_SOURCE_DIR) + "/CMakeLists.txt");
+  const std::string key = "project(superdex VERSION ";
+  const size_t at = cmake.find(key);
+  REQUIRE(at != std::string::npos);
+  const std::string version = cmake.substr(at + key.size(), cmake.find(' ', at + key.size()) -
+                                                                (at + key.size()));
+  const Result r = Cli("--version");
+  CHECK(r.code == 0);
+  CHECK(r.out == version + "\n");
+}
+
 TEST_CASE("command line: bad options and limits exit with code 2", "[scenes][cli][bad_input]") {
   Result r = Cli("run " + kData + "drop.json --quiet --duration 1e9");
   CHECK(r.code == 2);
