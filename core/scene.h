@@ -168,6 +168,7 @@ class Scene : private StageHost {
   int StageDofs() const { return numDofs_; }
   /// First stage dof of actor a (−1 for a static rigid actor).
   int StageDofOffset(ActorHandle a) const;
+  const std::vector<int>& KindStageDofs(ActorHandle a) const;  ///< per tangent dof; −1: prescribed
   /// The history blocks of PackState's layout (multistep methods: 0 to 2).
   int HistoryBlocks() const;
 

@@ -292,6 +292,10 @@ void Scene::ClearHistory() {
   step_.historyTimes.clear();
 }
 
+const std::vector<int>& Scene::KindStageDofs(ActorHandle a) const {
+  return kindStageDof_[actors_[a.index].local];
+}
+
 int Scene::StageDofOffset(ActorHandle a) const {
   const ActorRef& r = actors_[a.index];
   if (r.kind) {

@@ -9,6 +9,10 @@ namespace {
 
 bool IsColliding(const RigidBodyModel& m) { return !m.samples.empty(); }
 bool IsCollider(const RigidBodyModel& m) { return m.collider.type != ColliderType::None; }
+// Entry k of an optional per-actor list (null without the list).
+const Eigen::VectorXd* EntryOf(const std::vector<Eigen::VectorXd>* v, int k) {
+  return v ? &(*v)[k] : nullptr;
+}
 
 // Below this many tested samples a pair list is evaluated serially.
 constexpr size_t kParallelSampleWork = 20000;
@@ -611,12 +615,7 @@ void ContactPipeline::EvaluateSoftPairs(const Request& q, double* energy, Contac
   auto evaluateSoft = [&](size_t k) {
     const SoftContactPair& sp = softPairs_[k];
     const PenaltyParams pp = PenaltyOf(sp.params);
-    SoftPairInput in;
-    in.model = &(*softModels_)[sp.soft];
-    in.x = &(*soft->x)[sp.soft];
-    in.xLast = soft->xLast ? &(*soft->xLast)[sp.soft] : nullptr;
-    in.x0 = soft->x0 ? &(*soft->x0)[sp.soft] : nullptr;
-    in.dofOffset = (*soft->dofOffset)[sp.soft];
+    const SoftPairInput in = SoftInputOf(*soft, sp.soft);
     const RigidBodyModel& B = (*models_)[sp.collider];
     DissipationSetup setup;
     if (dissipation) setup = MakeSetup(sp.params, *dissipation, q.isotropic);
@@ -681,12 +680,21 @@ void ContactPipeline::EvaluateOnSoftPairs(const Request& q, double* energy, Cont
   }
 }
 
+SoftPairInput ContactPipeline::SoftInputOf(const SoftView& soft, int s) const {
+  SoftPairInput in;
+  in.model = &(*softModels_)[s];
+  in.x = &(*soft.x)[s];
+  in.xLast = EntryOf(soft.xLast, s);
+  in.x0 = EntryOf(soft.x0, s);
+  in.dofOffset = soft.dofOffset ? (*soft.dofOffset)[s] : 0;  // none: value only
+  return in;
+}
+
 FrameSide ContactPipeline::KindPairCollider(const Request& q, const KindPair& kp) const {
   const KindView& kv = *q.kinds;
-  auto at = [](const std::vector<Eigen::VectorXd>* v, int k) { return v ? &(*v)[k] : nullptr; };
   if (kp.bKind)
-    return KindFrameSide(*(*kinds_)[kp.b], (*kv.q)[kv.first + kp.b], at(kv.qLast, kp.b),
-                         q.dissipation ? at(kv.q0, kp.b) : nullptr, (*kv.stageDof)[kp.b]);
+    return KindFrameSide(*(*kinds_)[kp.b], (*kv.q)[kv.first + kp.b], EntryOf(kv.qLast, kp.b),
+                         q.dissipation ? EntryOf(kv.q0, kp.b) : nullptr, (*kv.stageDof)[kp.b]);
   return RigidFrameSide((*models_)[kp.b], (*q.poses)[kp.b],
                         q.stageStart ? &(*q.stageStart)[kp.b] : nullptr, (*q.dofOffset)[kp.b]);
 }
@@ -695,19 +703,11 @@ void ContactPipeline::GatherKindPairSamples(const Request& q, const KindPair& kp
                                             const FrameSide& B, const DissipationSetup* setup,
                                             SampleSink* sink) const {
   const KindView& kv = *q.kinds;
-  auto at = [](const std::vector<Eigen::VectorXd>* v, int k) { return v ? &(*v)[k] : nullptr; };
-  if (kp.aSoft) {
-    const SoftView& soft = *q.soft;
-    SoftPairInput in;
-    in.model = &(*softModels_)[kp.a];
-    in.x = &(*soft.x)[kp.a];
-    in.xLast = at(soft.xLast, kp.a);
-    in.x0 = q.dissipation ? at(soft.x0, kp.a) : nullptr;
-    in.dofOffset = soft.dofOffset ? (*soft.dofOffset)[kp.a] : 0;  // none: value only
-    GatherSoftSamples(in, B, kp.params.threshold, setup, sink);
+  if (kp.aSoft) {  // x⁰ is read only with dissipation (setup)
+    GatherSoftSamples(SoftInputOf(*q.soft, kp.a), B, kp.params.threshold, setup, sink);
   } else if (kp.aKind) {
-    GatherKindSamples(*(*kinds_)[kp.a], (*kv.q)[kv.first + kp.a], at(kv.qLast, kp.a),
-                      q.dissipation ? at(kv.q0, kp.a) : nullptr, (*kv.stageDof)[kp.a], B,
+    GatherKindSamples(*(*kinds_)[kp.a], (*kv.q)[kv.first + kp.a], EntryOf(kv.qLast, kp.a),
+                      q.dissipation ? EntryOf(kv.q0, kp.a) : nullptr, (*kv.stageDof)[kp.a], B,
                       kp.params.threshold, setup, sink);
   } else {
     GatherRigidSamples((*models_)[kp.a], (*q.poses)[kp.a],

@@ -197,6 +197,8 @@ class ContactPipeline {
   // A kind pair's collider side at the request's configuration, and the colliding side's samples
   // that can contribute on it.
   FrameSide KindPairCollider(const Request& q, const KindPair& kp) const;
+  // Soft actor s's side of a pair at the view's positions (dofOffset 0 without the view's).
+  SoftPairInput SoftInputOf(const SoftView& soft, int s) const;
   void GatherKindPairSamples(const Request& q, const KindPair& kp, const FrameSide& B,
                              const DissipationSetup* setup, SampleSink* sink) const;
   int RigidActor(int i) const { return rigidActor_.empty() ? i : rigidActor_[i]; }

@@ -174,18 +174,18 @@ bool SetParameterValue(Scene* scene, const SceneParameter& p, double value, Erro
   }
   if (!std::isfinite(value))
     return Fail(error, ToString(*scene, p) + ": must be finite");
-  const double shift = value - ParameterValue(*scene, p);
-  if (scene->IsKind(p.actor)) {
+  if (scene->IsKind(p.actor)) {  // the state moves along the parameter's direction
     double current = 0.0;
     Eigen::VectorXd d;
     if (!KindMotionParameter(*scene, p, &current, &d))
       return Fail(error, ToString(*scene, p) + ": the actor's kind has no such parameter");
     KindState s = scene->KindStateOf(p.actor);
     const Eigen::Index n = s.x.size();
-    s.x += shift * d.head(n);
-    s.v += shift * d.tail(n);
+    s.x += (value - current) * d.head(n);
+    s.v += (value - current) * d.tail(n);
     return scene->SetKindState(p.actor, s, error);
   }
+  const double shift = value - ParameterValue(*scene, p);
   if (scene->IsSoft(p.actor)) {
     SoftBodyState s = scene->SoftState(p.actor);
     Eigen::VectorXd& v = p.kind == SceneParameterKind::Position ? s.x : s.v;

@@ -90,9 +90,7 @@ std::vector<int> AddKindMovers(Scene& scene, const Eigen::VectorXd& S0, const St
     if (!scene.IsKind({a})) continue;
     const ActorKind& kind = scene.Kind({a});
     const int n = kind.NumDofs(), o = scene.StateOffset({a});
-    std::vector<int> stageDof(kind.NumTangentDofs(), -1);
-    for (int i = 0, next = scene.StageDofOffset({a}); i < kind.NumTangentDofs(); ++i)
-      if (!kind.IsPrescribed(i)) stageDof[i] = next++;
+    const std::vector<int>& stageDof = scene.KindStageDofs({a});
     std::vector<std::vector<KindDifferenceGroup>> groups(blocks);
     for (int b = 0; b < blocks; ++b)
       kind.DifferenceGroups(
