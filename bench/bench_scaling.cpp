@@ -82,7 +82,8 @@ SceneSettings Settings() {
   return s;
 }
 
-std::unique_ptr<Scene> Spheres(int n) {
+// A scene of Settings() with a static ground plane.
+std::unique_ptr<Scene> SceneOnGround() {
   auto scene = std::make_unique<Scene>(Settings());
   Error e;
   RigidActorDesc ground;
@@ -90,6 +91,12 @@ std::unique_ptr<Scene> Spheres(int n) {
   ground.dynamic = false;
   ground.shape.kind = RigidShapeKind::Plane;
   scene->AddRigidActor(ground, &e);
+  return scene;
+}
+
+std::unique_ptr<Scene> Spheres(int n) {
+  auto scene = SceneOnGround();
+  Error e;
   const int side = static_cast<int>(std::ceil(std::sqrt(n / 10.0)));
   const double r = 0.05, pitch = 2 * r - 5e-4;
   for (int k = 0; k < n; ++k) {
@@ -107,13 +114,8 @@ std::unique_ptr<Scene> Spheres(int n) {
 }
 
 std::unique_ptr<Scene> Tori(int n) {
-  auto scene = std::make_unique<Scene>(Settings());
+  auto scene = SceneOnGround();
   Error e;
-  RigidActorDesc ground;
-  ground.name = "ground";
-  ground.dynamic = false;
-  ground.shape.kind = RigidShapeKind::Plane;
-  scene->AddRigidActor(ground, &e);
   auto mesh = Torus(0.1, 0.03, 32, 12);
   const int side = static_cast<int>(std::ceil(std::sqrt(n / 2.0)));
   for (int k = 0; k < n; ++k) {

@@ -20,6 +20,7 @@ import sys
 import numpy as np
 
 import superdex as sd
+from plotting import save_figure
 
 CN = "normal_viscous_damping_coefficient"
 CONTACT = {"penalty_coefficient": 1e6, "coulomb_friction_coefficient": 0.0}
@@ -85,12 +86,7 @@ def main():
     ax.plot([r[0] for r in results], [r[2] for r in results], "o", label="superdex (BDF2)")
     ax.set_xlabel("normal_viscous_damping_coefficient c_n [s/m]")
     ax.set_ylabel("coefficient of restitution e")
-    ax.grid(alpha=0.3)
-    ax.legend()
-    fig.tight_layout()
-    os.makedirs(os.path.dirname(png) or ".", exist_ok=True)
-    fig.savefig(png, dpi=110)
-    print(f"PNG: {png}")
+    save_figure(fig, png, [ax])
 
 
 if __name__ == "__main__":

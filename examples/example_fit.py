@@ -14,6 +14,7 @@ import sys
 import numpy as np
 
 import superdex as sd
+from plotting import save_figure
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 SCENE = os.path.join(ROOT, "scenes", "data", "fit_throw.json")
@@ -69,12 +70,7 @@ def main():
     axes[1].set_ylabel("z [m]")
     for ax in axes:
         ax.set_xlabel("t [s]")
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=8)
-    fig.tight_layout()
-    os.makedirs(os.path.dirname(png) or ".", exist_ok=True)
-    fig.savefig(png, dpi=110)
-    print(f"PNG: {png}")
+    save_figure(fig, png, axes, legend_size=8)
 
 
 if __name__ == "__main__":

@@ -12,6 +12,7 @@ import sys
 import numpy as np
 
 import superdex as sd
+from plotting import save_figure
 
 
 def run(mu, duration=1.5, dt=1e-3):
@@ -47,12 +48,7 @@ def main():
         ax.plot(t, s, label=f"mu = {mu}")
     ax.set_xlabel("t [s]")
     ax.set_ylabel("distance down the slope [m]")
-    ax.grid(alpha=0.3)
-    ax.legend()
-    fig.tight_layout()
-    os.makedirs(os.path.dirname(png) or ".", exist_ok=True)
-    fig.savefig(png, dpi=110)
-    print(f"PNG: {png}")
+    save_figure(fig, png, [ax])
 
 
 if __name__ == "__main__":
