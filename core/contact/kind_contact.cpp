@@ -282,6 +282,11 @@ bool FrameEvaluation::Candidate(const SamplePullback& p, double bound, SdfSample
   if (!OutOfReach(p.Y, bound)) {
     *below = B_.field->EvaluateBelow(p.Y, bound, field);
     out_->minPhi = std::min(out_->minPhi, field->value);
+    // Between δ and the reconstructed bound, the load itself decides: a sample with φ >= δ and
+    // φ + G·(Y_n − Y) >= δ has neither penalty nor load (AddPenalty, AddDissipation).
+    if (*below && reconstructed_ && field->value >= penalty_.delta &&
+        field->value + field->gradient.dot(p.Yn - p.Y) >= dissipation_->penalty.delta)
+      return false;
   }
   return *below || (withDissipation_ && explicitNormals_ && !OutOfReach(p.Yn, penalty_.delta));
 }
@@ -345,8 +350,9 @@ void EvaluateSamplesOnFrame(const std::vector<PairSample>& samples, const FrameS
 /// geometry of the mode. B's field has Lipschitz constant L, so every sample of the ball has
 /// φ >= φ(centre) − L r. Explicit normals read the load at x_n; so does the reconstructed load on
 /// an affine field (a plane), where φ + G·(Y_n − Y) is Φ(Y_n) exactly; otherwise the reconstructed
-/// load is at least φ − L|Y_n − Y|, and a sample's |Y_n − Y| exceeds its ball centre's by at most
-/// `spread` r (a rigid body: ‖R_n,BᵀR_n,A − R_BᵀR_A‖_F).
+/// load is bounded below over the ball by the field (RigidCollider::FirstOrderLowerBound, with the
+/// centre's Y_n − Y), and a sample's Y_n − Y differs from its ball centre's by at most `spread` r
+/// (a rigid body: ‖R_n,BᵀR_n,A − R_BᵀR_A‖_F).
 class BallCulling {
  public:
   BallCulling(const FrameSide& B, double delta, const DissipationSetup* dissipation,
@@ -370,7 +376,7 @@ class BallCulling {
     if (mode_ == DissipationMode::ImplicitLoad) return false;
     const Eigen::Vector3d Yn = RnBt_ * (cLast - B_.last.p);
     if (loadAtLast_) return field_.Value(Yn) - L * r < delta_;
-    return phiNow - L * ((Yn - Y).norm() + spread_ * r) < delta_;
+    return field_.FirstOrderLowerBound(Y, r, Yn - Y) - L * spread_ * r < delta_;
   }
 
  private:

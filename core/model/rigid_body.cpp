@@ -165,6 +165,20 @@ bool RigidCollider::EvaluateBelow(const Eigen::Vector3d& X, double bound, SdfSam
   }
 }
 
+double RigidCollider::FirstOrderLowerBound(const Eigen::Vector3d& C, double r,
+                                           const Eigen::Vector3d& D) const {
+  if (type == ColliderType::Plane) return plane.Value(C + D) - r;
+  const double c = C.norm();
+  if (type == ColliderType::Sphere && c > r) {
+    // |X| >= |C| − r and X̂·D >= Ĉ·D − |X̂ − Ĉ||D|, the chord |X̂ − Ĉ| at most that of the
+    // ball's half-angle asin(r/|C|) seen from the centre: 2 sin(θ/2) = √(2 − 2√(1 − (r/|C|)²)).
+    const double x = r / c;
+    const double chord = std::sqrt(std::max(0.0, 2.0 - 2.0 * std::sqrt(1.0 - x * x)));
+    return c - r - sphere.radius + C.dot(D) / c - chord * D.norm();
+  }
+  return Value(C) - lipschitz * (r + D.norm());
+}
+
 Eigen::Vector3d RigidBodyState::AngularVelocity() const { return Axial(Rdot * R.transpose()); }
 
 namespace {

@@ -105,6 +105,11 @@ struct RigidCollider {
   /// only where Φ >= bound (a NaN is evaluated in full and returns true, as Evaluate would pass
   /// it on). For the per-sample loops, where most samples lie beyond the contact threshold.
   bool EvaluateBelow(const Eigen::Vector3d& X, double bound, SdfSample* s) const;
+  /// A lower bound of the first-order model Φ(X) + ∇Φ(X)·D over the ball |X − C| <= r [m] (the
+  /// reconstructed load of points that were at X + D at x_n): for a sphere field,
+  /// |C| − r − ρ + Ĉ·D − c|D| with c = 2 sin(½ asin(r/|C|)) the largest |X̂ − Ĉ| over the ball
+  /// (|C| > r); for a plane, Φ(C + D) − r; otherwise Φ(C) − L (r + |D|).
+  double FirstOrderLowerBound(const Eigen::Vector3d& C, double r, const Eigen::Vector3d& D) const;
 };
 
 /// Everything about a rigid actor that stays fixed during a run. The body frame has its origin at
