@@ -12,6 +12,20 @@ namespace superdex {
 namespace {
 using namespace dissipation_kernels;
 
+/// R X + t, written out: the per-sample products of a rigid body's samples, inlined (Eigen's
+/// 3 × 3 product assignments are called out of line there).
+inline Eigen::Vector3d MulAdd(const Eigen::Matrix3d& R, const Eigen::Vector3d& X,
+                              const Eigen::Vector3d& t) {
+  return Eigen::Vector3d(R(0, 0) * X[0] + R(0, 1) * X[1] + R(0, 2) * X[2] + t[0],
+                         R(1, 0) * X[0] + R(1, 1) * X[1] + R(1, 2) * X[2] + t[1],
+                         R(2, 0) * X[0] + R(2, 1) * X[1] + R(2, 2) * X[2] + t[2]);
+}
+inline Eigen::Vector3d Mul(const Eigen::Matrix3d& R, const Eigen::Vector3d& X) {
+  return Eigen::Vector3d(R(0, 0) * X[0] + R(0, 1) * X[1] + R(0, 2) * X[2],
+                         R(1, 0) * X[0] + R(1, 1) * X[1] + R(1, 2) * X[2],
+                         R(2, 0) * X[0] + R(2, 1) * X[1] + R(2, 2) * X[2]);
+}
+
 /// The frame's part of a point stencil RigidPullbackStencil formed on [y, δp_B, δθ_B]: kept for
 /// a rigid frame, dropped for a static one, and for a translating frame mapped to its dofs by
 /// δp_B = F_p δq_B (g_B = F_pᵀ g_p, H_yB = H_yp F_p, H_By = F_pᵀ H_py, H_BB = F_pᵀ H_pp F_p; the
@@ -253,6 +267,7 @@ FrameEvaluation::FrameEvaluation(const FrameSide& B, const PenaltyParams& penalt
   reconstructed_ = withDissipation_ && dissipation->mode == DissipationMode::ReconstructedLoad;
   RBt_ = B.pose.R.transpose();
   RnBt_ = B.last.R.transpose();
+  finiteReach_ = std::isfinite(B.field->boundingRadius);
 }
 
 void FrameEvaluation::Close() {  // kept when it has a contribution, else its slot is taken again
@@ -271,13 +286,14 @@ void FrameEvaluation::Open(const PairSample& s) {
   sums_.Begin(s, B_);
 }
 
-bool FrameEvaluation::OutOfReach(const Eigen::Vector3d& Y, double bound) const {
+inline bool FrameEvaluation::OutOfReach(const Eigen::Vector3d& Y, double bound) const {
+  if (!finiteReach_) return false;
   const double reach = B_.field->boundingRadius + bound;
   return Y.squaredNorm() >= reach * reach;
 }
 
-bool FrameEvaluation::Candidate(const SamplePullback& p, double bound, SdfSample* field,
-                                bool* below) {
+inline bool FrameEvaluation::Candidate(const SamplePullback& p, double bound,
+                                       SdfSample* field, bool* below) {
   *below = false;
   if (!OutOfReach(p.Y, bound)) {
     *below = B_.field->EvaluateBelow(p.Y, bound, field);
@@ -313,25 +329,60 @@ void FrameEvaluation::Add(const PairSample& s) {
   if (Candidate(p, bound, &field, &below)) AddTerms(s, p, field, below);
 }
 
-void FrameEvaluation::AddRigidSample(const SurfaceSample& ss, int key) {
-  // The same arithmetic as Add on the formed sample (PullbackOf), in the order a term needs it:
-  // Y, and Y_n where the reconstructed bound or the explicit normals' load reads it; the rest
-  // only for a candidate.
-  SamplePullback p;
-  p.d = (a_.p + a_.R * ss.X) - B_.pose.p;
-  p.Y = RBt_ * p.d;
-  double bound = penalty_.delta;
+void FrameEvaluation::BeginRigidBody(const RigidPose& a, const RigidPose& an,
+                                     const RigidStageStart* start, int offP, int offTheta) {
+  SampleSink::BeginRigidBody(a, an, start, offP, offTheta);
+  RA_ = RBt_ * a.R;
+  YA_ = RBt_ * (a.p - B_.pose.p);
+  RnA_ = RnBt_ * an.R;
+  YnA_ = RnBt_ * (an.p - B_.last.p);
+  dA_ = a.p - B_.pose.p;
+}
+
+void FrameEvaluation::AddRigidSamples(const SurfaceSample* samples, int begin, int end,
+                                      int keyOffset) {
+  // One product per pullback through the body's composed transforms: Y, and Y_n where the
+  // reconstructed bound or the explicit normals' load reads it; the rest only for a candidate
+  // (AddRigidCandidate). The loop keeps the body's transforms in locals.
+  const Eigen::Matrix3d RA = RA_, RnA = RnA_;
+  const Eigen::Vector3d YA = YA_, YnA = YnA_;
+  const double delta = penalty_.delta, L = B_.field->lipschitz;
   const bool yn = reconstructed_ || (withDissipation_ && explicitNormals_);
-  if (yn) p.Yn = RnBt_ * ((an_.p + an_.R * ss.X) - B_.last.p);
-  if (reconstructed_) bound += B_.field->lipschitz * (p.Yn - p.Y).norm();
-  SdfSample field;
-  bool below;
-  if (!Candidate(p, bound, &field, &below)) return;
-  const PairSample& s = FormRigidSample(ss, key);
-  if (!yn) p.Yn = RnBt_ * (s.yLast - B_.last.p);
-  p.NA = RBt_ * s.n;
-  p.NAn = RnBt_ * s.nLast;
-  AddTerms(s, p, field, below);
+  for (int q = begin; q < end; ++q) {
+    const SurfaceSample& ss = samples[q];
+    SamplePullback p;
+    p.Y = MulAdd(RA, ss.X, YA);
+    double bound = delta;
+    if (yn) p.Yn = MulAdd(RnA, ss.X, YnA);
+    if (reconstructed_) bound += L * (p.Yn - p.Y).norm();
+    SdfSample field;
+    bool below;
+    if (Candidate(p, bound, &field, &below))
+      AddRigidCandidate(ss, keyOffset + q, yn, &p, field, below);
+  }
+}
+
+void FrameEvaluation::AddRigidSample(const SurfaceSample& ss, int key) {
+  AddRigidSamples(&ss, 0, 1, key);
+}
+
+void FrameEvaluation::AddRigidCandidate(const SurfaceSample& ss, int key, bool hasYn,
+                                        SamplePullback* p, const SdfSample& field, bool below) {
+  if (!hasYn) p->Yn = MulAdd(RnA_, ss.X, YnA_);
+  const Eigen::Vector3d r = Mul(a_.R, ss.X);
+  p->d = r + dA_;
+  p->NA = Mul(RA_, ss.normal);
+  p->NAn = Mul(RnA_, ss.normal);
+  PairSample& s = rigid_;
+  s.y = a_.p + r;
+  // y⁰ in world coordinates, as the soft and kind samples form it: the stage start's R⁰ is an
+  // affine combination of rotations, and Y⁰ = (R⁰_B)⁻¹(y⁰ − p⁰_B) is formed from it alike.
+  if (B_.hasStart) s.y0 = start_ ? Eigen::Vector3d(start_->p + start_->R * ss.X) : s.y;
+  s.n = Mul(a_.R, ss.normal);
+  s.weight = ss.weight;
+  s.map.r = r;
+  s.key = key;
+  AddTerms(s, *p, field, below);
 }
 
 void FrameEvaluation::Finish() { Close(); }
@@ -423,7 +474,7 @@ void AppendRigidSamples(const RigidBodyModel& A, const RigidPose& a, const Rigid
   };
   sink->BeginRigidBody(a, an, start, offP, offTheta);
   auto visit = [&](int begin, int end) {
-    for (int q = begin; q < end; ++q) sink->AddRigidSample(A.samples[q], keyOffset + q);
+    sink->AddRigidSamples(A.samples.data(), begin, end, keyOffset);
   };
   ForEachSampleRange(A, keep, visit);
 }
@@ -459,6 +510,11 @@ const PairSample& SampleSink::FormRigidSample(const SurfaceSample& ss, int key) 
 
 void SampleSink::AddRigidSample(const SurfaceSample& ss, int key) {
   Add(FormRigidSample(ss, key));
+}
+
+void SampleSink::AddRigidSamples(const SurfaceSample* samples, int begin, int end,
+                                 int keyOffset) {
+  for (int q = begin; q < end; ++q) AddRigidSample(samples[q], keyOffset + q);
 }
 
 void GatherRigidSamples(const RigidBodyModel& A, const RigidPose& a, const RigidStageStart* start,

@@ -88,6 +88,9 @@ class SampleSink {
   virtual void BeginRigidBody(const RigidPose& a, const RigidPose& an,
                               const RigidStageStart* start, int offP, int offTheta);
   virtual void AddRigidSample(const SurfaceSample& ss, int key);
+  /// The samples begin .. end−1 of a body's array, keys from keyOffset + begin (a leaf of its
+  /// sample tree); by default one AddRigidSample each.
+  virtual void AddRigidSamples(const SurfaceSample* samples, int begin, int end, int keyOffset);
 
  protected:
   ~SampleSink() = default;
@@ -172,7 +175,10 @@ class FrameEvaluation final : public SampleSink {
   void Add(const PairSample& s) override;
   /// A rigid body's sample: its pullback Y, and Y_n where the bound needs it, first; the rest
   /// only when the field says it can contribute (most samples a pile's culling keeps do not).
+  void BeginRigidBody(const RigidPose& a, const RigidPose& an, const RigidStageStart* start,
+                      int offP, int offTheta) override;
   void AddRigidSample(const SurfaceSample& ss, int key) override;
+  void AddRigidSamples(const SurfaceSample* samples, int begin, int end, int keyOffset) override;
   void Finish();
 
  private:
@@ -188,7 +194,15 @@ class FrameEvaluation final : public SampleSink {
   // The terms of a candidate sample s with pullback p at field value `field` (`below`: within
   // the bound; else the field is not read).
   void AddTerms(const PairSample& s, const SamplePullback& p, const SdfSample& field, bool below);
+  // A rigid body's candidate sample ss (its pullback p with Y, and Y_n when hasYn) formed and
+  // its terms added.
+  void AddRigidCandidate(const SurfaceSample& ss, int key, bool hasYn, SamplePullback* p,
+                         const SdfSample& field, bool below);
   Eigen::Matrix3d RBt_, RnBt_;  // B's rotations now and at x_n, transposed
+  // The rigid body's samples in B's frame, by its composed transforms: Y = YA_ + RA_ X now,
+  // Y_n = YnA_ + RnA_ X at x_n; y − p_B = R_A X + dA_ (world).
+  Eigen::Matrix3d RA_, RnA_;
+  Eigen::Vector3d YA_, YnA_, dA_;
   const FrameSide& B_;
   PenaltyParams penalty_;
   double maxAlignment_;
@@ -198,6 +212,7 @@ class FrameEvaluation final : public SampleSink {
   PairStencils* out_;
   std::vector<ContactSampleRecord>* records_;
   bool withDissipation_ = false, explicitNormals_ = false, reconstructed_ = false;
+  bool finiteReach_ = true;  // B's field has a finite bounding radius (not a plane)
   ContactStencil* st_ = nullptr;
   RigidSampleSums sums_;
 };
