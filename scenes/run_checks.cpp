@@ -101,30 +101,31 @@ std::string CheckInitialState(SceneFile* file, const PenetrationBound& bound) {
 std::string CheckStep(const SceneFile& file, long long step, const StepReport& rep,
                       const PenetrationBound& bound, bool* finite) {
   const Scene& scene = *file.scene;
-  const std::string where = "step " + std::to_string(step) + " (t = " + Num(rep.time) + " s): ";
+  // The message's prefix, formed only for a message (every step passes through here).
+  auto where = [&] { return "step " + std::to_string(step) + " (t = " + Num(rep.time) + " s): "; };
   *finite = true;
   for (int i = 0; i < scene.NumActors(); ++i)
     if (std::string m = CheckActor(file, i); !m.empty()) {
       *finite = false;
-      return where + m;
+      return where() + m;
     }
   if (!std::isfinite(rep.contact.energy)) {
     *finite = false;
-    return where + "the contact energy is not finite";
+    return where() + "the contact energy is not finite";
   }
   if (rep.minDetF <= 0) {
     for (const ActorHandle h : scene.SoftActors()) {
       double minDetF = INFINITY;
       ElasticEnergy(scene.SoftModel(h), scene.SoftState(h).x, &minDetF);
       if (minDetF <= 0)
-        return where + "a tet of soft actor " + Name(file, h.index) + " inverted (min det F = " +
+        return where() + "a tet of soft actor " + Name(file, h.index) + " inverted (min det F = " +
                Num(minDetF) + " <= 0): the material is too soft for its load (raise " +
                "material.youngs_modulus) or the step too large";
     }
-    return where + "a soft tet inverted (min det F = " + Num(rep.minDetF) + " <= 0)";
+    return where() + "a soft tet inverted (min det F = " + Num(rep.minDetF) + " <= 0)";
   }
   if (std::string m = CheckPenetration(rep.contact.minSignedDistance, bound); !m.empty())
-    return where + m;
+    return where() + m;
   return "";
 }
 

@@ -268,6 +268,7 @@ FrameEvaluation::FrameEvaluation(const FrameSide& B, const PenaltyParams& penalt
   RBt_ = B.pose.R.transpose();
   RnBt_ = B.last.R.transpose();
   finiteReach_ = std::isfinite(B.field->boundingRadius);
+  penaltyValueOnly_ = order == 0 && !withDissipation_ && !records;
 }
 
 void FrameEvaluation::Close() {  // kept when it has a contribution, else its slot is taken again
@@ -298,13 +299,13 @@ inline bool FrameEvaluation::Candidate(const SamplePullback& p, double bound,
   if (!OutOfReach(p.Y, bound)) {
     *below = B_.field->EvaluateBelow(p.Y, bound, field);
     out_->minPhi = std::min(out_->minPhi, field->value);
-    // Between δ and the reconstructed bound, the load itself decides: a sample with φ >= δ and
-    // φ + G·(Y_n − Y) >= δ has neither penalty nor load (AddPenalty, AddDissipation).
-    if (*below && reconstructed_ && field->value >= penalty_.delta &&
-        field->value + field->gradient.dot(p.Yn - p.Y) >= dissipation_->penalty.delta)
-      return false;
   }
   return *below || (withDissipation_ && explicitNormals_ && !OutOfReach(p.Yn, penalty_.delta));
+}
+
+inline bool FrameEvaluation::LoadFree(const SamplePullback& p, const SdfSample& field) const {
+  return reconstructed_ && field.value >= penalty_.delta &&
+         field.value + field.gradient.dot(p.Yn - p.Y) >= dissipation_->penalty.delta;
 }
 
 void FrameEvaluation::AddTerms(const PairSample& s, const SamplePullback& p, const SdfSample& field,
@@ -326,39 +327,47 @@ void FrameEvaluation::Add(const PairSample& s) {
   if (reconstructed_) bound += B_.field->lipschitz * (p.Yn - p.Y).norm();
   SdfSample field;
   bool below;
-  if (Candidate(p, bound, &field, &below)) AddTerms(s, p, field, below);
+  if (Candidate(p, bound, &field, &below) && !LoadFree(p, field)) AddTerms(s, p, field, below);
 }
 
 void FrameEvaluation::BeginRigidBody(const RigidPose& a, const RigidPose& an,
-                                     const RigidStageStart* start, int offP, int offTheta) {
-  SampleSink::BeginRigidBody(a, an, start, offP, offTheta);
+                                     const RigidStageStart* start, int offP, int offTheta,
+                                     double radius) {
+  SampleSink::BeginRigidBody(a, an, start, offP, offTheta, radius);
   RA_ = RBt_ * a.R;
   YA_ = RBt_ * (a.p - B_.pose.p);
   RnA_ = RnBt_ * an.R;
   YnA_ = RnBt_ * (an.p - B_.last.p);
   dA_ = a.p - B_.pose.p;
+  // |Y_n − Y| of any sample: |ΔY_A + ΔR X| <= |ΔY_A| + ‖ΔR‖_F |X| (a margin for round-off).
+  motion_ = ((YnA_ - YA_).norm() + (RnA_ - RA_).norm() * radius) * (1.0 + 1e-12) + 1e-15;
 }
 
 void FrameEvaluation::AddRigidSamples(const SurfaceSample* samples, int begin, int end,
                                       int keyOffset) {
   // One product per pullback through the body's composed transforms: Y, and Y_n where the
-  // reconstructed bound or the explicit normals' load reads it; the rest only for a candidate
-  // (AddRigidCandidate). The loop keeps the body's transforms in locals.
+  // explicit normals' load reads it; the rest only for a candidate (AddRigidCandidate). The
+  // reconstructed load's bound is the body's, δ + L max |Y_n − Y| (Add's per-sample bound is no
+  // larger); Y_n is formed only where φ falls below it, and the load test (LoadFree) decides.
+  // The loop keeps the body's transforms in locals.
   const Eigen::Matrix3d RA = RA_, RnA = RnA_;
   const Eigen::Vector3d YA = YA_, YnA = YnA_;
-  const double delta = penalty_.delta, L = B_.field->lipschitz;
-  const bool yn = reconstructed_ || (withDissipation_ && explicitNormals_);
+  const double bound =
+      penalty_.delta + (reconstructed_ ? B_.field->lipschitz * motion_ : 0.0);
+  const bool explicitNormals = withDissipation_ && explicitNormals_;
+  SdfSample field;  // its value set per sample, its derivatives where below the bound
   for (int q = begin; q < end; ++q) {
     const SurfaceSample& ss = samples[q];
     SamplePullback p;
     p.Y = MulAdd(RA, ss.X, YA);
-    double bound = delta;
-    if (yn) p.Yn = MulAdd(RnA, ss.X, YnA);
-    if (reconstructed_) bound += L * (p.Yn - p.Y).norm();
-    SdfSample field;
+    if (explicitNormals) p.Yn = MulAdd(RnA, ss.X, YnA);
     bool below;
-    if (Candidate(p, bound, &field, &below))
-      AddRigidCandidate(ss, keyOffset + q, yn, &p, field, below);
+    if (!Candidate(p, bound, &field, &below)) continue;
+    if (reconstructed_) {
+      p.Yn = MulAdd(RnA, ss.X, YnA);
+      if (LoadFree(p, field)) continue;
+    }
+    AddRigidCandidate(ss, keyOffset + q, explicitNormals || reconstructed_, &p, field, below);
   }
 }
 
@@ -369,19 +378,20 @@ void FrameEvaluation::AddRigidSample(const SurfaceSample& ss, int key) {
 void FrameEvaluation::AddRigidCandidate(const SurfaceSample& ss, int key, bool hasYn,
                                         SamplePullback* p, const SdfSample& field, bool below) {
   if (!hasYn) p->Yn = MulAdd(RnA_, ss.X, YnA_);
-  const Eigen::Vector3d r = Mul(a_.R, ss.X);
-  p->d = r + dA_;
   p->NA = Mul(RA_, ss.normal);
   p->NAn = Mul(RnA_, ss.normal);
   PairSample& s = rigid_;
+  s.weight = ss.weight;
+  s.key = key;
+  if (penaltyValueOnly_) return AddTerms(s, *p, field, below);  // Y, Y_n, the normals, w
+  const Eigen::Vector3d r = Mul(a_.R, ss.X);
+  p->d = r + dA_;
   s.y = a_.p + r;
   // y⁰ in world coordinates, as the soft and kind samples form it: the stage start's R⁰ is an
   // affine combination of rotations, and Y⁰ = (R⁰_B)⁻¹(y⁰ − p⁰_B) is formed from it alike.
   if (B_.hasStart) s.y0 = start_ ? Eigen::Vector3d(start_->p + start_->R * ss.X) : s.y;
   s.n = Mul(a_.R, ss.normal);
-  s.weight = ss.weight;
   s.map.r = r;
-  s.key = key;
   AddTerms(s, *p, field, below);
 }
 
@@ -420,12 +430,17 @@ class BallCulling {
                   (mode_ == DissipationMode::ReconstructedLoad && field_.type == ColliderType::Plane);
   }
   bool operator()(const Eigen::Vector3d& c, const Eigen::Vector3d& cLast, double r) const {
+    return InFrame(RBt_ * (c - B_.pose.p), [&] { return RnBt_ * (cLast - B_.last.p); }, r);
+  }
+  /// The same test on the centre in B's frame: Y now, and lastY() at x_n (formed only where the
+  /// load geometry needs it).
+  template <typename LastCentre>
+  bool InFrame(const Eigen::Vector3d& Y, LastCentre&& lastY, double r) const {
     const double L = field_.lipschitz;
-    const Eigen::Vector3d Y = RBt_ * (c - B_.pose.p);
     const double phiNow = field_.Value(Y) - L * r;
     if (phiNow < delta_) return true;
     if (mode_ == DissipationMode::ImplicitLoad) return false;
-    const Eigen::Vector3d Yn = RnBt_ * (cLast - B_.last.p);
+    const Eigen::Vector3d Yn = lastY();
     if (loadAtLast_) return field_.Value(Yn) - L * r < delta_;
     return field_.FirstOrderLowerBound(Y, r, Yn - Y) - L * spread_ * r < delta_;
   }
@@ -466,13 +481,15 @@ void AppendRigidSamples(const RigidBodyModel& A, const RigidPose& a, const Rigid
                         int offP, int offTheta, int keyOffset, const FrameSide& B, double delta,
                         const DissipationSetup* dissipation, SampleSink* sink) {
   const RigidPose& an = start ? start->last : a;
-  const double spread =
-      (B.last.R.transpose() * an.R - B.pose.R.transpose() * a.R).norm();
-  const BallCulling near(B, delta, dissipation, start != nullptr, spread);
+  // A's composed transforms into B's frame now and at x_n (the sink pulls samples back alike).
+  const Eigen::Matrix3d RA = B.pose.R.transpose() * a.R, RnA = B.last.R.transpose() * an.R;
+  const Eigen::Vector3d YA = B.pose.R.transpose() * (a.p - B.pose.p);
+  const Eigen::Vector3d YnA = B.last.R.transpose() * (an.p - B.last.p);
+  const BallCulling near(B, delta, dissipation, start != nullptr, (RnA - RA).norm());
   auto keep = [&](const Eigen::Vector3d& c, double r) {
-    return near(a.p + a.R * c, an.p + an.R * c, r);
+    return near.InFrame(YA + RA * c, [&] { return Eigen::Vector3d(YnA + RnA * c); }, r);
   };
-  sink->BeginRigidBody(a, an, start, offP, offTheta);
+  sink->BeginRigidBody(a, an, start, offP, offTheta, A.samplesRadius);
   auto visit = [&](int begin, int end) {
     sink->AddRigidSamples(A.samples.data(), begin, end, keyOffset);
   };
@@ -482,7 +499,7 @@ void AppendRigidSamples(const RigidBodyModel& A, const RigidPose& a, const Rigid
 }  // namespace
 
 void SampleSink::BeginRigidBody(const RigidPose& a, const RigidPose& an,
-                                const RigidStageStart* start, int offP, int offTheta) {
+                                const RigidStageStart* start, int offP, int offTheta, double) {
   a_ = a;
   an_ = an;
   start_ = start;

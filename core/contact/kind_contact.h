@@ -82,11 +82,13 @@ class SampleSink {
  public:
   virtual void Add(const PairSample& s) = 0;
   /// A rigid body's samples, announced by body (pose a now, an at x_n, the stage start `start`
-  /// or null; [δp] at stage dof offP, [δθ] at offTheta, −1: none), then one at a time in the
-  /// body frame. The default forms each as a PairSample (a Rigid map, its normal turning with the
-  /// body) and passes it to Add; a sink may form only what it needs.
+  /// or null; [δp] at stage dof offP, [δθ] at offTheta, −1: none; `radius` >= every sample's
+  /// |X| [m]), then one at a time in the body frame. The default forms each as a PairSample (a
+  /// Rigid map, its normal turning with the body) and passes it to Add; a sink may form only
+  /// what it needs.
   virtual void BeginRigidBody(const RigidPose& a, const RigidPose& an,
-                              const RigidStageStart* start, int offP, int offTheta);
+                              const RigidStageStart* start, int offP, int offTheta,
+                              double radius);
   virtual void AddRigidSample(const SurfaceSample& ss, int key);
   /// The samples begin .. end−1 of a body's array, keys from keyOffset + begin (a leaf of its
   /// sample tree); by default one AddRigidSample each.
@@ -176,7 +178,7 @@ class FrameEvaluation final : public SampleSink {
   /// A rigid body's sample: its pullback Y, and Y_n where the bound needs it, first; the rest
   /// only when the field says it can contribute (most samples a pile's culling keeps do not).
   void BeginRigidBody(const RigidPose& a, const RigidPose& an, const RigidStageStart* start,
-                      int offP, int offTheta) override;
+                      int offP, int offTheta, double radius) override;
   void AddRigidSample(const SurfaceSample& ss, int key) override;
   void AddRigidSamples(const SurfaceSample* samples, int begin, int end, int keyOffset) override;
   void Finish();
@@ -189,6 +191,9 @@ class FrameEvaluation final : public SampleSink {
   // Whether a sample with pullbacks p may contribute: its field at Y below `bound` (*field and
   // *below, evaluated only within reach), or explicit normals' load at a Y_n within δ's reach.
   bool Candidate(const SamplePullback& p, double bound, SdfSample* field, bool* below);
+  // Whether a sample with φ >= δ carries no reconstructed load either: φ + G·(Y_n − Y) >= δ
+  // (between δ and the bound, the load decides; AddPenalty, AddDissipation).
+  bool LoadFree(const SamplePullback& p, const SdfSample& field) const;
   // Opens the stencil of sample s when it does not share the open one's blocks.
   void Open(const PairSample& s);
   // The terms of a candidate sample s with pullback p at field value `field` (`below`: within
@@ -203,6 +208,7 @@ class FrameEvaluation final : public SampleSink {
   // Y_n = YnA_ + RnA_ X at x_n; y − p_B = R_A X + dA_ (world).
   Eigen::Matrix3d RA_, RnA_;
   Eigen::Vector3d YA_, YnA_, dA_;
+  double motion_ = 0.0;  // a bound on |Y_n − Y| over the body's samples [m]
   const FrameSide& B_;
   PenaltyParams penalty_;
   double maxAlignment_;
@@ -213,6 +219,7 @@ class FrameEvaluation final : public SampleSink {
   std::vector<ContactSampleRecord>* records_;
   bool withDissipation_ = false, explicitNormals_ = false, reconstructed_ = false;
   bool finiteReach_ = true;  // B's field has a finite bounding radius (not a plane)
+  bool penaltyValueOnly_ = false;  // order 0 without dissipation or records
   ContactStencil* st_ = nullptr;
   RigidSampleSums sums_;
 };
