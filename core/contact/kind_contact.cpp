@@ -265,8 +265,6 @@ FrameEvaluation::FrameEvaluation(const FrameSide& B, const PenaltyParams& penalt
   }
   explicitNormals_ = withDissipation_ && dissipation->mode == DissipationMode::ExplicitNormals;
   reconstructed_ = withDissipation_ && dissipation->mode == DissipationMode::ReconstructedLoad;
-  RBt_ = B.pose.R.transpose();
-  RnBt_ = B.last.R.transpose();
   finiteReach_ = std::isfinite(B.field->boundingRadius);
   penaltyValueOnly_ = order == 0 && !withDissipation_ && !records;
 }
@@ -300,7 +298,7 @@ inline bool FrameEvaluation::Candidate(const SamplePullback& p, double bound,
     *below = B_.field->EvaluateBelow(p.Y, bound, field);
     out_->minPhi = std::min(out_->minPhi, field->value);
   }
-  return *below || (withDissipation_ && explicitNormals_ && !OutOfReach(p.Yn, penalty_.delta));
+  return *below || (explicitNormals_ && !OutOfReach(p.Yn, penalty_.delta));
 }
 
 inline bool FrameEvaluation::LoadFree(const SamplePullback& p, const SdfSample& field) const {
@@ -334,13 +332,10 @@ void FrameEvaluation::BeginRigidBody(const RigidPose& a, const RigidPose& an,
                                      const RigidStageStart* start, int offP, int offTheta,
                                      double radius) {
   SampleSink::BeginRigidBody(a, an, start, offP, offTheta, radius);
-  RA_ = RBt_ * a.R;
-  YA_ = RBt_ * (a.p - B_.pose.p);
-  RnA_ = RnBt_ * an.R;
-  YnA_ = RnBt_ * (an.p - B_.last.p);
+  A_ = ComposeInFrame(a, an, B_);
   dA_ = a.p - B_.pose.p;
-  // |Y_n − Y| of any sample: |ΔY_A + ΔR X| <= |ΔY_A| + ‖ΔR‖_F |X| (a margin for round-off).
-  motion_ = ((YnA_ - YA_).norm() + (RnA_ - RA_).norm() * radius) * (1.0 + 1e-12) + 1e-15;
+  // |Y_n − Y| of any sample, with a margin for round-off.
+  motion_ = ((A_.tn - A_.t).norm() + A_.turn * radius) * (1.0 + 1e-12) + 1e-15;
 }
 
 void FrameEvaluation::AddRigidSamples(const SurfaceSample* samples, int begin, int end,
@@ -350,11 +345,11 @@ void FrameEvaluation::AddRigidSamples(const SurfaceSample* samples, int begin, i
   // reconstructed load's bound is the body's, δ + L max |Y_n − Y| (Add's per-sample bound is no
   // larger); Y_n is formed only where φ falls below it, and the load test (LoadFree) decides.
   // The loop keeps the body's transforms in locals.
-  const Eigen::Matrix3d RA = RA_, RnA = RnA_;
-  const Eigen::Vector3d YA = YA_, YnA = YnA_;
+  const Eigen::Matrix3d RA = A_.R, RnA = A_.Rn;
+  const Eigen::Vector3d YA = A_.t, YnA = A_.tn;
   const double bound =
       penalty_.delta + (reconstructed_ ? B_.field->lipschitz * motion_ : 0.0);
-  const bool explicitNormals = withDissipation_ && explicitNormals_;
+  const bool explicitNormals = explicitNormals_;
   SdfSample field;  // its value set per sample, its derivatives where below the bound
   for (int q = begin; q < end; ++q) {
     const SurfaceSample& ss = samples[q];
@@ -371,15 +366,11 @@ void FrameEvaluation::AddRigidSamples(const SurfaceSample* samples, int begin, i
   }
 }
 
-void FrameEvaluation::AddRigidSample(const SurfaceSample& ss, int key) {
-  AddRigidSamples(&ss, 0, 1, key);
-}
-
 void FrameEvaluation::AddRigidCandidate(const SurfaceSample& ss, int key, bool hasYn,
                                         SamplePullback* p, const SdfSample& field, bool below) {
-  if (!hasYn) p->Yn = MulAdd(RnA_, ss.X, YnA_);
-  p->NA = Mul(RA_, ss.normal);
-  p->NAn = Mul(RnA_, ss.normal);
+  if (!hasYn) p->Yn = MulAdd(A_.Rn, ss.X, A_.tn);
+  p->NA = Mul(A_.R, ss.normal);
+  p->NAn = Mul(A_.Rn, ss.normal);
   PairSample& s = rigid_;
   s.weight = ss.weight;
   s.key = key;
@@ -481,13 +472,11 @@ void AppendRigidSamples(const RigidBodyModel& A, const RigidPose& a, const Rigid
                         int offP, int offTheta, int keyOffset, const FrameSide& B, double delta,
                         const DissipationSetup* dissipation, SampleSink* sink) {
   const RigidPose& an = start ? start->last : a;
-  // A's composed transforms into B's frame now and at x_n (the sink pulls samples back alike).
-  const Eigen::Matrix3d RA = B.pose.R.transpose() * a.R, RnA = B.last.R.transpose() * an.R;
-  const Eigen::Vector3d YA = B.pose.R.transpose() * (a.p - B.pose.p);
-  const Eigen::Vector3d YnA = B.last.R.transpose() * (an.p - B.last.p);
-  const BallCulling near(B, delta, dissipation, start != nullptr, (RnA - RA).norm());
+  // The tree is culled in B's frame as the sink pulls the samples back.
+  const BodyInFrame in = ComposeInFrame(a, an, B);
+  const BallCulling near(B, delta, dissipation, start != nullptr, in.turn);
   auto keep = [&](const Eigen::Vector3d& c, double r) {
-    return near.InFrame(YA + RA * c, [&] { return Eigen::Vector3d(YnA + RnA * c); }, r);
+    return near.InFrame(in.t + in.R * c, [&] { return Eigen::Vector3d(in.tn + in.Rn * c); }, r);
   };
   sink->BeginRigidBody(a, an, start, offP, offTheta, A.samplesRadius);
   auto visit = [&](int begin, int end) {
@@ -525,13 +514,20 @@ const PairSample& SampleSink::FormRigidSample(const SurfaceSample& ss, int key) 
   return s;
 }
 
-void SampleSink::AddRigidSample(const SurfaceSample& ss, int key) {
-  Add(FormRigidSample(ss, key));
-}
-
 void SampleSink::AddRigidSamples(const SurfaceSample* samples, int begin, int end,
                                  int keyOffset) {
-  for (int q = begin; q < end; ++q) AddRigidSample(samples[q], keyOffset + q);
+  for (int q = begin; q < end; ++q) Add(FormRigidSample(samples[q], keyOffset + q));
+}
+
+BodyInFrame ComposeInFrame(const RigidPose& a, const RigidPose& an, const FrameSide& B) {
+  BodyInFrame f;
+  const Eigen::Matrix3d RBt = B.pose.R.transpose(), RnBt = B.last.R.transpose();
+  f.R = RBt * a.R;
+  f.t = RBt * (a.p - B.pose.p);
+  f.Rn = RnBt * an.R;
+  f.tn = RnBt * (an.p - B.last.p);
+  f.turn = (f.Rn - f.R).norm();
+  return f;
 }
 
 void GatherRigidSamples(const RigidBodyModel& A, const RigidPose& a, const RigidStageStart* start,

@@ -83,15 +83,13 @@ class SampleSink {
   virtual void Add(const PairSample& s) = 0;
   /// A rigid body's samples, announced by body (pose a now, an at x_n, the stage start `start`
   /// or null; [δp] at stage dof offP, [δθ] at offTheta, −1: none; `radius` >= every sample's
-  /// |X| [m]), then one at a time in the body frame. The default forms each as a PairSample (a
-  /// Rigid map, its normal turning with the body) and passes it to Add; a sink may form only
-  /// what it needs.
+  /// |X| [m]), then a leaf of its sample tree at a time in the body frame.
   virtual void BeginRigidBody(const RigidPose& a, const RigidPose& an,
                               const RigidStageStart* start, int offP, int offTheta,
                               double radius);
-  virtual void AddRigidSample(const SurfaceSample& ss, int key);
-  /// The samples begin .. end−1 of a body's array, keys from keyOffset + begin (a leaf of its
-  /// sample tree); by default one AddRigidSample each.
+  /// The samples begin .. end−1 of a body's array, keys from keyOffset + begin. The default
+  /// forms each as a PairSample (a Rigid map, its normal turning with the body) and passes it to
+  /// Add; a sink may form only what it needs.
   virtual void AddRigidSamples(const SurfaceSample* samples, int begin, int end, int keyOffset);
 
  protected:
@@ -160,6 +158,16 @@ struct RigidSampleSums {
   }
 };
 
+/// Rigid body A's composed transforms into frame B's coordinates: a sample's Y = R X + t now and
+/// Y_n = Rn X + tn at x_n, and turn = ‖Rn − R‖_F, so that |Y_n − Y| <= |tn − t| + turn |X|.
+struct BodyInFrame {
+  Eigen::Matrix3d R, Rn;
+  Eigen::Vector3d t, tn;
+  double turn = 0.0;
+};
+/// A at pose a now and an at x_n, in B's frame (B.pose now, B.last at x_n).
+BodyInFrame ComposeInFrame(const RigidPose& a, const RigidPose& an, const FrameSide& B);
+
 /// A sample's pullbacks into B's frame: d = y − p_B (world) [m], Y now and Y_n at x_n [m], and
 /// the colliding normal N_A in B's coordinates at both (zero without one).
 struct SamplePullback {
@@ -175,11 +183,10 @@ class FrameEvaluation final : public SampleSink {
                   const DissipationSetup* dissipation, int order, PairStencils* out,
                   std::vector<ContactSampleRecord>* records = nullptr);
   void Add(const PairSample& s) override;
-  /// A rigid body's sample: its pullback Y, and Y_n where the bound needs it, first; the rest
-  /// only when the field says it can contribute (most samples a pile's culling keeps do not).
+  /// A rigid body's samples: each one's pullback Y, and Y_n where the bound needs it, first; the
+  /// rest only when the field says it can contribute (most samples a pile's culling keeps do not).
   void BeginRigidBody(const RigidPose& a, const RigidPose& an, const RigidStageStart* start,
                       int offP, int offTheta, double radius) override;
-  void AddRigidSample(const SurfaceSample& ss, int key) override;
   void AddRigidSamples(const SurfaceSample* samples, int begin, int end, int keyOffset) override;
   void Finish();
 
@@ -203,11 +210,9 @@ class FrameEvaluation final : public SampleSink {
   // its terms added.
   void AddRigidCandidate(const SurfaceSample& ss, int key, bool hasYn, SamplePullback* p,
                          const SdfSample& field, bool below);
-  Eigen::Matrix3d RBt_, RnBt_;  // B's rotations now and at x_n, transposed
-  // The rigid body's samples in B's frame, by its composed transforms: Y = YA_ + RA_ X now,
-  // Y_n = YnA_ + RnA_ X at x_n; y − p_B = R_A X + dA_ (world).
-  Eigen::Matrix3d RA_, RnA_;
-  Eigen::Vector3d YA_, YnA_, dA_;
+  // The rigid body in B's frame (its samples' Y and Y_n); y − p_B = R_A X + dA_ (world).
+  BodyInFrame A_;
+  Eigen::Vector3d dA_;
   double motion_ = 0.0;  // a bound on |Y_n − Y| over the body's samples [m]
   const FrameSide& B_;
   PenaltyParams penalty_;
