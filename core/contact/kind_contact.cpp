@@ -278,7 +278,11 @@ void FrameEvaluation::Close() {  // kept when it has a contribution, else its sl
 }
 
 void FrameEvaluation::Open(const PairSample& s) {
-  if (st_ && std::equal(s.offs, s.offs + s.blocks, st_->offs) && s.face == st_->aFace) return;
+  if (st_ && s.face == st_->aFace) {
+    int k = 0;
+    while (k < s.blocks && s.offs[k] == st_->offs[k]) ++k;
+    if (k == s.blocks) return;
+  }
   Close();
   st_ = &out_->Slot(s.face, -1, s.map.Dofs() + B_.Dofs(), order_);
   SetBlocks(s, B_, st_);
@@ -309,6 +313,11 @@ inline bool FrameEvaluation::LoadFree(const SamplePullback& p, const SdfSample& 
 void FrameEvaluation::AddTerms(const PairSample& s, const SamplePullback& p, const SdfSample& field,
                                bool below) {
   Open(s);  // stencils only for samples that may contribute
+  AddOpenTerms(s, p, field, below);
+}
+
+void FrameEvaluation::AddOpenTerms(const PairSample& s, const SamplePullback& p,
+                                   const SdfSample& field, bool below) {
   if (below)
     AddPenalty(s, B_, p, field, penalty_, maxAlignment_, order_, out_, st_, &sums_, records_);
   if (withDissipation_ && (below || explicitNormals_))
@@ -332,6 +341,7 @@ void FrameEvaluation::BeginRigidBody(const RigidPose& a, const RigidPose& an,
                                      const RigidStageStart* start, int offP, int offTheta,
                                      double radius) {
   SampleSink::BeginRigidBody(a, an, start, offP, offTheta, radius);
+  rigidOpen_ = false;
   A_ = ComposeInFrame(a, an, B_);
   dA_ = a.p - B_.pose.p;
   // |Y_n − Y| of any sample, with a margin for round-off.
@@ -374,7 +384,11 @@ void FrameEvaluation::AddRigidCandidate(const SurfaceSample& ss, int key, bool h
   PairSample& s = rigid_;
   s.weight = ss.weight;
   s.key = key;
-  if (penaltyValueOnly_) return AddTerms(s, *p, field, below);  // Y, Y_n, the normals, w
+  if (!rigidOpen_) {  // the body's first candidate: its samples share one stencil
+    Open(s);
+    rigidOpen_ = true;
+  }
+  if (penaltyValueOnly_) return AddOpenTerms(s, *p, field, below);  // Y, Y_n, the normals, w
   const Eigen::Vector3d r = Mul(a_.R, ss.X);
   p->d = r + dA_;
   s.y = a_.p + r;
@@ -383,7 +397,7 @@ void FrameEvaluation::AddRigidCandidate(const SurfaceSample& ss, int key, bool h
   if (B_.hasStart) s.y0 = start_ ? Eigen::Vector3d(start_->p + start_->R * ss.X) : s.y;
   s.n = Mul(a_.R, ss.normal);
   s.map.r = r;
-  AddTerms(s, *p, field, below);
+  AddOpenTerms(s, *p, field, below);
 }
 
 void FrameEvaluation::Finish() { Close(); }

@@ -206,6 +206,9 @@ class FrameEvaluation final : public SampleSink {
   // The terms of a candidate sample s with pullback p at field value `field` (`below`: within
   // the bound; else the field is not read).
   void AddTerms(const PairSample& s, const SamplePullback& p, const SdfSample& field, bool below);
+  // AddTerms into the open stencil.
+  void AddOpenTerms(const PairSample& s, const SamplePullback& p, const SdfSample& field,
+                    bool below);
   // A rigid body's candidate sample ss (its pullback p with Y, and Y_n when hasYn) formed and
   // its terms added.
   void AddRigidCandidate(const SurfaceSample& ss, int key, bool hasYn, SamplePullback* p,
@@ -226,6 +229,7 @@ class FrameEvaluation final : public SampleSink {
   bool finiteReach_ = true;  // B's field has a finite bounding radius (not a plane)
   bool penaltyValueOnly_ = false;  // order 0 without dissipation or records
   ContactStencil* st_ = nullptr;
+  bool rigidOpen_ = false;  // the rigid body's stencil is open (its samples share their blocks)
   RigidSampleSums sums_;
 };
 

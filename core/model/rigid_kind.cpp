@@ -15,15 +15,20 @@ Eigen::Map<const Eigen::Matrix3d> RotationOf(const Eigen::VectorXd& q) {
 
 }  // namespace
 
-void AppendRigidInertiaHessian(StencilMatrix H, PsdProjection projection, int offset,
-                               std::vector<Eigen::Triplet<double>>* triplets) {
-  if (projection != PsdProjection::None &&
-      Eigen::LLT<Eigen::Matrix3d>(H.bottomRightCorner<3, 3>()).info() != Eigen::Success)
-    ProjectToPsd(&H, projection == PsdProjection::Abs);
-  for (int c = 0; c < 6; ++c)
-    for (int r = 0; r < 6; ++r)
-      if (r == c || (r >= 3 && c >= 3) || H(r, c) != 0.0)
-        triplets->emplace_back(offset + r, offset + c, H(r, c));
+void AppendRigidInertiaHessian(const Eigen::Matrix<double, 6, 6>& H, PsdProjection projection,
+                               int offset, std::vector<Eigen::Triplet<double>>* triplets) {
+  auto append = [&](const auto& M) {
+    for (int c = 0; c < 6; ++c)
+      for (int r = 0; r < 6; ++r)
+        if (r == c || (r >= 3 && c >= 3) || M(r, c) != 0.0)
+          triplets->emplace_back(offset + r, offset + c, M(r, c));
+  };
+  if (projection == PsdProjection::None ||
+      Eigen::LLT<Eigen::Matrix3d>(H.bottomRightCorner<3, 3>()).info() == Eigen::Success)
+    return append(H);
+  SmallStencilMatrix P = H;
+  ProjectToPsd(&P, projection == PsdProjection::Abs);
+  append(P);
 }
 
 void AppendSpinTrivialization(const Eigen::Vector3d& tau, int row,

@@ -31,7 +31,8 @@ namespace superdex {
 /// at one stage and round-off at the next, and each such change made the assembly rebuild its
 /// pattern. Other entries (the coupling a projection may leave at round-off level) only where
 /// nonzero.
-void AppendRigidInertiaHessian(StencilMatrix H, PsdProjection projection, int offset,
+void AppendRigidInertiaHessian(const Eigen::Matrix<double, 6, 6>& H, PsdProjection projection,
+                               int offset,
                                std::vector<Eigen::Triplet<double>>* triplets);
 /// The residual modes' trivialization of a rotation block at stage dof `row`: along
 /// exp([δθ]×) R the world torque τ of a potential changes by (H − ½[τ]×) δθ; appends −½[τ]×'s
