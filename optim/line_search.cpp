@@ -80,7 +80,12 @@ LineSearch::Summary LineSearch::Search(StageProblem& problem, const Start& start
     if (potential) {
       parts_.StartMinimization(*start.gradient, dir);
     } else {
-      parts_.StartResidual(*start.gradient, dir);
+      const Eigen::VectorXd* linearized = nullptr;
+      if (start.jacobian) {
+        linearized_.noalias() = *start.jacobian * dir;
+        linearized = &linearized_;
+      }
+      parts_.StartResidual(*start.gradient, dir, linearized);
     }
     if (start.firstStep) parts_.CapSteps(dir, *start.firstStep);
   } else if (start.firstStep) {

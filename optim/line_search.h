@@ -61,6 +61,10 @@ class LineSearch {
     double slope = 0.0, newtonSlope = 0.0;
     /// ResidualSquared: ½|r·p|; the band's predicted change is α ½|r·p|.
     double decrement = 0.0;
+    /// ResidualSquared: the Jacobian J of r at s, or null. By parts, a part P whose merit θ_P does
+    /// not decrease along the direction to first order (r_P·(J p)_P >= 0: an inexact linear solve
+    /// whose error on P exceeds P's own residual) stays where it is this iteration.
+    const Eigen::SparseMatrix<double>* jacobian = nullptr;
     /// A blockwise shortening of p (StageProblem::TrustStep) or null: each part's first α (the
     /// whole step's, without parts) is the smallest fraction its dofs were shortened to.
     const Eigen::VectorXd* firstStep = nullptr;
@@ -119,6 +123,7 @@ class LineSearch {
   Options options_;
   PartLineSearch parts_;
   bool split_ = false;
+  Eigen::VectorXd linearized_;  // J p (Start::jacobian), by parts
 };
 
 }  // namespace superdex

@@ -103,20 +103,30 @@ void PartLineSearch::CapSteps(const Eigen::VectorXd& d, const Eigen::VectorXd& l
   for (int p = 0; p < parts_; ++p) alpha_[p] = std::min(alpha_[p], partFraction_[p]);
 }
 
-void PartLineSearch::StartResidual(const Eigen::VectorXd& r, const Eigen::VectorXd& dir) {
+void PartLineSearch::StartResidual(const Eigen::VectorXd& r, const Eigen::VectorXd& dir,
+                                   const Eigen::VectorXd* linearized) {
   residual_ = true;
   alpha_.assign(parts_, 1.0);
   value_.assign(parts_, 0.0);
   slope_.assign(parts_, 0.0);
+  partSlope_.assign(parts_, 0.0);  // r_P·(J dir)_P: dθ_P/dα at α = 0 (J is block diagonal by part)
   for (Eigen::Index k = 0; k < dir.size(); ++k) {
     const int p = partOfUnit_[base_.unitOfDof[k]];
     value_[p] += 0.5 * r[k] * r[k];
     slope_[p] += r[k] * dir[k];
+    if (linearized) partSlope_[p] += r[k] * (*linearized)[k];
   }
   scale_ = 0.0;
   for (int p = 0; p < parts_; ++p) {
     slope_[p] = 0.5 * std::abs(slope_[p]);
     scale_ += value_[p];
+    // Exact Newton gives r_P·(J d)_P = −2θ_P < 0; an inexact solve (the Krylov forcing term is
+    // relative to the whole ‖r‖) can leave a part with a tiny residual no descent at all, whose
+    // test no step length passes until the round-off band does. Such a part stays.
+    if (linearized && !(partSlope_[p] < 0.0)) {
+      alpha_[p] = 0.0;
+      slope_[p] = 0.0;
+    }
   }
 }
 

@@ -42,7 +42,11 @@ class PartLineSearch {
   /// Base merits along the direction `dir`: f_P(s) and g_P·d_P (minimization), or θ_P(s) and
   /// ½|r_P·d_P| (residual). Every α_P is set to 1.
   void StartMinimization(const Eigen::VectorXd& g, const Eigen::VectorXd& dir);
-  void StartResidual(const Eigen::VectorXd& r, const Eigen::VectorXd& dir);
+  /// `linearized` (or null): J dir, the direction's first-order change of r; a part with
+  /// r_P·(J dir)_P >= 0 (no first-order decrease of θ_P: the linear solve's error on P exceeds
+  /// P's residual) gets α_P = 0, as a part without descent does in minimization.
+  void StartResidual(const Eigen::VectorXd& r, const Eigen::VectorXd& dir,
+                     const Eigen::VectorXd* linearized = nullptr);
 
   /// A Newton step the problem shortened blockwise (StageProblem::TrustStep, LimitStep): where a
   /// part's shortened step `limited` is no descent direction for its share (g_P·l_P >= 0: the
@@ -93,7 +97,7 @@ class PartLineSearch {
   std::vector<int> parent_, groupOf_;
   std::vector<double> groupTrial_, groupBase_, groupSlope_, groupRequired_;
   std::vector<char> groupFails_;
-  std::vector<double> partSlope_, partFraction_;  // ShortenByParts, CapSteps
+  std::vector<double> partSlope_, partFraction_;  // ShortenByParts, StartResidual; CapSteps
 };
 
 }  // namespace superdex

@@ -128,6 +128,7 @@ SolverStats SolveResidualNewton(StageProblem& problem, const NonlinearSolverPara
     // first step length along d.
     clock.Restart();
     LineSearch::Start from = LineSearch::Start::Residual(theta, r, decrement);
+    from.jacobian = &J;
     if (params.lineSearch != LineSearchKind::None) {
       w.limited = d;
       if (problem.TrustStep(&w.limited)) from.firstStep = &w.limited;

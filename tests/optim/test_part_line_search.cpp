@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
+#include "optim/line_search.h"
 #include "optim/newton_solver.h"
 #include "optim/part_line_search.h"
 #include "optim/residual_newton.h"
@@ -171,6 +172,42 @@ TEST_CASE("Part line search: a part whose step is no descent stays", "[optim][pa
   CHECK(step[1] == 0.0);
   CHECK_FALSE(parts.AllFull());
   CHECK(parts.MinAlpha() == 0.0);
+}
+
+TEST_CASE("Part line search: a residual part the inexact direction does not descend stays",
+          "[optim][parts]") {
+  // r = (atan x₁, x₂ − 1) at (3, 0.5), J = diag(1/10, 1). The direction (−1, −0.1), as an
+  // inexact linear solve may leave it: a descent for θ₁ (x₁ 3 → 2) and an ascent for θ₂
+  // (r₂·(J d)₂ = 0.05 > 0), which no step length makes pass its group's test (θ₂ rises
+  // linearly in α) until the round-off band does.
+  const Eigen::Vector2d dir(-1.0, -0.1);
+  auto search = [&](bool withJacobian, Eigen::VectorXd* step) {
+    TwoUnits problem(false, Join::Never);
+    Eigen::VectorXd r, rTrial;
+    Eigen::SparseMatrix<double> J, JTrial;
+    problem.EvaluateResidual(&r, &J);
+    LineSearch ls;
+    ls.SetOptions(LineSearch::Options());
+    ls.ReadSplit(problem);
+    REQUIRE(ls.Split());
+    LineSearch::Start start =
+        LineSearch::Start::Residual(0.5 * r.squaredNorm(), r, 0.5 * std::abs(r.dot(dir)));
+    if (withJacobian) start.jacobian = &J;
+    return ls.Search(problem, start, dir, step, &rTrial, &JTrial);
+  };
+  Eigen::VectorXd step;
+  // With the Jacobian: the second part stays, the first takes its whole step at the first trial.
+  const LineSearch::Summary stays = search(true, &step);
+  CHECK(stays.accepted);
+  CHECK(stays.rejectedTrials == 0);
+  CHECK(step[0] == -1.0);
+  CHECK(step[1] == 0.0);
+  CHECK(stays.trialMerit == Approx(0.5 * std::atan(2.0) * std::atan(2.0) + 0.125).epsilon(1e-15));
+  // Without it: the second part's step length is cut until the band, a trial per halving.
+  const LineSearch::Summary cut = search(false, &step);
+  CHECK(cut.rejectedTrials >= 30);
+  CHECK(step[0] == -1.0);
+  CHECK(std::abs(step[1]) < 1e-9);
 }
 
 namespace {
