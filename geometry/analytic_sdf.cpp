@@ -18,16 +18,18 @@ SdfSample EvaluateFully(const Field& field, const Eigen::Vector3d& X) {
 
 SdfSample SphereSdf::Evaluate(const Eigen::Vector3d& X) const { return EvaluateFully(*this, X); }
 
-bool SphereSdf::EvaluateBelow(const Eigen::Vector3d& X, double bound, SdfSample* s) const {
+bool SphereSdf::EvaluateBelow(const Eigen::Vector3d& X, double bound, SdfSample* s,
+                              bool hessian) const {
   const double r = X.norm();
   s->value = r - radius;
   if (s->value >= bound) return false;
   if (r > 0.0) {
     s->gradient = X / r;
-    s->hessian = (Eigen::Matrix3d::Identity() - s->gradient * s->gradient.transpose()) / r;
+    if (hessian)
+      s->hessian = (Eigen::Matrix3d::Identity() - s->gradient * s->gradient.transpose()) / r;
   } else {
     s->gradient = Eigen::Vector3d::UnitZ();  // any direction is a closest one; Hessian zero
-    s->hessian.setZero();
+    if (hessian) s->hessian.setZero();
   }
   return true;
 }

@@ -20,8 +20,10 @@ struct SphereSdf {
   double radius = 1.0;
   SdfSample Evaluate(const Eigen::Vector3d& X) const;
   double Value(const Eigen::Vector3d& X) const { return X.norm() - radius; }  ///< Φ only
-  /// Fills s->value; the gradient and Hessian too and returns true unless Φ >= bound.
-  bool EvaluateBelow(const Eigen::Vector3d& X, double bound, SdfSample* s) const;
+  /// Fills s->value; the gradient and (`hessian`) the Hessian too and returns true unless
+  /// Φ >= bound. Without `hessian`, s->hessian is not written.
+  bool EvaluateBelow(const Eigen::Vector3d& X, double bound, SdfSample* s,
+                     bool hessian = true) const;
 };
 
 /// Axis-aligned box centred at the origin with half extents b, exact inside and outside:

@@ -143,7 +143,9 @@ bool AddPenalty(const PairSample& s, const FrameSide& B, const SamplePullback& p
                 ContactStencil* st, RigidSampleSums* sums, std::vector<ContactSampleRecord>* records) {
   if (!(field.value < penalty.delta)) return false;
   if (s.hasNormal && std::isfinite(m)) {
-    const Eigen::Vector3d G = B.hasStart ? B.field->Evaluate(p.Yn).gradient : field.gradient;
+    SdfSample atLast;  // the gradient alone
+    if (B.hasStart) B.field->EvaluateFirstOrderBelow(p.Yn, INFINITY, &atLast);
+    const Eigen::Vector3d& G = B.hasStart ? atLast.gradient : field.gradient;
     const Eigen::Vector3d NA = B.hasStart ? p.NAn : p.NA;
     if (G.dot(NA) > m + kAlignmentRoundoff) return false;
   }
@@ -189,7 +191,7 @@ void AddDissipation(const PairSample& s, int k, const FrameSide& B, const Sample
   Eigen::Vector3d N;
   if (explicitNormals) {
     SdfSample f0;
-    if (!B.field->EvaluateBelow(p.Yn, delta, &f0)) return;
+    if (!B.field->EvaluateFirstOrderBelow(p.Yn, delta, &f0)) return;  // its value and gradient
     const double al = f0.gradient.dot(p.NAn);
     if (s.hasNormal && al > m + kAlignmentRoundoff) return;
     lambdaHat = AlignmentFactor(al, ds) * NormalPenaltyDensity(f0.value, ds.penalty).lambdaN;
@@ -360,18 +362,30 @@ void FrameEvaluation::AddRigidSamples(const SurfaceSample* samples, int begin, i
   const double bound =
       penalty_.delta + (reconstructed_ ? B_.field->lipschitz * motion_ : 0.0);
   const bool explicitNormals = explicitNormals_;
+  // Candidate's reach tests (OutOfReach) with their squared radii formed once; the field's
+  // Hessian only for the samples that become candidates, and only where the order reads it.
+  const bool finiteReach = finiteReach_, hessian = order_ >= 2;
+  const double reach = B_.field->boundingRadius + bound;
+  const double reachN = B_.field->boundingRadius + penalty_.delta;
+  const double reach2 = reach * reach, reachN2 = reachN * reachN;
   SdfSample field;  // its value set per sample, its derivatives where below the bound
   for (int q = begin; q < end; ++q) {
     const SurfaceSample& ss = samples[q];
     SamplePullback p;
     p.Y = MulAdd(RA, ss.X, YA);
     if (explicitNormals) p.Yn = MulAdd(RnA, ss.X, YnA);
-    bool below;
-    if (!Candidate(p, bound, &field, &below)) continue;
+    bool below = false;
+    if (!finiteReach || !(p.Y.squaredNorm() >= reach2)) {
+      below = B_.field->EvaluateFirstOrderBelow(p.Y, bound, &field);
+      out_->minPhi = std::min(out_->minPhi, field.value);
+    }
+    if (!below && !(explicitNormals && (!finiteReach || !(p.Yn.squaredNorm() >= reachN2))))
+      continue;
     if (reconstructed_) {
       p.Yn = MulAdd(RnA, ss.X, YnA);
       if (LoadFree(p, field)) continue;
     }
+    if (below && hessian) B_.field->CompleteHessian(p.Y, &field);
     AddRigidCandidate(ss, keyOffset + q, explicitNormals || reconstructed_, &p, field, below);
   }
 }

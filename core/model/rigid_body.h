@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
@@ -105,6 +106,17 @@ struct RigidCollider {
   /// only where Φ >= bound (a NaN is evaluated in full and returns true, as Evaluate would pass
   /// it on). For the per-sample loops, where most samples lie beyond the contact threshold.
   bool EvaluateBelow(const Eigen::Vector3d& X, double bound, SdfSample* s) const;
+  /// EvaluateBelow without the sphere's Hessian (s->hessian not written; the other fields
+  /// evaluate in full: a box's or plane's Hessian costs little), for the tests that read Φ and ∇Φ
+  /// alone, which on a sphere field mostly reject the sample; CompleteHessian at the same X adds
+  /// it where a sample turns out to need it (the same operations: value and gradient unchanged).
+  bool EvaluateFirstOrderBelow(const Eigen::Vector3d& X, double bound, SdfSample* s) const {
+    return type == ColliderType::Sphere ? sphere.EvaluateBelow(X, bound, s, false)
+                                        : EvaluateBelow(X, bound, s);
+  }
+  void CompleteHessian(const Eigen::Vector3d& X, SdfSample* s) const {
+    if (type == ColliderType::Sphere) sphere.EvaluateBelow(X, INFINITY, s);
+  }
   /// A lower bound of the first-order model Φ(X) + ∇Φ(X)·D over the ball |X − C| <= r [m] (the
   /// reconstructed load of points that were at X + D at x_n): for a sphere field,
   /// |C| − r − ρ + Ĉ·D − c|D| with c = 2 sin(½ asin(r/|C|)) the largest |X̂ − Ĉ| over the ball

@@ -81,3 +81,27 @@ TEST_CASE("the sphere's first-order bound is sharp for a small approaching ball"
   CHECK(f.Value(C) - (r + D.norm()) < 0.0);  // the generic bound would keep the ball
   CHECK(bound > 0.02);                        // this one culls it (δ of the millimetre order)
 }
+
+TEST_CASE("Collider fields: the first-order evaluation and its completed Hessian equal the full one",
+          "[collider][culling]") {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> g(0.0, 0.1);
+  for (ColliderType type : {ColliderType::Sphere, ColliderType::Box, ColliderType::Plane}) {
+    const RigidCollider f = TestField(type);
+    for (int k = 0; k < 200; ++k) {
+      const Eigen::Vector3d X(g(rng), g(rng), g(rng));
+      const double bound = k % 2 ? INFINITY : 0.02;
+      SdfSample full, first;
+      const bool belowFull = f.EvaluateBelow(X, bound, &full);
+      const bool belowFirst = f.EvaluateFirstOrderBelow(X, bound, &first);
+      REQUIRE(belowFirst == belowFull);
+      CHECK(first.value == full.value);  // the same operations: equal to the bit
+      if (!belowFull) continue;
+      CHECK(first.gradient == full.gradient);
+      f.CompleteHessian(X, &first);
+      CHECK(first.value == full.value);
+      CHECK(first.gradient == full.gradient);
+      CHECK(first.hessian == full.hessian);
+    }
+  }
+}
