@@ -351,16 +351,16 @@ void FrameEvaluation::BeginRigidBody(const RigidPose& a, const RigidPose& an,
 }
 
 void FrameEvaluation::AddRigidSamples(const SurfaceSample* samples, int begin, int end,
-                                      int keyOffset) {
+                                      int keyOffset, double motion) {
   // One product per pullback through the body's composed transforms: Y, and Y_n where the
   // explicit normals' load reads it; the rest only for a candidate (AddRigidCandidate). The
-  // reconstructed load's bound is the body's, δ + L max |Y_n − Y| (Add's per-sample bound is no
+  // reconstructed load's bound is the leaf's, δ + L max |Y_n − Y| (Add's per-sample bound is no
   // larger); Y_n is formed only where φ falls below it, and the load test (LoadFree) decides.
   // The loop keeps the body's transforms in locals.
   const Eigen::Matrix3d RA = A_.R, RnA = A_.Rn;
   const Eigen::Vector3d YA = A_.t, YnA = A_.tn;
   const double bound =
-      penalty_.delta + (reconstructed_ ? B_.field->lipschitz * motion_ : 0.0);
+      penalty_.delta + (reconstructed_ ? B_.field->lipschitz * std::min(motion, motion_) : 0.0);
   const bool explicitNormals = explicitNormals_;
   // Candidate's reach tests (OutOfReach) with their squared radii formed once; the field's
   // Hessian only for the samples that become candidates, and only where the order reads it.
@@ -507,8 +507,14 @@ void AppendRigidSamples(const RigidBodyModel& A, const RigidPose& a, const Rigid
     return near.InFrame(in.t + in.R * c, [&] { return Eigen::Vector3d(in.tn + in.Rn * c); }, r);
   };
   sink->BeginRigidBody(a, an, start, offP, offTheta, A.samplesRadius);
-  auto visit = [&](int begin, int end) {
-    sink->AddRigidSamples(A.samples.data(), begin, end, keyOffset);
+  // A leaf's bound on |Y_n − Y| = |(t_n − t) + (R_n − R) X| over its ball |X − c| <= r:
+  // |(t_n − t) + (R_n − R) c| + turn r, with the body bound's round-off margin.
+  const Eigen::Vector3d dt = in.tn - in.t;
+  const Eigen::Matrix3d dR = in.Rn - in.R;
+  auto visit = [&](int begin, int end, const SampleNode& leaf) {
+    const double motion =
+        ((dt + dR * leaf.center).norm() + in.turn * leaf.radius) * (1.0 + 1e-12) + 1e-15;
+    sink->AddRigidSamples(A.samples.data(), begin, end, keyOffset, motion);
   };
   ForEachSampleRange(A, keep, visit);
 }
@@ -543,7 +549,7 @@ const PairSample& SampleSink::FormRigidSample(const SurfaceSample& ss, int key) 
 }
 
 void SampleSink::AddRigidSamples(const SurfaceSample* samples, int begin, int end,
-                                 int keyOffset) {
+                                 int keyOffset, double) {
   for (int q = begin; q < end; ++q) Add(FormRigidSample(samples[q], keyOffset + q));
 }
 

@@ -87,10 +87,12 @@ class SampleSink {
   virtual void BeginRigidBody(const RigidPose& a, const RigidPose& an,
                               const RigidStageStart* start, int offP, int offTheta,
                               double radius);
-  /// The samples begin .. end−1 of a body's array, keys from keyOffset + begin. The default
+  /// The samples begin .. end−1 of a body's array, keys from keyOffset + begin; `motion` [m]
+  /// bounds their |Y_n − Y| in the collider's frame (a leaf's bound, or infinity). The default
   /// forms each as a PairSample (a Rigid map, its normal turning with the body) and passes it to
   /// Add; a sink may form only what it needs.
-  virtual void AddRigidSamples(const SurfaceSample* samples, int begin, int end, int keyOffset);
+  virtual void AddRigidSamples(const SurfaceSample* samples, int begin, int end, int keyOffset,
+                               double motion);
 
  protected:
   ~SampleSink() = default;
@@ -187,7 +189,8 @@ class FrameEvaluation final : public SampleSink {
   /// rest only when the field says it can contribute (most samples a pile's culling keeps do not).
   void BeginRigidBody(const RigidPose& a, const RigidPose& an, const RigidStageStart* start,
                       int offP, int offTheta, double radius) override;
-  void AddRigidSamples(const SurfaceSample* samples, int begin, int end, int keyOffset) override;
+  void AddRigidSamples(const SurfaceSample* samples, int begin, int end, int keyOffset,
+                       double motion) override;
   void Finish();
 
  private:

@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "core/model/contact_params.h"
@@ -212,7 +213,11 @@ void ForEachSampleRange(const RigidBodyModel& m, Keep&& keep, Visit&& visit) {
     const SampleNode& node = m.sampleTree[stack[--top]];
     if (!keep(node.center, node.radius)) continue;
     if (node.left < 0) {
-      visit(node.begin, node.end);
+      if constexpr (std::is_invocable_v<Visit&, int, int, const SampleNode&>) {
+        visit(node.begin, node.end, node);  // a visit that reads the leaf's ball
+      } else {
+        visit(node.begin, node.end);
+      }
       continue;
     }
     stack[top++] = node.right;
