@@ -268,6 +268,7 @@ FrameEvaluation::FrameEvaluation(const FrameSide& B, const PenaltyParams& penalt
   explicitNormals_ = withDissipation_ && dissipation->mode == DissipationMode::ExplicitNormals;
   reconstructed_ = withDissipation_ && dissipation->mode == DissipationMode::ReconstructedLoad;
   finiteReach_ = std::isfinite(B.field->boundingRadius);
+  reachLast2_ = ReachSquared(penalty.delta);
   penaltyValueOnly_ = order == 0 && !withDissipation_ && !records;
 }
 
@@ -291,20 +292,28 @@ void FrameEvaluation::Open(const PairSample& s) {
   sums_.Begin(s, B_);
 }
 
-inline bool FrameEvaluation::OutOfReach(const Eigen::Vector3d& Y, double bound) const {
-  if (!finiteReach_) return false;
+inline double FrameEvaluation::ReachSquared(double bound) const {
   const double reach = B_.field->boundingRadius + bound;
-  return Y.squaredNorm() >= reach * reach;
+  return reach * reach;
 }
 
-inline bool FrameEvaluation::Candidate(const SamplePullback& p, double bound,
+inline bool FrameEvaluation::WithinReach(const Eigen::Vector3d& Y, double reach2) const {
+  return !finiteReach_ || !(Y.squaredNorm() >= reach2);
+}
+
+inline bool FrameEvaluation::Candidate(const SamplePullback& p, double bound, double reach2,
                                        SdfSample* field, bool* below) {
   *below = false;
-  if (!OutOfReach(p.Y, bound)) {
-    *below = B_.field->EvaluateBelow(p.Y, bound, field);
+  if (WithinReach(p.Y, reach2)) {
+    *below = B_.field->EvaluateFirstOrderBelow(p.Y, bound, field);
     out_->minPhi = std::min(out_->minPhi, field->value);
   }
-  return *below || (explicitNormals_ && !OutOfReach(p.Yn, penalty_.delta));
+  return *below || (explicitNormals_ && WithinReach(p.Yn, reachLast2_));
+}
+
+inline void FrameEvaluation::CompleteCandidate(const Eigen::Vector3d& Y, bool below,
+                                               SdfSample* field) const {
+  if (below && order_ >= 2) B_.field->CompleteHessian(Y, field);
 }
 
 inline bool FrameEvaluation::LoadFree(const SamplePullback& p, const SdfSample& field) const {
@@ -336,7 +345,9 @@ void FrameEvaluation::Add(const PairSample& s) {
   if (reconstructed_) bound += B_.field->lipschitz * (p.Yn - p.Y).norm();
   SdfSample field;
   bool below;
-  if (Candidate(p, bound, &field, &below) && !LoadFree(p, field)) AddTerms(s, p, field, below);
+  if (!Candidate(p, bound, ReachSquared(bound), &field, &below) || LoadFree(p, field)) return;
+  CompleteCandidate(p.Y, below, &field);
+  AddTerms(s, p, field, below);
 }
 
 void FrameEvaluation::BeginRigidBody(const RigidPose& a, const RigidPose& an,
@@ -362,30 +373,20 @@ void FrameEvaluation::AddRigidSamples(const SurfaceSample* samples, int begin, i
   const double bound =
       penalty_.delta + (reconstructed_ ? B_.field->lipschitz * std::min(motion, motion_) : 0.0);
   const bool explicitNormals = explicitNormals_;
-  // Candidate's reach tests (OutOfReach) with their squared radii formed once; the field's
-  // Hessian only for the samples that become candidates, and only where the order reads it.
-  const bool finiteReach = finiteReach_, hessian = order_ >= 2;
-  const double reach = B_.field->boundingRadius + bound;
-  const double reachN = B_.field->boundingRadius + penalty_.delta;
-  const double reach2 = reach * reach, reachN2 = reachN * reachN;
+  const double reach2 = ReachSquared(bound);  // the leaf's, formed once
   SdfSample field;  // its value set per sample, its derivatives where below the bound
   for (int q = begin; q < end; ++q) {
     const SurfaceSample& ss = samples[q];
     SamplePullback p;
     p.Y = MulAdd(RA, ss.X, YA);
     if (explicitNormals) p.Yn = MulAdd(RnA, ss.X, YnA);
-    bool below = false;
-    if (!finiteReach || !(p.Y.squaredNorm() >= reach2)) {
-      below = B_.field->EvaluateFirstOrderBelow(p.Y, bound, &field);
-      out_->minPhi = std::min(out_->minPhi, field.value);
-    }
-    if (!below && !(explicitNormals && (!finiteReach || !(p.Yn.squaredNorm() >= reachN2))))
-      continue;
+    bool below;
+    if (!Candidate(p, bound, reach2, &field, &below)) continue;
     if (reconstructed_) {
       p.Yn = MulAdd(RnA, ss.X, YnA);
       if (LoadFree(p, field)) continue;
     }
-    if (below && hessian) B_.field->CompleteHessian(p.Y, &field);
+    CompleteCandidate(p.Y, below, &field);
     AddRigidCandidate(ss, keyOffset + q, explicitNormals || reconstructed_, &p, field, below);
   }
 }

@@ -195,12 +195,18 @@ class FrameEvaluation final : public SampleSink {
 
  private:
   void Close();
-  // Whether the field is at least `bound` at Y by B's bounding radius alone: |Y| >= radius +
-  // bound (no field evaluation needed to say so).
-  bool OutOfReach(const Eigen::Vector3d& Y, double bound) const;
-  // Whether a sample with pullbacks p may contribute: its field at Y below `bound` (*field and
-  // *below, evaluated only within reach), or explicit normals' load at a Y_n within δ's reach.
-  bool Candidate(const SamplePullback& p, double bound, SdfSample* field, bool* below);
+  // (radius + bound)² for B's bounding radius: beyond it the field is at least `bound` (no field
+  // evaluation needed to say so).
+  double ReachSquared(double bound) const;
+  // Whether Y lies within the reach of squared radius reach2 (always, for an unbounded field).
+  bool WithinReach(const Eigen::Vector3d& Y, double reach2) const;
+  // Whether a sample with pullbacks p may contribute: its field at Y below `bound` (reach2 =
+  // ReachSquared(bound); *field, value and gradient, and *below, evaluated only within reach), or
+  // explicit normals' load at a Y_n within δ's reach. CompleteCandidate adds the Hessian.
+  bool Candidate(const SamplePullback& p, double bound, double reach2, SdfSample* field,
+                 bool* below);
+  // The field's Hessian at Y for a candidate below the bound, where the order reads it (2).
+  void CompleteCandidate(const Eigen::Vector3d& Y, bool below, SdfSample* field) const;
   // Whether a sample with φ >= δ carries no reconstructed load either: φ + G·(Y_n − Y) >= δ
   // (between δ and the bound, the load decides; AddPenalty, AddDissipation).
   bool LoadFree(const SamplePullback& p, const SdfSample& field) const;
@@ -230,6 +236,7 @@ class FrameEvaluation final : public SampleSink {
   std::vector<ContactSampleRecord>* records_;
   bool withDissipation_ = false, explicitNormals_ = false, reconstructed_ = false;
   bool finiteReach_ = true;  // B's field has a finite bounding radius (not a plane)
+  double reachLast2_ = 0.0;  // ReachSquared(δ): explicit normals' reach at Y_n
   bool penaltyValueOnly_ = false;  // order 0 without dissipation or records
   ContactStencil* st_ = nullptr;
   bool rigidOpen_ = false;  // the rigid body's stencil is open (its samples share their blocks)
