@@ -352,10 +352,10 @@ void FrameEvaluation::Add(const PairSample& s) {
 
 void FrameEvaluation::BeginRigidBody(const RigidPose& a, const RigidPose& an,
                                      const RigidStageStart* start, int offP, int offTheta,
-                                     double radius) {
-  SampleSink::BeginRigidBody(a, an, start, offP, offTheta, radius);
+                                     double radius, const BodyInFrame& inFrame) {
+  SampleSink::BeginRigidBody(a, an, start, offP, offTheta, radius, inFrame);
   rigidOpen_ = false;
-  A_ = ComposeInFrame(a, an, B_);
+  A_ = inFrame;
   dA_ = a.p - B_.pose.p;
   // |Y_n − Y| of any sample, with a margin for round-off.
   motion_ = ((A_.tn - A_.t).norm() + A_.turn * radius) * (1.0 + 1e-12) + 1e-15;
@@ -507,7 +507,7 @@ void AppendRigidSamples(const RigidBodyModel& A, const RigidPose& a, const Rigid
   auto keep = [&](const Eigen::Vector3d& c, double r) {
     return near.InFrame(in.t + in.R * c, [&] { return Eigen::Vector3d(in.tn + in.Rn * c); }, r);
   };
-  sink->BeginRigidBody(a, an, start, offP, offTheta, A.samplesRadius);
+  sink->BeginRigidBody(a, an, start, offP, offTheta, A.samplesRadius, in);
   // A leaf's bound on |Y_n − Y| = |(t_n − t) + (R_n − R) X| over its ball |X − c| <= r:
   // |(t_n − t) + (R_n − R) c| + turn r, with the body bound's round-off margin.
   const Eigen::Vector3d dt = in.tn - in.t;
@@ -523,7 +523,8 @@ void AppendRigidSamples(const RigidBodyModel& A, const RigidPose& a, const Rigid
 }  // namespace
 
 void SampleSink::BeginRigidBody(const RigidPose& a, const RigidPose& an,
-                                const RigidStageStart* start, int offP, int offTheta, double) {
+                                const RigidStageStart* start, int offP, int offTheta, double,
+                                const BodyInFrame&) {
   a_ = a;
   an_ = an;
   start_ = start;

@@ -77,16 +77,27 @@ struct FrameSide {
   }
 };
 
+/// Rigid body A's composed transforms into frame B's coordinates: a sample's Y = R X + t now and
+/// Y_n = Rn X + tn at x_n, and turn = ‖Rn − R‖_F, so that |Y_n − Y| <= |tn − t| + turn |X|.
+struct BodyInFrame {
+  Eigen::Matrix3d R, Rn;
+  Eigen::Vector3d t, tn;
+  double turn = 0.0;
+};
+/// A at pose a now and an at x_n, in B's frame (B.pose now, B.last at x_n).
+BodyInFrame ComposeInFrame(const RigidPose& a, const RigidPose& an, const FrameSide& B);
+
 /// Receives a gather's samples one at a time (a sample is valid only during the call).
 class SampleSink {
  public:
   virtual void Add(const PairSample& s) = 0;
   /// A rigid body's samples, announced by body (pose a now, an at x_n, the stage start `start`
   /// or null; [δp] at stage dof offP, [δθ] at offTheta, −1: none; `radius` >= every sample's
-  /// |X| [m]), then a leaf of its sample tree at a time in the body frame.
+  /// |X| [m]; `inFrame`: a and an composed into the collider's frame, ComposeInFrame), then a
+  /// leaf of its sample tree at a time in the body frame.
   virtual void BeginRigidBody(const RigidPose& a, const RigidPose& an,
                               const RigidStageStart* start, int offP, int offTheta,
-                              double radius);
+                              double radius, const BodyInFrame& inFrame);
   /// The samples begin .. end−1 of a body's array, keys from keyOffset + begin; `motion` [m]
   /// bounds their |Y_n − Y| in the collider's frame (a leaf's bound, or infinity). The default
   /// forms each as a PairSample (a Rigid map, its normal turning with the body) and passes it to
@@ -160,15 +171,6 @@ struct RigidSampleSums {
   }
 };
 
-/// Rigid body A's composed transforms into frame B's coordinates: a sample's Y = R X + t now and
-/// Y_n = Rn X + tn at x_n, and turn = ‖Rn − R‖_F, so that |Y_n − Y| <= |tn − t| + turn |X|.
-struct BodyInFrame {
-  Eigen::Matrix3d R, Rn;
-  Eigen::Vector3d t, tn;
-  double turn = 0.0;
-};
-/// A at pose a now and an at x_n, in B's frame (B.pose now, B.last at x_n).
-BodyInFrame ComposeInFrame(const RigidPose& a, const RigidPose& an, const FrameSide& B);
 
 /// A sample's pullbacks into B's frame: d = y − p_B (world) [m], Y now and Y_n at x_n [m], and
 /// the colliding normal N_A in B's coordinates at both (zero without one).
@@ -188,7 +190,7 @@ class FrameEvaluation final : public SampleSink {
   /// A rigid body's samples: each one's pullback Y, and Y_n where the bound needs it, first; the
   /// rest only when the field says it can contribute (most samples a pile's culling keeps do not).
   void BeginRigidBody(const RigidPose& a, const RigidPose& an, const RigidStageStart* start,
-                      int offP, int offTheta, double radius) override;
+                      int offP, int offTheta, double radius, const BodyInFrame& inFrame) override;
   void AddRigidSamples(const SurfaceSample* samples, int begin, int end, int keyOffset,
                        double motion) override;
   void Finish();
