@@ -19,6 +19,8 @@ using json = nlohmann::json;
 
 constexpr const char* kFormat = "superdex-checkpoint";
 constexpr int kVersion = 1;
+constexpr const char* kStateFormat = "superdex-state";
+constexpr int kStateVersion = 1;
 constexpr int kRigidValues = 24;  // p, R (column-major), v, Ṙ
 
 // A double as a hex float string: exact, also for ±inf and nan.
@@ -61,6 +63,27 @@ json VectorJson(const std::vector<SoftBodyState>& states) {
   return a;
 }
 
+// The scene's side (time, states, history, the stage policy's state) into *j.
+void SnapshotToJson(const Scene::Snapshot& snapshot, json* out) {
+  json& j = *out;
+  const StageDriver::State& d = snapshot.driver;
+  j["driver"] = {{"explicit_first_stages", d.explicitFirstStages},
+                 {"explicit_first_run", d.explicitFirstRun},
+                 {"last_potential_iterations", d.lastPotentialIterations},
+                 {"last_stage_in_contact", d.lastStageInContact}};
+  const StepState& s = snapshot.step;
+  j["time"] = Hex(s.time);
+  j["rigid"] = RigidJson(s.states);
+  j["vector"] = VectorJson(s.softStates);
+  json history = json::array();
+  for (size_t h = 0; h < s.history.size(); ++h)
+    history.push_back({{"time", Hex(h < s.historyTimes.size() ? s.historyTimes[h] : 0.0)},
+                       {"rigid", RigidJson(s.history[h])},
+                       {"vector", VectorJson(h < s.softHistory.size() ? s.softHistory[h]
+                                                                       : std::vector<SoftBodyState>())}});
+  j["history"] = history;
+}
+
 json ToJson(const Checkpoint& c) {
   const CheckpointRun& r = c.run;
   json j;
@@ -82,22 +105,7 @@ json ToJson(const Checkpoint& c) {
       run[f.name] = Hex(f.Of(r));
   });
   j["run"] = run;
-  const StageDriver::State& d = c.snapshot.driver;
-  j["driver"] = {{"explicit_first_stages", d.explicitFirstStages},
-                 {"explicit_first_run", d.explicitFirstRun},
-                 {"last_potential_iterations", d.lastPotentialIterations},
-                 {"last_stage_in_contact", d.lastStageInContact}};
-  const StepState& s = c.snapshot.step;
-  j["time"] = Hex(s.time);
-  j["rigid"] = RigidJson(s.states);
-  j["vector"] = VectorJson(s.softStates);
-  json history = json::array();
-  for (size_t h = 0; h < s.history.size(); ++h)
-    history.push_back({{"time", Hex(h < s.historyTimes.size() ? s.historyTimes[h] : 0.0)},
-                       {"rigid", RigidJson(s.history[h])},
-                       {"vector", VectorJson(h < s.softHistory.size() ? s.softHistory[h]
-                                                                       : std::vector<SoftBodyState>())}});
-  j["history"] = history;
+  SnapshotToJson(c.snapshot, &j);
   return j;
 }
 
@@ -210,24 +218,10 @@ void ReadRun(const json& j, CheckpointRun* r) {
   });
 }
 
-void FromJson(const json& j, Checkpoint* c) {
-  if (!j.is_object()) Throw("(top level)", "must be an object");
-  if (StringAt(j, "", "format") != kFormat)
-    Throw("format", "\"" + StringAt(j, "", "format") + "\" is not \"" + kFormat + "\"");
-  const long long version = IntegerAt(j, "", "version", 0);
-  if (version != kVersion)
-    Throw("version", std::to_string(version) + " is not supported (this build reads version " +
-                         std::to_string(kVersion) + ")");
-  const std::string hash = StringAt(j, "", "scene_hash");
-  unsigned long long h = 0;
-  char tail = 0;
-  if (std::sscanf(hash.c_str(), "fnv1a64:%16llx%c", &h, &tail) != 1 || hash.size() != 24)
-    Throw("scene_hash", "\"" + hash + "\" is not fnv1a64:<16 hex digits>");
-  c->sceneHash = h;
-  c->scenePath = StringAt(j, "", "scene");
-  ReadRun(j, &c->run);
+// The scene's side of SnapshotToJson back from j (Bad on the first problem).
+void SnapshotFromJson(const json& j, Scene::Snapshot* snapshot) {
   const json& d = At(j, "", "driver");
-  StageDriver::State& ds = c->snapshot.driver;
+  StageDriver::State& ds = snapshot->driver;
   ds.explicitFirstStages = static_cast<int>(IntegerAt(d, "driver", "explicit_first_stages", 0));
   ds.explicitFirstRun = static_cast<int>(IntegerAt(d, "driver", "explicit_first_run", 0));
   ds.lastPotentialIterations =
@@ -235,7 +229,7 @@ void FromJson(const json& j, Checkpoint* c) {
   const json& contact = At(d, "driver", "last_stage_in_contact");
   if (!contact.is_boolean()) Throw("driver.last_stage_in_contact", "must be true or false");
   ds.lastStageInContact = contact.get<bool>();
-  StepState& s = c->snapshot.step;
+  StepState& s = snapshot->step;
   s = StepState();
   s.time = HexAt(j, "", "time");
   s.states = ReadRigid(j, "");
@@ -248,6 +242,30 @@ void FromJson(const json& j, Checkpoint* c) {
     s.history.push_back(ReadRigid(history[h], path));
     s.softHistory.push_back(ReadVector(history[h], path));
   }
+}
+
+// The document's format and version (Bad unless they are `format` and `version`).
+void CheckHeader(const json& j, const char* format, int version) {
+  if (!j.is_object()) Throw("(top level)", "must be an object");
+  if (StringAt(j, "", "format") != format)
+    Throw("format", "\"" + StringAt(j, "", "format") + "\" is not \"" + format + "\"");
+  const long long v = IntegerAt(j, "", "version", 0);
+  if (v != version)
+    Throw("version", std::to_string(v) + " is not supported (this build reads version " +
+                         std::to_string(version) + ")");
+}
+
+void FromJson(const json& j, Checkpoint* c) {
+  CheckHeader(j, kFormat, kVersion);
+  const std::string hash = StringAt(j, "", "scene_hash");
+  unsigned long long h = 0;
+  char tail = 0;
+  if (std::sscanf(hash.c_str(), "fnv1a64:%16llx%c", &h, &tail) != 1 || hash.size() != 24)
+    Throw("scene_hash", "\"" + hash + "\" is not fnv1a64:<16 hex digits>");
+  c->sceneHash = h;
+  c->scenePath = StringAt(j, "", "scene");
+  ReadRun(j, &c->run);
+  SnapshotFromJson(j, &c->snapshot);
 }
 
 // Whether `states` have the shapes of `reference` (the scene's own), else the field and rule.
@@ -266,6 +284,19 @@ std::string SameShapes(const std::vector<RigidBodyState>& rigid,
       return Field(path, "vector") + "[" + std::to_string(i) + "].x: " +
              std::to_string(vector[i].x.size()) + " values, the scene's actor has " +
              std::to_string(reference.softStates[i].x.size());
+  return {};
+}
+
+// Whether a snapshot's states and history have the sizes of `scene`'s, else the field and rule.
+std::string SnapshotShapes(const Scene::Snapshot& snapshot, const Scene& scene) {
+  const StepState reference = scene.Save().step;
+  const StepState& s = snapshot.step;
+  if (std::string m = SameShapes(s.states, s.softStates, reference, ""); !m.empty()) return m;
+  for (size_t h = 0; h < s.history.size(); ++h)
+    if (std::string m = SameShapes(s.history[h], s.softHistory[h], reference,
+                                   "history[" + std::to_string(h) + "]");
+        !m.empty())
+      return m;
   return {};
 }
 
@@ -333,15 +364,34 @@ bool CheckpointFits(const Checkpoint& c, const std::string& path, const Scene& s
   if (c.run.integrator != integrator)
     return Fail(error, where + "run.integrator: written with " + c.run.integrator +
                            ", resumed with " + integrator + " (give the same --integrator)");
-  const StepState reference = scene.Save().step;
-  const StepState& s = c.snapshot.step;
-  if (std::string m = SameShapes(s.states, s.softStates, reference, ""); !m.empty())
-    return Fail(error, where + m);
-  for (size_t h = 0; h < s.history.size(); ++h)
-    if (std::string m = SameShapes(s.history[h], s.softHistory[h], reference,
-                                   "history[" + std::to_string(h) + "]");
-        !m.empty())
-      return Fail(error, where + m);
+  if (std::string m = SnapshotShapes(c.snapshot, scene); !m.empty()) return Fail(error, where + m);
+  return true;
+}
+
+std::string StateText(const Scene::Snapshot& snapshot) {
+  json j;
+  j["format"] = kStateFormat;
+  j["version"] = kStateVersion;
+  SnapshotToJson(snapshot, &j);
+  return j.dump();
+}
+
+bool ReadStateText(const std::string& text, Scene::Snapshot* snapshot, Error* error) {
+  json j;
+  std::string why;
+  if (!ParseJsonText(text, &j, &why)) return Fail(error, "state: " + why);
+  try {
+    CheckHeader(j, kStateFormat, kStateVersion);
+    SnapshotFromJson(j, snapshot);
+  } catch (const Bad& bad) {
+    return Fail(error, "state: " + bad.message);
+  }
+  return true;
+}
+
+bool StateFits(const Scene::Snapshot& snapshot, const Scene& scene, Error* error) {
+  if (std::string m = SnapshotShapes(snapshot, scene); !m.empty())
+    return Fail(error, "state: " + m);
   return true;
 }
 

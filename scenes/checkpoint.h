@@ -7,6 +7,9 @@
 // float string ("0x1.999999999999ap-4", exact), headed by the hash of the scene file's text: a
 // checkpoint is refused for another scene file, another dt or integrator, or actors of another
 // size, with the field named.
+//
+// A scene's state alone (Python's Scene.get_state / set_state, picklable) is the same snapshot in
+// its own JSON document (format "superdex-state", version 1).
 #pragma once
 
 #include <cstdint>
@@ -51,5 +54,14 @@ bool ReadCheckpoint(const std::string& path, Checkpoint* checkpoint, Error* erro
 /// states of the scene's sizes. False with "checkpoint PATH: <field>: <what differs>".
 bool CheckpointFits(const Checkpoint& checkpoint, const std::string& path, const Scene& scene,
                     std::uint64_t sceneHash, double dt, Error* error);
+
+/// The scene's state `snapshot` (Scene::Save) as text: exact (hex floats), for a copy of the same
+/// scene to Restore.
+std::string StateText(const Scene::Snapshot& snapshot);
+/// Reads StateText's text; false with "state: <field>: <rule>" in *error.
+bool ReadStateText(const std::string& text, Scene::Snapshot* snapshot, Error* error);
+/// Whether `snapshot` has the sizes of `scene`'s actors (its states and history); false with
+/// "state: <field>: <what differs>" in *error.
+bool StateFits(const Scene::Snapshot& snapshot, const Scene& scene, Error* error);
 
 }  // namespace superdex

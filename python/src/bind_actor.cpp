@@ -7,72 +7,95 @@
 
 #include "actor.h"
 #include "bindings.h"
+#include "core/model/rigid_math.h"
 
 namespace superdex::python {
+namespace {
 
-void BindActor(py::module_& m) {
-  py::class_<Actor>(m, "Actor",
-                    "A handle to an actor of a Scene, rigid or soft (is_soft). Rigid-only\n"
-                    "properties (rotation, orientation, angular_velocity) raise TypeError on a soft\n"
-                    "actor, soft-only ones (node_positions, ...) on a rigid actor.")
-      .def_property_readonly("index", [](const Actor& a) { return a.index; })
-      .def_property_readonly("name", [](const Actor& a) { return a.Name(); })
-      .def_property_readonly("is_soft", &Actor::IsSoft)
-      .def_property_readonly(
-          "mass",
-          [](const Actor& a) {
-            return a.IsSoft() ? a.scene->SoftModel(a.Handle()).mass
-                              : a.scene->Model(a.Handle()).mass;
-          },
-          "[kg]")
-      .def_property_readonly(
-          "dynamic",
-          [](const Actor& a) { return a.IsSoft() || a.scene->Model(a.Handle()).dynamic; },
-          "False for a static rigid actor; soft actors are always dynamic")
-      .def_property_readonly("contact_layer",
-                             [](const Actor& a) { return a.scene->ContactLayer(a.Handle()); })
-      .def(
-          "set_contact_layer",
-          [](Actor& a, const std::string& layer) {
-            Error e;
-            if (!a.scene->SetContactLayer(a.Handle(), layer, &e)) throw py::value_error(e.message);
-          },
-          py::arg("layer"), "Actor::SetContactLayer: any string.")
-      .def_property(
-          "contact_params",
-          [](const Actor& a) { return a.scene->GetContactParams(a.Handle()); },
-          [](Actor& a, const ContactParams& c) {
-            Error e;
-            if (!a.scene->SetContactParams(a.Handle(), c, &e)) throw py::value_error(e.message);
-          },
-          "the actor's ContactParams (a copy; assign a modified copy back, validated)")
-      .def_property_readonly(
-          "position", [](const Actor& a) { return a.scene->CenterOfMass(a.Handle()); },
-          "centre of mass [m] (soft: of the lumped node masses)")
-      .def_property_readonly("rotation",
-                             [](const Actor& a) { return a.RigidState("rotation").R; },
-                             "rotation matrix (rigid actors)")
-      .def_property_readonly(
-          "orientation", [](const Actor& a) { return Quaternion(a.RigidState("orientation").R); },
-          "quaternion [x, y, z, w] (rigid actors)")
-      .def_property_readonly(
-          "velocity", [](const Actor& a) { return a.scene->CenterOfMassVelocity(a.Handle()); },
-          "centre-of-mass velocity [m/s]")
-      .def_property_readonly(
-          "angular_velocity",
-          [](const Actor& a) { return a.RigidState("angular_velocity").AngularVelocity(); },
-          "world angular velocity [rad/s] (rigid actors)")
-      // --- Soft actors.
+/// A 3-vector value of `field`; ValueError unless finite.
+Eigen::Vector3d Finite3(const Eigen::Vector3d& v, const char* field) {
+  if (!v.allFinite()) throw py::value_error(std::string(field) + ": must be finite");
+  return v;
+}
+
+/// Changes a rigid actor's state through Scene::SetState (the integrator's history restarts);
+/// ValueError naming `field` for a static actor or a refused state.
+template <typename Edit>
+void EditRigid(Actor& a, const char* field, Edit&& edit) {
+  RigidBodyState s = a.RigidState(field);
+  if (!a.scene->Model(a.Handle()).dynamic)
+    throw py::value_error(std::string(field) + ": '" + a.Name() +
+                          "' is a static actor, held where it was created");
+  edit(&s);
+  Error e;
+  if (!a.scene->SetState(a.Handle(), s, &e))
+    throw py::value_error(std::string(field) + ": " + e.message);
+}
+
+/// Changes a soft actor's node positions or velocities (3 per node) through
+/// Scene::SetSoftState.
+template <typename Edit>
+void EditSoft(Actor& a, const char* field, Edit&& edit) {
+  SoftBodyState s = a.SoftState(field);
+  edit(&s);
+  Error e;
+  if (!a.scene->SetSoftState(a.Handle(), s, &e))
+    throw py::value_error(std::string(field) + ": " + e.message);
+}
+
+/// Shifts every node's entry of a stacked vector by d.
+void Shift(const Eigen::Vector3d& d, Eigen::VectorXd* x) {
+  for (Eigen::Index i = 0; i + 2 < x->size(); i += 3) x->segment<3>(i) += d;
+}
+
+/// Moves the centre of mass to `value` (velocity = false) or gives it the velocity `value`: a
+/// rigid actor's p or v; a soft actor's nodes all shifted by the same amount.
+void SetCentre(Actor& a, const char* field, const Eigen::Vector3d& value, bool velocity) {
+  const Eigen::Vector3d to = Finite3(value, field);
+  if (!a.IsSoft())
+    return EditRigid(a, field, [&](RigidBodyState* s) { (velocity ? s->v : s->p) = to; });
+  const Eigen::Vector3d now = velocity ? a.scene->CenterOfMassVelocity(a.Handle())
+                                       : a.scene->CenterOfMass(a.Handle());
+  EditSoft(a, field, [&](SoftBodyState* s) { Shift(to - now, velocity ? &s->v : &s->x); });
+}
+
+/// An (n, 3) array for the n nodes of a soft actor as a stacked vector.
+Eigen::VectorXd NodeRows(const Actor& a, const py::handle& obj, const char* field) {
+  const auto rows = RowsFromArray<3>(obj, field);
+  const int n = a.Soft(field).NumNodes();
+  if (static_cast<int>(rows.size()) != n)
+    throw py::value_error(std::string(field) + ": needs " + std::to_string(n) + " rows (one per node), got " +
+                          std::to_string(rows.size()));
+  Eigen::VectorXd x(3 * n);
+  for (int i = 0; i < n; ++i) x.segment<3>(3 * i) = Finite3(rows[i], field);
+  return x;
+}
+
+}  // namespace
+
+namespace {
+
+// The soft actors' properties of Actor (TypeError on a rigid actor).
+void DefSoftProperties(py::class_<Actor>& actor) {
+  actor
       .def_property_readonly(
           "num_nodes", [](const Actor& a) { return a.Soft("num_nodes").NumNodes(); },
           "number of tet mesh nodes (soft actors)")
-      .def_property_readonly(
+      .def_property(
           "node_positions", [](const Actor& a) { return StackedToArray(a.SoftState("node_positions").x); },
-          "(n, 3) current node positions [m] (soft actors; a copy)")
-      .def_property_readonly(
+          [](Actor& a, const py::handle& x) {
+            const Eigen::VectorXd to = NodeRows(a, x, "node_positions");
+            EditSoft(a, "node_positions", [&](SoftBodyState* s) { s->x = to; });
+          },
+          "(n, 3) current node positions [m] (soft actors; a copy, assign a whole array)")
+      .def_property(
           "node_velocities",
           [](const Actor& a) { return StackedToArray(a.SoftState("node_velocities").v); },
-          "(n, 3) current node velocities [m/s] (soft actors; a copy)")
+          [](Actor& a, const py::handle& v) {
+            const Eigen::VectorXd to = NodeRows(a, v, "node_velocities");
+            EditSoft(a, "node_velocities", [&](SoftBodyState* s) { s->v = to; });
+          },
+          "(n, 3) current node velocities [m/s] (soft actors; a copy, assign a whole array)")
       .def_property_readonly(
           "rest_positions",
           [](const Actor& a) { return RowsToArray(a.Soft("rest_positions").rest.vertices); },
@@ -115,11 +138,92 @@ void BindActor(py::module_& m) {
             ElasticEnergy(a.Soft("min_det_f"), a.SoftState("min_det_f").x, &minDetF);
             return minDetF;
           },
-          "smallest det F over the tets at the current state (<= 0: an inverted tet; soft actors)")
-      .def("__repr__", [](const Actor& a) {
-        return "<superdex.Actor " + std::to_string(a.index) + " '" + a.Name() + "'" +
-               (a.IsSoft() ? " soft" : "") + ">";
-      });
+          "smallest det F over the tets at the current state (<= 0: an inverted tet; soft actors)");
+}
+
+}  // namespace
+
+void BindActor(py::module_& m) {
+  py::class_<Actor> actor(m, "Actor",
+                    "A handle to an actor of a Scene, rigid or soft (is_soft). Rigid-only\n"
+                    "properties (rotation, orientation, angular_velocity) raise TypeError on a soft\n"
+                    "actor, soft-only ones (node_positions, ...) on a rigid actor.");
+  actor.def_property_readonly("index", [](const Actor& a) { return a.index; })
+      .def_property_readonly("name", [](const Actor& a) { return a.Name(); })
+      .def_property_readonly("is_soft", &Actor::IsSoft)
+      .def_property_readonly(
+          "mass",
+          [](const Actor& a) {
+            return a.IsSoft() ? a.scene->SoftModel(a.Handle()).mass
+                              : a.scene->Model(a.Handle()).mass;
+          },
+          "[kg]")
+      .def_property_readonly(
+          "dynamic",
+          [](const Actor& a) { return a.IsSoft() || a.scene->Model(a.Handle()).dynamic; },
+          "False for a static rigid actor; soft actors are always dynamic")
+      .def_property_readonly("contact_layer",
+                             [](const Actor& a) { return a.scene->ContactLayer(a.Handle()); })
+      .def(
+          "set_contact_layer",
+          [](Actor& a, const std::string& layer) {
+            Error e;
+            if (!a.scene->SetContactLayer(a.Handle(), layer, &e)) throw py::value_error(e.message);
+          },
+          py::arg("layer"), "Actor::SetContactLayer: any string.")
+      .def_property(
+          "contact_params",
+          [](const Actor& a) { return a.scene->GetContactParams(a.Handle()); },
+          [](Actor& a, const ContactParams& c) {
+            Error e;
+            if (!a.scene->SetContactParams(a.Handle(), c, &e)) throw py::value_error(e.message);
+          },
+          "the actor's ContactParams (a copy; assign a modified copy back, validated)")
+      // Assigning position, orientation, velocity or angular_velocity (or a soft actor's nodes)
+      // changes the state now and restarts the multistep integrator's history, as a new
+      // initial state; static actors refuse it.
+      .def_property(
+          "position", [](const Actor& a) { return a.scene->CenterOfMass(a.Handle()); },
+          [](Actor& a, const Eigen::Vector3d& p) { SetCentre(a, "position", p, false); },
+          "centre of mass [m] (soft: of the lumped node masses; assigning it translates every "
+          "node)")
+      .def_property_readonly("rotation",
+                             [](const Actor& a) { return a.RigidState("rotation").R; },
+                             "rotation matrix (rigid actors)")
+      .def_property(
+          "orientation", [](const Actor& a) { return Quaternion(a.RigidState("orientation").R); },
+          [](Actor& a, const Eigen::Vector4d& q) {
+            if (!(q.allFinite() && q.norm() > 0))
+              throw py::value_error("orientation: must be a finite non-zero quaternion");
+            const Eigen::Matrix3d R =
+                Eigen::Quaterniond(q[3], q[0], q[1], q[2]).normalized().toRotationMatrix();
+            EditRigid(a, "orientation", [&](RigidBodyState* s) {
+              const Eigen::Vector3d w = s->AngularVelocity();  // kept
+              s->R = R;
+              s->Rdot = Skew(w) * R;
+            });
+          },
+          "quaternion [x, y, z, w] (rigid actors; assigned ones are normalized, the angular "
+          "velocity is kept)")
+      .def_property(
+          "velocity", [](const Actor& a) { return a.scene->CenterOfMassVelocity(a.Handle()); },
+          [](Actor& a, const Eigen::Vector3d& v) { SetCentre(a, "velocity", v, true); },
+          "centre-of-mass velocity [m/s] (soft: assigning it adds the same velocity to every "
+          "node)")
+      .def_property(
+          "angular_velocity",
+          [](const Actor& a) { return a.RigidState("angular_velocity").AngularVelocity(); },
+          [](Actor& a, const Eigen::Vector3d& w) {
+            const Eigen::Vector3d to = Finite3(w, "angular_velocity");
+            EditRigid(a, "angular_velocity",
+                      [&](RigidBodyState* s) { s->Rdot = Skew(to) * s->R; });
+          },
+          "world angular velocity [rad/s] (rigid actors)");
+  DefSoftProperties(actor);
+  actor.def("__repr__", [](const Actor& a) {
+    return "<superdex.Actor " + std::to_string(a.index) + " '" + a.Name() + "'" +
+           (a.IsSoft() ? " soft" : "") + ">";
+  });
 }
 
 }  // namespace superdex::python

@@ -271,6 +271,7 @@ void BindSceneClass(py::module_& m) {
           },
           py::arg("name"));
   BindContactFilter(scene);
+  BindSceneStateMethods(scene);
 }
 
 void BindSceneFile(py::module_& m) {

@@ -10,6 +10,10 @@
 #include <string>
 #include <vector>
 
+namespace superdex {
+class Scene;
+}
+
 namespace superdex::python {
 
 namespace py = pybind11;
@@ -23,7 +27,9 @@ void BindRigidShape(py::module_& m);
 void BindRigidActorDesc(py::module_& m);
 void BindStepReport(py::module_& m);
 void BindActor(py::module_& m);
-void BindSceneClass(py::module_& m);  // Scene, with contact filtering
+void BindSceneState(py::module_& m);  // SceneState
+void BindSceneClass(py::module_& m);  // Scene, with contact filtering and its state
+void BindSceneStateMethods(py::class_<Scene>& scene);  // get_state, set_state, clone
 void BindSceneFile(py::module_& m);  // SceneFile, load_scene
 void BindForwardSensitivity(py::module_& m);
 void BindFitting(py::module_& m);  // FitResult, TrajectoryGradient, fit, trajectory_gradient

@@ -17,6 +17,7 @@ PYBIND11_MODULE(_superdex, m) {
   BindRigidActorDesc(m);
   BindStepReport(m);
   BindActor(m);
+  BindSceneState(m);
   BindSceneClass(m);
   BindSceneFile(m);
   BindForwardSensitivity(m);
