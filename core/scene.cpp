@@ -73,8 +73,13 @@ ActorHandle Scene::Register(bool soft, int local, const std::string& layer, Acto
   return {NumActors() - 1};
 }
 
+bool Scene::UniqueName(const std::string& name, Error* error) const {
+  if (name.empty() || !FindActor(name).IsValid()) return true;
+  return Fail(error, "name: duplicate actor name \"" + name + "\" (actor names are unique)");
+}
+
 ActorHandle Scene::AddRigidActor(const RigidActorDesc& desc, Error* error, ActorHandle parent) {
-  if (!ValidParent(parent, error)) return {};
+  if (!ValidParent(parent, error) || !UniqueName(desc.name, error)) return {};
   RigidBodyModel model;
   RigidBodyState state;
   if (!BuildRigidBody(desc, "", &model, &state, error)) return {};
@@ -93,7 +98,7 @@ ActorHandle Scene::AddRigidActor(const RigidActorDesc& desc, Error* error, Actor
 }
 
 ActorHandle Scene::AddSoftActor(const SoftActorDesc& desc, Error* error, ActorHandle parent) {
-  if (!ValidParent(parent, error)) return {};
+  if (!ValidParent(parent, error) || !UniqueName(desc.name, error)) return {};
   SoftBodyModel model;
   SoftBodyState state;
   if (!BuildSoftBody(desc, "", &model, &state, error)) return {};
@@ -109,6 +114,7 @@ ActorHandle Scene::AddActor(std::unique_ptr<ActorKind> actor, Error* error,
                             const std::string& contactLayer, ActorHandle parent) {
   if (!ValidParent(parent, error)) return {};
   if (!actor) return Fail(error, "actor: null"), ActorHandle();
+  if (!UniqueName(actor->name, error)) return {};
   if (std::string m = ValidateKind(*actor); !m.empty()) return Fail(error, m), ActorHandle();
   const int local = static_cast<int>(kinds_.size());
   step_.softStates.push_back(actor->InitialState());
@@ -545,7 +551,39 @@ std::vector<std::string> Scene::Notices() const {
     out.push_back("actors of the generic layer (" + kinds_.front()->KindName() +
                   ", ...) do not collide on a soft actor's field: that pair is not supported yet "
                   "(soft actors do collide on theirs)");
+  ZeroByCombinationNotices(&out);
   return out;
+}
+
+void Scene::ZeroByCombinationNotices(std::vector<std::string>* out) const {
+  // A pair's μ, c_t and c_n are geometric means (spec: "Contact Parameter Combination"): one
+  // actor's 0 makes its pairs' 0 whatever the other sets. Noted where an actor sets a nonzero
+  // value other than the default and another has 0 (a 0 against the default is the usual way to
+  // make a pair frictionless or undamped).
+  const ContactParams defaults;
+  auto notice = [&](const char* field, auto coefficient) {
+    std::vector<std::string> set, zero;
+    for (int i = 0; i < NumActors(); ++i) {
+      const double c = coefficient(GetContactParams({i}));
+      if (c > 0 && c != coefficient(defaults)) set.push_back("'" + ActorName({i}) + "'");
+      if (c == 0) zero.push_back("'" + ActorName({i}) + "'");
+    }
+    if (set.empty() || zero.empty()) return;
+    auto list = [](const std::vector<std::string>& names) {
+      std::string s = names.front();
+      if (names.size() > 1) s += " and " + std::to_string(names.size() - 1) + " more";
+      return s;
+    };
+    out->push_back(std::string("contact.") + field + ": set on " + list(set) + " but 0 on " +
+                   list(zero) + "; a pair combines it by the geometric mean of its two actors, "
+                   "so every pair with an actor at 0 has none (set it on both actors)");
+  };
+  notice("coulomb_friction_coefficient",
+         [](const ContactParams& c) { return c.coulombFrictionCoefficient; });
+  notice("viscous_friction_coefficient",
+         [](const ContactParams& c) { return c.viscousFrictionCoefficient; });
+  notice("normal_viscous_damping_coefficient",
+         [](const ContactParams& c) { return c.normalViscousDampingCoefficient; });
 }
 
 bool Scene::HasDissipation() const {

@@ -36,8 +36,8 @@ class Scene : private StageHost {
  public:
   explicit Scene(const SceneSettings& settings = SceneSettings());
 
-  /// Adds a rigid actor; returns an invalid handle and fills *error on bad input. A valid
-  /// `parent` nests the actor under it (for IncludeNestedActors::Yes).
+  /// Adds a rigid actor; returns an invalid handle and fills *error on bad input (also a name
+  /// another actor has). A valid `parent` nests the actor under it (IncludeNestedActors::Yes).
   ActorHandle AddRigidActor(const RigidActorDesc& desc, Error* error,
                             ActorHandle parent = ActorHandle());
   /// Adds a soft (tet FEM) actor; returns an invalid handle and fills *error on bad input.
@@ -155,7 +155,7 @@ class Scene : private StageHost {
   bool HasDissipation() const;
   /// Every active contact sample at the current state, with its normal traction (world frame).
   std::vector<ContactSampleRecord> ContactSamples();
-  /// One-time notes about the scene (e.g. a collider type not supported yet).
+  /// One-time notes (a collider not supported yet, a coefficient that combines to 0).
   std::vector<std::string> Notices() const;
 
   /// A point of the run with the stage policy's state, to return to (checkpoints, replays).
@@ -196,9 +196,10 @@ class Scene : private StageHost {
 
   void ClearHistory();
   bool ValidParent(ActorHandle parent, Error* error) const;  // no parent, or an existing actor
-  // Enters an actor held at `local` of its kind's arrays into the actor list and the filter.
-  ActorHandle Register(bool soft, int local, const std::string& layer, ActorHandle parent,
-                       bool kind = false);
+  bool UniqueName(const std::string& name, Error* error) const;  // empty, or no actor's yet
+  void ZeroByCombinationNotices(std::vector<std::string>* out) const;  // for Notices
+  // Enters an actor at `local` of its kind's arrays into the actor list and the filter.
+  ActorHandle Register(bool soft, int local, const std::string& layer, ActorHandle parent, bool kind = false);
   void Prepare();
   std::vector<RigidPose> CurrentPoses() const;
   void CurrentPoses(std::vector<RigidPose>* poses) const;
@@ -234,8 +235,7 @@ class Scene : private StageHost {
   std::vector<int> softDofOffset_;
   StepState step_;  // what a step advances (softStates: the soft actors', then the kinds')
   StepBuffers buffers_;  // Step's storage kept from step to step (core/dynamics/step_state.h)
-  // Whether the pipeline is configured for the current actors; a copied scene configures its own
-  // (the pipeline holds pointers to the scene's models).
+  // The pipeline is configured for these actors (it points at them; a copy configures its own).
   ResetOnCopy prepared_;
   bool hasDissipation_ = false;  // HasDissipation(), cached by Prepare
   std::vector<int> dofOffset_;

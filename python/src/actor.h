@@ -39,6 +39,11 @@ struct Actor {
   }
 };
 
+/// Actor.contact_params: the live view (bind_params.cpp), and its assignment from a
+/// ContactParams or another actor's view.
+py::object ActorContactParamsOf(const Actor& a);
+void SetActorContactParams(Actor& a, const py::object& value);
+
 /// [x, y, z, w] of a rotation matrix.
 inline Eigen::Vector4d Quaternion(const Eigen::Matrix3d& R) {
   const Eigen::Quaterniond q(R);

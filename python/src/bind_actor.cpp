@@ -171,14 +171,10 @@ void BindActor(py::module_& m) {
             if (!a.scene->SetContactLayer(a.Handle(), layer, &e)) throw py::value_error(e.message);
           },
           py::arg("layer"), "Actor::SetContactLayer: any string.")
-      .def_property(
-          "contact_params",
-          [](const Actor& a) { return a.scene->GetContactParams(a.Handle()); },
-          [](Actor& a, const ContactParams& c) {
-            Error e;
-            if (!a.scene->SetContactParams(a.Handle(), c, &e)) throw py::value_error(e.message);
-          },
-          "the actor's ContactParams (a copy; assign a modified copy back, validated)")
+      .def_property("contact_params", &ActorContactParamsOf, &SetActorContactParams,
+                    "the actor's contact parameters, live: `a.contact_params.x = v` changes the "
+                    "actor's (validated); assign a ContactParams to replace them all; "
+                    "`.copy()` gives a ContactParams")
       // Assigning position, orientation, velocity or angular_velocity (or a soft actor's nodes)
       // changes the state now and restarts the multistep integrator's history, as a new
       // initial state; static actors refuse it.

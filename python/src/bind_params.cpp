@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "actor.h"
 #include "bindings.h"
 #include "core/dynamics/scene_settings.h"
 #include "core/model/collider_params.h"
@@ -175,6 +176,17 @@ void BindFields(py::class_<Class>& c, const Table& table) {
   });
 }
 
+// An actor's ContactParams, live: a property reads the actor's parameters now, an assignment
+// changes them (Scene::SetContactParams validates; ValueError naming the field).
+struct ActorContactParams {
+  Actor actor;
+  const ContactParams& Get() const { return actor.scene->GetContactParams(actor.Handle()); }
+  void Set(const ContactParams& p) {
+    Error e;
+    if (!actor.scene->SetContactParams(actor.Handle(), p, &e)) throw py::value_error(e.message);
+  }
+};
+
 template <typename Class, typename Table>
 void BindParamsClass(py::module_& m, const char* name, const char* doc, const Table& table) {
   py::class_<Class> c(m, name, doc);
@@ -182,6 +194,39 @@ void BindParamsClass(py::module_& m, const char* name, const char* doc, const Ta
 }
 
 }  // namespace
+
+void BindActorContactParams(py::module_& m) {
+  py::class_<ActorContactParams> c(
+      m, "ActorContactParams",
+      "An actor's contact parameters, live (Actor.contact_params): reading a property gives the\n"
+      "actor's value now; assigning one changes the actor's, validated. copy() gives a\n"
+      "ContactParams to keep or to give another actor.");
+  ForEachField(kContactParamsFields, [&](const auto& f) {
+    static_assert(!kIsNested<std::decay_t<decltype(f)>>);
+    c.def_property(
+        f.name, [f](const ActorContactParams& v) { return ToPython(f, v.Get()); },
+        [f](ActorContactParams& v, const py::object& value) {
+          ContactParams q = v.Get();
+          f.Of(q) = FromPython(f, value);
+          v.Set(q);
+        },
+        DocOf(f));
+  });
+  c.def("copy", [](const ActorContactParams& v) { return v.Get(); }, "A ContactParams copy.");
+  c.def("__repr__", [](const ActorContactParams& v) {
+    return "<" + v.actor.Name() + ".contact_params: " + std::string(py::repr(py::cast(v.Get()))) +
+           ">";
+  });
+}
+
+void SetActorContactParams(Actor& a, const py::object& value) {
+  ActorContactParams live{a};
+  if (py::isinstance<ActorContactParams>(value))
+    return live.Set(value.cast<const ActorContactParams&>().Get());
+  live.Set(value.cast<ContactParams>());
+}
+
+py::object ActorContactParamsOf(const Actor& a) { return py::cast(ActorContactParams{a}); }
 
 void BindParams(py::module_& m) {
   BindEnum<ColliderType>(m, "ColliderType",

@@ -2,6 +2,7 @@
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <memory>
 #include <optional>
 
@@ -21,6 +22,19 @@ RigidShape MakeShape(RigidShapeKind kind, std::optional<int> surfaceResolution =
   return s;
 }
 
+// An analytic shape checked by the rules an actor's shape meets when it is added (ValueError
+// naming the field, e.g. "shape.radius: must be > 0, got -1").
+RigidShape Checked(const RigidShape& shape) {
+  RigidActorDesc d;
+  d.shape = shape;
+  d.dynamic = false;  // the shape's own rules only (no density, planes allowed)
+  RigidBodyModel model;
+  RigidBodyState state;
+  Error e;
+  if (!BuildRigidBody(d, "", &model, &state, &e)) throw py::value_error(e.message);
+  return shape;
+}
+
 }  // namespace
 
 void BindRigidShape(py::module_& m) {
@@ -32,7 +46,7 @@ void BindRigidShape(py::module_& m) {
           [](double radius, int resolution) {
             RigidShape s = MakeShape(RigidShapeKind::Sphere, resolution);
             s.radius = radius;
-            return s;
+            return Checked(s);
           },
           py::arg("radius"), py::arg("surface_resolution") = 3,
           "A sphere of the given radius [m]; surface_resolution icosphere subdivisions (0-7).")
@@ -41,7 +55,7 @@ void BindRigidShape(py::module_& m) {
           [](const Eigen::Vector3d& size, int resolution) {
             RigidShape box = MakeShape(RigidShapeKind::Box, resolution);
             box.halfExtents = 0.5 * size;
-            return box;
+            return Checked(box);
           },
           py::arg("size"), py::arg("surface_resolution") = 2,
           "A box of edge lengths size = [x, y, z] [m]; surface_resolution cells per edge.")
@@ -50,13 +64,15 @@ void BindRigidShape(py::module_& m) {
           [](const Eigen::Vector3d& normal) {
             RigidShape s = MakeShape(RigidShapeKind::Plane);
             s.planeNormal = normal;
-            return s;
+            return Checked(s);
           },
           py::arg("normal") = Eigen::Vector3d::UnitZ(),
           "The half space below the plane through the actor's position (static actors only).")
       .def_static(
           "mesh",
           [](const std::string& path, double scale) {
+            if (!(std::isfinite(scale) && scale > 0))
+              throw py::value_error("scale: must be > 0, got " + std::to_string(scale));
             auto mesh = std::make_shared<TriangleMesh>();
             std::string error;
             if (!ReadMeshFile(path, mesh.get(), &error)) throw py::value_error(error);

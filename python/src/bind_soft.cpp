@@ -160,7 +160,8 @@ void BindSoftActorDesc(py::module_& m) {
       m, "SoftActorDesc",
       "What a soft (tet FEM) actor is made from. The tet mesh is the rest shape in its own\n"
       "frame; position and orientation place it in the world; every free node starts with\n"
-      "linear_velocity. Units: m, m/s, Pa, kg/m^3. Validated by Scene.add_soft_actor.");
+      "velocity (the name RigidActorDesc and scene files use). Units: m, m/s, Pa, kg/m^3.\n"
+      "Validated by Scene.add_soft_actor.");
   desc.def(py::init([](const std::string& name, const std::shared_ptr<TetMesh>& mesh,
                        const SoftMaterial& material) {
              SoftActorDesc d;
@@ -179,7 +180,7 @@ void BindSoftActorDesc(py::module_& m) {
                      "the mesh's file or generator, for messages")
       .def_readwrite("position", &SoftActorDesc::position, "mesh frame origin [m]");
   DefOrientation(desc, "quaternion [x, y, z, w] of the mesh frame");
-  desc.def_readwrite("linear_velocity", &SoftActorDesc::linearVelocity,
+  desc.def_readwrite("velocity", &SoftActorDesc::linearVelocity,
                      "initial velocity of every free node [m/s]")
       .def_readwrite("material", &SoftActorDesc::material, "SoftMaterial")
       .def_readwrite("contact", &SoftActorDesc::contact, "ContactParams")

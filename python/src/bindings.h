@@ -26,6 +26,7 @@ void BindSoftActorDesc(py::module_& m);  // NodeConstraint, SoftActorDesc
 void BindRigidShape(py::module_& m);
 void BindRigidActorDesc(py::module_& m);
 void BindStepReport(py::module_& m);
+void BindActorContactParams(py::module_& m);  // Actor.contact_params, live
 void BindActor(py::module_& m);
 void BindSceneState(py::module_& m);  // SceneState
 void BindSceneClass(py::module_& m);  // Scene, with contact filtering and its state

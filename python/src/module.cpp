@@ -16,6 +16,7 @@ PYBIND11_MODULE(_superdex, m) {
   BindRigidShape(m);
   BindRigidActorDesc(m);
   BindStepReport(m);
+  BindActorContactParams(m);
   BindActor(m);
   BindSceneState(m);
   BindSceneClass(m);

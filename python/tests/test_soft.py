@@ -75,7 +75,7 @@ def test_descriptions_carry_the_snake_case_names_and_defaults():
     assert d.collider_type == getattr(sd.ColliderType, "None")  # `.None` is a syntax error
     assert d.boundary_element_type == sd.ActorBoundaryElementType.P1Q3
     assert d.contact_layer == "default" and d.constraints == []
-    assert list(d.orientation) == [0, 0, 0, 1] and list(d.linear_velocity) == [0, 0, 0]
+    assert list(d.orientation) == [0, 0, 0, 1] and list(d.velocity) == [0, 0, 0]
     assert d.contact.penalty_coefficient == 1e9 and d.grid_sdf.min_grid_resolution >= 2
     d.orientation = [0, 0, 2, 0]
     assert list(d.orientation) == [0, 0, 1, 0]

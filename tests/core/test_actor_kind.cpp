@@ -202,6 +202,7 @@ TEST_CASE("two point masses stack: the collider role of a kind (its sphere field
   auto upper = std::make_unique<PointMass>(m2, w, r, Eigen::Vector3d(0, 0, 0.0125),
                                            Eigen::Vector3d::Zero());
   lower->contact.penaltyCoefficient = upper->contact.penaltyCoefficient = 1e9;
+  upper->name = "upper particle";  // names are unique
   const ContactParams pc = lower->contact;
   const ActorHandle a = scene.AddActor(std::move(lower), &error);
   const ActorHandle b = scene.AddActor(std::move(upper), &error);

@@ -85,3 +85,23 @@ TEST_CASE("bad input: soft material errors name material.<field>", "[core][bad_i
   CHECK(AddSoft(d) == "mesh: mesh: the mass (density x volume) is not representable in double "
                       "precision");
 }
+
+TEST_CASE("bad input: a second actor of the same name is refused, naming the field",
+          "[core][bad_input]") {
+  Scene scene;
+  Error e;
+  RigidActorDesc ball;
+  ball.name = "ball";
+  ball.shape.kind = RigidShapeKind::Sphere;
+  ball.shape.radius = 0.1;
+  REQUIRE(scene.AddRigidActor(ball, &e).IsValid());
+  CHECK_FALSE(scene.AddRigidActor(ball, &e).IsValid());
+  CHECK(e.message == "name: duplicate actor name \"ball\" (actor names are unique)");
+  SoftActorDesc jelly = SoftBox(0.1);
+  jelly.name = "ball";
+  CHECK_FALSE(scene.AddSoftActor(jelly, &e).IsValid());
+  CHECK(e.message == "name: duplicate actor name \"ball\" (actor names are unique)");
+  CHECK(scene.NumActors() == 1);
+  jelly.name = "jelly";
+  CHECK(scene.AddSoftActor(jelly, &e).IsValid());
+}

@@ -596,6 +596,7 @@ TEST_CASE("soft collider: soft on soft keeps the momentum balance", "[core][soft
       thrown.contact.penaltyCoefficient = 1e5;
       thrown.contact.coulombFrictionCoefficient = 0.3;
       thrown.linearVelocity = Eigen::Vector3d(1.0, 0.0, 0.0);
+      thrown.name = "thrown";
       scene.AddSoftActor(thrown, &e);
       RigidActorDesc box = test::Cube(1e5, 0.3, 0.0);
       box.position = Eigen::Vector3d(0.02, -0.03, 0.21);

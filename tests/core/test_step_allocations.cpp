@@ -180,6 +180,7 @@ TEST_CASE("A step on the Krylov path allocates nothing once its buffers are size
                   .IsValid());
       for (int i = 0; i < 9; ++i) {
         RigidActorDesc box = test::Cube(1e9, 0.5, 1.0);
+        box.name = "cube" + std::to_string(i);
         box.position = {0.5 * (i % 3), 0.5 * (i / 3), 0.1};
         box.linearVelocity = {0.3, 0.1 * (i % 2), 0};
         REQUIRE(scene.AddRigidActor(box, &e).IsValid());
