@@ -376,6 +376,18 @@ void Scene::SolveStage(double dt, const std::vector<RigidBodyState>& start,
   const SolverStats st = driver_.Solve(settings_, scene, dt, start, last, poses, &contact, soft,
                                        softX, predictTime, recorder_);
   AccountStage(st, contact, rep);
+  // What ContactSamples needs to report this stage's dissipation at the state it produced.
+  ReportStage& r = buffers_.reportStage;
+  r.valid = hasDissipation_;
+  if (!r.valid) return;
+  r.dt = dt;
+  r.mode = st.fallback ? DissipationMode::ExplicitNormals : ModeOf(settings_.eval);
+  r.fadeFriction = settings_.eval.fadeFriction;
+  r.start = driver_.LastTargets().start;
+  r.x0 = soft ? soft->x0 : std::vector<Eigen::VectorXd>();
+  r.xLast = soft ? soft->xLast : std::vector<Eigen::VectorXd>();
+  r.q0 = soft ? soft->kinds.q0 : std::vector<Eigen::VectorXd>();
+  r.qLast = soft ? soft->kinds.qLast : std::vector<Eigen::VectorXd>();
 }
 
 bool Scene::Step(double h, StepReport* report, Error* error, StageRecorder* recorder) {
@@ -455,8 +467,22 @@ std::vector<ContactSampleRecord> Scene::ContactSamples() {
   SoftView view;
   view.x = &x;
   view.dofOffset = &softDofOffset_;
-  const KindView kinds = CurrentKindView(x);
-  pipeline_.CollectSamples(CurrentPoses(), &out, &view, &kinds);
+  KindView kinds = CurrentKindView(x);
+  const ReportStage& r = buffers_.reportStage;
+  if (!r.valid || r.start.size() != models_.size()) {
+    pipeline_.CollectSamples(CurrentPoses(), &out, &view, &kinds);
+    return out;
+  }
+  // The last stage's dissipation at the state it produced.
+  view.x0 = r.x0.empty() ? nullptr : &r.x0;
+  view.xLast = r.xLast.empty() ? nullptr : &r.xLast;
+  kinds.q0 = r.q0.empty() ? nullptr : &r.q0;
+  kinds.qLast = r.qLast.empty() ? nullptr : &r.qLast;
+  DissipationContext context;
+  context.dt = r.dt;
+  context.mode = r.mode;
+  context.fadeFriction = r.fadeFriction;
+  pipeline_.CollectSamples(CurrentPoses(), &out, &view, &kinds, &context, &r.start);
   return out;
 }
 
@@ -468,7 +494,7 @@ bool Scene::SoftFaceTractions(ActorHandle a, std::vector<Eigen::Vector3d>* tract
   tractions->assign(m.faces.size(), Eigen::Vector3d::Zero());
   for (const ContactSampleRecord& r : ContactSamples())
     if (r.colliding == a.index && r.face >= 0)
-      (*tractions)[r.face] += r.weight * r.traction / m.faceArea[r.face];
+      (*tractions)[r.face] += r.weight * (r.traction + r.friction + r.damping) / m.faceArea[r.face];
   return true;
 }
 

@@ -103,8 +103,8 @@ class Scene : private StageHost {
   Eigen::Vector3d CenterOfMassVelocity(ActorHandle a) const;
   std::vector<ActorHandle> SoftActors() const;
   /// Per boundary face of soft actor a, the contact traction on it averaged over the face's
-  /// reference area, Σ_q w_q t_q / A_f [Pa] (world frame; zero for faces out of contact), from the
-  /// active penalty samples at the current state.
+  /// reference area, Σ_q w_q t_q / A_f [Pa] (world frame; zero for faces out of contact), from
+  /// ContactSamples: normal, and the last step's friction and damping.
   bool SoftFaceTractions(ActorHandle a, std::vector<Eigen::Vector3d>* tractions, Error* error);
   const SceneSettings& Settings() const { return settings_; }
   /// Changes the stage solver. Ipopt is refused for a scene whose stages are not a potential
@@ -153,7 +153,7 @@ class Scene : private StageHost {
   /// True when some actor has a nonzero friction or damping coefficient (stages then carry
   /// Δt_i R in the mode ExperimentalEvalParams selects).
   bool HasDissipation() const;
-  /// Every active contact sample at the current state, with its normal traction (world frame).
+  /// Every active contact sample now, its normal traction and the last step's dissipation (world).
   std::vector<ContactSampleRecord> ContactSamples();
   /// One-time notes (a collider not supported yet, a coefficient that combines to 0).
   std::vector<std::string> Notices() const;

@@ -284,12 +284,14 @@ Scene::Snapshot Scene::Save() const { return {step_, driver_.GetState()}; }
 void Scene::Restore(const Snapshot& s) {
   step_ = s.step;
   driver_.SetState(s.driver);
+  buffers_.reportStage.valid = false;  // the state is not the last stage's any more
 }
 
 void Scene::ClearHistory() {
   step_.history.clear();
   step_.softHistory.clear();
   step_.historyTimes.clear();
+  buffers_.reportStage.valid = false;
 }
 
 const std::vector<int>& Scene::KindStageDofs(ActorHandle a) const {

@@ -62,8 +62,8 @@ json SoftSurfaceJson(const SoftBodyModel& m, std::vector<int>* nodes) {
 }
 
 // The active contact samples as columns: the actor pair (colliding, collider), positions [m],
-// normal tractions [Pa] (> 0 pushing the colliding actor out), forces w_q t_n on the colliding
-// actor [N].
+// normal tractions [Pa] (> 0 pushing the colliding actor out), forces w_q (t_n + t_f + t_d) on the
+// colliding actor with the step's friction and damping [N].
 json ContactsJson(Scene& scene) {
   json pairs = json::array(), p = json::array(), tn = json::array(), f = json::array();
   for (const ContactSampleRecord& r : scene.ContactSamples()) {
@@ -71,7 +71,7 @@ json ContactsJson(Scene& scene) {
     pairs.push_back(r.collider);
     Push(&p, r.position);
     tn.push_back(Single(r.traction.dot(r.normal)));
-    Push(&f, r.weight * r.traction);
+    Push(&f, r.weight * (r.traction + r.friction + r.damping));
   }
   return {{"count", tn.size()}, {"pairs", pairs}, {"p", p}, {"tn", tn}, {"f", f}};
 }

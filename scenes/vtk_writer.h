@@ -12,7 +12,8 @@ namespace superdex {
 /// current node positions and the surfaces of rigid spheres, boxes and meshes at their poses
 /// (planes are skipped). Cell data per triangle:
 ///   traction  the nominal contact traction on the face: force per reference area,
-///             Σ_q w_q t_q / A_f [Pa] (world frame; soft faces; zero elsewhere)
+///             Σ_q w_q t_q / A_f [Pa] (world frame; soft faces; zero elsewhere), its normal part
+///             and the last step's friction and damping (Scene::SoftFaceTractions)
 ///   pressure  the true contact pressure: −(normal force)/(current area) [Pa] (> 0 in
 ///             compression; it differs from −traction·n by the area change A_f / a_f)
 ///   actor     the actor index

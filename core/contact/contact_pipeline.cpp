@@ -747,19 +747,27 @@ void ContactPipeline::EvaluateKindPairs(const Request& q, double* energy, Contac
 
 void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,
                                      std::vector<ContactSampleRecord>* records,
-                                     const SoftView* soft, const KindView* kinds) {
+                                     const SoftView* soft, const KindView* kinds,
+                                     const DissipationContext* dissipation,
+                                     const std::vector<RigidStageStart>* stageStart) {
   const std::vector<RigidBodyModel>& models = *models_;
-  FindPairs(poses, nullptr, nullptr, soft, kinds);
+  if (!stageStart) dissipation = nullptr;
+  FindPairs(poses, dissipation, stageStart, soft, kinds);
   records->clear();
+  auto setupOf = [&](const PairContactParams& params) {
+    return dissipation ? MakeSetup(params, *dissipation, false) : DissipationSetup();
+  };
+  auto startOf = [&](int i) { return stageStart ? &(*stageStart)[i] : nullptr; };
   PairStencils scratch;
   for (const ContactPair& cp : pairs_) {
     const PenaltyParams pp = PenaltyOf(cp.params);
+    const DissipationSetup setup = setupOf(cp.params);
     const size_t first = records->size();
-    const FrameSide B = RigidFrameSide(models[cp.collider], poses[cp.collider], nullptr, -1);
-    FrameEvaluation evaluation(B, pp, cp.params.maxAlignmentNormals, nullptr, 0, &scratch,
-                               records);
-    GatherRigidSamples(models[cp.colliding], poses[cp.colliding], nullptr, -1, B, pp.delta,
-                       nullptr, &evaluation);
+    const FrameSide B = RigidFrameSide(models[cp.collider], poses[cp.collider], startOf(cp.collider), -1);
+    FrameEvaluation evaluation(B, pp, cp.params.maxAlignmentNormals, dissipation ? &setup : nullptr,
+                               0, &scratch, records);
+    GatherRigidSamples(models[cp.colliding], poses[cp.colliding], startOf(cp.colliding), -1, B,
+                       pp.delta, dissipation ? &setup : nullptr, &evaluation);
     evaluation.Finish();
     for (size_t k = first; k < records->size(); ++k) {
       (*records)[k].colliding = RigidActor(cp.colliding);
@@ -769,12 +777,12 @@ void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,
   PairStencils scratchSoft;
   for (const SoftContactPair& sp : softPairs_) {
     const PenaltyParams pp = PenaltyOf(sp.params);
-    SoftPairInput in;
-    in.model = &(*softModels_)[sp.soft];
-    in.x = &(*soft->x)[sp.soft];
+    const DissipationSetup setup = setupOf(sp.params);
+    const SoftPairInput in = SoftInputOf(*soft, sp.soft);
     const size_t first = records->size();
-    EvaluateSoftRigidPair(in, models[sp.collider], poses[sp.collider], nullptr, -1, pp,
-                          sp.params.maxAlignmentNormals, nullptr, 0, &scratchSoft, records);
+    EvaluateSoftRigidPair(in, models[sp.collider], poses[sp.collider], startOf(sp.collider), -1,
+                          pp, sp.params.maxAlignmentNormals, dissipation ? &setup : nullptr, 0,
+                          &scratchSoft, records);
     for (size_t k = first; k < records->size(); ++k) {
       (*records)[k].colliding = softActor_[sp.soft];
       (*records)[k].collider = RigidActor(sp.collider);
@@ -803,15 +811,18 @@ void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,
   q.poses = &poses;
   q.kinds = kinds;
   q.soft = soft;
+  q.dissipation = dissipation;
+  q.stageStart = stageStart;
   PairStencils scratchKind;
   const std::vector<int> noDofs(models.size(), -1);
   q.dofOffset = &noDofs;
   for (const KindPair& kp : kindPairs_) {
     const FrameSide B = KindPairCollider(q, kp);
+    const DissipationSetup setup = setupOf(kp.params);
     const size_t first = records->size();
-    FrameEvaluation evaluation(B, PenaltyOf(kp.params), kp.params.maxAlignmentNormals, nullptr, 0,
-                               &scratchKind, records);
-    GatherKindPairSamples(q, kp, B, nullptr, &evaluation);
+    FrameEvaluation evaluation(B, PenaltyOf(kp.params), kp.params.maxAlignmentNormals,
+                               dissipation ? &setup : nullptr, 0, &scratchKind, records);
+    GatherKindPairSamples(q, kp, B, dissipation ? &setup : nullptr, &evaluation);
     evaluation.Finish();
     for (size_t k = first; k < records->size(); ++k) {
       (*records)[k].colliding =

@@ -142,10 +142,15 @@ class ContactPipeline {
                   const KindView* next = nullptr, std::vector<double>* kindAlpha = nullptr);
 
   /// Every active contact sample at the given poses (serial; for reporting). Records carry actor
-  /// indices (see Configure) and, for soft colliding actors, the boundary face.
+  /// indices (see Configure) and, for soft colliding actors, the boundary face. With a stage's
+  /// `dissipation` and `stageStart` (and the views' x⁰, x_n), as Evaluate takes them, each record
+  /// carries its dissipation traction too; pairs on a soft collider's field report their normal
+  /// traction only.
   void CollectSamples(const std::vector<RigidPose>& poses,
                       std::vector<ContactSampleRecord>* records, const SoftView* soft = nullptr,
-                      const KindView* kinds = nullptr);
+                      const KindView* kinds = nullptr,
+                      const DissipationContext* dissipation = nullptr,
+                      const std::vector<RigidStageStart>* stageStart = nullptr);
 
   /// The last Evaluate's rigid pairs by body (StageProblem::LastSplit): each pair's penalty and
   /// dissipation values, as Evaluate summed them, added to (*share)[i] of its first dynamic actor

@@ -184,7 +184,8 @@ bool AddPenalty(const PairSample& s, const FrameSide& B, const SamplePullback& p
 /// The dissipation of one sample (sample index k, the slip key) into stencil *st.
 void AddDissipation(const PairSample& s, int k, const FrameSide& B, const SamplePullback& p,
                     const SdfSample& field, const DissipationSetup& ds, int order,
-                    PairStencils* out, ContactStencil* st, RigidSampleSums* sums) {
+                    PairStencils* out, ContactStencil* st, RigidSampleSums* sums,
+                    ContactSampleRecord* record = nullptr) {
   const bool explicitNormals = ds.mode == DissipationMode::ExplicitNormals;
   const double m = ds.maxAlignment, delta = ds.penalty.delta;
   double lambdaHat = 0.0;
@@ -214,6 +215,10 @@ void AddDissipation(const PairSample& s, int k, const FrameSide& B, const Sample
       lambdaHat, N, V, ds.coefficients, ds.HessianKind(hessian), ds.slips, k);
   st->dissipationActive = true;
   out->AddDissipative(s.weight, ds.dt, D, ds.coefficients.mu, lambdaHat);
+  if (record) {  // the tractions on A, −∂R/∂V split, B's frame to the world
+    record->friction = B.pose.R * (D.coulomb + D.viscousTangential);
+    record->damping = B.pose.R * D.viscousNormal;
+  }
   if (order == 0) return;
   const Eigen::Matrix3d HY = D.hessian / ds.dt;
   if (sums->on) {
@@ -329,11 +334,24 @@ void FrameEvaluation::AddTerms(const PairSample& s, const SamplePullback& p, con
 
 void FrameEvaluation::AddOpenTerms(const PairSample& s, const SamplePullback& p,
                                    const SdfSample& field, bool below) {
+  const size_t recorded = records_ ? records_->size() : 0;
   if (below)
     AddPenalty(s, B_, p, field, penalty_, maxAlignment_, order_, out_, st_, &sums_, records_);
-  if (withDissipation_ && (below || explicitNormals_))
-    AddDissipation(s, s.key, B_, p, field, s.hasNormal ? *dissipation_ : noNormal_, order_, out_,
-                   st_, &sums_);
+  if (!(withDissipation_ && (below || explicitNormals_))) return;
+  ContactSampleRecord dissipative;  // reported with the sample's penalty record, or alone
+  AddDissipation(s, s.key, B_, p, field, s.hasNormal ? *dissipation_ : noNormal_, order_, out_,
+                 st_, &sums_, records_ ? &dissipative : nullptr);
+  if (!records_ || (dissipative.friction.isZero(0) && dissipative.damping.isZero(0))) return;
+  if (records_->size() > recorded) {
+    records_->back().friction = dissipative.friction;
+    records_->back().damping = dissipative.damping;
+    return;
+  }
+  dissipative.position = s.y;
+  dissipative.phi = below ? field.value : NAN;
+  dissipative.weight = s.weight;
+  dissipative.face = s.face;
+  records_->push_back(dissipative);
 }
 
 void FrameEvaluation::Add(const PairSample& s) {

@@ -25,16 +25,21 @@ namespace superdex {
 ///   S_θAθA = ½(n rᵀ + r nᵀ) − (n·r) I,   S_θBθB = ½(n dᵀ + d nᵀ) − (n·d) I,
 ///   S_θBpA = [n]×,  S_θBpB = −[n]×,  S_θBθA = (n·r) I − r nᵀ   (and their transposes).
 
-/// One active contact sample (φ < δ, not rejected), in the world frame, for reporting.
+/// One active contact sample (its penalty, φ < δ, or its dissipation active, not rejected), in the
+/// world frame, for reporting. The force on A is w_q (t_n + t_f + t_d); B takes its opposite.
 struct ContactSampleRecord {
   int colliding = -1;        ///< actor index of A (filled by the pipeline)
   int collider = -1;         ///< actor index of B
   Eigen::Vector3d position;  ///< x_A [m]
-  Eigen::Vector3d normal;    ///< R_B N_B: the collider field's unit direction
-  double phi = 0.0;          ///< φ_B(x_A) [m]
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< R_B N_B: the collider field's unit direction
+  double phi = 0.0;          ///< φ_B(x_A) [m] (NaN for a sample with dissipation only, not read)
   double lambdaN = 0.0;      ///< normal-load coefficient λ_n [Pa]
-  Eigen::Vector3d traction;  ///< nominal normal traction on A, t_n = λ_n R_B G_B [Pa]
-  double weight = 0.0;       ///< reference-area weight w_q [m²]; force = w_q t_n
+  Eigen::Vector3d traction = Eigen::Vector3d::Zero();  ///< normal traction on A, t_n = λ_n R_B G_B [Pa]
+  /// The dissipation's traction on A, −R_B ∂R/∂V split as the density is: friction t_f (Coulomb and
+  /// viscous, tangential) and normal damping t_d [Pa]; zero without the stage that produced the
+  /// state (Scene::ContactSamples).
+  Eigen::Vector3d friction = Eigen::Vector3d::Zero(), damping = Eigen::Vector3d::Zero();
+  double weight = 0.0;       ///< reference-area weight w_q [m²]
   int face = -1;             ///< soft colliding actor: its boundary face; −1 for rigid actors
 };
 

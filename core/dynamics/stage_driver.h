@@ -76,6 +76,8 @@ class StageDriver {
                     StageRecorder* recorder);
 
   const State& GetState() const { return state_; }
+  /// The last Solve's step and stage start (x⁰, x_n per rigid body).
+  const StageTargets& LastTargets() const { return targets_; }
   void SetState(const State& state) { state_ = state; }
 
  private:

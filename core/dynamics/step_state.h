@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "core/contact/dissipation_setup.h"
 #include "core/dynamics/step_report.h"
 #include "core/model/actor_kind.h"
 #include "core/model/rigid_body.h"
@@ -35,6 +36,18 @@ struct StepWork {
   StepReport report;
 };
 
+/// The last stage's dissipation data, kept so that the contact forces at the state it produced
+/// can be reported with their dissipation (Scene::ContactSamples); `valid` until the state changes
+/// otherwise.
+struct ReportStage {
+  bool valid = false;
+  double dt = 0.0;  ///< Δt_i [s]
+  DissipationMode mode = DissipationMode::ReconstructedLoad;  ///< as solved (a fallback's too)
+  bool fadeFriction = true;
+  std::vector<RigidStageStart> start;                 ///< per rigid body: x⁰ and x_n
+  std::vector<Eigen::VectorXd> x0, xLast, q0, qLast;  ///< soft actors', kinds' x⁰ and x_n
+};
+
 /// Storage of a scene's steps kept from step to step, so that a rigid step does not allocate once
 /// it has run (scratch: every use overwrites it first).
 struct StepBuffers {
@@ -46,6 +59,7 @@ struct StepBuffers {
   std::vector<double> bdfTimes, bdfWeights;
   std::vector<std::vector<KindSlope>> vectorSlopes;  ///< a DIRK step's slopes per vector state
   std::vector<double> stageWeights;                  ///< a DIRK step's h b_i
+  ReportStage reportStage;                           ///< the last stage solved
 };
 
 }  // namespace superdex

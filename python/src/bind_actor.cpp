@@ -129,8 +129,9 @@ void DefSoftProperties(py::class_<Actor>& actor) {
             return RowsToArray(t);
           },
           "(f, 3) contact traction on each boundary face averaged over its reference area [Pa]\n"
-          "(world frame; zero out of contact), from the active penalty samples at the current\n"
-          "state: sum(face_tractions() * face_areas[:, None]) is the contact force (soft actors).")
+          "(world frame; zero out of contact), from contact_samples() (normal traction and the\n"
+          "last step's friction and damping): sum(face_tractions() * face_areas[:, None]) is the\n"
+          "contact force (soft actors).")
       .def_property_readonly(
           "min_det_f",
           [](const Actor& a) {

@@ -11,6 +11,7 @@
 
 #include "actor.h"
 #include "bindings.h"
+#include "core/contact/contact_report.h"
 #include "core/scene.h"
 #include "scenes/limits.h"
 #include "scenes/scene_file.h"
@@ -106,12 +107,33 @@ py::dict Run(Scene& s, double duration, double dt, int every,
   return d;
 }
 
+py::list ContactPairs(Scene& s) {
+  py::list out;
+  for (const ContactPairSummary& p : SummarizeContactPairs(s.ContactSamples())) {
+    py::dict d;
+    d["a"] = p.a;
+    d["b"] = p.b;
+    d["force"] = p.force;
+    d["normal_force"] = p.normalForce;
+    d["friction_force"] = p.frictionForce;
+    d["damping_force"] = p.dampingForce;
+    d["torque"] = p.torque;
+    d["centre_of_pressure"] = p.centreOfPressure;
+    d["area"] = p.area;
+    d["max_penetration"] = p.maxPenetration;
+    d["samples"] = p.samples;
+    out.append(d);
+  }
+  return out;
+}
+
 py::dict ContactSamples(Scene& s) {
   const std::vector<ContactSampleRecord> r = s.ContactSamples();
   const py::ssize_t n = static_cast<py::ssize_t>(r.size());
   py::array_t<int> colliding(n), collider(n), face(n);
   py::array_t<double> position({n, py::ssize_t(3)}), normal({n, py::ssize_t(3)}),
-      traction({n, py::ssize_t(3)}), phi(n), lambdaN(n), weight(n);
+      traction({n, py::ssize_t(3)}), friction({n, py::ssize_t(3)}), damping({n, py::ssize_t(3)}),
+      phi(n), lambdaN(n), weight(n);
   for (py::ssize_t i = 0; i < n; ++i) {
     colliding.mutable_at(i) = r[i].colliding;
     collider.mutable_at(i) = r[i].collider;
@@ -123,6 +145,8 @@ py::dict ContactSamples(Scene& s) {
       position.mutable_at(i, k) = r[i].position[k];
       normal.mutable_at(i, k) = r[i].normal[k];
       traction.mutable_at(i, k) = r[i].traction[k];
+      friction.mutable_at(i, k) = r[i].friction[k];
+      damping.mutable_at(i, k) = r[i].damping[k];
     }
   }
   py::dict d;
@@ -133,6 +157,8 @@ py::dict ContactSamples(Scene& s) {
   d["phi"] = phi;
   d["lambda_n"] = lambdaN;
   d["traction"] = traction;
+  d["friction"] = friction;
+  d["damping"] = damping;
   d["weight"] = weight;
   d["face"] = face;  // soft colliding actors: the boundary face; −1 for rigid ones
   return d;
@@ -248,8 +274,15 @@ void BindSceneClass(py::module_& m) {
       .def("contact_samples", &ContactSamples,
            "Active contact samples at the current state as numpy arrays: colliding, collider\n"
            "(actor indices), position (n, 3) [m], normal (n, 3), phi [m], lambda_n [Pa],\n"
-           "traction (n, 3) normal traction on the colliding actor [Pa], weight [m^2]\n"
-           "(force = weight * traction).")
+           "traction (n, 3) normal traction on the colliding actor [Pa], friction and damping\n"
+           "(n, 3) the last step's dissipation tractions on it [Pa] (zero after a state change),\n"
+           "weight [m^2]. Force on the colliding actor: weight * (traction + friction + damping);\n"
+           "the collider takes its opposite. A pair of two colliding actors appears in both\n"
+           "passes, each with its share of the load (contact_pairs() sums them).")
+      .def("contact_pairs", &ContactPairs,
+           "Per actor pair a < b with contact, a dict: force, normal_force, friction_force,\n"
+           "damping_force [N] on a (b takes the opposite), torque on a about the origin [N m],\n"
+           "centre_of_pressure [m], area [m^2], max_penetration [m], samples; both passes summed.")
       .def("has_dissipation", &Scene::HasDissipation)
       .def("notices", &Scene::Notices,
            "one-time notes about the scene (grid SDF sizes and memory, unsupported colliders)")

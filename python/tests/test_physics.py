@@ -89,3 +89,29 @@ def test_contact_tractions_of_a_resting_cube_sum_to_its_weight():
     force = (samples["weight"][:, None] * samples["traction"]).sum(axis=0)
     assert force[2] == pytest.approx(9.81, rel=1e-6)
     assert np.all(samples["colliding"] == 1) and np.all(samples["collider"] == 0)
+    pairs = scene.contact_pairs()
+    assert [(p["a"], p["b"]) for p in pairs] == [(0, 1)]
+    assert pairs[0]["force"][2] == pytest.approx(-9.81, rel=1e-6)  # on the ground
+    assert pairs[0]["area"] == pytest.approx(0.04, rel=1e-9)
+
+
+def test_friction_on_a_resting_cube_on_an_incline_holds_it():
+    th = math.pi / 6
+    n = np.array([math.sin(th), 0, math.cos(th)])
+    down = np.array([math.cos(th), 0, -math.sin(th)])
+    scene = sd.Scene()
+    g = sd.RigidActorDesc("incline", sd.RigidShape.plane(n), dynamic=False)
+    g.contact.coulomb_friction_coefficient = 0.7
+    g.contact.normal_viscous_damping_coefficient = 5.0
+    scene.add_rigid_actor(g)
+    c = cube("cube", mu=0.7, cn=5.0, k=1e7)
+    c.orientation = [0, math.sin(th / 2), 0, math.cos(th / 2)]
+    c.position = n * (0.1 + 1e-5)
+    scene.add_rigid_actor(c)
+    scene.run(6.0, 1e-3, every=6000)  # the creep's transient decays (see test_contact_report.cpp)
+    samples = scene.contact_samples()
+    friction = (samples["weight"][:, None] * samples["friction"]).sum(axis=0)  # on the cube
+    assert friction @ down == pytest.approx(-9.81 * math.sin(th), rel=1e-4)
+    pair = scene.contact_pairs()[0]
+    assert -pair["friction_force"] @ down == pytest.approx(-9.81 * math.sin(th), rel=1e-4)
+    assert -pair["force"] == pytest.approx([0, 0, 9.81], abs=1e-4 * 9.81)

@@ -272,7 +272,7 @@ TEST_CASE("soft: a cube at rest on a plane carries its weight", "[core][soft][ph
   for (const ContactSampleRecord& r : scene.ContactSamples()) {
     CHECK(r.colliding == h.index);
     CHECK(r.face >= 0);
-    force += r.weight * r.traction;
+    force += r.weight * (r.traction + r.friction + r.damping);
   }
   const double weight = scene.SoftModel(h).mass * 9.81;
   INFO("contact force " << force.transpose() << " N, weight " << weight << " N, speed "
