@@ -204,14 +204,15 @@ def test_soft_cube_resting_on_a_plane_carries_its_weight():
     x = cube.node_positions
     assert np.all(x[cube.faces[loaded]][:, :, 2] < 0.01)
     assert np.all(tractions[loaded, 2] > 0)
-    # The same resultant as the contact samples.
+    # The same resultant as the contact samples (normal traction, the step's friction and damping).
     samples = scene.contact_samples()
-    assert (samples["weight"][:, None] * samples["traction"]).sum(axis=0) == pytest.approx(
+    total = samples["traction"] + samples["friction"] + samples["damping"]
+    assert (samples["weight"][:, None] * total).sum(axis=0) == pytest.approx(
         force, rel=1e-9, abs=1e-9)
     # Each sample names its boundary face: the per-face sums are the face tractions.
     assert np.all(samples["face"] >= 0)
     per_face = np.zeros_like(tractions)
-    np.add.at(per_face, samples["face"], samples["weight"][:, None] * samples["traction"])
+    np.add.at(per_face, samples["face"], samples["weight"][:, None] * total)
     assert per_face / cube.face_areas[:, None] == pytest.approx(tractions, rel=1e-12, abs=1e-9)
     e = scene.energies()
     assert e["elastic"] > 0
