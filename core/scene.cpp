@@ -581,6 +581,21 @@ std::vector<std::string> Scene::Notices() const {
   return out;
 }
 
+namespace {
+
+// The dissipation coefficients of ContactParams, each combined by the geometric mean of a pair's
+// two actors (HasDissipation, ZeroByCombinationNotices).
+struct DissipationCoefficient {
+  const char* name;
+  double ContactParams::*member;
+};
+constexpr DissipationCoefficient kDissipationCoefficients[] = {
+    {"coulomb_friction_coefficient", &ContactParams::coulombFrictionCoefficient},
+    {"viscous_friction_coefficient", &ContactParams::viscousFrictionCoefficient},
+    {"normal_viscous_damping_coefficient", &ContactParams::normalViscousDampingCoefficient}};
+
+}  // namespace
+
 void Scene::ZeroByCombinationNotices(std::vector<std::string>* out) const {
   // A pair's μ, c_t and c_n are geometric means (spec: "Contact Parameter Combination"): one
   // actor's 0 makes its pairs' 0 whatever the other sets. Noted where an actor sets a nonzero
@@ -604,12 +619,8 @@ void Scene::ZeroByCombinationNotices(std::vector<std::string>* out) const {
                    list(zero) + "; a pair combines it by the geometric mean of its two actors, "
                    "so every pair with an actor at 0 has none (set it on both actors)");
   };
-  notice("coulomb_friction_coefficient",
-         [](const ContactParams& c) { return c.coulombFrictionCoefficient; });
-  notice("viscous_friction_coefficient",
-         [](const ContactParams& c) { return c.viscousFrictionCoefficient; });
-  notice("normal_viscous_damping_coefficient",
-         [](const ContactParams& c) { return c.normalViscousDampingCoefficient; });
+  for (const DissipationCoefficient& d : kDissipationCoefficients)
+    notice(d.name, [&](const ContactParams& c) { return c.*d.member; });
 }
 
 bool Scene::HasDissipation() const {
@@ -634,9 +645,9 @@ bool Scene::HasDissipation() const {
       }
     return count >= 2 && dynamic >= 1;
   };
-  return twoWith([](const ContactParams& c) { return c.coulombFrictionCoefficient; }) ||
-         twoWith([](const ContactParams& c) { return c.viscousFrictionCoefficient; }) ||
-         twoWith([](const ContactParams& c) { return c.normalViscousDampingCoefficient; });
+  for (const DissipationCoefficient& d : kDissipationCoefficients)
+    if (twoWith([&](const ContactParams& c) { return c.*d.member; })) return true;
+  return false;
 }
 
 }  // namespace superdex

@@ -137,10 +137,11 @@ SamplePullback PullbackOf(const PairSample& s, const FrameSide& B) {
   return p;
 }
 
-/// The penalty of one sample into stencil *st; returns whether it was active.
+/// The penalty of one sample into stencil *st; returns whether it was active. With `record`, an
+/// active sample's normal load is written there (its place, weight and φ are the caller's).
 bool AddPenalty(const PairSample& s, const FrameSide& B, const SamplePullback& p, const SdfSample& field,
                 const PenaltyParams& penalty, double m, int order, PairStencils* out,
-                ContactStencil* st, RigidSampleSums* sums, std::vector<ContactSampleRecord>* records) {
+                ContactStencil* st, RigidSampleSums* sums, ContactSampleRecord* record) {
   if (!(field.value < penalty.delta)) return false;
   if (s.hasNormal && std::isfinite(m)) {
     SdfSample atLast;  // the gradient alone
@@ -153,16 +154,10 @@ bool AddPenalty(const PairSample& s, const FrameSide& B, const SamplePullback& p
   st->penaltyActive = true;
   const PenaltyDensity W = NormalPenaltyDensity(field.value, penalty);
   out->penaltyValue += s.weight * W.W;
-  if (records) {
-    ContactSampleRecord rec;
-    rec.position = s.y;
-    rec.normal = B.pose.R * field.gradient.normalized();
-    rec.phi = field.value;
-    rec.lambdaN = W.lambdaN;
-    rec.traction = W.lambdaN * (B.pose.R * field.gradient);
-    rec.weight = s.weight;
-    rec.face = s.face;
-    records->push_back(rec);
+  if (record) {
+    record->normal = B.pose.R * field.gradient.normalized();
+    record->lambdaN = W.lambdaN;
+    record->traction = W.lambdaN * (B.pose.R * field.gradient);
   }
   if (order < 1) return true;
   Eigen::Vector3d gY;
@@ -181,7 +176,8 @@ bool AddPenalty(const PairSample& s, const FrameSide& B, const SamplePullback& p
   return true;
 }
 
-/// The dissipation of one sample (sample index k, the slip key) into stencil *st.
+/// The dissipation of one sample (sample index k, the slip key) into stencil *st. With `record`,
+/// its friction and damping tractions are written there.
 void AddDissipation(const PairSample& s, int k, const FrameSide& B, const SamplePullback& p,
                     const SdfSample& field, const DissipationSetup& ds, int order,
                     PairStencils* out, ContactStencil* st, RigidSampleSums* sums,
@@ -334,24 +330,20 @@ void FrameEvaluation::AddTerms(const PairSample& s, const SamplePullback& p, con
 
 void FrameEvaluation::AddOpenTerms(const PairSample& s, const SamplePullback& p,
                                    const SdfSample& field, bool below) {
-  const size_t recorded = records_ ? records_->size() : 0;
-  if (below)
-    AddPenalty(s, B_, p, field, penalty_, maxAlignment_, order_, out_, st_, &sums_, records_);
-  if (!(withDissipation_ && (below || explicitNormals_))) return;
-  ContactSampleRecord dissipative;  // reported with the sample's penalty record, or alone
-  AddDissipation(s, s.key, B_, p, field, s.hasNormal ? *dissipation_ : noNormal_, order_, out_,
-                 st_, &sums_, records_ ? &dissipative : nullptr);
-  if (!records_ || (dissipative.friction.isZero(0) && dissipative.damping.isZero(0))) return;
-  if (records_->size() > recorded) {
-    records_->back().friction = dissipative.friction;
-    records_->back().damping = dissipative.damping;
-    return;
-  }
-  dissipative.position = s.y;
-  dissipative.phi = below ? field.value : NAN;
-  dissipative.weight = s.weight;
-  dissipative.face = s.face;
-  records_->push_back(dissipative);
+  ContactSampleRecord rec;  // the sample's report, when records_ asks for one
+  ContactSampleRecord* record = records_ ? &rec : nullptr;
+  const bool penalty =
+      below && AddPenalty(s, B_, p, field, penalty_, maxAlignment_, order_, out_, st_, &sums_, record);
+  if (withDissipation_ && (below || explicitNormals_))
+    AddDissipation(s, s.key, B_, p, field, s.hasNormal ? *dissipation_ : noNormal_, order_, out_,
+                   st_, &sums_, record);
+  // Reported when its penalty is active or its dissipation exerts a traction.
+  if (!record || !(penalty || !rec.friction.isZero(0) || !rec.damping.isZero(0))) return;
+  rec.position = s.y;
+  rec.phi = below ? field.value : NAN;  // not read without the penalty's bound
+  rec.weight = s.weight;
+  rec.face = s.face;
+  records_->push_back(rec);
 }
 
 void FrameEvaluation::Add(const PairSample& s) {

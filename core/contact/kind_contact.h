@@ -171,7 +171,6 @@ struct RigidSampleSums {
   }
 };
 
-
 /// A sample's pullbacks into B's frame: d = y − p_B (world) [m], Y now and Y_n at x_n [m], and
 /// the colliding normal N_A in B's coordinates at both (zero without one).
 struct SamplePullback {

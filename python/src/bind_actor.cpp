@@ -71,10 +71,6 @@ Eigen::VectorXd NodeRows(const Actor& a, const py::handle& obj, const char* fiel
   return x;
 }
 
-}  // namespace
-
-namespace {
-
 // The soft actors' properties of Actor (TypeError on a rigid actor).
 void DefSoftProperties(py::class_<Actor>& actor) {
   actor
