@@ -241,6 +241,9 @@ bool Scene::SetSolverParams(const NonlinearSolverParams& params, Error* error) {
 bool Scene::SetState(ActorHandle a, const RigidBodyState& state, Error* error) {
   if (a.index < 0 || a.index >= NumActors()) return Fail(error, "actor: invalid handle");
   if (actors_[a.index].soft) return Fail(error, "actor: a soft actor has no rigid state");
+  if (models_[actors_[a.index].local].kinematic)
+    return Fail(error, "actor: '" + models_[actors_[a.index].local].name +
+                           "' is a kinematic actor: its motion is prescribed (path or velocity)");
   if (!state.p.allFinite() || !state.R.allFinite() || !state.v.allFinite() ||
       !state.Rdot.allFinite())
     return Fail(error, "state: must be finite");

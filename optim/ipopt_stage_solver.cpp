@@ -107,8 +107,9 @@ SolverStats MinimizeIpopt(StageProblem& problem, const IpoptStageParams& params)
   SolverStats st;
   st.status = StageStatus::Diverged;
   if (!problem.IsPotential()) {
-    st.message = "ipopt minimizes potential stages only; this stage's dissipation is not a "
-                 "potential (explicit_normals = false): use the newton or ceres stage solver";
+    st.message = "ipopt minimizes potential stages only; this stage is not a potential (its "
+                 "dissipation with explicit_normals = false, or an applied torque): use the "
+                 "newton or ceres stage solver";
     return st;
   }
   if (!problem.SupportsChart()) {

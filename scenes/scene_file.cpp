@@ -125,6 +125,50 @@ void ReadSoftActor(const json& a, const std::string& path, const std::string& ba
   out->actorNames.push_back(d.name);
 }
 
+// "path": [{"t": t, "position": [x, y, z], "orientation": [x, y, z, w] | "euler_deg": [..]}, ...]
+// (a keyframe without an orientation keeps the actor's).
+std::vector<PoseKeyframe> ReadPosePath(const json& a, const std::string& path) {
+  std::vector<PoseKeyframe> out;
+  const Eigen::Quaterniond held = ReadOrientation(a, path);
+  ForEachItem(a, path, "path", "must be an array of keyframes {\"t\", \"position\", \"orientation\"}",
+              [&](const json& k, const std::string& kp) {
+                if (!k.is_object()) Throw(kp, "must be an object {\"t\", \"position\", \"orientation\"}");
+                CheckObject(k, kp, {"t", "position", "orientation", "euler_deg"});
+                if (!k.contains("t")) Throw(Join(kp, "t"), "missing required field");
+                if (!k.contains("position")) Throw(Join(kp, "position"), "missing required field");
+                PoseKeyframe f;
+                f.t = Number(k, kp, "t");
+                f.position = Point(k, kp, "position", Eigen::Vector3d::Zero());
+                f.orientation = k.contains("orientation") || k.contains("euler_deg")
+                                    ? ReadOrientation(k, kp)
+                                    : held;
+                out.push_back(f);
+              });
+  return out;
+}
+
+// obj[key] as a constant vector [x, y, z] or keyframes [[t, x, y, z], ...] (absent: none).
+VectorKeyframes ReadVectorKeyframes(const json& obj, const std::string& path, const char* key,
+                                    const char* unitsForm) {
+  VectorKeyframes out;
+  if (!obj.contains(key)) return out;
+  const json& v = obj.at(key);
+  const std::string rule = std::string("must be ") + unitsForm + " or keyframes [[t, x, y, z], ...]";
+  if (v.is_array() && !v.empty() && v[0].is_number()) {  // the constant form
+    if (v.size() != 3) Throw(Join(path, key), rule);
+    out.push_back({0.0, Vector<3>(obj, path, key, Eigen::Vector3d::Zero())});
+    return out;
+  }
+  ForEachItem(obj, path, key, rule.c_str(), [&](const json& f, const std::string& fp) {
+    if (!f.is_array() || f.size() != 4) Throw(fp, rule);
+    for (const json& x : f)
+      if (!x.is_number()) Throw(fp, "must be [t, x, y, z] (numbers)");
+    out.push_back({f[0].get<double>(),
+                   Eigen::Vector3d(f[1].get<double>(), f[2].get<double>(), f[3].get<double>())});
+  });
+  return out;
+}
+
 // The actor named by the field "parent" (none without it); it must come earlier.
 ActorHandle ReadParent(const json& a, const std::string& path, const SceneFile& out) {
   ActorHandle parent;
@@ -141,13 +185,14 @@ RigidActorDesc ReadRigidDesc(const json& a, const std::string& path, const std::
               {"name", "type", "dynamic", "shape", "density", "mass", "inertia", "position",
                "orientation", "euler_deg", "velocity", "angular_velocity", "contact",
                "collider_type", "boundary_element_type", "contact_layer", "parent", "grid",
-               "grid_sdf"});
+               "grid_sdf", "kinematic", "path", "applied_force", "applied_torque"});
   const std::string type = String(a, path, "type", std::string("rigid"));
   if (type != "rigid")
     Throw(Join(path, "type"), "unknown value \"" + type + "\" (supported: rigid, soft)");
   RigidActorDesc d;
   d.name = String(a, path, "name");
-  d.dynamic = Bool(a, path, "dynamic", true);
+  d.kinematic = Bool(a, path, "kinematic", false);
+  d.dynamic = Bool(a, path, "dynamic", !d.kinematic);
   if (!a.contains("shape")) Throw(Join(path, "shape"), "missing required field");
   d.shape = ReadShape(a.at("shape"), Join(path, "shape"), baseDir);
   if (a.contains("density")) d.density = Positive(a, path, "density");
@@ -165,6 +210,12 @@ RigidActorDesc ReadRigidDesc(const json& a, const std::string& path, const std::
   d.boundaryElementType = Enum(a, path, "boundary_element_type", ActorBoundaryElementType::P1Q3);
   d.contactLayer = String(a, path, "contact_layer", std::string("default"));
   if (a.contains("grid_sdf")) d.gridSdf = ReadGridSdf(a.at("grid_sdf"), Join(path, "grid_sdf"));
+  if (a.contains("path")) {
+    if (a.contains("grid")) Throw(Join(path, "grid"), "an actor with a path cannot be replicated");
+    d.path = ReadPosePath(a, path);
+  }
+  d.appliedForce = ReadVectorKeyframes(a, path, "applied_force", "[fx, fy, fz]");
+  d.appliedTorque = ReadVectorKeyframes(a, path, "applied_torque", "[tx, ty, tz]");
   return d;
 }
 

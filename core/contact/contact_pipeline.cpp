@@ -185,7 +185,7 @@ void ContactPipeline::FindPairs(const std::vector<RigidPose>& poses,
     // penaltyThresholdExtraPadding), not when it is a grid Sdf.
     const ColliderType aCollider = (*softModels_)[s].collider;
     p.params = CombineContactParams(
-        (*softModels_)[s].contact, B.contact, !B.dynamic,
+        (*softModels_)[s].contact, B.contact, !B.Moves(),
         aCollider == ColliderType::None || aCollider == ColliderType::PointCloud);
     softPairs_.push_back(p);
   };
@@ -193,14 +193,14 @@ void ContactPipeline::FindPairs(const std::vector<RigidPose>& poses,
     const RigidBodyModel& A = models[a];
     const RigidBodyModel& B = models[b];
     if (!IsColliding(A) || !IsCollider(B)) return;
-    if (!A.dynamic && !B.dynamic) return;
+    if (!A.dynamic && !B.dynamic) return;  // neither has dofs (static or kinematic)
     if (filter_ && !filter_->Allowed(RigidActor(a), RigidActor(b))) return;
     ContactPair p;
     p.colliding = a;
     p.collider = b;
     const bool noCollider = A.collider.type == ColliderType::None ||
                             A.collider.type == ColliderType::PointCloud;
-    p.params = CombineContactParams(A.contact, B.contact, !B.dynamic, noCollider);
+    p.params = CombineContactParams(A.contact, B.contact, !B.Moves(), noCollider);
     pairs_.push_back(p);
   };
   const int firstKind = static_cast<int>(n + ns);
@@ -260,9 +260,11 @@ void ContactPipeline::ConsiderKindPair(bool aKind, int a, bool bKind, int b) {
       aKind ? A->Collider() == nullptr
             : (models[a].collider.type == ColliderType::None ||
                models[a].collider.type == ColliderType::PointCloud);
+  // A kinematic collider moves: its parameters combine as a dynamic one's (spec: "taken from the
+  // colliding actor when the collider is static").
   p.params = CombineContactParams(aKind ? A->contact : models[a].contact,
                                   bKind ? B->contact : models[b].contact,
-                                  bStatic, aNoCollider);
+                                  bKind ? bStatic : !models[b].Moves(), aNoCollider);
   kindPairs_.push_back(p);
 }
 

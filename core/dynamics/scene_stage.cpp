@@ -47,6 +47,9 @@ SceneStageProblem::SceneStageProblem(const std::vector<RigidBodyModel>& models,
         if (i >= 0) softEnd_ = std::min(softEnd_, i);
   }
   context_ = ContextOf(dissipation_, targets_.dt);
+  for (size_t i = 0; i < targets_.torque.size(); ++i)
+    if (dofOffset_[i] >= 0 && targets_.torque[i].any()) hasTorque_ = true;
+  if (hasTorque_) torqueWork_.assign(models_.size(), 0.0);
   // Where the linear solves are Krylov by default, the matrices keep a superset pattern while
   // contacts come and go (explicit zeros: the Krylov iterates are the same).
   const bool keepSuperset = numDofs_ >= kAutoIterativeUnknowns;
@@ -83,16 +86,31 @@ const Eigen::VectorXd& SceneStageProblem::KindLocal(size_t k, const Eigen::Vecto
   return local;
 }
 
-bool SceneStageProblem::IsPotential() const {
+bool SceneStageProblem::IsPotential() const { return DissipationIsPotential() && !hasTorque_; }
+
+bool SceneStageProblem::DissipationIsPotential() const {
   return !dissipation_.enabled || dissipation_.mode == DissipationMode::ExplicitNormals;
 }
 
-double SceneStageProblem::BodyEnergy(size_t i, const RigidPose& pose) const {
-  const RigidBodyModel& m = models_[i];
-  const double w = 1.0 / (targets_.dt * targets_.dt);
-  const RigidInertiaTerm t = RigidInertia(m.mass, m.secondMoment, pose.p, pose.R,
-                                          targets_.pHat[i], targets_.RHat[i], false);
-  return w * t.value + GravityPotential(m.mass, gravity_, pose.p);
+double SceneStageProblem::AppliedLoads(size_t i, const RigidPose& pose, int order,
+                                       Eigen::VectorXd* gPot, Eigen::VectorXd* rDiss) const {
+  double value = 0.0;
+  const int o = dofOffset_[i];
+  if (!targets_.force.empty()) {
+    const Eigen::Vector3d& F = targets_.force[i];
+    value -= F.dot(pose.p);
+    if (order >= 1) gPot->segment<3>(o) -= F;
+  }
+  if (hasTorque_) {
+    const Eigen::Vector3d& tau = targets_.torque[i];
+    if (tau.any()) {
+      const bool current = &pose == &(*poses_)[i];  // Evaluate's: log(R R_cᵀ) = 0 exactly
+      value -= torqueWork_[i] +
+               (current ? 0.0 : tau.dot(LogSo3(pose.R * (*poses_)[i].R.transpose())));
+      if (order >= 1) rDiss->segment<3>(o + 3) -= tau;
+    }
+  }
+  return value;
 }
 
 void SceneStageProblem::Retract(const Eigen::VectorXd& d, std::vector<RigidPose>* out,
@@ -140,7 +158,8 @@ double SceneStageProblem::EvaluateAt(const std::vector<RigidPose>& poses,
     const RigidBodyModel& m = models_[i];
     const RigidInertiaTerm t = RigidInertia(m.mass, m.secondMoment, poses[i].p, poses[i].R,
                                             targets_.pHat[i], targets_.RHat[i], order >= 1);
-    bodyValue[i] = w * t.value + GravityPotential(m.mass, gravity_, poses[i].p);
+    bodyValue[i] = w * t.value + GravityPotential(m.mass, gravity_, poses[i].p) +
+                   AppliedLoads(i, poses[i], order, gPot, rDiss);
     value += bodyValue[i];
     if (order == 0) continue;
     gPot->segment<6>(o) += w * t.gradient;
@@ -271,12 +290,14 @@ void SceneStageProblem::ResidualAndJacobian(const std::vector<RigidPose>& poses,
     // The rotation entries of r are world torques τ. Along the retraction exp([δθ]×) R the torque
     // of a potential changes by (H − ½[τ]×) δθ, H its second derivative (assembled above); the
     // dissipation Jacobian of the residual modes is already that of the world torque.
-    const bool dissipationIsPotential = IsPotential();
+    // An applied torque (in scratch_) is a constant world torque: it adds nothing to J.
+    const bool dissipationIsPotential = DissipationIsPotential();
     for (size_t i = 0; i < models_.size(); ++i) {
       const int o = dofOffset_[i];
       if (o < 0) continue;
       Eigen::Vector3d tau = r->segment<3>(o + 3);
       if (dissipationIsPotential) tau += scratch_.segment<3>(o + 3);
+      if (dissipationIsPotential && hasTorque_) tau += targets_.torque[i];
       AppendSpinTrivialization(tau, o + 3, &triplets_);
     }
     if (soft_) AddKindJacobianCorrections(*r, dissipationIsPotential, softX);
@@ -308,6 +329,7 @@ void SceneStageProblem::AddKindJacobianCorrections(const Eigen::VectorXd& r,
 
 void SceneStageProblem::SetChartOrigin() {
   origin_ = *poses_;
+  torqueWork_.assign(models_.size(), 0.0);  // the chart's solvers read residuals alone
   if (soft_) softOrigin_ = *softX_;
 }
 
@@ -346,6 +368,11 @@ Eigen::MatrixXd SceneStageProblem::ChartTangentMap(const Eigen::VectorXd& d) con
 
 void SceneStageProblem::Commit(const Eigen::VectorXd& d) {
   Retract(d, &trial_, &softTrial_);
+  // The torques' work along the committed iterates, as AppliedLoads evaluates the trial's.
+  if (hasTorque_)
+    for (size_t i = 0; i < models_.size(); ++i)
+      if (dofOffset_[i] >= 0 && targets_.torque[i].any())
+        torqueWork_[i] += targets_.torque[i].dot(LogSo3(trial_[i].R * (*poses_)[i].R.transpose()));
   *poses_ = trial_;
   if (soft_) *softX_ = softTrial_;
   if (hasPending_ && pendingStep_ == d) {

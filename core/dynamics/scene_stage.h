@@ -1,10 +1,14 @@
 // One implicit stage over the scene's rigid and soft actors, as a StageProblem for the optim/
 // solvers:
 //   Φ_i(q) = 1/(2Δt_i²) Σ_b E_inertia,b(q)  +  Σ_b U_gravity,b(q)  +  Σ_s Φ_soft,s(q)
-//            + Π_contact(q) + Δt_i Σ w R(V_rel,i)                                     [J]
+//            + Π_contact(q) + Δt_i Σ w R(V_rel,i)  −  Σ_b F_b(t_i)·p_b                 [J]
 // (Φ_soft: core/model/soft_terms.h). Dofs: 6 per dynamic rigid body [δp, δθ], then 3 per free soft node.
-// The last term is an exact potential only with ExplicitNormals; in the other dissipation modes
-// the stage is the residual r = ∇(Φ without R) + Σ w J_Yᵀ ∂R/∂V (core/contact/rigid_dissipation.h).
+// The dissipation term is an exact potential only with ExplicitNormals; in the other dissipation
+// modes the stage is the residual r = ∇(Φ without R) + Σ w J_Yᵀ ∂R/∂V
+// (core/contact/rigid_dissipation.h). An applied torque τ_b(t_i) adds −τ_b to the residual's
+// rotation entries: a constant world torque is not the gradient of any function of the rotation,
+// so a stage with one is not a potential either (IsPotential); its minimizing solves see the
+// torque's work along the iterates they commit (see SceneStageProblem::Commit).
 #pragma once
 
 #include <memory>
@@ -27,6 +31,9 @@ struct StageTargets {
   std::vector<Eigen::Matrix3d> RHat;
   std::vector<RigidStageStart> start;  ///< x⁰ and x_n per body (dissipation, alignment test);
                                        ///< may be empty without dissipation
+  /// Applied loads per body at the stage's time, world frame: force at the centre of mass [N]
+  /// and torque [N·m]; each empty when no body has one.
+  std::vector<Eigen::Vector3d> force, torque;
 };
 
 /// Dissipation settings of a stage; `enabled` false gives the conservative stage.
@@ -110,6 +117,8 @@ class SceneStageProblem : public StageProblem {
   double Evaluate(Eigen::VectorXd* gradient, Eigen::SparseMatrix<double>* hessian,
                   PsdProjection projection) override;
   void Commit(const Eigen::VectorXd& d) override;
+  /// Whether the stage is a potential: its dissipation is one (or off) and no body has an applied
+  /// torque.
   bool IsPotential() const override;
   /// Units are the dynamic rigid bodies (unit = dofOffset / 6), then the kinds (one each);
   /// shares their inertia and gravity terms (a kind's stage energy) plus the contact pairs'
@@ -153,7 +162,14 @@ class SceneStageProblem : public StageProblem {
   void BlockLayout(DofBlockLayout* layout) const override;
 
  private:
-  double BodyEnergy(size_t i, const RigidPose& pose) const;
+  /// Whether the dissipation terms are a potential (off, or ExplicitNormals).
+  bool DissipationIsPotential() const;
+  /// Body i's applied loads at `pose` [J]: −F·p, and −(W_i + τ·log(R R_cᵀ)) for a torque, with
+  /// R_c the current iterate's rotation and W_i the torque's work along the committed iterates
+  /// (so that a trial's value equals the one evaluated after committing it, bit for bit).
+  /// order >= 1: −F into gPot's δp entries and −τ into rDiss's δθ entries (a residual term).
+  double AppliedLoads(size_t i, const RigidPose& pose, int order, Eigen::VectorXd* gPot,
+                      Eigen::VectorXd* rDiss) const;
   /// The kinds' stage energies at their configurations in softX (after the soft actors'); order
   /// >= 1 adds their gradients into *gPot, order 2 their Hessians into triplets_.
   double EvaluateKindTerms(const std::vector<Eigen::VectorXd>& softX, int order,
@@ -191,6 +207,8 @@ class SceneStageProblem : public StageProblem {
   const std::vector<int>& dofOffset_;
   int numDofs_;
   const StageTargets& targets_;
+  bool hasTorque_ = false;          ///< some body has a nonzero applied torque
+  std::vector<double> torqueWork_;  ///< W_i of AppliedLoads, per body (with hasTorque_)
   Eigen::Vector3d gravity_;
   ContactPipeline* contact_;
   std::vector<RigidPose>* poses_;

@@ -35,6 +35,24 @@ void CopySolverWork(const SolverStats& from, SolverStats* to) {
   AddSolverWork(from, to);
 }
 
+// The bodies' applied loads at time t [s] into targets->force and ->torque (each left empty when
+// no body has that kind of load).
+void AppliedLoadsAt(const std::vector<RigidBodyModel>& models, double t, StageTargets* targets) {
+  targets->force.clear();
+  targets->torque.clear();
+  for (size_t i = 0; i < models.size(); ++i) {
+    const RigidBodyModel& m = models[i];
+    if (!m.appliedForce.empty()) {
+      targets->force.resize(models.size(), Eigen::Vector3d::Zero());
+      targets->force[i] = PiecewiseLinear(m.appliedForce, t);
+    }
+    if (!m.appliedTorque.empty()) {
+      targets->torque.resize(models.size(), Eigen::Vector3d::Zero());
+      targets->torque[i] = PiecewiseLinear(m.appliedTorque, t);
+    }
+  }
+}
+
 }  // namespace
 
 SolverStats StageDriver::Solve(const SceneSettings& settings, const StageScene& scene, double dt,
@@ -52,6 +70,7 @@ SolverStats StageDriver::Solve(const SceneSettings& settings, const StageScene& 
     targets.pHat[i] = start[i].p + dt * start[i].v;
     targets.RHat[i] = start[i].R + dt * start[i].Rdot;
   }
+  AppliedLoadsAt(models, scene.time + predictTime, &targets);
   targets.start.resize(models.size());
   for (size_t i = 0; i < models.size(); ++i) {
     RigidStageStart& s = targets.start[i];
@@ -265,8 +284,13 @@ bool StageDriver::FreeStage(const SceneSettings& settings, const StageScene& sce
   free = *poses;
   for (size_t i = 0; i < models.size(); ++i) {
     if (dofOffset[i] < 0) continue;
-    const RigidInertiaMinimum x = MinimizeRigidInertia(
-        models[i].secondMoment, targets.pHat[i], targets.RHat[i], targets.dt, settings.gravity);
+    // An applied force adds F/m to the body's acceleration; a torque has no closed form.
+    if (!targets.torque.empty() && targets.torque[i].any()) return false;
+    const Eigen::Vector3d g = targets.force.empty()
+                                  ? settings.gravity
+                                  : Eigen::Vector3d(settings.gravity + targets.force[i] / models[i].mass);
+    const RigidInertiaMinimum x = MinimizeRigidInertia(models[i].secondMoment, targets.pHat[i],
+                                                       targets.RHat[i], targets.dt, g);
     // A non-finite target (a state gone bad) is left to Newton, which reports it.
     if (!x.p.allFinite() || !x.R.allFinite()) return false;
     free[i] = {x.p, x.R};

@@ -19,6 +19,23 @@ RigidBodyState Affine(double a, const RigidBodyState& x, double b, const RigidBo
   return s;
 }
 
+// The kinematic bodies' poses at time t [s]: a stage's configuration holds them there.
+void PlaceKinematic(const std::vector<RigidBodyModel>& models, double t,
+                    std::vector<RigidPose>* poses) {
+  for (size_t i = 0; i < models.size(); ++i)
+    if (models[i].kinematic) {
+      const RigidBodyState s = KinematicStateAt(models[i], t);
+      (*poses)[i] = {s.p, s.R};
+    }
+}
+
+// The kinematic bodies' states at the step's end time t [s].
+void EndKinematic(const std::vector<RigidBodyModel>& models, double t,
+                  std::vector<RigidBodyState>* next) {
+  for (size_t i = 0; i < models.size(); ++i)
+    if (models[i].kinematic) (*next)[i] = KinematicStateAt(models[i], t);
+}
+
 }  // namespace
 
 void StepBdf(const std::vector<RigidBodyModel>& models, const StepState& step, double h,
@@ -49,6 +66,7 @@ void StepBdf(const std::vector<RigidBodyModel>& models, const StepState& step, d
     }
   }
   host.ApplyConstraints(step.time + h, &softX);
+  PlaceKinematic(models, step.time + h, &poses);
   const SoftStage soft = host.MakeSoftStage(dt, step.time + h, softStart, softStepStart);
   host.SolveStage(dt, start, stepStart, &poses, &soft, &softX, h, &rep);
   for (size_t s = 0; s < ns; ++s) {
@@ -62,6 +80,7 @@ void StepBdf(const std::vector<RigidBodyModel>& models, const StepState& step, d
     next[i].v = (poses[i].p - start[i].p) / dt;
     next[i].Rdot = (poses[i].R - start[i].R) / dt;
   }
+  EndKinematic(models, step.time + h, &next);
 }
 
 void StepDirk(const std::vector<RigidBodyModel>& models, const StepState& step, double h,
@@ -114,6 +133,7 @@ void StepDirk(const std::vector<RigidBodyModel>& models, const StepState& step, 
     // Dissipation geometry: the last configuration the bodies occupied (x_n, then Q_{i−1}).
     const std::vector<RigidPose>& last = st == 0 ? stepStart : Q[st - 1];
     host.ApplyConstraints(step.time + cStage * h, &softX);
+    PlaceKinematic(models, step.time + cStage * h, &poses);
     const SoftStage soft = host.MakeSoftStage(dt, step.time + cStage * h, softStart, softLast);
     host.SolveStage(dt, start, last, &poses, &soft, &softX, cStage * h, &rep);
     Q[st] = poses;
@@ -131,6 +151,12 @@ void StepDirk(const std::vector<RigidBodyModel>& models, const StepState& step, 
       RigidBodyState& vk = VK[st][i];
       vk.p = (poses[i].p - start[i].p) / dt;
       vk.v = (vk.p - start[i].v) / dt;
+      if (models[i].kinematic) {  // its stage poses' slope, for the next stages' x⁰
+        vk.R = (poses[i].R - start[i].R) / dt;
+        vk.Rdot.setZero();
+        torque[st][i].setZero();
+        continue;
+      }
       if (!models[i].dynamic) {
         vk.R.setZero();
         vk.Rdot.setZero();
@@ -179,6 +205,7 @@ void StepDirk(const std::vector<RigidBodyModel>& models, const StepState& step, 
   for (size_t s = 0; s < ns; ++s) endX[s] = softNext[s].x;
   host.ApplyConstraints(step.time + h, &endX);
   for (size_t s = 0; s < ns; ++s) softNext[s].x = endX[s];
+  EndKinematic(models, step.time + h, &next);
 }
 
 void EndStep(double h, StepWork* work, StepState* step) {

@@ -363,6 +363,34 @@ bool BuildColliderRole(const RigidActorDesc& d, const std::string& prefix, Rigid
   return true;
 }
 
+// The rules of the kinematic and applied-load fields.
+bool CheckMotion(const RigidActorDesc& d, const std::string& prefix, Error* error) {
+  if (d.kinematic && d.dynamic)
+    return Fail(error, prefix + "kinematic: a kinematic actor is not dynamic (dynamic must be "
+                                "false)");
+  if (!d.path.empty() && !d.kinematic)
+    return Fail(error, prefix + "path: only a kinematic actor follows a path");
+  for (size_t j = 0; j < d.path.size(); ++j) {
+    const PoseKeyframe& k = d.path[j];
+    const std::string field = prefix + "path[" + std::to_string(j) + "]";
+    if (!std::isfinite(k.t) || !k.position.allFinite())
+      return Fail(error, field + ": t and position must be finite");
+    if (!(k.orientation.coeffs().allFinite() && k.orientation.norm() > 1e-12))
+      return Fail(error, field + ".orientation: must be a non-zero finite quaternion");
+    if (j > 0 && !(k.t > d.path[j - 1].t))
+      return Fail(error, field + ".t: keyframe times must increase");
+  }
+  for (const auto& [keys, name] : {std::pair{&d.appliedForce, "applied_force"},
+                                   std::pair{&d.appliedTorque, "applied_torque"}}) {
+    if (keys->empty()) continue;
+    if (!d.dynamic)
+      return Fail(error, prefix + name + ": only a dynamic actor takes applied loads");
+    if (std::string msg = CheckKeyframes(*keys, prefix + name); !msg.empty())
+      return Fail(error, msg);
+  }
+  return true;
+}
+
 }  // namespace
 
 bool BuildRigidBody(const RigidActorDesc& d, const std::string& prefix, RigidBodyModel* m,
@@ -384,13 +412,16 @@ bool BuildRigidBody(const RigidActorDesc& d, const std::string& prefix, RigidBod
   if (!(d.orientation.coeffs().allFinite() && d.orientation.norm() > 1e-12))
     return Fail(error, prefix + "orientation: must be a non-zero finite quaternion");
 
+  if (!CheckMotion(d, prefix, error)) return false;
+
   if (!BuildMassProperties(d, prefix, m, error) || !BuildColliderRole(d, prefix, m, error))
     return false;
   const Eigen::Vector3d com = m->shapeOffset;
 
-  // Colliding role: dynamic rigid actors only (spec: "Default Roles by Actor Type").
+  // Colliding role: dynamic rigid actors only (spec: "Default Roles by Actor Type"), and the
+  // kinematic ones, which collide as dynamic actors do.
   std::vector<SurfaceSample> samples;
-  if (d.dynamic) {
+  if (d.dynamic || d.kinematic) {
     const TriangleQuadratureRule& rule = GetTriangleQuadratureRule(d.boundaryElementType);
     switch (shape.kind) {
       case RigidShapeKind::Sphere:
@@ -417,8 +448,58 @@ bool BuildRigidBody(const RigidActorDesc& d, const std::string& prefix, RigidBod
   if (d.dynamic) {
     st->v = d.linearVelocity;
     st->Rdot = Skew(d.angularVelocity) * st->R;
+    m->appliedForce = d.appliedForce;
+    m->appliedTorque = d.appliedTorque;
+  }
+  if (d.kinematic) {
+    m->kinematic = true;
+    m->path = d.path;
+    for (PoseKeyframe& k : m->path) k.orientation.normalize();
+    m->p0 = st->p;
+    m->R0 = st->R;
+    m->v0 = d.linearVelocity;
+    m->omega0 = d.angularVelocity;
+    *st = KinematicStateAt(*m, 0.0);
   }
   return true;
+}
+
+RigidBodyState KinematicStateAt(const RigidBodyModel& m, double t) {
+  RigidBodyState s;
+  if (m.path.empty()) {
+    s.p = m.p0 + t * m.v0;
+    s.R = ExpSo3(t * m.omega0) * m.R0;
+    s.v = m.v0;
+    s.Rdot = Skew(m.omega0) * s.R;
+    return s;
+  }
+  // The shape frame's origin o(t) and rotation on the segment [k − 1, k] holding t; the centre of
+  // mass is o + R c, moving at ȯ + ω × R c.
+  const std::vector<PoseKeyframe>& path = m.path;
+  Eigen::Vector3d o = path.back().position, oDot = Eigen::Vector3d::Zero();
+  Eigen::Vector3d omega = Eigen::Vector3d::Zero();
+  s.R = path.back().orientation.toRotationMatrix();
+  if (t <= path.front().t) {
+    o = path.front().position;
+    s.R = path.front().orientation.toRotationMatrix();
+  } else {
+    for (size_t k = 1; k < path.size(); ++k) {
+      if (t > path[k].t) continue;
+      const double span = path[k].t - path[k - 1].t, u = (t - path[k - 1].t) / span;
+      const Eigen::Matrix3d Ra = path[k - 1].orientation.toRotationMatrix();
+      const Eigen::Vector3d turn = LogSo3(path[k].orientation.toRotationMatrix() * Ra.transpose());
+      oDot = (path[k].position - path[k - 1].position) / span;
+      o = path[k - 1].position + (t - path[k - 1].t) * oDot;
+      omega = turn / span;
+      s.R = ExpSo3(u * turn) * Ra;
+      break;
+    }
+  }
+  const Eigen::Vector3d arm = s.R * m.shapeOffset;
+  s.p = o + arm;
+  s.v = oDot + omega.cross(arm);
+  s.Rdot = Skew(omega) * s.R;
+  return s;
 }
 
 bool ShareSamples(const RigidBodyModel& other, RigidBodyModel* m) {

@@ -13,6 +13,7 @@
 #include "core/model/contact_params.h"
 #include "core/model/enums.h"
 #include "core/model/error.h"
+#include "core/model/keyframes.h"
 #include "core/model/shared_array.h"
 #include "geometry/aabb.h"
 #include "core/model/collider_params.h"
@@ -47,6 +48,13 @@ struct RigidShape {
   int surfaceResolution = 3;
 };
 
+/// A keyframe of a kinematic actor's path: the pose of its shape frame at time t [s].
+struct PoseKeyframe {
+  double t = 0.0;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< shape frame origin [m]
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+};
+
 /// What a user gives to create a rigid actor.
 struct RigidActorDesc {
   std::string name;
@@ -65,6 +73,21 @@ struct RigidActorDesc {
   ActorBoundaryElementType boundaryElementType = ActorBoundaryElementType::P1Q3;
   std::string contactLayer = "default";
   GridSdfParams gridSdf;  ///< used when the collider resolves to Sdf
+  /// A kinematic actor (dynamic must be false) follows a prescribed motion: it collides as a
+  /// dynamic actor does (colliding samples and collider field) but nothing it touches moves it.
+  /// Its shape frame follows `path`, or without a path it moves from position/orientation at the
+  /// constant linearVelocity (of the centre of mass) and angularVelocity.
+  bool kinematic = false;
+  /// Keyframes with increasing times: the origin moves linearly and the orientation along the
+  /// shortest rotation between keyframes; the first pose holds before the first keyframe, the
+  /// last after the last. A path replaces position and orientation (its pose at time 0 is the
+  /// initial one).
+  std::vector<PoseKeyframe> path;
+  /// Dynamic actors: a force at the centre of mass [N] and a torque [N·m], world frame, piecewise
+  /// linear in time (VectorKeyframes; one keyframe: constant). The force enters each stage as the
+  /// potential −F(t_i)·p, the torque as the generalized force τ(t_i) on the rotation (not a
+  /// potential: a stage with a torque is solved on its residual, docs/solver.md).
+  VectorKeyframes appliedForce, appliedTorque;
 };
 
 /// A node of a body's sample tree: a contiguous range [begin, end) of its samples with a
@@ -147,7 +170,18 @@ struct RigidBodyModel {
   ActorBoundaryElementType boundaryElementType = ActorBoundaryElementType::P1Q3;
   std::string contactLayer;
   std::string notice;  ///< a one-time note for the run log (e.g. a collider not supported yet)
+  bool kinematic = false;  ///< a prescribed motion (dynamic false): KinematicStateAt
+  /// Kinematic: the path, with the centre of mass's offset from the shape frame (shapeOffset);
+  /// without keyframes the motion from p0, R0 at velocity v0 (centre of mass) and spin omega0.
+  std::vector<PoseKeyframe> path;
+  Eigen::Vector3d p0 = Eigen::Vector3d::Zero(), v0 = Eigen::Vector3d::Zero(),
+                  omega0 = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d R0 = Eigen::Matrix3d::Identity();
+  VectorKeyframes appliedForce, appliedTorque;  ///< dynamic: see RigidActorDesc
+  /// Whether the body moves in contact: dynamic or kinematic (colliding samples, moving field).
+  bool Moves() const { return dynamic || kinematic; }
 };
+
 
 /// Makes `m` share `other`'s samples and sample tree (one buffer for both models) when they are
 /// equal element for element; returns whether they were. Models from the same description
@@ -167,6 +201,11 @@ struct RigidBodyState {
   /// World angular velocity ω = axial(Ṙ Rᵀ) [rad/s].
   Eigen::Vector3d AngularVelocity() const;
 };
+
+/// A kinematic body's state at time t [s]: pose (centre of mass, rotation) and the motion's
+/// velocity (centre of mass [m/s], Ṙ = [ω]× R) — on a path, the velocity of the segment that
+/// ends at or after t (zero after the last keyframe).
+RigidBodyState KinematicStateAt(const RigidBodyModel& m, double t);
 
 /// Builds the model and initial state, validating the description. Returns false with a message
 /// naming the field (`prefix` + snake_case name) on invalid input.

@@ -8,18 +8,7 @@
 
 namespace superdex {
 
-Eigen::Vector3d NodeConstraint::Displacement(double t) const {
-  if (path.empty()) return Eigen::Vector3d::Zero();
-  if (t <= path.front().first) return path.front().second;
-  for (size_t k = 1; k < path.size(); ++k) {
-    if (t <= path[k].first) {
-      const double t0 = path[k - 1].first, t1 = path[k].first;
-      const double s = (t - t0) / (t1 - t0);
-      return (1.0 - s) * path[k - 1].second + s * path[k].second;
-    }
-  }
-  return path.back().second;
-}
+Eigen::Vector3d NodeConstraint::Displacement(double t) const { return PiecewiseLinear(path, t); }
 
 bool BuildSoftBody(const SoftActorDesc& d, const std::string& prefix, SoftBodyModel* m,
                    SoftBodyState* st, Error* error) {
@@ -46,12 +35,8 @@ bool BuildSoftBody(const SoftActorDesc& d, const std::string& prefix, SoftBodyMo
       if (i < 0 || i >= n)
         return Fail(error, field + ".nodes: node " + std::to_string(i) +
                                " does not exist (the mesh has " + std::to_string(n) + " nodes)");
-    for (size_t j = 0; j < k.path.size(); ++j) {
-      if (!std::isfinite(k.path[j].first) || !k.path[j].second.allFinite())
-        return Fail(error, field + ".path: keyframes must be finite");
-      if (j > 0 && !(k.path[j].first > k.path[j - 1].first))
-        return Fail(error, field + ".path: keyframe times must increase");
-    }
+    if (std::string msg = CheckKeyframes(k.path, field + ".path"); !msg.empty())
+      return Fail(error, msg);
   }
 
   *m = SoftBodyModel();

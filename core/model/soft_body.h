@@ -13,6 +13,7 @@
 #include "core/model/collider_params.h"
 #include "core/model/contact_params.h"
 #include "core/model/enums.h"
+#include "core/model/keyframes.h"
 #include "core/model/error.h"
 #include "energies/stable_neo_hookean.h"
 #include "geometry/aabb.h"
@@ -50,7 +51,7 @@ struct NodeConstraint {
   std::vector<int> nodes;  ///< node indices of the tet mesh
   /// Keyframes (t [s], displacement [m]) with increasing times; empty: pinned. Before the first
   /// keyframe the first displacement holds, after the last the last one.
-  std::vector<std::pair<double, Eigen::Vector3d>> path;
+  VectorKeyframes path;
   /// Displacement at time t [m] (zero when pinned).
   Eigen::Vector3d Displacement(double t) const;
 };

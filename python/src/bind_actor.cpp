@@ -23,6 +23,9 @@ Eigen::Vector3d Finite3(const Eigen::Vector3d& v, const char* field) {
 template <typename Edit>
 void EditRigid(Actor& a, const char* field, Edit&& edit) {
   RigidBodyState s = a.RigidState(field);
+  if (a.scene->Model(a.Handle()).kinematic)
+    throw py::value_error(std::string(field) + ": '" + a.Name() +
+                          "' is a kinematic actor: its motion is prescribed (path or velocity)");
   if (!a.scene->Model(a.Handle()).dynamic)
     throw py::value_error(std::string(field) + ": '" + a.Name() +
                           "' is a static actor, held where it was created");
@@ -158,7 +161,11 @@ void BindActor(py::module_& m) {
       .def_property_readonly(
           "dynamic",
           [](const Actor& a) { return a.IsSoft() || a.scene->Model(a.Handle()).dynamic; },
-          "False for a static rigid actor; soft actors are always dynamic")
+          "False for a static or kinematic rigid actor; soft actors are always dynamic")
+      .def_property_readonly(
+          "kinematic",
+          [](const Actor& a) { return !a.IsSoft() && a.scene->Model(a.Handle()).kinematic; },
+          "True for a rigid actor whose motion is prescribed (RigidActorDesc.kinematic)")
       .def_property_readonly("contact_layer",
                              [](const Actor& a) { return a.scene->ContactLayer(a.Handle()); })
       .def(

@@ -89,16 +89,59 @@ void BindRigidShape(py::module_& m) {
 void BindRigidActorDesc(py::module_& m) {
   py::class_<RigidActorDesc> desc(m, "RigidActorDesc",
                                   "What a rigid actor is made from. Units: kg, m, m/s, rad/s.");
-  desc.def(py::init([](const std::string& name, const RigidShape& shape, bool dynamic) {
+  desc.def(py::init([](const std::string& name, const RigidShape& shape, bool dynamic,
+                       bool kinematic) {
              RigidActorDesc d;
              d.name = name;
              d.shape = shape;
-             d.dynamic = dynamic;
+             d.dynamic = dynamic && !kinematic;
+             d.kinematic = kinematic;
              return d;
            }),
-           py::arg("name"), py::arg("shape"), py::arg("dynamic") = true)
+           py::arg("name"), py::arg("shape"), py::arg("dynamic") = true,
+           py::arg("kinematic") = false,
+           "kinematic=True makes a kinematic actor (not dynamic): it follows `path`, or moves at "
+           "constant velocity and angular_velocity, and collides as a dynamic actor does without "
+           "reacting.")
       .def_readwrite("name", &RigidActorDesc::name)
       .def_readwrite("dynamic", &RigidActorDesc::dynamic)
+      .def_property(
+          "kinematic", [](const RigidActorDesc& d) { return d.kinematic; },
+          [](RigidActorDesc& d, bool k) {
+            d.kinematic = k;
+            if (k) d.dynamic = false;
+          },
+          "a prescribed motion (setting it True sets dynamic False)")
+      .def_property(
+          "path",
+          [](const RigidActorDesc& d) {
+            py::list out;
+            for (const PoseKeyframe& k : d.path)
+              out.append(py::make_tuple(k.t, k.position, QuaternionXyzw(k.orientation)));
+            return out;
+          },
+          [](RigidActorDesc& d, const py::iterable& keys) {
+            d.path.clear();
+            for (const py::handle& item : keys) {
+              const py::tuple k = py::cast<py::tuple>(item);
+              if (k.size() != 2 && k.size() != 3)
+                throw py::value_error("path: each keyframe is (t, position) or (t, position, "
+                                      "orientation [x, y, z, w])");
+              PoseKeyframe f;
+              f.t = py::cast<double>(k[0]);
+              f.position = py::cast<Eigen::Vector3d>(k[1]);
+              f.orientation = k.size() == 3 ? QuaternionFromXyzw(py::cast<Eigen::Vector4d>(k[2]))
+                                            : d.orientation;
+              d.path.push_back(f);
+            }
+          },
+          "kinematic: keyframes (t [s], position [m], orientation [x, y, z, w]) of the shape "
+          "frame; a keyframe without an orientation takes the actor's")
+      .def_readwrite("applied_force", &RigidActorDesc::appliedForce,
+                     "dynamic: force at the centre of mass [N], world frame, as keyframes "
+                     "[(t, [fx, fy, fz]), ...] (piecewise linear; one keyframe: constant)")
+      .def_readwrite("applied_torque", &RigidActorDesc::appliedTorque,
+                     "dynamic: torque [N m], world frame, as keyframes [(t, [tx, ty, tz]), ...]")
       .def_readwrite("shape", &RigidActorDesc::shape)
       .def_readwrite("density", &RigidActorDesc::density, "[kg/m^3], used without mass")
       .def_readwrite("mass", &RigidActorDesc::mass, "[kg] or None (then from density)")

@@ -55,21 +55,24 @@ inline void CheckValue(const std::string& message) {
   if (!message.empty()) throw py::value_error(message);
 }
 
+/// A quaternion as [x, y, z, w] (the Python API's order).
+inline Eigen::Vector4d QuaternionXyzw(const Eigen::Quaterniond& q) {
+  return Eigen::Vector4d(q.x(), q.y(), q.z(), q.w());
+}
+/// [x, y, z, w] as a unit quaternion; ValueError for a zero or non-finite one.
+inline Eigen::Quaterniond QuaternionFromXyzw(const Eigen::Vector4d& q) {
+  if (!(q.allFinite() && q.norm() > 0))
+    throw py::value_error("orientation: must be a non-zero finite quaternion [x, y, z, w]");
+  return Eigen::Quaterniond(q[3], q[0], q[1], q[2]).normalized();
+}
+
 /// The property `orientation` of an actor description: a quaternion [x, y, z, w], normalized on
 /// assignment (ValueError for a zero one).
 template <typename Desc>
 void DefOrientation(py::class_<Desc>& c, const char* doc) {
   c.def_property(
-      "orientation",
-      [](const Desc& d) {
-        return Eigen::Vector4d(d.orientation.x(), d.orientation.y(), d.orientation.z(),
-                               d.orientation.w());
-      },
-      [](Desc& d, const Eigen::Vector4d& q) {
-        if (!(q.norm() > 0)) throw py::value_error("orientation: must be a non-zero quaternion");
-        d.orientation = Eigen::Quaterniond(q[3], q[0], q[1], q[2]).normalized();
-      },
-      doc);
+      "orientation", [](const Desc& d) { return QuaternionXyzw(d.orientation); },
+      [](Desc& d, const Eigen::Vector4d& q) { d.orientation = QuaternionFromXyzw(q); }, doc);
 }
 
 /// Rows of fixed-size Eigen vectors as an (n, N) numpy array (a copy).

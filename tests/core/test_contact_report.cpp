@@ -6,6 +6,7 @@
 #include "core/contact/contact_report.h"
 #include "core/scene.h"
 #include "scene_builders.h"
+#include "scene_runs.h"
 
 using namespace superdex;
 
@@ -13,16 +14,7 @@ namespace {
 
 constexpr double kG = 9.81;
 
-// Steps the scene for `duration` [s] at dt [s]; every stage must converge.
-void Run(Scene* scene, double duration, double dt) {
-  Error e;
-  const int steps = static_cast<int>(std::lround(duration / dt));
-  for (int i = 0; i < steps; ++i) {
-    StepReport r;
-    REQUIRE(scene->Step(dt, &r, &e));
-    REQUIRE(r.status == StageStatus::Converged);
-  }
-}
+using test::Run;
 
 // The summary of the pair (a, b), which must exist.
 ContactPairSummary PairOf(Scene* scene, int a, int b) {

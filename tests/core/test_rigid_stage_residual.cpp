@@ -61,17 +61,44 @@ struct Fixture {
   }
 };
 
+// Applied loads on the fixture's two boxes (bodies 1 and 2): forces, and with `torques` torques.
+bool AddLoads(Fixture* f, bool forces, bool torques) {
+  if (forces) f->targets.force = {Eigen::Vector3d::Zero(), {3, -1, 2}, {-2, 4, 1}};
+  if (torques) f->targets.torque = {Eigen::Vector3d::Zero(), {0.5, -0.2, 0.3}, {-0.1, 0.4, 0.2}};
+  return forces || torques;
+}
+
 // The fixture's stage problem in one dissipation mode, on its own copy of the poses.
 struct Stage {
   Fixture f;
+  bool loaded = false;
   std::vector<RigidPose> poses = f.poses;
   StageDissipation dissipation;
   SceneStageProblem problem;
-  explicit Stage(DissipationMode mode, bool enabled = true)
-      : dissipation{enabled, mode, true},
+  explicit Stage(DissipationMode mode, bool enabled = true, bool forces = false,
+                 bool torques = false)
+      : loaded(AddLoads(&f, forces, torques)),
+        dissipation{enabled, mode, true},
         problem(f.models, f.dofOffset, 12, f.targets, Eigen::Vector3d(0, 0, -9.81), &f.pipeline,
                 &poses, dissipation) {}
 };
+
+// Central differences (step 1e-7) of the stage's residual at its current state.
+Eigen::MatrixXd ResidualJacobianFd(SceneStageProblem& problem) {
+  return FiniteDifferenceJacobian(
+      [&](const Eigen::VectorXd& d) {
+        Eigen::VectorXd r;
+        problem.Residual(d, &r);
+        return r;
+      },
+      Eigen::VectorXd::Zero(problem.NumDofs()), 1e-7);
+}
+
+// Central differences (step 1e-7) of the stage's value at its current state.
+Eigen::VectorXd ValueGradientFd(SceneStageProblem& problem) {
+  return FiniteDifferenceGradient([&](const Eigen::VectorXd& d) { return problem.Value(d); },
+                                  Eigen::VectorXd::Zero(problem.NumDofs()), 1e-7);
+}
 
 }  // namespace
 
@@ -87,13 +114,7 @@ TEST_CASE("rigid stage: residual Jacobian and potential gradient with dissipatio
       Eigen::SparseMatrix<double> J;
       problem.EvaluateResidual(&r, &J);
       REQUIRE(r.size() == 12);
-      const Eigen::MatrixXd Jfd = FiniteDifferenceJacobian(
-          [&](const Eigen::VectorXd& d) {
-            Eigen::VectorXd rr;
-            problem.Residual(d, &rr);
-            return rr;
-          },
-          Eigen::VectorXd::Zero(12), 1e-7);
+      const Eigen::MatrixXd Jfd = ResidualJacobianFd(problem);
       const double err = (Eigen::MatrixXd(J) - Jfd).norm() / Jfd.norm();
       INFO("residual Jacobian error " << err);
       CHECK(err < 1e-6);
@@ -101,9 +122,7 @@ TEST_CASE("rigid stage: residual Jacobian and potential gradient with dissipatio
         Eigen::VectorXd g;
         problem.Evaluate(&g, nullptr, PsdProjection::None);
         CHECK((g - r).norm() < 1e-12 * r.norm());
-        const Eigen::VectorXd gfd = FiniteDifferenceGradient(
-            [&](const Eigen::VectorXd& d) { return problem.Value(d); }, Eigen::VectorXd::Zero(12),
-            1e-7);
+        const Eigen::VectorXd gfd = ValueGradientFd(problem);
         INFO("gradient error " << (g - gfd).norm() / gfd.norm());
         CHECK((g - gfd).norm() < 1e-6 * gfd.norm());
       }
@@ -303,5 +322,84 @@ TEST_CASE("rigid stage: the trust region bounds each body's Newton correction",
       CHECK(scale < 1.0);
       CHECK((d.segment<6>(o) - scale * before.segment<6>(o)).norm() <= 1e-15);
     }
+  }
+}
+
+TEST_CASE("rigid stage: applied forces are a potential, applied torques a residual term",
+          "[core][gradient][applied_loads]") {
+  for (DissipationMode mode : {DissipationMode::ExplicitNormals, DissipationMode::ReconstructedLoad,
+                               DissipationMode::ImplicitLoad}) {
+    for (bool torques : {false, true}) {
+      DYNAMIC_SECTION(ToString(mode) << (torques ? ", forces and torques" : ", forces")) {
+        Stage plain(mode), stage(mode, true, true, torques);
+        SceneStageProblem& problem = stage.problem;
+        CHECK(problem.IsPotential() == (mode == DissipationMode::ExplicitNormals && !torques));
+        // The residual: the unloaded one minus the loads (−F on δp, −τ on δθ).
+        Eigen::VectorXd r, r0;
+        Eigen::SparseMatrix<double> J, J0;
+        problem.EvaluateResidual(&r, &J);
+        plain.problem.EvaluateResidual(&r0, &J0);
+        Eigen::VectorXd loads = Eigen::VectorXd::Zero(12);
+        for (int b = 1; b <= 2; ++b) {
+          loads.segment<3>(6 * (b - 1)) = stage.f.targets.force[b];
+          if (torques) loads.segment<3>(6 * (b - 1) + 3) = stage.f.targets.torque[b];
+        }
+        CHECK((r - (r0 - loads)).norm() < 1e-12 * r.norm());
+        // Its Jacobian: finite differences of the residual (a constant world torque adds none).
+        const Eigen::MatrixXd Jfd = ResidualJacobianFd(problem);
+        const double err = (Eigen::MatrixXd(J) - Jfd).norm() / Jfd.norm();
+        INFO("residual Jacobian error " << err);
+        CHECK(err < 1e-6);
+        CHECK((Eigen::MatrixXd(J) - Eigen::MatrixXd(J0)).norm() < 1e-12 * Jfd.norm());
+        if (mode != DissipationMode::ExplicitNormals) continue;
+        // The minimizers' value: its gradient is the residual (the torques' work is linear in the
+        // rotation step from the current iterate), its Hessian finite differences of the gradient.
+        Eigen::VectorXd g;
+        Eigen::SparseMatrix<double> H;
+        problem.Evaluate(&g, &H, PsdProjection::None);
+        CHECK((g - r).norm() < 1e-12 * r.norm());
+        const Eigen::VectorXd gfd = ValueGradientFd(problem);
+        INFO("gradient error " << (g - gfd).norm() / gfd.norm());
+        CHECK((g - gfd).norm() < 1e-6 * gfd.norm());
+        Eigen::SparseMatrix<double> H0;
+        Eigen::VectorXd g0;
+        plain.problem.Evaluate(&g0, &H0, PsdProjection::None);
+        CHECK((Eigen::MatrixXd(H) - Eigen::MatrixXd(H0)).norm() == 0.0);  // the loads are linear
+        // A trial's value is the one evaluated after committing it, bit for bit.
+        Eigen::VectorXd d(12);
+        d << 1e-4, -2e-4, -1e-3, 3e-3, -1e-3, 2e-3, -1e-4, 2e-4, -5e-4, 1e-3, 2e-3, -1e-3;
+        double fTrial = 0.0;
+        Eigen::VectorXd gTrial, gCommitted;
+        REQUIRE(problem.EvaluateAtStep(d, &fTrial, &gTrial, nullptr, PsdProjection::None));
+        CHECK(fTrial == problem.Value(d));
+        problem.Commit(d);
+        CHECK(fTrial == problem.Evaluate(&gCommitted, nullptr, PsdProjection::None));
+        CHECK(std::memcmp(gTrial.data(), gCommitted.data(), sizeof(double) * 12) == 0);
+      }
+    }
+  }
+}
+
+TEST_CASE("rigid stage: with applied torques both solvers reach the residual's root",
+          "[core][applied_loads]") {
+  // Projected Newton on the minimizers' value (the torques' work along the committed iterates)
+  // and residual Newton find the same stage solution: r = 0 with the torques in it.
+  Stage a(DissipationMode::ExplicitNormals, true, true, true);
+  Stage b(DissipationMode::ExplicitNormals, true, true, true);
+  NonlinearSolverParams params;
+  const SolverStats sa = MinimizeNewton(a.problem, params, a.f.targets.dt, nullptr);
+  const SolverStats sb = SolveResidualNewton(b.problem, params, b.f.targets.dt, nullptr);
+  REQUIRE(sa.status == StageStatus::Converged);
+  REQUIRE(sb.status == StageStatus::Converged);
+  Eigen::VectorXd ra, rb, r0;
+  a.problem.EvaluateResidual(&ra, nullptr);
+  b.problem.EvaluateResidual(&rb, nullptr);
+  Stage start(DissipationMode::ExplicitNormals, true, true, true);
+  start.problem.EvaluateResidual(&r0, nullptr);
+  CHECK(ra.lpNorm<Eigen::Infinity>() < 1e-6 * r0.lpNorm<Eigen::Infinity>());
+  CHECK(rb.lpNorm<Eigen::Infinity>() < 1e-6 * r0.lpNorm<Eigen::Infinity>());
+  for (size_t i = 1; i < a.poses.size(); ++i) {
+    CHECK((a.poses[i].p - b.poses[i].p).norm() < 1e-9);
+    CHECK((a.poses[i].R - b.poses[i].R).norm() < 1e-8);
   }
 }

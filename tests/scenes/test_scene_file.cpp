@@ -130,7 +130,7 @@ TEST_CASE("command line: bad scene files exit with code 2", "[scenes][cli]") {
 }
 
 TEST_CASE("shipped scenes meet their expectations", "[scenes][shipped]") {
-  for (const char* name : {"drop", "box_rest", "stack", "slide_to_rest"}) {
+  for (const char* name : {"drop", "box_rest", "stack", "slide_to_rest", "push"}) {
     SceneFile f;
     Error e;
     REQUIRE(LoadSceneFile(std::string(SUPERDEX_SOURCE_DIR) + "/scenes/data/" + name + ".json", &f, &e));

@@ -151,3 +151,38 @@ TEST_CASE("bad input: integers and files beyond their range", "[scenes][bad_inpu
                            "bytes per scene file");
   std::filesystem::remove(big);
 }
+
+TEST_CASE("bad input: kinematic paths and applied loads", "[scenes][bad_input]") {
+  const std::string sphere = R"("shape": {"type": "sphere", "radius": 0.1})";
+  CHECK(LoadError(WithActor(R"({"name": "b", )" + sphere + R"(, "applied_force": [1, 2]})")) ==
+        "actors[1].applied_force: must be [fx, fy, fz] or keyframes [[t, x, y, z], ...]");
+  CHECK(LoadError(WithActor(R"({"name": "b", )" + sphere +
+                            R"(, "applied_torque": [[0, 1, 2, 3], [1, 1, 2]]})")) ==
+        "actors[1].applied_torque[1]: must be [tx, ty, tz] or keyframes [[t, x, y, z], ...]");
+  CHECK(LoadError(WithActor(R"({"name": "b", )" + sphere +
+                            R"(, "applied_force": [[1, 0, 0, 0], [0, 0, 0, 0]]})")) ==
+        "actors[1].applied_force: keyframe times must increase");
+  CHECK(LoadError(WithActor(R"({"name": "b", "dynamic": false, )" + sphere +
+                            R"(, "applied_force": [0, 0, 1]})")) ==
+        "actors[1].applied_force: only a dynamic actor takes applied loads");
+  CHECK(LoadError(WithActor(R"({"name": "b", "kinematic": true, "dynamic": true, )" + sphere + "}")) ==
+        "actors[1].kinematic: a kinematic actor is not dynamic (dynamic must be false)");
+  CHECK(LoadError(WithActor(R"({"name": "b", )" + sphere + R"(, "path": [{"t": 0, "position": [0, 0, 0]}]})")) ==
+        "actors[1].path: only a kinematic actor follows a path");
+  CHECK(LoadError(WithActor(R"({"name": "b", "kinematic": true, )" + sphere +
+                            R"(, "path": [{"t": 0}]})")) ==
+        "actors[1].path[0].position: missing required field");
+  CHECK(LoadError(WithActor(R"({"name": "b", "kinematic": true, )" + sphere +
+                            R"(, "path": [{"t": 0, "position": [0, 0, 0]}, {"t": 0, "position": [1, 0, 0]}]})")) ==
+        "actors[1].path[1].t: keyframe times must increase");
+  CHECK(LoadError(WithActor(R"({"name": "b", "kinematic": true, )" + sphere +
+                            R"(, "path": [{"t": 0, "position": [0, 0, 0], "speed": 1}]})"))
+            .rfind("actors[1].path[0].speed: unknown field", 0) == 0);
+  CHECK(LoadError(WithActor(R"({"name": "b", "kinematic": true, )" + sphere +
+                            R"(, "path": [{"t": 0, "position": [0, 0, 0]}], "grid": {"count": [2, 1, 1], "spacing": 1}})")) ==
+        "actors[1].grid: an actor with a path cannot be replicated");
+  // A kinematic actor with a path loads and its path is kept.
+  CHECK(LoadError(WithActor(R"({"name": "b", "kinematic": true, )" + sphere +
+                            R"(, "path": [{"t": 0, "position": [0, 0, 1]}, {"t": 1, "position": [1, 0, 1], "euler_deg": [0, 0, 90]}]})")) ==
+        "<loaded>");
+}
