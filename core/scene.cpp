@@ -93,6 +93,7 @@ ActorHandle Scene::AddRigidActor(const RigidActorDesc& desc, Error* error, Actor
   }
   const int local = static_cast<int>(models_.size());
   models_.push_back(std::move(model));
+  rigidDescs_.push_back(desc);
   step_.states.push_back(state);
   return Register(false, local, desc.contactLayer, parent);
 }
@@ -104,6 +105,7 @@ ActorHandle Scene::AddSoftActor(const SoftActorDesc& desc, Error* error, ActorHa
   if (!BuildSoftBody(desc, "", &model, &state, error)) return {};
   const int local = static_cast<int>(softModels_.size());
   softModels_.push_back(std::move(model));
+  softDescs_.push_back(desc);
   softInitial_.push_back(state.x);
   // Soft states lead the vector states, the kinds' follow.
   step_.softStates.insert(step_.softStates.begin() + local, std::move(state));
@@ -173,8 +175,10 @@ bool Scene::SetContactLayer(ActorHandle actor, const std::string& layer, Error* 
     // the filter holds a kind's layer
   } else if (actors_[actor.index].soft) {
     softModels_[actors_[actor.index].local].contactLayer = layer;
+    softDescs_[actors_[actor.index].local].contactLayer = layer;
   } else {
     models_[actors_[actor.index].local].contactLayer = layer;
+    rigidDescs_[actors_[actor.index].local].contactLayer = layer;
   }
   return true;
 }

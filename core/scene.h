@@ -89,6 +89,14 @@ class Scene : private StageHost {
   bool SetKindState(ActorHandle a, const KindState& state, Error* error);
   /// Rigid actors (a must be one).
   const RigidBodyModel& Model(ActorHandle a) const { return models_[actors_[a.index].local]; }
+  /// The description a rigid (soft) actor was created from, with the changes of the setters of
+  /// its parameters since (SetContactParams, SetContactLayer, SetRigidMass, SetSoftMaterial), not
+  /// of its state (the scene writer, scenes/scene_writer.h, reads both).
+  const RigidActorDesc& RigidDesc(ActorHandle a) const { return rigidDescs_[actors_[a.index].local]; }
+  const SoftActorDesc& SoftDesc(ActorHandle a) const;
+  /// The actor a is nested under (invalid handle: none).
+  ActorHandle Parent(ActorHandle a) const { return {filter_.Parent(a.index)}; }
+  const ContactFilter& Filter() const { return filter_; }
   const RigidBodyState& State(ActorHandle a) const;
   /// Soft actors (a must be one).
   const SoftBodyModel& SoftModel(ActorHandle a) const;
@@ -121,6 +129,9 @@ class Scene : private StageHost {
   /// Replaces an actor's contact parameters (validated, field names with "contact.").
   bool SetContactParams(ActorHandle a, const ContactParams& params, Error* error);
   const ContactParams& GetContactParams(ActorHandle a) const;
+  /// Replaces a dynamic rigid actor's mass [kg] (finite, > 0); its second moment J scales with it
+  /// (the same shape, uniformly denser).
+  bool SetRigidMass(ActorHandle a, double mass, Error* error);
   /// Replaces a soft actor's Young's modulus and density (validated); Lamé parameters and the
   /// lumped masses follow. Poisson's ratio and stiffness damping are kept.
   bool SetSoftMaterial(ActorHandle a, double youngsModulus, double density, Error* error);
@@ -222,6 +233,8 @@ class Scene : private StageHost {
   SceneSettings settings_;
   std::string settingsError_;  ///< Validate(settings_), kept with every change of settings_
   std::vector<RigidBodyModel> models_;
+  std::vector<RigidActorDesc> rigidDescs_;  // per model: as given to AddRigidActor
+  std::vector<SoftActorDesc> softDescs_;    // per soft model: as given to AddSoftActor
   /// SamplesHash → indices into models_ of the distinct sample sets so far (ShareSamples).
   std::unordered_multimap<std::size_t, int> sampleSets_;
   std::vector<SoftBodyModel> softModels_;

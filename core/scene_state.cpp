@@ -144,6 +144,7 @@ bool Scene::SetContactParams(ActorHandle a, const ContactParams& params, Error* 
     return true;
   }
   (r.soft ? softModels_[r.local].contact : models_[r.local].contact) = params;
+  (r.soft ? softDescs_[r.local].contact : rigidDescs_[r.local].contact) = params;
   prepared_ = false;  // pair padding and the dissipation flag follow the parameters
   return true;
 }
@@ -152,6 +153,26 @@ const ContactParams& Scene::GetContactParams(ActorHandle a) const {
   const ActorRef& r = actors_[a.index];
   if (r.kind) return kinds_[r.local]->contact;
   return r.soft ? softModels_[r.local].contact : models_[r.local].contact;
+}
+
+const SoftActorDesc& Scene::SoftDesc(ActorHandle a) const {
+  return softDescs_[actors_[a.index].local];
+}
+
+bool Scene::SetRigidMass(ActorHandle a, double mass, Error* error) {
+  if (!ValidHandle(*this, a, error)) return false;
+  const ActorRef& r = actors_[a.index];
+  if (r.soft || r.kind || !models_[r.local].dynamic)
+    return Fail(error, "mass: '" + ActorName(a) + "' is not a dynamic rigid actor");
+  if (!(std::isfinite(mass) && mass > 0))
+    return Fail(error, "mass: must be > 0 and finite, got " + std::to_string(mass));
+  RigidBodyModel& m = models_[r.local];
+  RigidActorDesc& d = rigidDescs_[r.local];
+  if (d.inertia) *d.inertia *= mass / m.mass;
+  d.mass = mass;
+  m.secondMoment *= mass / m.mass;
+  m.mass = mass;
+  return true;
 }
 
 bool Scene::SetSoftMaterial(ActorHandle a, double youngsModulus, double density, Error* error) {
@@ -168,6 +189,7 @@ bool Scene::SetSoftMaterial(ActorHandle a, double youngsModulus, double density,
   m.lame = LameFromYoungPoisson(youngsModulus, m.material.poissonRatio);
   m.nodeMass *= scale;
   m.mass *= scale;
+  softDescs_[actors_[a.index].local].material = m.material;
   return true;
 }
 

@@ -1,6 +1,8 @@
 // Numbers as messages print them.
 #pragma once
 
+#include <cstdio>
+#include <cstdlib>
 #include <sstream>
 #include <string>
 
@@ -12,6 +14,16 @@ inline std::string NumberText(double x, int significantDigits = 6) {
   s.precision(significantDigits);
   s << x;
   return s.str();
+}
+
+/// The shortest decimal text (15 to 17 significant digits) that reads back to exactly v.
+inline std::string RoundTrip(double v) {
+  char buf[40];
+  for (int p = 15; p <= 17; ++p) {
+    std::snprintf(buf, sizeof buf, "%.*g", p, v);
+    if (std::strtod(buf, nullptr) == v) break;
+  }
+  return buf;
 }
 
 }  // namespace superdex

@@ -32,16 +32,6 @@ double TetMesh::TetVolume(int t) const {
 
 namespace {
 
-// Shortest decimal text that reads back to exactly v.
-std::string RoundTrip(double v) {
-  char buf[40];
-  for (int p = 15; p <= 17; ++p) {
-    std::snprintf(buf, sizeof buf, "%.*g", p, v);
-    if (std::strtod(buf, nullptr) == v) break;
-  }
-  return buf;
-}
-
 std::vector<std::string> Split(const std::string& line) {
   std::vector<std::string> out;
   size_t i = 0;

@@ -1,5 +1,7 @@
 // Triangle surface meshes (see triangle_mesh.h).
 #include "geometry/triangle_mesh.h"
+
+#include "geometry/number_text.h"
 #include "geometry/mesh_limits.h"
 #include "geometry/token_parsing.h"
 
@@ -279,6 +281,20 @@ bool ReadObj(const std::string& path, TriangleMesh* mesh, std::string* error) {
   }
   if (m.faces.empty()) return fail(path + ": no faces");
   *mesh = std::move(m);
+  return true;
+}
+
+bool WriteObj(const TriangleMesh& mesh, const std::string& path, std::string* error) {
+  std::ofstream out(path);
+  for (const Eigen::Vector3d& v : mesh.vertices)
+    out << "v " << RoundTrip(v.x()) << ' ' << RoundTrip(v.y()) << ' ' << RoundTrip(v.z()) << '\n';
+  for (const Eigen::Vector3i& f : mesh.faces)
+    out << "f " << f[0] + 1 << ' ' << f[1] + 1 << ' ' << f[2] + 1 << '\n';
+  out.flush();
+  if (!out) {
+    if (error) *error = path + ": cannot write file";
+    return false;
+  }
   return true;
 }
 

@@ -52,6 +52,9 @@ TriangleMesh MakeCylinderMesh(double radius, double halfLength, int segments, in
 /// indices accepted) from a Wavefront OBJ file. Returns false and fills *error (naming the file,
 /// the line and the problem) on failure.
 bool ReadObj(const std::string& path, TriangleMesh* mesh, std::string* error);
+/// Writes the mesh as a Wavefront OBJ file ("v x y z", "f a b c"), numbers that read back
+/// exactly: ReadObj gives the same vertices and faces.
+bool WriteObj(const TriangleMesh& mesh, const std::string& path, std::string* error);
 
 /// Mass properties of the solid bounded by a closed, outward-oriented mesh of uniform density
 /// [kg/m^3]: mass [kg], centre of mass [m], and the second-moment matrix about the centre of mass

@@ -81,7 +81,8 @@ Eigen::Quaterniond ReadOrientation(const json& j, const std::string& path) {
   }
   const Eigen::Vector4d q = Vector<4>(j, path, "orientation", Eigen::Vector4d(0, 0, 0, 1));
   if (!(q.norm() > 0)) Throw(Join(path, "orientation"), "must be a non-zero quaternion [x, y, z, w]");
-  return Eigen::Quaterniond(q[3], q[0], q[1], q[2]).normalized();
+  // As given: the actor normalizes it once when it is built, as for a description from Python.
+  return Eigen::Quaterniond(q[3], q[0], q[1], q[2]);
 }
 
 GridSdfParams ReadGridSdf(const json& g, const std::string& gp) {
@@ -347,8 +348,8 @@ bool LoadSceneText(const std::string& text, const std::string& baseDir, SceneFil
                               ? "(file): "
                               : "") +
                              parseError);
-    CheckObject(j, "",
-                {"format", "description", "settings", "actors", "contact_filter", "output", "expect"});
+    CheckObject(j, "", {"format", "superdex_version", "description", "settings", "actors",
+                        "contact_filter", "output", "expect"});
     const std::string format = String(j, "", "format", std::string("superdex-scene/1"));
     if (format != "superdex-scene/1")
       Throw("format", "unsupported \"" + format + "\" (expected superdex-scene/1)");

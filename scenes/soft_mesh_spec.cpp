@@ -148,7 +148,7 @@ std::vector<NodeConstraint> ReadConstraints(const json& list, const std::string&
                                             const Eigen::Quaterniond& orientation) {
   if (!list.is_array()) Throw(path, "must be an array");
   std::vector<NodeConstraint> out;
-  const Eigen::Matrix3d R = orientation.toRotationMatrix();
+  const Eigen::Matrix3d R = orientation.normalized().toRotationMatrix();
   for (size_t i = 0; i < list.size(); ++i) {
     const std::string p = path + "[" + std::to_string(i) + "]";
     const json& c = list[i];

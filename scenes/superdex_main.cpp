@@ -32,6 +32,7 @@
 #include "scenes/fit.h"
 #include "scenes/parameter_docs.h"
 #include "scenes/runner.h"
+#include "scenes/version.h"
 #include "scenes/viewer_page.h"
 
 namespace {
@@ -393,7 +394,7 @@ int ViewCommand(const std::string& trajectory, const std::string& out) {
 int Main(int argc, char** argv) {
   CLI::App app{"superdex: compliant-contact simulation by incremental potentials"};
   app.footer(kExitCodes);
-  app.set_version_flag("--version", SUPERDEX_VERSION, "Print the version and exit");
+  app.set_version_flag("--version", superdex::kVersion, "Print the version and exit");
   app.require_subcommand(1);
   RunArgs runArgs;
   CLI::App* run = AddRunCommand(&app, &runArgs);

@@ -9,6 +9,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "scenes/version.h"
+
 namespace superdex {
 namespace {
 
@@ -108,6 +110,7 @@ std::string TrajectoryWriter::Header(const Scene& scene, const std::vector<std::
   surfaceNodes_.assign(scene.NumActors(), {});
   json h;
   h["format"] = "superdex-trajectory/1";
+  h["superdex_version"] = kVersion;
   h["dt"] = dt;
   h["integrator"] = ToString(scene.Settings().integrator);
   h["gravity"] = Vec(scene.Settings().gravity);
@@ -122,8 +125,10 @@ std::string TrajectoryWriter::Header(const Scene& scene, const std::vector<std::
       continue;
     }
     const RigidBodyModel& m = scene.Model({i});
-    actors.push_back({{"name", names[i]}, {"type", "rigid"}, {"dynamic", m.dynamic},
-                      {"mass", m.mass}, {"shape", RigidShapeJson(m)}});
+    json a = {{"name", names[i]}, {"type", "rigid"}, {"dynamic", m.dynamic},
+              {"mass", m.mass}, {"shape", RigidShapeJson(m)}};
+    if (m.kinematic) a["kinematic"] = true;
+    actors.push_back(std::move(a));
   }
   h["actors"] = actors;
   return h.dump();

@@ -49,6 +49,20 @@ inline Scene SlidingBox(IntegrationMethod method, DissipationMode mode) {
   return scene;
 }
 
+// The box of SlidingBox at rest, pushed along x by an applied force of 8 N (μ m g = 4.9 N): it
+// accelerates at F/m − μ g, so its path depends on its mass.
+inline Scene PushedBox(IntegrationMethod method, DissipationMode mode) {
+  Scene scene(TightSettings(method, mode));
+  Error error;
+  RigidActorDesc ground = Ground(Eigen::Vector3d::UnitZ(), 1e7, 0.5, 1.0);
+  REQUIRE(scene.AddRigidActor(ground, &error).IsValid());
+  RigidActorDesc box = Cube(1e7, 0.5, 1.0);
+  box.position = Eigen::Vector3d(0, 0, 0.1 - 5e-4);
+  box.appliedForce = {{0.0, Eigen::Vector3d(8, 0, 0)}};
+  REQUIRE(scene.AddRigidActor(box, &error).IsValid());
+  return scene;
+}
+
 // The box dropped from 2 cm, tilted, with normal damping: impact, bounce, settle.
 inline Scene BouncingBox(IntegrationMethod method, DissipationMode mode) {
   Scene scene(TightSettings(method, mode));

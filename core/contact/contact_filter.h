@@ -38,6 +38,14 @@ class ContactFilter {
   /// Whether the ordered pair (colliding a, collider b) is eligible.
   bool Allowed(int a, int b) const;
 
+  /// The explicit settings in force, per ordered layer pair and per ordered actor pair (the
+  /// later of two settings of a pair is the one kept): applied again in any order, they give
+  /// this filter.
+  const std::map<std::pair<std::string, std::string>, bool>& LayerSettings() const {
+    return layers_;
+  }
+  const std::map<std::pair<int, int>, bool>& ActorSettings() const { return actors_; }
+
  private:
   std::vector<std::string> layerOf_;
   std::vector<int> parent_;

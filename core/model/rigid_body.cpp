@@ -441,13 +441,7 @@ bool BuildRigidBody(const RigidActorDesc& d, const std::string& prefix, RigidBod
   m->samples = SharedArray<SurfaceSample>(std::move(samples));
   m->sampleTree = SharedArray<SampleNode>(std::move(tree));
 
-  // Initial state.
-  *st = RigidBodyState();
-  st->R = d.orientation.normalized().toRotationMatrix();
-  st->p = d.position + st->R * com;
   if (d.dynamic) {
-    st->v = d.linearVelocity;
-    st->Rdot = Skew(d.angularVelocity) * st->R;
     m->appliedForce = d.appliedForce;
     m->appliedTorque = d.appliedTorque;
   }
@@ -455,13 +449,25 @@ bool BuildRigidBody(const RigidActorDesc& d, const std::string& prefix, RigidBod
     m->kinematic = true;
     m->path = d.path;
     for (PoseKeyframe& k : m->path) k.orientation.normalize();
-    m->p0 = st->p;
-    m->R0 = st->R;
+    m->R0 = d.orientation.normalized().toRotationMatrix();
+    m->p0 = d.position + m->R0 * com;
     m->v0 = d.linearVelocity;
     m->omega0 = d.angularVelocity;
-    *st = KinematicStateAt(*m, 0.0);
   }
+  *st = InitialRigidState(d, *m);
   return true;
+}
+
+RigidBodyState InitialRigidState(const RigidActorDesc& d, const RigidBodyModel& m) {
+  if (m.kinematic) return KinematicStateAt(m, 0.0);
+  RigidBodyState s;
+  s.R = d.orientation.normalized().toRotationMatrix();
+  s.p = d.position + s.R * m.shapeOffset;
+  if (d.dynamic) {
+    s.v = d.linearVelocity;
+    s.Rdot = Skew(d.angularVelocity) * s.R;
+  }
+  return s;
 }
 
 RigidBodyState KinematicStateAt(const RigidBodyModel& m, double t) {

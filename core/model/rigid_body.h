@@ -212,6 +212,9 @@ RigidBodyState KinematicStateAt(const RigidBodyModel& m, double t);
 bool BuildRigidBody(const RigidActorDesc& desc, const std::string& prefix, RigidBodyModel* model,
                     RigidBodyState* state, Error* error);
 
+/// The state BuildRigidBody gives the model m it built from d.
+RigidBodyState InitialRigidState(const RigidActorDesc& d, const RigidBodyModel& m);
+
 /// Kinetic energy ½ m|v|² + ½ tr(Ṙ J Ṙᵀ) [J].
 double KineticEnergy(const RigidBodyModel& model, const RigidBodyState& state);
 /// Linear momentum m v [kg·m/s] and angular momentum about the world origin

@@ -32,6 +32,7 @@ constexpr KindRow kKinds[] = {
     {SceneParameterKind::FrictionFalloffVel, &ContactParams::frictionFalloffVel},
     {SceneParameterKind::YoungsModulus, nullptr, &SoftMaterial::youngsModulus},
     {SceneParameterKind::Density, nullptr, &SoftMaterial::density},
+    {SceneParameterKind::Mass, nullptr, nullptr, "mass"},
     {SceneParameterKind::Position, nullptr, nullptr, "position"},
     {SceneParameterKind::Velocity, nullptr, nullptr, "velocity"},
     {SceneParameterKind::AngularVelocity, nullptr, nullptr, "angular_velocity"},
@@ -118,6 +119,11 @@ bool ParseSceneParameter(const Scene& scene, const std::string& text, SceneParam
       return Fail(error, "parameter '" + text + "': " + name + " is a soft-actor material "
                         "parameter and '" + actor + "' is " +
                         (kind ? "a " + scene.Kind(p->actor).KindName() + " actor" : "rigid"));
+    if (p->kind == SceneParameterKind::Mass && (soft || kind || !scene.Model(p->actor).dynamic))
+      return Fail(error, "parameter '" + text + "': mass is a dynamic rigid actor's and '" +
+                             actor + "' is " +
+                             (soft ? "soft" : kind ? "a " + scene.Kind(p->actor).KindName() + " actor"
+                                               : "not dynamic"));
   }
   return true;
 }
@@ -141,6 +147,7 @@ double ParameterValue(const Scene& scene, const SceneParameter& p) {
   if (p.kind == SceneParameterKind::YoungsModulus)
     return scene.SoftModel(p.actor).material.youngsModulus;
   if (p.kind == SceneParameterKind::Density) return scene.SoftModel(p.actor).material.density;
+  if (p.kind == SceneParameterKind::Mass) return scene.Model(p.actor).mass;
   if (scene.IsKind(p.actor)) {
     double value = NAN;
     Eigen::VectorXd direction;
@@ -172,6 +179,7 @@ bool SetParameterValue(Scene* scene, const SceneParameter& p, double value, Erro
                ? scene->SetSoftMaterial(p.actor, value, m.density, error)
                : scene->SetSoftMaterial(p.actor, m.youngsModulus, value, error);
   }
+  if (p.kind == SceneParameterKind::Mass) return scene->SetRigidMass(p.actor, value, error);
   if (!std::isfinite(value))
     return Fail(error, ToString(*scene, p) + ": must be finite");
   if (scene->IsKind(p.actor)) {  // the state moves along the parameter's direction

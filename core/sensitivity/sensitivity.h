@@ -48,6 +48,7 @@ enum class SceneParameterKind {
   FrictionFalloffVel,            ///< V_f [m/s]
   YoungsModulus,                 ///< soft actors: E [Pa]
   Density,                       ///< soft actors: ρ [kg/m³]
+  Mass,                          ///< dynamic rigid actors: m [kg] (J scales with it)
   Position,         ///< initial position, one component [m] (soft: every node; a kind: its
                     ///< ActorKind::MotionParameter)
   Velocity,         ///< initial velocity, one component [m/s] (soft: every node; a kind: ditto)

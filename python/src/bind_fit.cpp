@@ -9,6 +9,7 @@
 #include "bindings.h"
 #include "core/sensitivity/sensitivity.h"
 #include "scenes/fit.h"
+#include "scene_file_of.h"
 
 namespace superdex::python {
 namespace {
@@ -159,11 +160,10 @@ void BindFitting(py::module_& m) {
       "rows unobserved}. Times must fall on the step grid. method 'lm': Levenberg-Marquardt\n"
       "with forward sensitivities and standard errors (a few parameters); 'lbfgs': L-BFGS with\n"
       "adjoint gradients (many parameters, no standard errors). Returns a FitResult.";
-  m.def(
-      "fit",
-      [](const SceneFile& file, const std::vector<std::string>& parameters,
-         std::optional<std::string> observed, py::object times, std::optional<py::dict> positions,
-         std::optional<double> dt, int maxIterations, const std::string& method) {
+  auto fit = [](const SceneFile& file, const std::vector<std::string>& parameters,
+                std::optional<std::string> observed, py::object times,
+                std::optional<py::dict> positions, std::optional<double> dt, int maxIterations,
+                const std::string& method) {
         const ObservedTrajectory obs = Observed(file, observed, times, positions);
         FitOptions options;
         options.parameters = parameters;
@@ -180,11 +180,24 @@ void BindFitting(py::module_& m) {
         const bool ok = WithoutGil([&] { return FitSceneParameters(file, obs, options, &r, &e); });
         if (!ok) Raise(e);
         return r;
+  };
+  m.def("fit", fit, py::arg("scene_file"), py::arg("parameters"), py::arg("observed") = py::none(),
+        py::arg("times") = py::none(), py::arg("positions") = py::none(),
+        py::arg("dt") = py::none(), py::arg("max_iterations") = 50, py::arg("method") = "lm",
+        fitDoc.c_str());
+  m.def(
+      "fit",
+      [fit](const Scene& scene, const std::vector<std::string>& parameters,
+            std::optional<std::string> observed, py::object times,
+            std::optional<py::dict> positions, std::optional<double> dt, int maxIterations,
+            const std::string& method) {
+        return fit(FileOf(scene, dt, 1.0), parameters, observed, times, positions, dt,
+                   maxIterations, method);
       },
-      py::arg("scene_file"), py::arg("parameters"), py::arg("observed") = py::none(),
-      py::arg("times") = py::none(), py::arg("positions") = py::none(),
-      py::arg("dt") = py::none(), py::arg("max_iterations") = 50, py::arg("method") = "lm",
-      fitDoc.c_str());
+      py::arg("scene"), py::arg("parameters"), py::arg("observed") = py::none(),
+      py::arg("times") = py::none(), py::arg("positions") = py::none(), py::arg("dt") = py::none(),
+      py::arg("max_iterations") = 50, py::arg("method") = "lm",
+      "The same for a Scene built in Python (left unchanged); dt is required.");
 
   py::class_<TrajectoryGradient>(m, "TrajectoryGradient",
                                  "The outcome of superdex.trajectory_gradient.")
@@ -203,11 +216,9 @@ void BindFitting(py::module_& m) {
       .def_readonly("simulation_seconds", &TrajectoryGradient::simulationSeconds)
       .def_readonly("gradient_seconds", &TrajectoryGradient::gradientSeconds);
 
-  m.def(
-      "trajectory_gradient",
-      [](const SceneFile& file, const std::vector<std::string>& parameters,
-         std::optional<std::string> observed, py::object times, std::optional<py::dict> positions,
-         std::optional<double> dt) {
+  auto gradient = [](const SceneFile& file, const std::vector<std::string>& parameters,
+                     std::optional<std::string> observed, py::object times,
+                     std::optional<py::dict> positions, std::optional<double> dt) {
         const ObservedTrajectory obs = Observed(file, observed, times, positions);
         FitOptions options;
         options.parameters = parameters;
@@ -218,13 +229,23 @@ void BindFitting(py::module_& m) {
             [&] { return ComputeTrajectoryGradient(file, obs, options, &g, &e); });
         if (!ok) Raise(e);
         return g;
+  };
+  m.def("trajectory_gradient", gradient, py::arg("scene_file"), py::arg("parameters"),
+        py::arg("observed") = py::none(), py::arg("times") = py::none(),
+        py::arg("positions") = py::none(), py::arg("dt") = py::none(),
+        "The fitting cost ½ Σ ‖c_a(t_k) − ĉ_a(t_k)‖² of superdex.fit at the scene file's values\n"
+        "and its gradient in `parameters`, by one simulation and one adjoint pass (its cost does\n"
+        "not grow with the number of initial-state parameters). Returns a TrajectoryGradient.");
+  m.def(
+      "trajectory_gradient",
+      [gradient](const Scene& scene, const std::vector<std::string>& parameters,
+                 std::optional<std::string> observed, py::object times,
+                 std::optional<py::dict> positions, std::optional<double> dt) {
+        return gradient(FileOf(scene, dt, 1.0), parameters, observed, times, positions, dt);
       },
-      py::arg("scene_file"), py::arg("parameters"), py::arg("observed") = py::none(),
-      py::arg("times") = py::none(), py::arg("positions") = py::none(),
-      py::arg("dt") = py::none(),
-      "The fitting cost ½ Σ ‖c_a(t_k) − ĉ_a(t_k)‖² of superdex.fit at the scene file's values\n"
-      "and its gradient in `parameters`, by one simulation and one adjoint pass (its cost does\n"
-      "not grow with the number of initial-state parameters). Returns a TrajectoryGradient.");
+      py::arg("scene"), py::arg("parameters"), py::arg("observed") = py::none(),
+      py::arg("times") = py::none(), py::arg("positions") = py::none(), py::arg("dt") = py::none(),
+      "The same for a Scene built in Python (left unchanged); dt is required.");
 }
 
 }  // namespace superdex::python

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "bindings.h"
+#include "scene_file_of.h"
 #include "scenes/runner.h"
 
 namespace superdex::python {
@@ -28,11 +29,9 @@ void BindRunSummary(py::module_& m) {
 }
 
 void BindRunScene(py::module_& m) {
-  m.def(
-      "run_scene",
-      [](SceneFile& file, std::optional<double> dt, std::optional<double> duration,
-         std::optional<std::string> out, std::optional<std::string> vtk,
-         const std::function<void(const StepReport&, double)>& progress) {
+  auto run = [](SceneFile& file, std::optional<double> dt, std::optional<double> duration,
+                std::optional<std::string> out, std::optional<std::string> vtk,
+                const std::function<void(const StepReport&, double)>& progress) {
         RunOptions options;
         options.dt = dt;
         options.duration = duration;
@@ -51,7 +50,9 @@ void BindRunScene(py::module_& m) {
         }
         if (!ok) throw py::value_error(e.message);
         return summary;
-      },
+  };
+  m.def(
+      "run_scene", run,
       py::arg("scene_file"), py::arg("dt") = py::none(), py::arg("duration") = py::none(),
       py::arg("out") = py::none(), py::arg("vtk") = py::none(), py::arg("progress") = nullptr,
       "Runs a loaded scene file to its end as `superdex run` does and returns a RunSummary.\n"
@@ -59,6 +60,20 @@ void BindRunScene(py::module_& m) {
       "settings; out='' and vtk='' write nothing. progress(report, fraction) is called after\n"
       "every step. Stages that do not converge are counted in the summary (stopped,\n"
       "diverged), not raised; bad input or an I/O error raises ValueError.");
+  m.def(
+      "run_scene",
+      [run](const Scene& scene, std::optional<double> dt, std::optional<double> duration,
+            std::optional<std::string> out, std::optional<std::string> vtk,
+            const std::function<void(const StepReport&, double)>& progress) {
+        if (!duration) throw py::value_error("duration: a Scene built in Python has none; give it");
+        SceneFile file = FileOf(scene, dt, *duration);
+        return run(file, dt, duration, out ? out : std::optional<std::string>(""),
+                   vtk ? vtk : std::optional<std::string>(""), progress);
+      },
+      py::arg("scene"), py::arg("dt") = py::none(), py::arg("duration") = py::none(),
+      py::arg("out") = py::none(), py::arg("vtk") = py::none(), py::arg("progress") = nullptr,
+      "The same for a Scene built in Python (a copy runs; the scene is left unchanged): dt and\n"
+      "duration are required; out and vtk default to writing nothing.");
 }
 
 void BindLoadSceneText(py::module_& m) {

@@ -15,6 +15,7 @@
 #include "core/scene.h"
 #include "scenes/limits.h"
 #include "scenes/scene_file.h"
+#include "scenes/scene_writer.h"
 
 namespace superdex::python {
 namespace {
@@ -268,6 +269,23 @@ void BindSceneClass(py::module_& m) {
            "w (F, A, 3) world angular velocities, energy (F,). Soft actors: p and v of the\n"
            "centre of mass, q and w NaN. progress(fraction, report) is called after every\n"
            "step. A non-converged stage raises RuntimeError.")
+      .def(
+          "write_scene_file",
+          [](const Scene& s, const std::string& path, double dt, double duration,
+             const std::string& description) {
+            SceneWriteOptions options;
+            options.dt = dt;
+            options.duration = duration;
+            options.description = description;
+            Error e;
+            if (!WriteSceneFile(s, path, options, &e)) throw py::value_error(e.message);
+          },
+          py::arg("path"), py::arg("dt"), py::arg("duration"), py::arg("description") = "",
+          "Writes the scene as a scene file (docs/scene-format.md, \"Writing a scene\") that\n"
+          "`superdex run`, superdex.load_scene and the fitting take: loading it gives the same\n"
+          "scene and the same trajectory, bit for bit. Meshes are written beside it. Raises\n"
+          "ValueError naming the actor and the rule for what has no scene-file form (a scene\n"
+          "that has stepped, a soft actor whose state was set).")
       .def("energies", &Energies, "kinetic, gravity, contact, elastic and total energy [J]")
       .def("total_linear_momentum", &Scene::TotalLinearMomentum)
       .def("total_angular_momentum", &Scene::TotalAngularMomentum)

@@ -1,6 +1,7 @@
 // superdex._superdex, the compiled part of the Python package `superdex` (python/superdex/ re-exports
 // it): the spec's API in snake_case over the C++ library.
 #include "bindings.h"
+#include "scenes/version.h"
 
 PYBIND11_MODULE(_superdex, m) {
   m.doc() =
@@ -8,7 +9,7 @@ PYBIND11_MODULE(_superdex, m) {
       "Units are SI throughout (m, kg, s, N, Pa). Build a Scene, add actors, step or run it;\n"
       "states and trajectories come back as numpy arrays. Bad values raise ValueError with the\n"
       "field and the rule; a stage that does not converge raises RuntimeError.";
-  m.attr("__version__") = SUPERDEX_VERSION;  // the CMake project version, as `superdex --version`
+  m.attr("__version__") = superdex::kVersion;  // the CMake project version, as `superdex --version`
   using namespace superdex::python;
   BindParams(m);
   BindTetMesh(m);

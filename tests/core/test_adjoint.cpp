@@ -286,6 +286,11 @@ TEST_CASE("Adjoint gradients of a sliding and a bouncing box match trajectory di
          {"cube.velocity.z", 1e-6}},
         150, 1e-3, 1e-5);
   }
+  SECTION("box pushed by an applied force, BDF2, reconstructed load: its mass") {
+    CheckAgainstTrajectoryDifferences(
+        [] { return PushedBox(IntegrationMethod::BDF2, DissipationMode::ReconstructedLoad); },
+        {{"cube.mass", 1e-5}, {"cube.coulomb_friction_coefficient", 1e-5}}, 100, 2e-3, 1e-5);
+  }
 }
 
 TEST_CASE("Adjoint: refusals", "[adjoint]") {

@@ -101,6 +101,22 @@ TEST_CASE("Sensitivities of a sliding box match trajectory differences", "[sensi
   }
 }
 
+TEST_CASE("Sensitivities to a rigid body's mass match trajectory differences", "[sensitivity]") {
+  // Pushed by an applied force, the box's path depends on its mass (x'' = F/m − μ g); sliding
+  // under friction alone, only its resting penetration does.
+  const std::vector<Probe> probes = {{"cube.mass", 1e-5}, {"cube.coulomb_friction_coefficient", 1e-5}};
+  SECTION("BDF2, reconstructed load, pushed") {
+    CheckAgainstTrajectoryDifferences(
+        [] { return PushedBox(IntegrationMethod::BDF2, DissipationMode::ReconstructedLoad); },
+        probes, "cube", 100, 2e-3);
+  }
+  SECTION("DIRK22, explicit normals, sliding") {
+    CheckAgainstTrajectoryDifferences(
+        [] { return SlidingBox(IntegrationMethod::DIRK22, DissipationMode::ExplicitNormals); },
+        {{"cube.mass", 1e-5}}, "cube", 100, 2e-3);
+  }
+}
+
 TEST_CASE("Sensitivities of a bouncing box match trajectory differences", "[sensitivity]") {
   const std::vector<Probe> probes = {{"cube.normal_viscous_damping_coefficient", 1e-5},
                                      {"cube.coulomb_friction_coefficient", 1e-5},

@@ -1,0 +1,258 @@
+#include "scenes/scene_writer.h"
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "core/model/rigid_math.h"
+#include "scenes/version.h"
+
+namespace superdex {
+namespace {
+
+using json = nlohmann::json;
+
+json Vec(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); }
+
+json Keyframes(const VectorKeyframes& keys) {
+  json out = json::array();
+  for (const auto& [t, v] : keys) out.push_back({t, v.x(), v.y(), v.z()});
+  return out;
+}
+
+json Quaternion(const Eigen::Quaterniond& q) { return json::array({q.x(), q.y(), q.z(), q.w()}); }
+
+// The rows of `table` whose value in c differs from the struct's default initializer's, as a
+// JSON object (a nested table as an object of its own, left out when nothing in it differs): what
+// ReadFields reads back to c.
+template <typename Table, typename Class>
+json ChangedFields(const Table& table, const Class& c) {
+  json out = json::object();
+  const Class defaults{};
+  ForEachField(table, [&](const auto& f) {
+    using T = typename std::decay_t<decltype(f)>::ValueType;
+    const T& v = f.Of(c);
+    const T& d = f.Of(defaults);
+    if constexpr (kIsNested<decltype(f)>) {
+      json inner = ChangedFields(*f.table, v);
+      if (!inner.empty()) out[f.name] = std::move(inner);
+    } else if constexpr (std::is_enum_v<T>) {
+      if (v != d) out[f.name] = ToString(v);
+    } else if constexpr (kIsFixedVector<T>) {
+      if (v != d) {
+        json a = json::array();
+        for (int i = 0; i < v.size(); ++i) a.push_back(v[i]);
+        out[f.name] = std::move(a);
+      }
+    } else {
+      if (!(v == d)) out[f.name] = v;
+    }
+  });
+  return out;
+}
+
+// Writes what goes beside the scene file: `<stem>.<actor>.<ext>`; returns its file name.
+struct Beside {
+  std::filesystem::path dir;
+  std::string stem;
+  std::string Name(const std::string& actor, const char* ext) const {
+    return stem + "." + actor + "." + ext;
+  }
+};
+
+bool RigidShapeJson(const RigidActorDesc& d, const Beside& beside, json* out, Error* error) {
+  const RigidShape& s = d.shape;
+  switch (s.kind) {
+    case RigidShapeKind::Sphere:
+      *out = {{"type", "sphere"}, {"radius", s.radius}, {"surface_resolution", s.surfaceResolution}};
+      return true;
+    case RigidShapeKind::Box:
+      *out = {{"type", "box"}, {"half_extents", Vec(s.halfExtents)},
+              {"surface_resolution", s.surfaceResolution}};
+      return true;
+    case RigidShapeKind::Plane:
+      *out = {{"type", "plane"}, {"normal", Vec(s.planeNormal)}};
+      return true;
+    case RigidShapeKind::Mesh: {
+      const std::string file = beside.Name(d.name, "obj");
+      std::string message;
+      if (!s.mesh || !WriteObj(*s.mesh, (beside.dir / file).string(), &message))
+        return Fail(error, d.name + ".shape: " + (s.mesh ? message : "no mesh"));
+      *out = {{"type", "mesh"}, {"file", file}};
+      return true;
+    }
+  }
+  return Fail(error, d.name + ".shape: unknown kind");
+}
+
+bool SameState(const RigidBodyState& a, const RigidBodyState& b) {
+  return a.p == b.p && a.R == b.R && a.v == b.v && a.Rdot == b.Rdot;
+}
+
+bool RigidActorJson(const Scene& scene, ActorHandle a, const Beside& beside, json* out,
+                    Error* error) {
+  RigidActorDesc d = scene.RigidDesc(a);
+  const RigidBodyModel& m = scene.Model(a);
+  const RigidBodyState& s = scene.State(a);
+  // The current state where the description no longer gives it (a dynamic actor's set state).
+  if (m.dynamic && !SameState(s, InitialRigidState(d, m))) {
+    d.orientation = Eigen::Quaterniond(s.R);
+    d.position = s.p - s.R * m.shapeOffset;
+    d.linearVelocity = s.v;
+    d.angularVelocity = s.AngularVelocity();
+  }
+  json j = {{"name", d.name}};
+  if (d.kinematic) j["kinematic"] = true;
+  else if (!d.dynamic) j["dynamic"] = false;
+  json shape;
+  if (!RigidShapeJson(d, beside, &shape, error)) return false;
+  j["shape"] = std::move(shape);
+  if (d.dynamic) {
+    if (d.mass) j["mass"] = *d.mass;
+    else j["density"] = d.density;
+    if (d.inertia) {
+      const Eigen::Matrix3d& I = *d.inertia;
+      if (!I.isDiagonal(0.0))
+        return Fail(error, d.name + ".inertia: a full inertia tensor has no scene-file form "
+                                    "(principal moments in the shape frame only)");
+      j["inertia"] = Vec(I.diagonal());
+    }
+  }
+  j["position"] = Vec(d.position);
+  j["orientation"] = Quaternion(d.orientation);
+  j["velocity"] = Vec(d.linearVelocity);
+  j["angular_velocity"] = Vec(d.angularVelocity);
+  if (json c = ChangedFields(kContactParamsFields, d.contact); !c.empty()) j["contact"] = c;
+  j["collider_type"] = ToString(d.colliderType);
+  j["boundary_element_type"] = ToString(d.boundaryElementType);
+  if (d.contactLayer != "default") j["contact_layer"] = d.contactLayer;
+  if (json g = ChangedFields(kGridSdfFields, d.gridSdf); !g.empty()) j["grid_sdf"] = g;
+  if (!d.path.empty()) {
+    json path = json::array();
+    for (const PoseKeyframe& k : d.path)
+      path.push_back({{"t", k.t}, {"position", Vec(k.position)},
+                      {"orientation", Quaternion(k.orientation)}});
+    j["path"] = std::move(path);
+  }
+  if (!d.appliedForce.empty()) j["applied_force"] = Keyframes(d.appliedForce);
+  if (!d.appliedTorque.empty()) j["applied_torque"] = Keyframes(d.appliedTorque);
+  *out = std::move(j);
+  return true;
+}
+
+bool SoftActorJson(const Scene& scene, ActorHandle a, const Beside& beside, json* out,
+                   Error* error) {
+  const SoftActorDesc& d = scene.SoftDesc(a);
+  SoftBodyModel built;
+  SoftBodyState initial;
+  if (!BuildSoftBody(d, d.name + ".", &built, &initial, error)) return false;
+  const SoftBodyState& s = scene.SoftState(a);
+  if (!(s.x == initial.x && s.v == initial.v))
+    return Fail(error, d.name + ": a soft actor's state set after its creation has no scene-file "
+                                "form (save it with get_state or a checkpoint)");
+  const std::string file = beside.Name(d.name, "msh");
+  std::string message;
+  if (!d.mesh || !WriteGmsh22(*d.mesh, (beside.dir / file).string(), &message))
+    return Fail(error, d.name + ".mesh: " + (d.mesh ? message : "no mesh"));
+  json j = {{"name", d.name}, {"type", "soft"}, {"mesh", {{"type", "file"}, {"file", file}}}};
+  j["position"] = Vec(d.position);
+  j["orientation"] = Quaternion(d.orientation);
+  j["velocity"] = Vec(d.linearVelocity);
+  if (json mat = ChangedFields(kSoftMaterialFields, d.material); !mat.empty()) j["material"] = mat;
+  if (json c = ChangedFields(kContactParamsFields, d.contact); !c.empty()) j["contact"] = c;
+  j["collider_type"] = ToString(d.colliderType);
+  j["boundary_element_type"] = ToString(d.boundaryElementType);
+  if (d.contactLayer != "default") j["contact_layer"] = d.contactLayer;
+  if (json g = ChangedFields(kGridSdfFields, d.gridSdf); !g.empty()) j["grid_sdf"] = g;
+  if (!d.constraints.empty()) {
+    json list = json::array();
+    for (const NodeConstraint& k : d.constraints) {
+      json c = {{"nodes", k.nodes}};
+      if (!k.path.empty()) c["path"] = Keyframes(k.path);
+      list.push_back(std::move(c));
+    }
+    j["constraints"] = std::move(list);
+  }
+  *out = std::move(j);
+  return true;
+}
+
+// The contact filter's settings in force, each as one asymmetric setting.
+json ContactFilterJson(const Scene& scene) {
+  json list = json::array();
+  const ContactFilter& f = scene.Filter();
+  for (const auto& [pair, enable] : f.LayerSettings())
+    list.push_back({{"layers", {pair.first, pair.second}}, {"enable", enable}, {"symmetric", false}});
+  for (const auto& [pair, enable] : f.ActorSettings())
+    list.push_back({{"actors", {scene.ActorName({pair.first}), scene.ActorName({pair.second})}},
+                    {"enable", enable},
+                    {"symmetric", false}});
+  return list;
+}
+
+bool SceneJson(const Scene& scene, const SceneWriteOptions& options, const Beside& beside,
+               json* out, Error* error) {
+  if (scene.Time() > 0.0)
+    return Fail(error, "scene: it has stepped to t = " + std::to_string(scene.Time()) +
+                           " s; write it before stepping (save a state with get_state or a "
+                           "checkpoint)");
+  json j = {{"format", "superdex-scene/1"}, {"superdex_version", kVersion}};
+  if (!options.description.empty()) j["description"] = options.description;
+  json settings = ChangedFields(kSceneSettingsFields, scene.Settings());
+  settings["dt"] = options.dt;
+  settings["duration"] = options.duration;
+  if (options.penetrationBound) settings["penetration_bound"] = *options.penetrationBound;
+  j["settings"] = std::move(settings);
+  json actors = json::array();
+  for (int i = 0; i < scene.NumActors(); ++i) {
+    const ActorHandle a{i};
+    if (scene.IsKind(a))
+      return Fail(error, scene.ActorName(a) + ": an actor of the generic layer (" +
+                             scene.Kind(a).KindName() + ") has no scene-file form");
+    json actor;
+    if (!(scene.IsSoft(a) ? SoftActorJson(scene, a, beside, &actor, error)
+                          : RigidActorJson(scene, a, beside, &actor, error)))
+      return false;
+    if (const ActorHandle p = scene.Parent(a); p.IsValid()) actor["parent"] = scene.ActorName(p);
+    actors.push_back(std::move(actor));
+  }
+  j["actors"] = std::move(actors);
+  if (json filter = ContactFilterJson(scene); !filter.empty()) j["contact_filter"] = filter;
+  if (json output = ChangedFields(kOutputSpecFields, options.output); !output.empty())
+    j["output"] = output;
+  *out = std::move(j);
+  return true;
+}
+
+}  // namespace
+
+bool WriteSceneFile(const Scene& scene, const std::string& path, const SceneWriteOptions& options,
+                    Error* error) {
+  const std::filesystem::path p(path);
+  Beside beside{p.has_parent_path() ? p.parent_path() : std::filesystem::path("."),
+                p.stem().string()};
+  std::error_code ec;
+  if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path(), ec);
+  json j;
+  Error local;
+  if (!SceneJson(scene, options, beside, &j, &local)) return Fail(error, path + ": " + local.message);
+  std::ofstream out(path);
+  out << j.dump(1) << '\n';
+  out.flush();
+  if (!out) return Fail(error, path + ": cannot write file");
+  return true;
+}
+
+SceneFile SceneFileOf(const Scene& scene, const SceneWriteOptions& options) {
+  SceneFile f;
+  f.description = options.description;
+  f.scene = std::make_unique<Scene>(scene);
+  f.dt = options.dt;
+  f.duration = options.duration;
+  f.penetrationBound = options.penetrationBound;
+  f.output = options.output;
+  for (int i = 0; i < scene.NumActors(); ++i) f.actorNames.push_back(scene.ActorName({i}));
+  return f;
+}
+
+}  // namespace superdex
