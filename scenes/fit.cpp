@@ -15,6 +15,7 @@
 #include "geometry/number_text.h"
 #include "scenes/json_text.h"
 #include "scenes/limits.h"
+#include "scenes/scene_writer.h"
 
 namespace superdex {
 namespace {
@@ -546,6 +547,33 @@ bool WriteFitJson(const std::string& path, const FitResult& r, const std::string
   const std::string why = errno ? std::strerror(errno) : "write error";
   if (f) std::remove(part.c_str());
   return Fail(error, "--out: cannot write \"" + path + "\": " + why);
+}
+
+bool ApplyParameterValues(Scene* scene, const std::vector<std::string>& names,
+                          const std::vector<double>& values, Error* error) {
+  if (names.size() != values.size())
+    return Fail(error, "values: one per parameter (" + std::to_string(names.size()) + "), got " +
+                           std::to_string(values.size()));
+  for (size_t j = 0; j < names.size(); ++j) {
+    SceneParameter p;
+    if (!ParseSceneParameter(*scene, names[j], &p, error) ||
+        !SetParameterValue(scene, p, values[j], error))
+      return false;
+  }
+  return true;
+}
+
+bool WriteFittedScene(const SceneFile& file, const FitResult& result, const std::string& path,
+                      Error* error) {
+  Scene fitted = *file.scene;
+  if (!ApplyParameterValues(&fitted, result.names, result.fitted, error)) return false;
+  SceneWriteOptions options;
+  options.dt = file.dt;
+  options.duration = file.duration;
+  options.description = file.description;
+  options.output = file.output;
+  options.penetrationBound = file.penetrationBound;
+  return WriteSceneFile(fitted, path, options, error);
 }
 
 }  // namespace superdex

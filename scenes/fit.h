@@ -126,4 +126,13 @@ bool ComputeTrajectoryGradient(const SceneFile& file, const ObservedTrajectory& 
 bool WriteFitJson(const std::string& path, const FitResult& result, const std::string& status,
                   Error* error);
 
+/// Sets values[j] of the parameters `names` (ACTOR.NAME) on `scene` (SetParameterValue); false
+/// with the parameter and the rule on a bad name or value.
+bool ApplyParameterValues(Scene* scene, const std::vector<std::string>& names,
+                          const std::vector<double>& values, Error* error);
+/// Writes the scene file `path`: the fitted scene, `file` with the fit's values (WriteSceneFile;
+/// its run settings, output and description kept).
+bool WriteFittedScene(const SceneFile& file, const FitResult& result, const std::string& path,
+                      Error* error);
+
 }  // namespace superdex

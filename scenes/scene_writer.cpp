@@ -140,16 +140,36 @@ bool RigidActorJson(const Scene& scene, ActorHandle a, const Beside& beside, jso
   return true;
 }
 
+// Whether every node's 3-vector of `delta` is the same (to round-off in `value`'s magnitude);
+// that vector in *shift.
+bool UniformShift(const Eigen::VectorXd& delta, const Eigen::VectorXd& value,
+                  Eigen::Vector3d* shift) {
+  *shift = delta.head<3>();
+  const double tolerance = 1e-12 * (value.lpNorm<Eigen::Infinity>() + 1.0);
+  for (Eigen::Index i = 0; i < delta.size(); i += 3)
+    if ((delta.segment<3>(i) - *shift).lpNorm<Eigen::Infinity>() > tolerance) return false;
+  return true;
+}
+
 bool SoftActorJson(const Scene& scene, ActorHandle a, const Beside& beside, json* out,
                    Error* error) {
-  const SoftActorDesc& d = scene.SoftDesc(a);
+  SoftActorDesc d = scene.SoftDesc(a);
   SoftBodyModel built;
   SoftBodyState initial;
   if (!BuildSoftBody(d, d.name + ".", &built, &initial, error)) return false;
   const SoftBodyState& s = scene.SoftState(a);
-  if (!(s.x == initial.x && s.v == initial.v))
-    return Fail(error, d.name + ": a soft actor's state set after its creation has no scene-file "
-                                "form (save it with get_state or a checkpoint)");
+  // A state moved as a whole (every node by the same displacement and velocity change: the
+  // fitting's position and velocity parameters) is the description's, moved; any other has no
+  // scene-file form.
+  Eigen::Vector3d dx, dv;
+  if (!(s.x == initial.x && s.v == initial.v)) {
+    if (!UniformShift(s.x - initial.x, s.x, &dx) || !UniformShift(s.v - initial.v, s.v, &dv))
+      return Fail(error, d.name + ": a soft actor's state set after its creation, other than a "
+                                  "uniform shift, has no scene-file form (save it with get_state "
+                                  "or a checkpoint)");
+    d.position += dx;
+    d.linearVelocity += dv;
+  }
   const std::string file = beside.Name(d.name, "msh");
   std::string message;
   if (!d.mesh || !WriteGmsh22(*d.mesh, (beside.dir / file).string(), &message))

@@ -23,13 +23,14 @@ struct SceneWriteOptions {
 /// Writes `scene` to the scene file `path`: its settings, every actor from the description it
 /// was created from with the values the setters changed since (contact parameters, layer, soft
 /// material, rigid mass) and its current state where that differs from the description's (a
-/// rigid actor's pose and velocity; the orientation then to round-off), the contact filter's
+/// rigid actor's pose and velocity, a soft actor's uniform shift of positions and velocities; to
+/// round-off), the contact filter's
 /// settings, and the options. Numbers are written to read back exactly. Meshes are written beside
 /// the file, as `<stem>.<actor>.obj` (rigid) and `<stem>.<actor>.msh` (soft, Gmsh 2.2). Refused
 /// with a message naming the actor and the rule: a scene that has stepped (t > 0: write it
 /// before stepping, or save its state with get_state or a checkpoint), an actor of the generic
-/// layer (ActorKind: no scene-file form), a soft actor whose state was set after creation, a
-/// full (non-diagonal) inertia tensor.
+/// layer (ActorKind: no scene-file form), a soft actor whose state was set after creation other
+/// than by a uniform shift, a full (non-diagonal) inertia tensor.
 bool WriteSceneFile(const Scene& scene, const std::string& path, const SceneWriteOptions& options,
                     Error* error);
 

@@ -169,7 +169,8 @@ int RunGradient(const std::string& scenePath, const std::string& observedPath,
 
 int RunFit(const std::string& scenePath, const std::string& observedPath,
            const std::vector<std::string>& params, std::optional<double> dt,
-           superdex::FitMethod method, int maxIterations, const std::string& outPath) {
+           superdex::FitMethod method, int maxIterations, const std::string& outPath,
+           const std::string& sceneOutPath) {
   superdex::SceneFile file;
   superdex::ObservedTrajectory observed;
   if (!LoadFitInput(scenePath, observedPath, &file, &observed)) return kExitInput;
@@ -225,6 +226,13 @@ int RunFit(const std::string& scenePath, const std::string& observedPath,
   if (!r.converged) {
     std::cerr << "error: the fit did not converge: " << r.message << "\n";
     return kExitNotConverged;
+  }
+  if (!sceneOutPath.empty()) {
+    if (!superdex::WriteFittedScene(file, r, sceneOutPath, &error)) {
+      std::cerr << "error: --scene-out: " << error.message << "\n";
+      return kExitOutput;
+    }
+    std::printf("fitted scene: %s\n", sceneOutPath.c_str());
   }
   return 0;
 }
@@ -433,6 +441,10 @@ int Main(int argc, char** argv) {
   fit->add_option("--method", fitMethod, methods + " (default lm)");
   fit->add_option("--max-iterations", maxIterations, "Solver iterations (default 50)");
   fit->add_option("--out", fitOut, "Write the fitted values as JSON");
+  std::string fitSceneOut;
+  fit->add_option("--scene-out", fitSceneOut,
+                  "Write the scene file with the fitted values (meshes beside it) once the fit "
+                  "converged");
   CLI::App* params = app.add_subcommand(
       "params", "Print every parameter table: names, types, units, defaults and rules");
   params->add_flag("--markdown", "As markdown, the only format (docs/parameters.md is this output)");
@@ -466,7 +478,8 @@ int Main(int argc, char** argv) {
                 << "\" (expected one of: " << superdex::AllNames(method) << ")\n";
       return kExitInput;
     }
-    return RunFit(fitScene, observedPath, fitParams, fitDtOption, method, maxIterations, fitOut);
+    return RunFit(fitScene, observedPath, fitParams, fitDtOption, method, maxIterations, fitOut,
+                  fitSceneOut);
   }
   if (view->parsed()) return ViewCommand(viewTrajectory, viewOut);
   return RunCommand(runArgs, *run);

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "core/contact/contact_report.h"
 #include "scenes/version.h"
 
 namespace superdex {
@@ -66,16 +67,32 @@ json SoftSurfaceJson(const SoftBodyModel& m, std::vector<int>* nodes) {
 // The active contact samples as columns: the actor pair (colliding, collider), positions [m],
 // normal tractions [Pa] (> 0 pushing the colliding actor out), forces w_q (t_n + t_f + t_d) on the
 // colliding actor with the step's friction and damping [N].
+// Then per actor pair, both passes summed (SummarizeContactPairs, full precision): force,
+// torque about the origin, centre of pressure, area and max penetration.
 json ContactsJson(Scene& scene) {
   json pairs = json::array(), p = json::array(), tn = json::array(), f = json::array();
-  for (const ContactSampleRecord& r : scene.ContactSamples()) {
+  const std::vector<ContactSampleRecord> records = scene.ContactSamples();
+  for (const ContactSampleRecord& r : records) {
     pairs.push_back(r.colliding);
     pairs.push_back(r.collider);
     Push(&p, r.position);
     tn.push_back(Single(r.traction.dot(r.normal)));
     Push(&f, r.weight * (r.traction + r.friction + r.damping));
   }
-  return {{"count", tn.size()}, {"pairs", pairs}, {"p", p}, {"tn", tn}, {"f", f}};
+  json totals = json::array();
+  for (const ContactPairSummary& s : SummarizeContactPairs(records)) {
+    json centre = s.centreOfPressure.allFinite() ? Vec(s.centreOfPressure) : json(nullptr);
+    totals.push_back({{"a", s.a},
+                      {"b", s.b},
+                      {"force", Vec(s.force)},
+                      {"friction_force", Vec(s.frictionForce)},
+                      {"torque", Vec(s.torque)},
+                      {"centre_of_pressure", centre},
+                      {"area", s.area},
+                      {"max_penetration", s.maxPenetration}});
+  }
+  return {{"count", tn.size()}, {"pairs", pairs}, {"p", p}, {"tn", tn}, {"f", f},
+          {"pair_totals", totals}};
 }
 
 }  // namespace

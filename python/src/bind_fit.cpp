@@ -146,6 +146,16 @@ void BindFitting(py::module_& m) {
       .def_readonly("wall_seconds", &FitResult::wallSeconds)
       .def_readonly("converged", &FitResult::converged)
       .def_readonly("message", &FitResult::message)
+      .def(
+          "apply",
+          [](const FitResult& r, Scene& scene) {
+            Error e;
+            if (!ApplyParameterValues(&scene, r.names, r.fitted, &e))
+              throw py::value_error(e.message);
+          },
+          py::arg("scene"),
+          "Sets the fitted values on `scene` (a Scene, or a loaded file's .scene); then\n"
+          "scene.write_scene_file(...) writes the fitted scene.")
       .def("__repr__", [](const FitResult& r) {
         std::string s = "<superdex.FitResult";
         for (size_t j = 0; j < r.names.size(); ++j)

@@ -65,7 +65,7 @@ def test_writing_a_scene_that_has_stepped_is_refused(tmp_path):
         scene.write_scene_file(str(tmp_path / "x.json"), dt=1e-3, duration=1.0)
 
 
-def test_run_scene_and_fit_take_a_python_scene():
+def test_run_scene_and_fit_take_a_python_scene(tmp_path):
     scene = built()
     summary = sd.run_scene(scene, dt=2e-3, duration=0.05)
     assert summary.stopped + summary.diverged == 0
@@ -85,6 +85,11 @@ def test_run_scene_and_fit_take_a_python_scene():
     assert r.converged, r.message
     assert r.fitted[0] == pytest.approx(1.3, rel=1e-6)
     assert scene.actor("box").mass == 1.0  # left unchanged
-    g = sd.trajectory_gradient(scene, ["box.mass"], times=np.array(times),
+    r.apply(scene)
+    assert scene.actor("box").mass == r.fitted[0]
+    path = str(tmp_path / "fitted.json")
+    scene.write_scene_file(path, dt=2e-3, duration=0.1)
+    assert sd.load_scene(path).scene.actor("box").mass == r.fitted[0]
+    g = sd.trajectory_gradient(built(), ["box.mass"], times=np.array(times),
                                positions={"box": np.array(com)}, dt=2e-3)
     assert g.gradient[0] < 0  # heavier moves less far: closer to the observed path

@@ -118,17 +118,28 @@ TEST_CASE("Fitting: bad input is refused with the reason", "[fit]") {
 
 TEST_CASE("superdex fit recovers the shipped measurement's parameters", "[fit][cli]") {
   const std::string out = SUPERDEX_BINARY_DIR "/fit_throw_fitted.json";
+  const std::string fittedScene = SUPERDEX_BINARY_DIR "/fit_throw_fitted_scene.json";
   std::remove(out.c_str());
+  std::remove(fittedScene.c_str());
   const std::string cmd = std::string(SUPERDEX_CLI) + " fit " + SUPERDEX_SOURCE_DIR +
                           "/scenes/data/fit_throw.json --observed " + SUPERDEX_SOURCE_DIR +
                           "/scenes/data/fit_throw_observed.jsonl --params "
                           "box.coulomb_friction_coefficient,box.normal_viscous_damping_coefficient"
-                          " --out " + out + " > /dev/null 2>&1";
+                          " --out " + out + " --scene-out " + fittedScene + " > /dev/null 2>&1";
   REQUIRE(std::system(cmd.c_str()) == 0);
   std::ifstream in(out);
   REQUIRE(in);
   const nlohmann::json j = nlohmann::json::parse(in);
   CHECK(j["converged"].get<bool>());
+  // --scene-out: the scene file with the fitted values.
+  SceneFile fitted;
+  Error error;
+  REQUIRE(LoadSceneFile(fittedScene, &fitted, &error));
+  const ContactParams& c = fitted.scene->GetContactParams(fitted.scene->FindActor("box"));
+  CHECK(c.coulombFrictionCoefficient ==
+        j["parameters"]["box.coulomb_friction_coefficient"]["fitted"].get<double>());
+  CHECK(c.normalViscousDampingCoefficient ==
+        j["parameters"]["box.normal_viscous_damping_coefficient"]["fitted"].get<double>());
   // The measurement was made at μ = 0.4, c_n = 4 with 1 mm noise: within 3 standard errors.
   const auto& mu = j["parameters"]["box.coulomb_friction_coefficient"];
   const auto& cn = j["parameters"]["box.normal_viscous_damping_coefficient"];

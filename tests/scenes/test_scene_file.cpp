@@ -7,6 +7,8 @@
 #include <string>
 #include <sys/wait.h>
 
+#include <nlohmann/json.hpp>
+
 #include "scenes/parameter_docs.h"
 #include "scenes/runner.h"
 #include "scenes/scene_file.h"
@@ -278,4 +280,30 @@ TEST_CASE("docs/parameters.md is the output of superdex params --markdown", "[sc
   INFO("regenerate it: superdex params --markdown > docs/parameters.md");
   CHECK(file.str() == generated.str());
   CHECK(RunCli("params --markdown") == 0);
+}
+
+TEST_CASE("trajectory contacts carry the per-pair totals: a resting box's is its weight",
+          "[scenes][trajectory][contact_report]") {
+  SceneFile f;
+  Error e;
+  REQUIRE(LoadSceneFile(std::string(SUPERDEX_SOURCE_DIR) + "/scenes/data/box_rest.json", &f, &e));
+  const std::string out = SUPERDEX_BINARY_DIR "/box_rest_pairs.jsonl";
+  RunOptions o;
+  o.out = out;
+  o.contacts = true;
+  RunSummary s;
+  REQUIRE(RunScene(&f, o, &s, &e));
+  std::ifstream in(out);
+  std::string line, last;
+  while (std::getline(in, line)) last = line;
+  const nlohmann::json frame = nlohmann::json::parse(last);
+  const nlohmann::json& totals = frame["contacts"]["pair_totals"];
+  REQUIRE(totals.size() == 1);
+  CHECK(totals[0]["a"] == 0);
+  CHECK(totals[0]["b"] == 1);
+  // On the ground (a): the 1 kg box's weight, down, at rest.
+  CHECK(totals[0]["force"][2].get<double>() == Approx(-9.81).epsilon(1e-6));
+  CHECK(std::abs(totals[0]["force"][0].get<double>()) < 1e-6);
+  CHECK(totals[0]["area"].get<double>() == Approx(0.04).epsilon(1e-9));
+  CHECK(std::abs(totals[0]["centre_of_pressure"][0].get<double>()) < 1e-6);
 }
