@@ -71,9 +71,12 @@ class RunOutputs {
       return false;
     if (due) scheduledBytes_ = writer_.Bytes();
     if (s->vtkDirectory.empty() || !(force || step % vtkEvery_ == 0)) return true;
-    char name[40];
+    char name[40], contacts[40];
     std::snprintf(name, sizeof(name), "/frame_%06lld.vtk", step);
-    if (!WriteVtkFrame(scene, s->vtkDirectory + name, error)) return false;
+    std::snprintf(contacts, sizeof(contacts), "/contacts_%06lld.vtk", step);
+    if (!WriteVtkFrame(scene, s->vtkDirectory + name, error) ||
+        !WriteVtkContacts(scene, s->vtkDirectory + contacts, error))
+      return false;
     ++s->vtkFrames;
     return true;
   }

@@ -32,6 +32,35 @@ struct Surface {
   }
 };
 
+void WriteVector(std::ofstream& out, const Eigen::Vector3d& v) {
+  out << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
+}
+
+// Writes `path` through write(stream) into path.part, renamed when complete (a killed run
+// leaves no partial file); false with the reason when it cannot be written.
+template <typename Write>
+bool WriteAtomically(const std::string& path, Error* error, Write&& write) {
+  std::error_code ec;
+  const std::filesystem::path p(path);
+  if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path(), ec);
+  const std::string part = path + ".part";
+  errno = 0;
+  std::ofstream out(part);
+  if (!out)
+    return Fail(error, "vtk: cannot write \"" + path + "\": " +
+                           (errno ? std::strerror(errno) : "open failed"));
+  out.precision(9);
+  write(out);
+  errno = 0;
+  out.close();
+  if (!out || std::rename(part.c_str(), path.c_str()) != 0) {
+    const std::string why = errno ? std::strerror(errno) : "write error";
+    std::remove(part.c_str());
+    return Fail(error, "vtk: writing \"" + path + "\" failed: " + why);
+  }
+  return true;
+}
+
 }  // namespace
 
 bool WriteVtkFrame(Scene& scene, const std::string& path, Error* error) {
@@ -70,17 +99,7 @@ bool WriteVtkFrame(Scene& scene, const std::string& path, Error* error) {
     }
   }
 
-  std::error_code ec;
-  const std::filesystem::path p(path);
-  if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path(), ec);
-  // Written to a temporary name and renamed when complete: a killed run leaves no partial frame.
-  const std::string part = path + ".part";
-  errno = 0;
-  std::ofstream out(part);
-  if (!out)
-    return Fail(error, "vtk: cannot write \"" + path + "\": " +
-                           (errno ? std::strerror(errno) : "open failed"));
-  out.precision(9);
+  return WriteAtomically(path, error, [&](std::ofstream& out) {
   out << "# vtk DataFile Version 3.0\nsuperdex frame t = " << scene.Time()
       << " s\nASCII\nDATASET POLYDATA\n";
   out << "POINTS " << s.points.size() << " double\n";
@@ -102,14 +121,39 @@ bool WriteVtkFrame(Scene& scene, const std::string& path, Error* error) {
   for (int a : s.actor) out << a << '\n';
   out << "POINT_DATA " << s.points.size() << "\nVECTORS displacement double\n";
   for (const auto& d : s.displacement) out << d.x() << ' ' << d.y() << ' ' << d.z() << '\n';
-  errno = 0;
-  out.close();
-  if (!out || std::rename(part.c_str(), path.c_str()) != 0) {
-    const std::string why = errno ? std::strerror(errno) : "write error";
-    std::remove(part.c_str());
-    return Fail(error, "vtk: writing \"" + path + "\" failed: " + why);
-  }
-  return true;
+  });
+}
+
+bool WriteVtkContacts(Scene& scene, const std::string& path, Error* error) {
+  const std::vector<ContactSampleRecord> records = scene.ContactSamples();
+  const size_t n = records.size();
+  return WriteAtomically(path, error, [&](std::ofstream& out) {
+    out << "# vtk DataFile Version 3.0\nsuperdex contact samples t = " << scene.Time()
+        << " s\nASCII\nDATASET POLYDATA\nPOINTS " << n << " double\n";
+    for (const ContactSampleRecord& r : records) WriteVector(out, r.position);
+    out << "VERTICES " << n << ' ' << 2 * n << '\n';
+    for (size_t i = 0; i < n; ++i) out << "1 " << i << '\n';
+    out << "POINT_DATA " << n << '\n';
+    auto vectors = [&](const char* name, auto value) {
+      out << "VECTORS " << name << " double\n";
+      for (const ContactSampleRecord& r : records) WriteVector(out, value(r));
+    };
+    auto scalars = [&](const char* name, const char* type, auto value) {
+      out << "SCALARS " << name << ' ' << type << " 1\nLOOKUP_TABLE default\n";
+      for (const ContactSampleRecord& r : records) out << value(r) << '\n';
+    };
+    vectors("normal_traction", [](const ContactSampleRecord& r) { return r.traction; });
+    vectors("friction", [](const ContactSampleRecord& r) { return r.friction; });
+    vectors("damping", [](const ContactSampleRecord& r) { return r.damping; });
+    vectors("force", [](const ContactSampleRecord& r) {
+      return Eigen::Vector3d(r.weight * (r.traction + r.friction + r.damping));
+    });
+    vectors("normal", [](const ContactSampleRecord& r) { return r.normal; });
+    scalars("phi", "double", [](const ContactSampleRecord& r) { return r.phi; });
+    scalars("weight", "double", [](const ContactSampleRecord& r) { return r.weight; });
+    scalars("colliding", "int", [](const ContactSampleRecord& r) { return r.colliding; });
+    scalars("collider", "int", [](const ContactSampleRecord& r) { return r.collider; });
+  });
 }
 
 }  // namespace superdex

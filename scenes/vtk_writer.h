@@ -1,5 +1,5 @@
 // Frames for ParaView: legacy VTK polydata of every actor's surface at the current state, with
-// the contact traction field on soft surfaces.
+// the contact traction field on soft surfaces, and of the contact samples with their tractions.
 #pragma once
 
 #include <string>
@@ -20,5 +20,12 @@ namespace superdex {
 /// Point data: displacement of soft nodes from their reference positions [m] (zero on rigid
 /// surfaces). Returns false and fills *error when the file cannot be written.
 bool WriteVtkFrame(Scene& scene, const std::string& path, Error* error);
+
+/// Writes `path` (legacy ASCII VTK, POLYDATA of vertices): every active contact sample now
+/// (Scene::ContactSamples), with point data on the colliding actor: normal_traction, friction and
+/// damping (the last step's) [Pa], force w (t_n + t_f + t_d) [N] (the collider takes −force),
+/// normal (the collider field's direction), phi [m], weight [m²], colliding and collider (actor
+/// indices).
+bool WriteVtkContacts(Scene& scene, const std::string& path, Error* error);
 
 }  // namespace superdex

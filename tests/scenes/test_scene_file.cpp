@@ -307,3 +307,39 @@ TEST_CASE("trajectory contacts carry the per-pair totals: a resting box's is its
   CHECK(totals[0]["area"].get<double>() == Approx(0.04).epsilon(1e-9));
   CHECK(std::abs(totals[0]["centre_of_pressure"][0].get<double>()) < 1e-6);
 }
+
+TEST_CASE("VTK contact frames: the samples' forces on a resting box sum to its weight",
+          "[scenes][vtk][contact_report]") {
+  SceneFile f;
+  Error e;
+  REQUIRE(LoadSceneFile(std::string(SUPERDEX_SOURCE_DIR) + "/scenes/data/box_rest.json", &f, &e));
+  const std::string dir = SUPERDEX_BINARY_DIR "/box_rest_vtk";
+  std::system(("rm -rf " + dir).c_str());
+  RunOptions o;
+  o.out = "";
+  o.vtk = dir;
+  RunSummary s;
+  REQUIRE(RunScene(&f, o, &s, &e));
+  // The last frame (2 s at dt = 5 ms: step 400).
+  std::ifstream in(dir + "/contacts_000400.vtk");
+  REQUIRE(in);
+  std::string word;
+  long points = -1;
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  while (in >> word) {
+    if (word == "POINTS") in >> points >> word;
+    if (word == "force") {
+      in >> word;  // "double"
+      for (long i = 0; i < points; ++i) {
+        Eigen::Vector3d v;
+        in >> v.x() >> v.y() >> v.z();
+        sum += v;
+      }
+      break;
+    }
+  }
+  REQUIRE(points > 0);
+  // On the box (the colliding actor): its weight, up; written to 9 digits.
+  CHECK(sum.z() == Approx(9.81).epsilon(1e-6));
+  CHECK(sum.head<2>().norm() < 1e-6);
+}
