@@ -203,6 +203,7 @@ bool BuildMassProperties(const RigidActorDesc& d, const std::string& prefix, Rig
         return Fail(error, prefix + "shape.surface_resolution: sphere subdivisions must be in [0, 7], got " +
                                Num(shape.surfaceResolution));
       mass = rho * 4.0 / 3.0 * M_PI * r * r * r;
+      m->volume = 4.0 / 3.0 * M_PI * r * r * r;
       J = Eigen::Matrix3d::Identity() * (mass * r * r / 5.0);
       m->localBounds.Extend(Eigen::Vector3d::Constant(-r));
       m->localBounds.Extend(Eigen::Vector3d::Constant(r));
@@ -216,6 +217,7 @@ bool BuildMassProperties(const RigidActorDesc& d, const std::string& prefix, Rig
         return Fail(error, prefix + "shape.surface_resolution: box divisions must be in [1, 64], got " +
                                Num(shape.surfaceResolution));
       mass = rho * 8.0 * h.prod();
+      m->volume = 8.0 * h.prod();
       J = (mass / 3.0) * h.cwiseProduct(h).asDiagonal();
       m->localBounds.Extend(-h);
       m->localBounds.Extend(h);
@@ -229,6 +231,7 @@ bool BuildMassProperties(const RigidActorDesc& d, const std::string& prefix, Rig
         return Fail(error, prefix + "shape.mesh: encloses no positive volume (not closed or "
                                     "inward-oriented), got volume " + Num(mp.volume));
       mass = mp.mass;
+      m->volume = mp.volume;
       J = mp.secondMoment;
       com = mp.volume > 0 ? mp.centerOfMass : Eigen::Vector3d::Zero();
       for (const auto& v : shape.mesh->vertices) m->localBounds.Extend(v - com);

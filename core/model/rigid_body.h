@@ -155,6 +155,7 @@ struct RigidBodyModel {
   bool dynamic = true;
   RigidShape shape;
   double mass = 0.0;                                        ///< [kg] (0 for static actors)
+  double volume = 0.0;                                      ///< of the shape [m³] (0: plane)
   Eigen::Matrix3d secondMoment = Eigen::Matrix3d::Zero();   ///< J = ∫ X Xᵀ dm [kg·m²]
   Eigen::Vector3d shapeOffset = Eigen::Vector3d::Zero();    ///< [m]
   /// Colliding role (empty if none); shared with the models of identical shapes (ShareSamples).

@@ -114,16 +114,20 @@ bool ParseSceneParameter(const Scene& scene, const std::string& text, SceneParam
   } else {
     if (!axis.empty())
       return Fail(error, "parameter '" + text + "': " + name + " has no components");
-    if (!soft && (p->kind == SceneParameterKind::YoungsModulus ||
-                  p->kind == SceneParameterKind::Density))
+    if (!soft && p->kind == SceneParameterKind::YoungsModulus)
       return Fail(error, "parameter '" + text + "': " + name + " is a soft-actor material "
                         "parameter and '" + actor + "' is " +
                         (kind ? "a " + scene.Kind(p->actor).KindName() + " actor" : "rigid"));
-    if (p->kind == SceneParameterKind::Mass && (soft || kind || !scene.Model(p->actor).dynamic))
+    const bool rigidMass =
+        p->kind == SceneParameterKind::Mass || p->kind == SceneParameterKind::Density;
+    if (rigidMass && !soft && (kind || !scene.Model(p->actor).dynamic))
+      return Fail(error, "parameter '" + text + "': " + name + " is a soft or dynamic rigid "
+                             "actor's and '" + actor + "' is " +
+                             (kind ? "a " + scene.Kind(p->actor).KindName() + " actor"
+                                   : "not dynamic"));
+    if (p->kind == SceneParameterKind::Mass && soft)
       return Fail(error, "parameter '" + text + "': mass is a dynamic rigid actor's and '" +
-                             actor + "' is " +
-                             (soft ? "soft" : kind ? "a " + scene.Kind(p->actor).KindName() + " actor"
-                                               : "not dynamic"));
+                             actor + "' is soft (fit its density)");
   }
   return true;
 }
@@ -146,7 +150,9 @@ double ParameterValue(const Scene& scene, const SceneParameter& p) {
   if (IsContactKind(p.kind)) return scene.GetContactParams(p.actor).*RowOf(p.kind).contact;
   if (p.kind == SceneParameterKind::YoungsModulus)
     return scene.SoftModel(p.actor).material.youngsModulus;
-  if (p.kind == SceneParameterKind::Density) return scene.SoftModel(p.actor).material.density;
+  if (p.kind == SceneParameterKind::Density)
+    return scene.IsSoft(p.actor) ? scene.SoftModel(p.actor).material.density
+                                 : scene.Model(p.actor).mass / scene.Model(p.actor).volume;
   if (p.kind == SceneParameterKind::Mass) return scene.Model(p.actor).mass;
   if (scene.IsKind(p.actor)) {
     double value = NAN;
@@ -173,13 +179,15 @@ bool SetParameterValue(Scene* scene, const SceneParameter& p, double value, Erro
     c.*RowOf(p.kind).contact = value;
     return scene->SetContactParams(p.actor, c, error);
   }
+  if (p.kind == SceneParameterKind::Mass) return scene->SetRigidMass(p.actor, value, error);
+  if (p.kind == SceneParameterKind::Density && !scene->IsSoft(p.actor))
+    return scene->SetRigidMass(p.actor, value * scene->Model(p.actor).volume, error);
   if (p.kind == SceneParameterKind::YoungsModulus || p.kind == SceneParameterKind::Density) {
     const SoftMaterial& m = scene->SoftModel(p.actor).material;
     return p.kind == SceneParameterKind::YoungsModulus
                ? scene->SetSoftMaterial(p.actor, value, m.density, error)
                : scene->SetSoftMaterial(p.actor, m.youngsModulus, value, error);
   }
-  if (p.kind == SceneParameterKind::Mass) return scene->SetRigidMass(p.actor, value, error);
   if (!std::isfinite(value))
     return Fail(error, ToString(*scene, p) + ": must be finite");
   if (scene->IsKind(p.actor)) {  // the state moves along the parameter's direction

@@ -47,7 +47,7 @@ enum class SceneParameterKind {
   NormalViscousDampingCoefficient,  ///< c_n [s/m]
   FrictionFalloffVel,            ///< V_f [m/s]
   YoungsModulus,                 ///< soft actors: E [Pa]
-  Density,                       ///< soft actors: ρ [kg/m³]
+  Density,                       ///< soft and dynamic rigid actors: ρ [kg/m³] (rigid: m / V)
   Mass,                          ///< dynamic rigid actors: m [kg] (J scales with it)
   Position,         ///< initial position, one component [m] (soft: every node; a kind: its
                     ///< ActorKind::MotionParameter)

@@ -104,7 +104,8 @@ TEST_CASE("Sensitivities of a sliding box match trajectory differences", "[sensi
 TEST_CASE("Sensitivities to a rigid body's mass match trajectory differences", "[sensitivity]") {
   // Pushed by an applied force, the box's path depends on its mass (x'' = F/m − μ g); sliding
   // under friction alone, only its resting penetration does.
-  const std::vector<Probe> probes = {{"cube.mass", 1e-5}, {"cube.coulomb_friction_coefficient", 1e-5}};
+  const std::vector<Probe> probes = {{"cube.mass", 1e-5}, {"cube.density", 1e-5},
+                                     {"cube.coulomb_friction_coefficient", 1e-5}};
   SECTION("BDF2, reconstructed load, pushed") {
     CheckAgainstTrajectoryDifferences(
         [] { return PushedBox(IntegrationMethod::BDF2, DissipationMode::ReconstructedLoad); },
@@ -243,6 +244,16 @@ TEST_CASE("Sensitivity parameters: parsing and refusals", "[sensitivity]") {
   CHECK(error.message.find(".x, .y or .z") != std::string::npos);
   CHECK_FALSE(ParseSceneParameter(scene, "ground.position.x", &p, &error));
   CHECK(error.message.find("static") != std::string::npos);
+  CHECK_FALSE(ParseSceneParameter(scene, "ground.mass", &p, &error));
+  CHECK(error.message.find("mass is a soft or dynamic rigid actor's and 'ground' is not dynamic") !=
+        std::string::npos);
+  // A rigid body's density is m / V of its shape; setting it sets the mass.
+  REQUIRE(ParseSceneParameter(scene, "cube.density", &p, &error));
+  CHECK(ParameterValue(scene, p) == Approx(1.0 / 0.008).epsilon(1e-12));
+  REQUIRE(SetParameterValue(&scene, p, 500.0, &error));
+  CHECK(scene.Model(scene.FindActor("cube")).mass == Approx(4.0).epsilon(1e-12));
+  CHECK_FALSE(SetParameterValue(&scene, p, -1.0, &error));
+  CHECK(error.message.find("mass: must be > 0") != std::string::npos);
   REQUIRE(ParseSceneParameter(scene, "cube.coulomb_friction_coefficient", &p, &error));
   CHECK(ToString(scene, p) == "cube.coulomb_friction_coefficient");
   CHECK_FALSE(SetParameterValue(&scene, p, -0.1, &error));
