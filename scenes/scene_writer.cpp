@@ -85,6 +85,22 @@ bool RigidShapeJson(const RigidActorDesc& d, const Beside& beside, json* out, Er
   return Fail(error, d.name + ".shape: unknown kind");
 }
 
+// The fields rigid and soft descriptions share: placement, initial velocity, contact
+// parameters, collider and quadrature types, layer and grid SDF (JSON objects keep their keys
+// sorted, so the order of insertion does not show in the file).
+template <typename Desc>
+void PlacementAndContact(const Desc& d, json* out) {
+  json& j = *out;
+  j["position"] = Vec(d.position);
+  j["orientation"] = Quaternion(d.orientation);
+  j["velocity"] = Vec(d.linearVelocity);
+  if (json c = ChangedFields(kContactParamsFields, d.contact); !c.empty()) j["contact"] = c;
+  j["collider_type"] = ToString(d.colliderType);
+  j["boundary_element_type"] = ToString(d.boundaryElementType);
+  if (d.contactLayer != "default") j["contact_layer"] = d.contactLayer;
+  if (json g = ChangedFields(kGridSdfFields, d.gridSdf); !g.empty()) j["grid_sdf"] = g;
+}
+
 bool SameState(const RigidBodyState& a, const RigidBodyState& b) {
   return a.p == b.p && a.R == b.R && a.v == b.v && a.Rdot == b.Rdot;
 }
@@ -118,15 +134,8 @@ bool RigidActorJson(const Scene& scene, ActorHandle a, const Beside& beside, jso
       j["inertia"] = Vec(I.diagonal());
     }
   }
-  j["position"] = Vec(d.position);
-  j["orientation"] = Quaternion(d.orientation);
-  j["velocity"] = Vec(d.linearVelocity);
+  PlacementAndContact(d, &j);
   j["angular_velocity"] = Vec(d.angularVelocity);
-  if (json c = ChangedFields(kContactParamsFields, d.contact); !c.empty()) j["contact"] = c;
-  j["collider_type"] = ToString(d.colliderType);
-  j["boundary_element_type"] = ToString(d.boundaryElementType);
-  if (d.contactLayer != "default") j["contact_layer"] = d.contactLayer;
-  if (json g = ChangedFields(kGridSdfFields, d.gridSdf); !g.empty()) j["grid_sdf"] = g;
   if (!d.path.empty()) {
     json path = json::array();
     for (const PoseKeyframe& k : d.path)
@@ -175,15 +184,8 @@ bool SoftActorJson(const Scene& scene, ActorHandle a, const Beside& beside, json
   if (!d.mesh || !WriteGmsh22(*d.mesh, (beside.dir / file).string(), &message))
     return Fail(error, d.name + ".mesh: " + (d.mesh ? message : "no mesh"));
   json j = {{"name", d.name}, {"type", "soft"}, {"mesh", {{"type", "file"}, {"file", file}}}};
-  j["position"] = Vec(d.position);
-  j["orientation"] = Quaternion(d.orientation);
-  j["velocity"] = Vec(d.linearVelocity);
+  PlacementAndContact(d, &j);
   if (json mat = ChangedFields(kSoftMaterialFields, d.material); !mat.empty()) j["material"] = mat;
-  if (json c = ChangedFields(kContactParamsFields, d.contact); !c.empty()) j["contact"] = c;
-  j["collider_type"] = ToString(d.colliderType);
-  j["boundary_element_type"] = ToString(d.boundaryElementType);
-  if (d.contactLayer != "default") j["contact_layer"] = d.contactLayer;
-  if (json g = ChangedFields(kGridSdfFields, d.gridSdf); !g.empty()) j["grid_sdf"] = g;
   if (!d.constraints.empty()) {
     json list = json::array();
     for (const NodeConstraint& k : d.constraints) {
