@@ -151,7 +151,6 @@ void ContactPipeline::FindPairs(const std::vector<RigidPose>& poses,
   }
   overlapCache_.Find(boxes_, &overlaps_);
   pairs_.clear();
-  softPairs_.clear();
   softColliderPairs_.clear();
   kindPairs_.clear();
   // A on the soft collider B (B's collider is an Sdf grid mapped by its deformation).
@@ -174,21 +173,6 @@ void ContactPipeline::FindPairs(const std::vector<RigidPose>& poses,
                                     false, aNoCollider);
     softColliderPairs_.push_back(p);
   };
-  auto considerSoft = [&](int s, int b) {
-    const RigidBodyModel& B = models[b];
-    if (!IsCollider(B)) return;
-    if (filter_ && !filter_->Allowed(softActor_[s], RigidActor(b))) return;
-    SoftContactPair p;
-    p.soft = s;
-    p.collider = b;
-    // The threshold padding applies when A's own collider is None or PointCloud (spec,
-    // penaltyThresholdExtraPadding), not when it is a grid Sdf.
-    const ColliderType aCollider = (*softModels_)[s].collider;
-    p.params = CombineContactParams(
-        (*softModels_)[s].contact, B.contact, !B.Moves(),
-        aCollider == ColliderType::None || aCollider == ColliderType::PointCloud);
-    softPairs_.push_back(p);
-  };
   auto consider = [&](int a, int b) {
     const RigidBodyModel& A = models[a];
     const RigidBodyModel& B = models[b];
@@ -208,11 +192,11 @@ void ContactPipeline::FindPairs(const std::vector<RigidPose>& poses,
     if (i >= firstKind || j >= firstKind) {  // a kind's actor with a rigid one or another kind's
       const bool ki = i >= firstKind, kj = j >= firstKind;
       if (!ki && i >= static_cast<int>(n)) {  // soft i on kind j's field
-        ConsiderSoftOnKind(i - static_cast<int>(n), j - firstKind);
+        ConsiderSoftPair(i - static_cast<int>(n), true, j - firstKind);
         continue;
       }
       if (!kj && j >= static_cast<int>(n)) {
-        ConsiderSoftOnKind(j - static_cast<int>(n), i - firstKind);
+        ConsiderSoftPair(j - static_cast<int>(n), true, i - firstKind);
         continue;
       }
       const int a = ki ? i - firstKind : i, b = kj ? j - firstKind : j;
@@ -225,10 +209,10 @@ void ContactPipeline::FindPairs(const std::vector<RigidPose>& poses,
       consider(i, j);
       consider(j, i);
     } else if (si && !sj) {
-      considerSoft(i - static_cast<int>(n), j);
+      ConsiderSoftPair(i - static_cast<int>(n), false, j);
       considerOnSoft(false, j, i - static_cast<int>(n));
     } else if (!si && sj) {
-      considerSoft(j - static_cast<int>(n), i);
+      ConsiderSoftPair(j - static_cast<int>(n), false, i);
       considerOnSoft(false, i, j - static_cast<int>(n));
     } else {
       considerOnSoft(true, i - static_cast<int>(n), j - static_cast<int>(n));
@@ -268,20 +252,22 @@ void ContactPipeline::ConsiderKindPair(bool aKind, int a, bool bKind, int b) {
   kindPairs_.push_back(p);
 }
 
-void ContactPipeline::ConsiderSoftOnKind(int s, int k) {
-  const ActorKind& B = *(*kinds_)[k];
-  if (B.Collider() == nullptr) return;
-  if (filter_ && !filter_->Allowed(softActor_[s], kindActor_[k])) return;
+void ContactPipeline::ConsiderSoftPair(int s, bool bKind, int b) {
+  const ActorKind* kind = bKind ? (*kinds_)[b] : nullptr;
+  const RigidBodyModel* rigid = bKind ? nullptr : &(*models_)[b];
+  if (bKind ? kind->Collider() == nullptr : !IsCollider(*rigid)) return;
+  if (filter_ && !filter_->Allowed(softActor_[s], bKind ? kindActor_[b] : RigidActor(b))) return;
   KindPair p;
   p.aSoft = true;
-  p.bKind = true;
+  p.bKind = bKind;
   p.a = s;
-  p.b = k;
+  p.b = b;
   // The threshold padding applies when A's own collider is None or PointCloud (spec,
-  // penaltyThresholdExtraPadding), not when it is a grid Sdf.
+  // penaltyThresholdExtraPadding), not when it is a grid Sdf. A kinematic rigid collider moves:
+  // its parameters combine as a dynamic one's.
   const SoftBodyModel& A = (*softModels_)[s];
   p.params = CombineContactParams(
-      A.contact, B.contact, B.IsStatic(),
+      A.contact, bKind ? kind->contact : rigid->contact, bKind ? kind->IsStatic() : !rigid->Moves(),
       A.collider == ColliderType::None || A.collider == ColliderType::PointCloud);
   kindPairs_.push_back(p);
 }
@@ -377,9 +363,11 @@ bool ContactPipeline::SplitLastEvaluation(const std::vector<int>& dofOffset,
                                           std::vector<double>* share,
                                           std::vector<std::pair<int, int>>* joins,
                                           const std::vector<std::vector<int>>* kindStageDof) const {
-  if (!softPairs_.empty() || !softColliderPairs_.empty() || results_.size() != pairs_.size() ||
+  if (!softColliderPairs_.empty() || results_.size() != pairs_.size() ||
       (!kindPairs_.empty() && (!kindStageDof || kindResults_.size() != kindPairs_.size())))
     return false;
+  for (const KindPair& kp : kindPairs_)
+    if (kp.aSoft) return false;  // soft actors are not split
   // Each pair's values to its first dynamic actor; two dynamic actors with an active sample join.
   auto add = [&](const PairStencils& r, int a, bool aDynamic, int b, bool bDynamic) {
     if (r.activeSamples == 0 && r.dissipativeSamples == 0) return;
@@ -546,9 +534,8 @@ double ContactPipeline::Evaluate(const std::vector<RigidPose>& poses,
   double energy = 0.0;
   ContactStats st;
   EvaluateRigidPairs(q, &energy, &st);
-  EvaluateSoftPairs(q, &energy, &st);
-  EvaluateOnSoftPairs(q, &energy, &st);
   EvaluateKindPairs(q, &energy, &st);
+  EvaluateOnSoftPairs(q, &energy, &st);
   if (dissipation && dissipation->slips && dissipation->recordSlips) dissipation->slips->Seal();
   if (stats) *stats = st;
   return energy;
@@ -608,35 +595,6 @@ void ContactPipeline::EvaluateRigidPairs(const Request& q, double* energy, Conta
   }
 }
 
-void ContactPipeline::EvaluateSoftPairs(const Request& q, double* energy, ContactStats* st) {
-  const SoftView* soft = q.soft;
-  const DissipationContext* dissipation = q.dissipation;
-  const auto softId = [&](size_t k) { return std::make_pair(softPairs_[k].soft, softPairs_[k].collider); };
-  // Soft colliding actors against rigid colliders, face by face.
-  softResults_.resize(softPairs_.size());
-  auto evaluateSoft = [&](size_t k) {
-    const SoftContactPair& sp = softPairs_[k];
-    const PenaltyParams pp = PenaltyOf(sp.params);
-    const SoftPairInput in = SoftInputOf(*soft, sp.soft);
-    const RigidBodyModel& B = (*models_)[sp.collider];
-    DissipationSetup setup;
-    if (dissipation) setup = MakeSetup(sp.params, *dissipation, q.isotropic);
-    setup.slips = SlipUse(SlipPairKind::SoftOnRigid, k);
-    const RigidStageStart* b0 = q.stageStart ? &(*q.stageStart)[sp.collider] : nullptr;
-    PairStencils& r = softResults_[k];
-    EvaluateSoftRigidPair(in, B, (*q.poses)[sp.collider], b0, (*q.dofOffset)[sp.collider], pp,
-                          sp.params.maxAlignmentNormals, dissipation ? &setup : nullptr, q.order,
-                          &r);
-    if (q.order < 2) return;
-    for (int f = 0; f < r.count; ++f) ProjectStencil(q.potential, q.projection, &r.stencils[f]);
-  };
-  SweepPairs(dissipation, SlipPairKind::SoftOnRigid, softPairs_.size(), true, softId,
-             evaluateSoft);
-  for (size_t k = 0; k < softPairs_.size(); ++k)
-    ReducePair(q, softResults_[k], true, softPairs_[k].soft, false, softPairs_[k].collider, energy,
-               st);
-}
-
 void ContactPipeline::EvaluateOnSoftPairs(const Request& q, double* energy, ContactStats* st) {
   const SoftView* soft = q.soft;
   const DissipationContext* dissipation = q.dissipation;
@@ -693,10 +651,11 @@ SoftPairInput ContactPipeline::SoftInputOf(const SoftView& soft, int s) const {
 }
 
 FrameSide ContactPipeline::KindPairCollider(const Request& q, const KindPair& kp) const {
-  const KindView& kv = *q.kinds;
-  if (kp.bKind)
+  if (kp.bKind) {
+    const KindView& kv = *q.kinds;
     return KindFrameSide(*(*kinds_)[kp.b], (*kv.q)[kv.first + kp.b], EntryOf(kv.qLast, kp.b),
                          q.dissipation ? EntryOf(kv.q0, kp.b) : nullptr, (*kv.stageDof)[kp.b]);
+  }
   return RigidFrameSide((*models_)[kp.b], (*q.poses)[kp.b],
                         q.stageStart ? &(*q.stageStart)[kp.b] : nullptr, (*q.dofOffset)[kp.b]);
 }
@@ -704,10 +663,10 @@ FrameSide ContactPipeline::KindPairCollider(const Request& q, const KindPair& kp
 void ContactPipeline::GatherKindPairSamples(const Request& q, const KindPair& kp,
                                             const FrameSide& B, const DissipationSetup* setup,
                                             SampleSink* sink) const {
-  const KindView& kv = *q.kinds;
   if (kp.aSoft) {  // x⁰ is read only with dissipation (setup)
     GatherSoftSamples(SoftInputOf(*q.soft, kp.a), B, kp.params.threshold, setup, sink);
   } else if (kp.aKind) {
+    const KindView& kv = *q.kinds;
     GatherKindSamples(*(*kinds_)[kp.a], (*kv.q)[kv.first + kp.a], EntryOf(kv.qLast, kp.a),
                       q.dissipation ? EntryOf(kv.q0, kp.a) : nullptr, (*kv.stageDof)[kp.a], B,
                       kp.params.threshold, setup, sink);
@@ -774,20 +733,6 @@ void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,
     for (size_t k = first; k < records->size(); ++k) {
       (*records)[k].colliding = RigidActor(cp.colliding);
       (*records)[k].collider = RigidActor(cp.collider);
-    }
-  }
-  PairStencils scratchSoft;
-  for (const SoftContactPair& sp : softPairs_) {
-    const PenaltyParams pp = PenaltyOf(sp.params);
-    const DissipationSetup setup = setupOf(sp.params);
-    const SoftPairInput in = SoftInputOf(*soft, sp.soft);
-    const size_t first = records->size();
-    EvaluateSoftRigidPair(in, models[sp.collider], poses[sp.collider], startOf(sp.collider), -1,
-                          pp, sp.params.maxAlignmentNormals, dissipation ? &setup : nullptr, 0,
-                          &scratchSoft, records);
-    for (size_t k = first; k < records->size(); ++k) {
-      (*records)[k].colliding = softActor_[sp.soft];
-      (*records)[k].collider = RigidActor(sp.collider);
     }
   }
   if (!softColliderPairs_.empty()) {

@@ -15,7 +15,7 @@
 #include "core/contact/rigid_contact.h"
 #include "core/contact/rigid_dissipation.h"
 #include "core/contact/soft_collider.h"
-#include "core/contact/soft_contact.h"
+#include "core/contact/soft_samples.h"
 #include "optim/stage_problem.h"
 #include "optim/triplet_assembly.h"
 
@@ -52,13 +52,6 @@ struct ContactPair {
   PairContactParams params;
 };
 
-/// Ordered pair (soft A colliding, rigid B collider).
-struct SoftContactPair {
-  int soft = -1;      ///< index into the soft models
-  int collider = -1;  ///< index into the rigid models
-  PairContactParams params;
-};
-
 /// Ordered pair (A colliding: rigid or soft, B: a soft actor with an Sdf collider).
 struct SoftColliderPair {
   bool collidingSoft = false;
@@ -88,11 +81,12 @@ struct KindView {
   const std::vector<std::vector<int>>* stageDof = nullptr;
 };
 
-/// Ordered pair of the generic layer (A colliding, B collider; each a rigid body or a kind's
-/// actor, at least one a kind's), evaluated by the one assembler of core/contact/kind_contact.h.
+/// Ordered pair on a field carried by a frame (A colliding: a rigid body, a soft actor's faces or a
+/// kind's actor; B collider: a rigid body or a kind's actor; not two rigid bodies, which are
+/// ContactPairs), evaluated by the one assembler of core/contact/kind_contact.h.
 struct KindPair {
   bool aKind = false, bKind = false;
-  bool aSoft = false;  ///< A is a soft actor (its face samples) on a kind's field
+  bool aSoft = false;  ///< A is a soft actor (its face samples)
   int a = -1, b = -1;  ///< index into the rigid models, the soft models or the kinds' actors
   PairContactParams params;
 };
@@ -189,7 +183,6 @@ class ContactPipeline {
   /// Each pair kind of Evaluate: its pairs in parallel, then reduced in pair order into *energy
   /// and *st and scattered into the request's outputs.
   void EvaluateRigidPairs(const Request& q, double* energy, ContactStats* st);
-  void EvaluateSoftPairs(const Request& q, double* energy, ContactStats* st);
   void EvaluateOnSoftPairs(const Request& q, double* energy, ContactStats* st);
   void EvaluateKindPairs(const Request& q, double* energy, ContactStats* st);
   void FindPairs(const std::vector<RigidPose>& poses, const DissipationContext* dissipation,
@@ -197,8 +190,9 @@ class ContactPipeline {
                  const KindView* kinds = nullptr);
   // The generic layer's ordered pair (a, b) when the roles, the filter and the motion allow it.
   void ConsiderKindPair(bool aKind, int a, bool bKind, int b);
-  // Soft actor s colliding on kind k's field, when the filter allows it.
-  void ConsiderSoftOnKind(int s, int k);
+  // Soft actor s colliding on the field of rigid body b (bKind false) or kind b, when the roles
+  // and the filter allow it.
+  void ConsiderSoftPair(int s, bool bKind, int b);
   // A kind pair's collider side at the request's configuration, and the colliding side's samples
   // that can contribute on it.
   FrameSide KindPairCollider(const Request& q, const KindPair& kp) const;
@@ -236,8 +230,6 @@ class ContactPipeline {
   std::vector<double> pairLimits_, kindPairLimits_;
   const std::vector<SoftBodyModel>* softModels_ = nullptr;
   std::vector<int> rigidActor_, softActor_;
-  std::vector<SoftContactPair> softPairs_;
-  std::vector<PairStencils> softResults_;
   std::vector<SoftColliderPair> softColliderPairs_;
   std::vector<PairStencils> softColliderResults_;
   std::vector<TetLocator> locators_, locatorsLast_;  // per soft actor
@@ -255,7 +247,7 @@ class ContactPipeline {
     std::vector<PairSlipUse> use;
     std::vector<PairSlips> record;
   };
-  SlipLists slipLists_[4];
+  SlipLists slipLists_[3];
   /// Sets slipLists_[kind].use for n pairs named by id(k) = (colliding, collider): buffers to
   /// record into or the records to read; left empty without slips in the context (plain
   /// simulation pays no per-pair work for them).

@@ -258,6 +258,54 @@ void EvaluateSamplesOnFrame(const std::vector<PairSample>& samples, const FrameS
                             const DissipationSetup* dissipation, int order, PairStencils* out,
                             std::vector<ContactSampleRecord>* records = nullptr);
 
+/// Whether a ball of colliding samples (radius r [m], centred at c now and at cLast at x_n, world)
+/// may hold a sample that contributes on B's field: its penalty now, or with dissipation the load
+/// geometry of the mode. B's field has Lipschitz constant L, so every sample of the ball has
+/// φ >= φ(centre) − L r. Explicit normals read the load at x_n; so does the reconstructed load on
+/// an affine field (a plane), where φ + G·(Y_n − Y) is Φ(Y_n) exactly; otherwise the reconstructed
+/// load is bounded below over the ball by the field (RigidCollider::FirstOrderLowerBound, with the
+/// centre's Y_n − Y), and a sample's Y_n − Y differs from its ball centre's by at most `spread` r
+/// (a rigid body: ‖R_n,BᵀR_n,A − R_BᵀR_A‖_F).
+class BallCulling {
+ public:
+  BallCulling(const FrameSide& B, double delta, const DissipationSetup* dissipation,
+              bool hasStart, double spread)
+      : field_(*B.field),
+        B_(B),
+        RBt_(B.pose.R.transpose()),
+        RnBt_(B.last.R.transpose()),
+        delta_(delta),
+        spread_(spread) {
+    const bool diss = dissipation && dissipation->coefficients.Any() && hasStart && B.hasStart;
+    mode_ = diss ? dissipation->mode : DissipationMode::ImplicitLoad;
+    loadAtLast_ = mode_ == DissipationMode::ExplicitNormals ||
+                  (mode_ == DissipationMode::ReconstructedLoad && field_.type == ColliderType::Plane);
+  }
+  bool operator()(const Eigen::Vector3d& c, const Eigen::Vector3d& cLast, double r) const {
+    return InFrame(RBt_ * (c - B_.pose.p), [&] { return RnBt_ * (cLast - B_.last.p); }, r);
+  }
+  /// The same test on the centre in B's frame: Y now, and lastY() at x_n (formed only where the
+  /// load geometry needs it).
+  template <typename LastCentre>
+  bool InFrame(const Eigen::Vector3d& Y, LastCentre&& lastY, double r) const {
+    const double L = field_.lipschitz;
+    const double phiNow = field_.Value(Y) - L * r;
+    if (phiNow < delta_) return true;
+    if (mode_ == DissipationMode::ImplicitLoad) return false;
+    const Eigen::Vector3d Yn = lastY();
+    if (loadAtLast_) return field_.Value(Yn) - L * r < delta_;
+    return field_.FirstOrderLowerBound(Y, r, Yn - Y) - L * spread_ * r < delta_;
+  }
+
+ private:
+  const RigidCollider& field_;
+  const FrameSide& B_;
+  Eigen::Matrix3d RBt_, RnBt_;
+  double delta_, spread_;
+  DissipationMode mode_;
+  bool loadAtLast_ = false;
+};
+
 /// Step limit of Newton's global phase on a frame's field (RigidPairStepLimit's rule,
 /// core/contact/rigid_contact.h, for any pair of the generic layer): the samples' y at the trial
 /// configuration and yLast at the current one, B.pose the frame's trial pose and B.last its current

@@ -38,9 +38,10 @@ struct PairSlipUse {
 };
 
 /// The pair kinds of the contact pipeline.
-/// Kind: a pair of the generic layer, named by actor indices that run over the rigid models, then
-/// the kinds (models + k).
-enum class SlipPairKind { Rigid = 0, SoftOnRigid = 1, OnSoft = 2, Kind = 3 };
+/// Rigid: two rigid bodies (model indices). OnSoft: on a soft collider's field. Kind: a pair on a
+/// frame's field, named by actor indices that run over the rigid models, then the kinds
+/// (models + k), then the soft actors (models + kinds + s).
+enum class SlipPairKind { Rigid = 0, OnSoft = 1, Kind = 2 };
 
 /// One stage's record, pairs sorted by (kind, colliding, collider).
 class StageSlips {

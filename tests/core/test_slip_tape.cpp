@@ -41,7 +41,7 @@ TEST_CASE("Slip tape: pairs and samples are found by their names, missing ones a
   CHECK(found->Find(3) == nullptr);
   CHECK(found->Find(8) == nullptr);
   CHECK(stage.Find(SlipPairKind::Rigid, 1, 4) == nullptr);        // ordered pairs
-  CHECK(stage.Find(SlipPairKind::SoftOnRigid, 4, 1) == nullptr);  // another kind
+  CHECK(stage.Find(SlipPairKind::OnSoft, 4, 1) == nullptr);  // another kind
   REQUIRE(stage.Find(SlipPairKind::OnSoft, -1, 3));
   stage.Clear();
   CHECK(stage.Samples() == 0);
