@@ -98,9 +98,13 @@ void ContactPipeline::Configure(const std::vector<RigidBodyModel>* models,
   kinds_ = kinds && !kinds->empty() ? kinds : nullptr;
   kindActor_ = std::move(kindActor);
   kindInflation_.clear();
+  kindHasDofs_.clear();
   if (kinds_)
     for (const ActorKind* k : *kinds_) {
       kindInflation_.push_back(k->Collider() ? ColliderReach(k->contact) : 0.0);
+      bool free = false;
+      for (int i = 0; i < k->NumTangentDofs() && !free; ++i) free = !k->IsPrescribed(i);
+      kindHasDofs_.push_back(free);
     }
   filter_ = filter;
   softModels_ = softModels && !softModels->empty() ? softModels : nullptr;
@@ -229,9 +233,10 @@ void ContactPipeline::ConsiderKindPair(bool aKind, int a, bool bKind, int b) {
   if (aKind ? !A->IsColliding() : !IsColliding(models[a])) return;
   if (bKind ? B->Collider() == nullptr : !IsCollider(models[b])) return;
   if (!aKind && !bKind) return;
-  const bool aStatic = aKind ? A->IsStatic() : !models[a].dynamic;
-  const bool bStatic = bKind ? B->IsStatic() : !models[b].dynamic;
-  if (aStatic && bStatic) return;  // neither moves: nothing to solve for
+  // Neither has a stage unknown (static, kinematic or all prescribed): nothing to solve for.
+  const bool aDofs = aKind ? kindHasDofs_[a] : models[a].dynamic;
+  const bool bDofs = bKind ? kindHasDofs_[b] : models[b].dynamic;
+  if (!aDofs && !bDofs) return;
   const int actorA = aKind ? kindActor_[a] : RigidActor(a);
   const int actorB = bKind ? kindActor_[b] : RigidActor(b);
   if (filter_ && !filter_->Allowed(actorA, actorB)) return;
@@ -248,7 +253,7 @@ void ContactPipeline::ConsiderKindPair(bool aKind, int a, bool bKind, int b) {
   // colliding actor when the collider is static").
   p.params = CombineContactParams(aKind ? A->contact : models[a].contact,
                                   bKind ? B->contact : models[b].contact,
-                                  bKind ? bStatic : !models[b].Moves(), aNoCollider);
+                                  bKind ? B->IsStatic() : !models[b].Moves(), aNoCollider);
   kindPairs_.push_back(p);
 }
 

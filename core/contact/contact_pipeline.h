@@ -238,6 +238,7 @@ class ContactPipeline {
   const std::vector<const ActorKind*>* kinds_ = nullptr;
   std::vector<int> kindActor_;
   std::vector<double> kindInflation_;
+  std::vector<char> kindHasDofs_;  // per kind: some tangent dof is not prescribed
   std::vector<KindPair> kindPairs_;
   std::vector<PairStencils> kindResults_;
   std::vector<std::vector<PairSample>> kindSamples_;  // per pair (capacity kept)

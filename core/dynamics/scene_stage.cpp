@@ -50,6 +50,17 @@ SceneStageProblem::SceneStageProblem(const std::vector<RigidBodyModel>& models,
   for (size_t i = 0; i < targets_.torque.size(); ++i)
     if (dofOffset_[i] >= 0 && targets_.torque[i].any()) hasTorque_ = true;
   if (hasTorque_) torqueWork_.assign(models_.size(), 0.0);
+  if (soft_) {  // the kinds' loads at the stage's time
+    const KindStage& ks = soft_->kinds;
+    for (size_t k = 0; k < ks.Size(); ++k) {
+      Eigen::VectorXd f;
+      if (!(*ks.kinds)[k]->StageLoad(ks.data[k], &f) || !f.any()) continue;
+      kindLoad_.resize(ks.Size());
+      kindLoadWork_.assign(ks.Size(), 0.0);
+      kindLoad_[k] = std::move(f);
+      hasTorque_ = true;
+    }
+  }
   // Where the linear solves are Krylov by default, the matrices keep a superset pattern while
   // contacts come and go (explicit zeros: the Krylov iterates are the same).
   const bool keepSuperset = numDofs_ >= kAutoIterativeUnknowns;
@@ -178,7 +189,7 @@ double SceneStageProblem::EvaluateAt(const std::vector<RigidPose>& poses,
       minDet = std::min(minDet, md);
     }
     if (minDetF) *minDetF = minDet;
-    value += EvaluateKindTerms(softX, order, projection, gPot);
+    value += EvaluateKindTerms(softX, order, projection, gPot, rDiss);
     view.x = &softX;
     view.xLast = &soft_->xLast;
     view.x0 = &soft_->x0;
@@ -194,7 +205,8 @@ double SceneStageProblem::EvaluateAt(const std::vector<RigidPose>& poses,
 }
 
 double SceneStageProblem::EvaluateKindTerms(const std::vector<Eigen::VectorXd>& softX, int order,
-                                            PsdProjection projection, Eigen::VectorXd* gPot) {
+                                            PsdProjection projection, Eigen::VectorXd* gPot,
+                                            Eigen::VectorXd* rDiss) {
   const KindStage& ks = soft_->kinds;
   const size_t ns = soft_->targets.size();
   double value = 0.0;
@@ -209,6 +221,17 @@ double SceneStageProblem::EvaluateKindTerms(const std::vector<Eigen::VectorXd>& 
     H.clear();
     kindValue[k] = kind.StageEnergy(ks.data[k], softX[ns + k], order, projection,
                                     order >= 1 ? &g : nullptr, order >= 2 ? &H : nullptr);
+    if (!kindLoad_.empty() && kindLoad_[k].size() > 0) {
+      const Eigen::VectorXd& f = kindLoad_[k];
+      kindValue[k] -= kindLoadWork_[k];
+      if (&softX != softX_) {  // at the current iterate the tangent step is zero exactly
+        kind.TangentBetween((*softX_)[ns + k], softX[ns + k], &ws_->kindDelta);
+        kindValue[k] -= f.dot(ws_->kindDelta);
+      }
+      if (order >= 1)
+        for (size_t i = 0; i < dof.size(); ++i)
+          if (dof[i] >= 0) (*rDiss)[dof[i]] -= f[i];
+    }
     value += kindValue[k];
     if (order < 1) continue;
     for (size_t i = 0; i < dof.size(); ++i)
@@ -318,6 +341,9 @@ void SceneStageProblem::AddKindJacobianCorrections(const Eigen::VectorXd& r,
     residual.setZero(static_cast<Eigen::Index>(dof.size()));
     for (size_t i = 0; i < dof.size(); ++i)
       if (dof[i] >= 0) residual[i] = r[dof[i]] + (dissipationIsPotential ? scratch_[dof[i]] : 0.0);
+    // A StageLoad (in scratch_) is constant in the tangent's own terms: it adds nothing to J.
+    if (dissipationIsPotential && !kindLoad_.empty() && kindLoad_[k].size() > 0)
+      residual += kindLoad_[k];
     local.clear();
     (*ks.kinds)[k]->AddResidualJacobianCorrection(softX[ns + k], residual, &local);
     for (const Eigen::Triplet<double>& t : local) {
@@ -330,6 +356,7 @@ void SceneStageProblem::AddKindJacobianCorrections(const Eigen::VectorXd& r,
 void SceneStageProblem::SetChartOrigin() {
   origin_ = *poses_;
   torqueWork_.assign(models_.size(), 0.0);  // the chart's solvers read residuals alone
+  std::fill(kindLoadWork_.begin(), kindLoadWork_.end(), 0.0);
   if (soft_) softOrigin_ = *softX_;
 }
 
@@ -373,6 +400,15 @@ void SceneStageProblem::Commit(const Eigen::VectorXd& d) {
     for (size_t i = 0; i < models_.size(); ++i)
       if (dofOffset_[i] >= 0 && targets_.torque[i].any())
         torqueWork_[i] += targets_.torque[i].dot(LogSo3(trial_[i].R * (*poses_)[i].R.transpose()));
+  if (!kindLoad_.empty()) {
+    const size_t ns = soft_->targets.size();
+    for (size_t k = 0; k < kindLoad_.size(); ++k) {
+      if (kindLoad_[k].size() == 0) continue;
+      (*soft_->kinds.kinds)[k]->TangentBetween((*softX_)[ns + k], softTrial_[ns + k],
+                                               &ws_->kindDelta);
+      kindLoadWork_[k] += kindLoad_[k].dot(ws_->kindDelta);
+    }
+  }
   *poses_ = trial_;
   if (soft_) *softX_ = softTrial_;
   if (hasPending_ && pendingStep_ == d) {

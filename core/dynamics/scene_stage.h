@@ -1,5 +1,5 @@
-// One implicit stage over the scene's rigid and soft actors, as a StageProblem for the optim/
-// solvers:
+// One implicit stage over the scene's rigid and soft actors and the generic layer's kinds, as a
+// StageProblem for the optim/ solvers:
 //   Φ_i(q) = 1/(2Δt_i²) Σ_b E_inertia,b(q)  +  Σ_b U_gravity,b(q)  +  Σ_s Φ_soft,s(q)
 //            + Π_contact(q) + Δt_i Σ w R(V_rel,i)  −  Σ_b F_b(t_i)·p_b                 [J]
 // (Φ_soft: core/model/soft_terms.h). Dofs: 6 per dynamic rigid body [δp, δθ], then 3 per free soft node.
@@ -8,7 +8,8 @@
 // (core/contact/rigid_dissipation.h). An applied torque τ_b(t_i) adds −τ_b to the residual's
 // rotation entries: a constant world torque is not the gradient of any function of the rotation,
 // so a stage with one is not a potential either (IsPotential); its minimizing solves see the
-// torque's work along the iterates they commit (see SceneStageProblem::Commit).
+// torque's work along the iterates they commit (see SceneStageProblem::Commit). A kind's
+// generalized load (ActorKind::StageLoad) is treated the same way.
 #pragma once
 
 #include <memory>
@@ -171,9 +172,13 @@ class SceneStageProblem : public StageProblem {
   double AppliedLoads(size_t i, const RigidPose& pose, int order, Eigen::VectorXd* gPot,
                       Eigen::VectorXd* rDiss) const;
   /// The kinds' stage energies at their configurations in softX (after the soft actors'); order
-  /// >= 1 adds their gradients into *gPot, order 2 their Hessians into triplets_.
+  /// >= 1 adds their gradients into *gPot, order 2 their Hessians into triplets_. A kind's
+  /// StageLoad f adds −(W + f·TangentBetween(q_c, q)) to the value (q_c the current iterate, W
+  /// its work so far: a trial's value equals the one evaluated after committing it) and −f into
+  /// *rDiss (a residual term).
   double EvaluateKindTerms(const std::vector<Eigen::VectorXd>& softX, int order,
-                           PsdProjection projection, Eigen::VectorXd* gPot);
+                           PsdProjection projection, Eigen::VectorXd* gPot,
+                           Eigen::VectorXd* rDiss);
   /// Kind k's part of a stage vector d (its tangent dofs; 0 at prescribed ones), in a scratch
   /// vector of the workspace (valid until the next call).
   const Eigen::VectorXd& KindLocal(size_t k, const Eigen::VectorXd& d) const;
@@ -207,8 +212,13 @@ class SceneStageProblem : public StageProblem {
   const std::vector<int>& dofOffset_;
   int numDofs_;
   const StageTargets& targets_;
-  bool hasTorque_ = false;          ///< some body has a nonzero applied torque
+  bool hasTorque_ = false;          ///< some body has a nonzero applied torque, or some kind a
+                                    ///< StageLoad
   std::vector<double> torqueWork_;  ///< W_i of AppliedLoads, per body (with hasTorque_)
+  /// Per kind: its StageLoad f (empty: none) and f's work W along the committed iterates [J]
+  /// (both empty when no kind has one).
+  std::vector<Eigen::VectorXd> kindLoad_;
+  std::vector<double> kindLoadWork_;
   Eigen::Vector3d gravity_;
   ContactPipeline* contact_;
   std::vector<RigidPose>* poses_;

@@ -72,6 +72,7 @@ void StepBdf(const std::vector<RigidBodyModel>& models, const StepState& step, d
   for (size_t s = 0; s < ns; ++s) {
     softNext[s].x = softX[s];
     softNext[s].v = (softX[s] - softStart[s].x) / dt;
+    if (const ActorKind* kind = host.VectorKind(s)) kind->EndPrescribed(step.time + h, &softNext[s]);
   }
   for (size_t i = 0; i < n; ++i) {
     if (!models[i].dynamic) continue;
@@ -204,7 +205,10 @@ void StepDirk(const std::vector<RigidBodyModel>& models, const StepState& step, 
   std::vector<Eigen::VectorXd> endX(ns);
   for (size_t s = 0; s < ns; ++s) endX[s] = softNext[s].x;
   host.ApplyConstraints(step.time + h, &endX);
-  for (size_t s = 0; s < ns; ++s) softNext[s].x = endX[s];
+  for (size_t s = 0; s < ns; ++s) {
+    softNext[s].x = endX[s];
+    if (const ActorKind* kind = host.VectorKind(s)) kind->EndPrescribed(step.time + h, &softNext[s]);
+  }
   EndKinematic(models, step.time + h, &next);
 }
 

@@ -152,6 +152,21 @@ class ActorKind {
   /// Prescribe writes every prescribed part's value at time t [s] into *q.
   virtual bool IsPrescribed(int /*dof*/) const { return false; }
   virtual void Prescribe(double /*t*/, Eigen::VectorXd* /*q*/) const {}
+  /// The state at a step's end time t [s], after the integrator's rule (which gives prescribed
+  /// parts their positions by Prescribe and their velocities by its differences): a kind whose
+  /// path has an exact velocity writes it (a kinematic rigid body's pose and rates). Default:
+  /// kept.
+  virtual void EndPrescribed(double /*t*/, KindState* /*s*/) const {}
+
+  /// A generalized force f on the tangent dofs (m entries) that is not the gradient of a stage
+  /// energy, as a rigid body's applied world torque is (no function of the rotation has a
+  /// constant world torque as its gradient), constant over the stage: written at the stage's
+  /// time into *f, returning true; false (the default): none. The stage's residual takes −f, the
+  /// stage is then not a potential, and its minimizing solves count f's work along the iterates
+  /// they commit, W = Σ f·TangentBetween(q_c, q_next) [J] (core/dynamics/scene_stage.h).
+  virtual bool StageLoad(const KindStageData& /*stage*/, Eigen::VectorXd* /*f*/) const {
+    return false;
+  }
 
   // --- A configuration on a manifold (defaults: a vector kind).
   /// *out = q ⊕ δ (δ: m entries; zero at prescribed dofs). Must be q + δ to the bit where the

@@ -157,18 +157,35 @@ double RigidKind::StageEnergy(const KindStageData& stage, const Eigen::VectorXd&
   const RigidInertiaTerm t = RigidInertia(model_.mass, model_.secondMoment, p, RotationOf(q),
                                           stage.qHat.head<3>(), RotationOf(stage.qHat),
                                           order >= 1);
-  const double value = w * t.value + GravityPotential(model_.mass, stage.gravity, p);
+  // An applied force at the centre of mass: the exact potential −F(t_i)·p.
+  const Eigen::Vector3d F = model_.appliedForce.empty()
+                                ? Eigen::Vector3d::Zero()
+                                : PiecewiseLinear(model_.appliedForce, stage.time);
+  double value = w * t.value + GravityPotential(model_.mass, stage.gravity, p);
+  if (!model_.appliedForce.empty()) value -= F.dot(p);
   if (order < 1) return value;
   g->head<6>() += w * t.gradient;
   g->head<3>() -= model_.mass * stage.gravity;
+  if (!model_.appliedForce.empty()) g->head<3>() -= F;
   if (order < 2) return value;
   AppendRigidInertiaHessian(w * t.hessian, projection, 0, H);
   return value;
 }
 
-void RigidKind::Prescribe(double /*t*/, Eigen::VectorXd* q) const {
+bool RigidKind::StageLoad(const KindStageData& stage, Eigen::VectorXd* f) const {
+  if (!model_.dynamic || model_.appliedTorque.empty()) return false;
+  f->setZero(6);
+  f->tail<3>() = PiecewiseLinear(model_.appliedTorque, stage.time);
+  return true;
+}
+
+void RigidKind::Prescribe(double t, Eigen::VectorXd* q) const {
   if (model_.dynamic) return;
-  *q = Pack(initial_).x;
+  *q = model_.kinematic ? Pack(KinematicStateAt(model_, t)).x : Pack(initial_).x;
+}
+
+void RigidKind::EndPrescribed(double t, KindState* s) const {
+  if (model_.kinematic) *s = Pack(KinematicStateAt(model_, t));
 }
 
 void RigidKind::Retract(const Eigen::VectorXd& q, const Eigen::VectorXd& delta,
@@ -208,8 +225,9 @@ void RigidKind::DirkStageSlope(const Eigen::VectorXd& x, const KindState& start,
   vk.x.head<3>() = (x.head<3>() - start.x.head<3>()) / dt;
   vk.v.head<3>() = (vk.x.head<3>() - start.v.head<3>()) / dt;
   out->extra.setZero(3);
-  if (!model_.dynamic) {
-    vk.x.tail<9>().setZero();
+  if (!model_.dynamic) {  // a kinematic body's stage poses' slope, for the next stages' x⁰
+    vk.x.tail<9>() = model_.kinematic ? Eigen::VectorXd((x.tail<9>() - start.x.tail<9>()) / dt)
+                                      : Eigen::VectorXd::Zero(9);
     vk.v.tail<9>().setZero();
     return;
   }
@@ -264,12 +282,20 @@ double RigidKind::ForceChange(const KindState& current, const KindState& previou
 
 bool RigidKind::FreeStageMinimizer(const KindStageData& stage, Eigen::VectorXd* q) const {
   if (!model_.dynamic) {
-    *q = Pack(initial_).x;
+    Prescribe(stage.time, q);
     return true;
   }
+  // An applied force adds F/m to the acceleration; a torque has no closed form.
+  if (!model_.appliedTorque.empty() && PiecewiseLinear(model_.appliedTorque, stage.time).any())
+    return false;
+  const Eigen::Vector3d g =
+      model_.appliedForce.empty()
+          ? stage.gravity
+          : Eigen::Vector3d(stage.gravity +
+                            PiecewiseLinear(model_.appliedForce, stage.time) / model_.mass);
   const RigidInertiaMinimum x =
       MinimizeRigidInertia(model_.secondMoment, stage.qHat.head<3>(), RotationOf(stage.qHat),
-                           stage.dt, stage.gravity);
+                           stage.dt, g);
   q->resize(12);
   q->head<3>() = x.p;
   q->tail<9>() = Eigen::Map<const Eigen::Matrix<double, 9, 1>>(x.R.data());

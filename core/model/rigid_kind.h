@@ -6,13 +6,15 @@
 // (column-major R), v = q̇ = [v, vec Ṙ]; the integrators' affine combinations of states are those
 // of the material points x = p + R X. Tangent step δ = [δp, δθ] (m = 6), retraction
 //   q ⊕ δ = [p + δp, vec(exp([δθ]×) R)].
-// Stage energy (energies/rigid_inertia.h):
-//   Φ(q) = 1/(2Δt_i²) (m ‖p − p̂‖² + tr((R − R̂) J (R − R̂)ᵀ)) − m g·p               [J]
+// Stage energy (energies/rigid_inertia.h), with an applied force F(t_i) at the centre of mass:
+//   Φ(q) = 1/(2Δt_i²) (m ‖p − p̂‖² + tr((R − R̂) J (R − R̂)ᵀ)) − m g·p − F·p        [J]
+// and an applied world torque τ(t_i) as the stage load −τ on δθ (not a potential).
 // with its gradient and Hessian in δ at δ = 0 (the rotation block projected to PSD when it does
 // not factorize). Colliding role: the body's surface samples, y = p + R X on a Rigid map with
 // their normals R n_A; collider role: the shape's field in the body frame (p, R), a rigid frame
 // on δ's two blocks. DIRK stages follow the three rotation rules of core/dynamics/integrators.h.
-// A static body prescribes all of δ (its pose is held).
+// A static body prescribes all of δ (its pose is held); a kinematic one prescribes all of δ on its
+// path (RigidActorDesc::kinematic, KinematicStateAt).
 #pragma once
 
 #include "core/model/actor_kind.h"
@@ -101,9 +103,16 @@ class RigidKind : public ActorKind {
   double StageEnergy(const KindStageData& stage, const Eigen::VectorXd& q, int order,
                      PsdProjection projection, Eigen::VectorXd* g,
                      std::vector<Eigen::Triplet<double>>* H) const override;
-  bool IsStatic() const override { return !model_.dynamic; }
+  /// Static: held where created; a kinematic body moves on its path (it collides as a dynamic
+  /// one and its pairs combine their parameters as a dynamic one's) with every dof prescribed.
+  bool IsStatic() const override { return !model_.Moves(); }
   bool IsPrescribed(int /*dof*/) const override { return !model_.dynamic; }
   void Prescribe(double t, Eigen::VectorXd* q) const override;
+  /// A kinematic body's exact state on its path (KinematicStateAt).
+  void EndPrescribed(double t, KindState* s) const override;
+  /// The applied torque τ(t_i) on δθ (RigidActorDesc::appliedTorque); the applied force is the
+  /// stage energy's potential −F(t_i)·p.
+  bool StageLoad(const KindStageData& stage, Eigen::VectorXd* f) const override;
 
   void Retract(const Eigen::VectorXd& q, const Eigen::VectorXd& delta,
                Eigen::VectorXd* out) const override;
