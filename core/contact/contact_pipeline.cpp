@@ -195,12 +195,14 @@ void ContactPipeline::FindPairs(const std::vector<RigidPose>& poses,
   for (const auto& [i, j] : overlaps_) {
     if (i >= firstKind || j >= firstKind) {  // a kind's actor with a rigid one or another kind's
       const bool ki = i >= firstKind, kj = j >= firstKind;
-      if (!ki && i >= static_cast<int>(n)) {  // soft i on kind j's field
+      if (!ki && i >= static_cast<int>(n)) {  // soft i and kind j, each on the other's field
         ConsiderSoftPair(i - static_cast<int>(n), true, j - firstKind);
+        ConsiderKindOnSoft(j - firstKind, i - static_cast<int>(n));
         continue;
       }
       if (!kj && j >= static_cast<int>(n)) {
         ConsiderSoftPair(j - static_cast<int>(n), true, i - firstKind);
+        ConsiderKindOnSoft(i - firstKind, j - static_cast<int>(n));
         continue;
       }
       const int a = ki ? i - firstKind : i, b = kj ? j - firstKind : j;
@@ -277,13 +279,50 @@ void ContactPipeline::ConsiderSoftPair(int s, bool bKind, int b) {
   kindPairs_.push_back(p);
 }
 
+void ContactPipeline::ConsiderKindOnSoft(int k, int b) {
+  const SoftBodyModel& B = (*softModels_)[b];
+  const ActorKind& A = *(*kinds_)[k];
+  if (B.collider != ColliderType::Sdf || A.NumSampleBodies() == 0) return;
+  if (filter_ && !filter_->Allowed(kindActor_[k], softActor_[b])) return;
+  SoftColliderPair p;
+  p.collidingKind = true;
+  p.colliding = k;
+  p.collider = b;
+  // Both move; A's own collider type decides the threshold padding.
+  p.params = CombineContactParams(A.contact, B.contact, false, A.Collider() == nullptr);
+  for (p.body = 0; p.body < A.NumSampleBodies(); ++p.body) softColliderPairs_.push_back(p);
+}
+
+void ContactPipeline::SampleBodyOffsets(const KindView& kinds, int k, int body,
+                                        int offs[2]) const {
+  int dof[2];
+  (*kinds_)[k]->SampleBodyDofs(body, dof);
+  const std::vector<int>* stageDof = kinds.stageDof ? &(*kinds.stageDof)[k] : nullptr;
+  for (int c = 0; c < 2; ++c) offs[c] = stageDof ? (*stageDof)[dof[c]] : -1;
+}
+
 void ContactPipeline::SoftColliderInputs(const SoftColliderPair& sp,
                                          const std::vector<RigidPose>& poses,
                                          const std::vector<RigidStageStart>* stageStart,
-                                         const SoftView& soft, CollidingInput* a,
-                                         SoftColliderInput* b) const {
+                                         const SoftView& soft, const KindView* kinds,
+                                         RigidPose* pose, RigidStageStart* start,
+                                         CollidingInput* a, SoftColliderInput* b) const {
   *a = CollidingInput();
-  if (sp.collidingSoft) {
+  if (sp.collidingKind) {  // as GatherKindSamples forms a sample body's poses
+    const ActorKind& A = *(*kinds_)[sp.colliding];
+    const Eigen::VectorXd& q = (*kinds->q)[kinds->first + sp.colliding];
+    const Eigen::VectorXd* qLast = EntryOf(kinds->qLast, sp.colliding);
+    const Eigen::VectorXd* q0 = stageStart ? EntryOf(kinds->q0, sp.colliding) : nullptr;
+    *pose = A.SampleBodyPose(sp.body, q);
+    start->last = qLast ? A.SampleBodyPose(sp.body, *qLast) : *pose;
+    const RigidPose p0 = q0 ? A.SampleBodyPose(sp.body, *q0) : *pose;
+    start->p = p0.p;
+    start->R = p0.R;
+    start->Rinv = p0.R.inverse();  // R⁰ an affine combination, not always a rotation
+    a->rigid = A.SampleBody(sp.body);
+    a->pose = pose;
+    a->start = qLast || q0 ? start : nullptr;
+  } else if (sp.collidingSoft) {
     a->soft = &(*softModels_)[sp.colliding];
     a->x = &(*soft.x)[sp.colliding];
     a->xLast = soft.xLast ? &(*soft.xLast)[sp.colliding] : nullptr;
@@ -470,7 +509,8 @@ void ContactPipeline::StepLimits(const std::vector<RigidPose>& poses,
 }
 
 void ContactPipeline::ReducePair(const Request& q, const PairStencils& r, bool aSoft, int a,
-                                 bool bSoft, int b, double* energy, ContactStats* st) const {
+                                 bool bSoft, int b, double* energy, ContactStats* st,
+                                 const int* aOffs) const {
   ++st->candidatePairs;
   *energy += AddPairStats(r, st);
   if (q.order < 1) return;
@@ -492,7 +532,10 @@ void ContactPipeline::ReducePair(const Request& q, const PairStencils& r, bool a
     int blocks = 0;
     if (aSoft) {  // the face's three nodes
       for (int c = 0; c < 3; ++c) offs[blocks++] = node(a, (*softModels_)[a].faces[cs.aFace][c]);
-    } else {      // the rigid body's [δp, δθ]
+    } else if (aOffs) {  // a kind's sample body's [δp, δθ]
+      offs[blocks++] = aOffs[0];
+      offs[blocks++] = aOffs[1];
+    } else {  // the rigid body's [δp, δθ]
       const int o = dofOffset[a];
       offs[blocks++] = o;
       offs[blocks++] = o < 0 ? -1 : o + 3;
@@ -603,11 +646,17 @@ void ContactPipeline::EvaluateRigidPairs(const Request& q, double* energy, Conta
 void ContactPipeline::EvaluateOnSoftPairs(const Request& q, double* energy, ContactStats* st) {
   const SoftView* soft = q.soft;
   const DissipationContext* dissipation = q.dissipation;
+  // Colliding ids: rigid models (i), soft actors (−1 − s), kinds' sample bodies (n + k + nk b).
+  const int n = static_cast<int>(models_->size());
+  const int nk = static_cast<int>(kinds_ ? kinds_->size() : 0);
   const auto onSoftId = [&](size_t k) {
     const SoftColliderPair& p = softColliderPairs_[k];
-    return std::make_pair(p.collidingSoft ? -1 - p.colliding : p.colliding, p.collider);
+    return std::make_pair(p.collidingSoft   ? -1 - p.colliding
+                          : p.collidingKind ? n + p.colliding + nk * p.body
+                                            : p.colliding,
+                          p.collider);
   };
-  // Samples of rigid and soft actors on soft colliders, one stencil per sample.
+  // Samples of rigid and soft actors and kinds' bodies on soft colliders, one stencil per sample.
   if (!softColliderPairs_.empty()) {
     const size_t ns = softModels_->size();
     locators_.resize(ns);
@@ -626,7 +675,9 @@ void ContactPipeline::EvaluateOnSoftPairs(const Request& q, double* energy, Cont
     const PenaltyParams pp = PenaltyOf(sp.params);
     CollidingInput a;
     SoftColliderInput b;
-    SoftColliderInputs(sp, *q.poses, q.stageStart, *soft, &a, &b);
+    RigidPose pose;
+    RigidStageStart start;
+    SoftColliderInputs(sp, *q.poses, q.stageStart, *soft, q.kinds, &pose, &start, &a, &b);
     DissipationSetup setup;
     if (dissipation) setup = MakeSetup(sp.params, *dissipation, q.isotropic);
     setup.slips = SlipUse(SlipPairKind::OnSoft, k);
@@ -640,8 +691,10 @@ void ContactPipeline::EvaluateOnSoftPairs(const Request& q, double* energy, Cont
              evaluateOnSoft);
   for (size_t k = 0; k < softColliderPairs_.size(); ++k) {
     const SoftColliderPair& sp = softColliderPairs_[k];
+    int aOffs[2];
+    if (sp.collidingKind) SampleBodyOffsets(*q.kinds, sp.colliding, sp.body, aOffs);
     ReducePair(q, softColliderResults_[k], sp.collidingSoft, sp.colliding, true, sp.collider,
-               energy, st);
+               energy, st, sp.collidingKind ? aOffs : nullptr);
   }
 }
 
@@ -750,12 +803,16 @@ void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,
     const PenaltyParams pp = PenaltyOf(sp.params);
     CollidingInput a;
     SoftColliderInput b;
-    SoftColliderInputs(sp, poses, nullptr, *soft, &a, &b);
+    RigidPose pose;
+    RigidStageStart start;
+    SoftColliderInputs(sp, poses, nullptr, *soft, kinds, &pose, &start, &a, &b);
     const size_t first = records->size();
     EvaluatePairOnSoftCollider(a, b, pp, sp.params.maxAlignmentNormals, nullptr, 0, &scratchOnSoft,
                                records);
     for (size_t k = first; k < records->size(); ++k) {
-      (*records)[k].colliding = sp.collidingSoft ? softActor_[sp.colliding] : RigidActor(sp.colliding);
+      (*records)[k].colliding = sp.collidingSoft   ? softActor_[sp.colliding]
+                                : sp.collidingKind ? kindActor_[sp.colliding]
+                                                   : RigidActor(sp.colliding);
       (*records)[k].collider = softActor_[sp.collider];
     }
   }

@@ -52,10 +52,13 @@ struct ContactPair {
   PairContactParams params;
 };
 
-/// Ordered pair (A colliding: rigid or soft, B: a soft actor with an Sdf collider).
+/// Ordered pair (A colliding: rigid, soft, or one body of a kind's samples; B: a soft actor with
+/// an Sdf collider).
 struct SoftColliderPair {
   bool collidingSoft = false;
-  int colliding = -1;  ///< rigid model index, or soft model index when collidingSoft
+  bool collidingKind = false;  ///< A is sample body `body` of kind `colliding`
+  int body = 0;
+  int colliding = -1;  ///< rigid model index, soft model index, or kind index
   int collider = -1;   ///< soft model index
   PairContactParams params;
 };
@@ -193,6 +196,10 @@ class ContactPipeline {
   // Soft actor s colliding on the field of rigid body b (bKind false) or kind b, when the roles
   // and the filter allow it.
   void ConsiderSoftPair(int s, bool bKind, int b);
+  // Kind k's sample bodies colliding on soft actor b's Sdf field (one pair per body), when the
+  // roles and the filter allow it. A kind's own samples (ActorKind::Sample) do not collide with
+  // soft colliders yet.
+  void ConsiderKindOnSoft(int k, int b);
   // A kind pair's collider side at the request's configuration, and the colliding side's samples
   // that can contribute on it.
   FrameSide KindPairCollider(const Request& q, const KindPair& kp) const;
@@ -212,12 +219,19 @@ class ContactPipeline {
   /// rigid collider's dofs when dynamic) scattered into the request's outputs (ScatterStencil).
   /// Stencils that carry their own blocks (ContactStencil::blocks > 0: the generic layer's) are
   /// scattered by those.
+  /// `aOffs` (may be null): a rigid A's [δp, δθ] offsets in place of dofOffset[a] (a kind's
+  /// sample body).
   void ReducePair(const Request& q, const PairStencils& r, bool aSoft, int a, bool bSoft, int b,
-                  double* energy, ContactStats* st) const;
-  // The two sides of a pair on a soft collider (the locators must be built).
+                  double* energy, ContactStats* st, const int* aOffs = nullptr) const;
+  // The two sides of a pair on a soft collider (the locators must be built); a kind's sample
+  // body's pose and stage start are formed in *pose and *start (from the kinds' view), which
+  // must outlive *a.
   void SoftColliderInputs(const SoftColliderPair& pair, const std::vector<RigidPose>& poses,
                           const std::vector<RigidStageStart>* stageStart, const SoftView& soft,
+                          const KindView* kinds, RigidPose* pose, RigidStageStart* start,
                           CollidingInput* a, SoftColliderInput* b) const;
+  // The stage offsets of kind k's sample body `body`'s [δp, δθ] (−1: prescribed).
+  void SampleBodyOffsets(const KindView& kinds, int k, int body, int offs[2]) const;
 
   const std::vector<RigidBodyModel>* models_ = nullptr;
   const ContactFilter* filter_ = nullptr;
