@@ -468,7 +468,6 @@ void ContactPipeline::StepLimits(const std::vector<RigidPose>& poses,
   // Pairs of the generic layer: each side at the trial configuration, with the current one as
   // its "last" (the samples' yLast, the frame's last pose).
   kindPairLimits_.resize(kindPairs_.size());
-  kindSamples_.resize(kindPairs_.size());
   auto q = [](const KindView* v, int k) -> const Eigen::VectorXd& {
     return (*v->q)[v->first + k];
   };
@@ -487,15 +486,15 @@ void ContactPipeline::StepLimits(const std::vector<RigidPose>& poses,
       B = RigidFrameSide(models[kp.b], trial[kp.b], &bNow, -1);
     }
     const double phiLimit = penalty.delta - 0.5 * penalty.eps;
-    std::vector<PairSample>& samples = kindSamples_[k];
+    StepLimitSink sink(B, penalty);
     if (kp.aKind) {
       GatherKindSamples(*(*kinds_)[kp.a], q(next, kp.a), &q(now, kp.a), nullptr,
-                        (*next->stageDof)[kp.a], B, phiLimit, nullptr, &samples);
+                        (*next->stageDof)[kp.a], B, phiLimit, nullptr, &sink);
     } else {
       aNow.last = poses[kp.a];
-      GatherRigidSamples(models[kp.a], trial[kp.a], &aNow, -1, B, phiLimit, nullptr, &samples);
+      GatherRigidSamples(models[kp.a], trial[kp.a], &aNow, -1, B, phiLimit, nullptr, &sink);
     }
-    kindPairLimits_[k] = StepLimitOnFrame(samples, B, penalty);
+    kindPairLimits_[k] = sink.Alpha();
   };
   ForEachPair(kindPairs_.size(), true, evaluateKind);
   for (size_t k = 0; k < kindPairs_.size(); ++k) {

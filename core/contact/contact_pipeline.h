@@ -133,7 +133,7 @@ class ContactPipeline {
   /// of, both moving by the same fraction (1 for bodies without such a pair). Pairs with soft
   /// actors impose no limit. Pairs are found at `trial`; evaluated in parallel, reduced by min.
   /// With the kinds' views at both configurations (`now`, `next`; may be null), each kind's
-  /// fraction for its pairs of the generic layer (StepLimitOnFrame) into (*kindAlpha)[k].
+  /// fraction for its pairs of the generic layer (StepLimitSink) into (*kindAlpha)[k].
   void StepLimits(const std::vector<RigidPose>& poses, const std::vector<RigidPose>& trial,
                   std::vector<double>* alpha, const KindView* now = nullptr,
                   const KindView* next = nullptr, std::vector<double>* kindAlpha = nullptr);
@@ -255,7 +255,6 @@ class ContactPipeline {
   std::vector<char> kindHasDofs_;  // per kind: some tangent dof is not prescribed
   std::vector<KindPair> kindPairs_;
   std::vector<PairStencils> kindResults_;
-  std::vector<std::vector<PairSample>> kindSamples_;  // per pair (capacity kept)
   // Per pair kind (SlipPairKind): the pairs' slip use in the evaluation under way and, when
   // recording, their buffers.
   struct SlipLists {

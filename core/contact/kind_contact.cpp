@@ -360,7 +360,7 @@ void FrameEvaluation::Add(const PairSample& s) {
   AddTerms(s, p, field, below);
 }
 
-void FrameEvaluation::BeginRigidBody(const RigidPose& a, const RigidPose& an,
+bool FrameEvaluation::BeginRigidBody(const RigidPose& a, const RigidPose& an,
                                      const RigidStageStart* start, int offP, int offTheta,
                                      double radius, const BodyInFrame& inFrame) {
   SampleSink::BeginRigidBody(a, an, start, offP, offTheta, radius, inFrame);
@@ -369,6 +369,7 @@ void FrameEvaluation::BeginRigidBody(const RigidPose& a, const RigidPose& an,
   dA_ = a.p - B_.pose.p;
   // |Y_n − Y| of any sample, with a margin for round-off.
   motion_ = ((A_.tn - A_.t).norm() + A_.turn * radius) * (1.0 + 1e-12) + 1e-15;
+  return true;
 }
 
 void FrameEvaluation::AddRigidSamples(const SurfaceSample* samples, int begin, int end,
@@ -436,23 +437,56 @@ void EvaluateSamplesOnFrame(const std::vector<PairSample>& samples, const FrameS
   evaluation.Finish();
 }
 
-double StepLimitOnFrame(const std::vector<PairSample>& samples, const FrameSide& B,
-                        const PenaltyParams& penalty) {
-  const RigidCollider& field = *B.field;
-  const double phiLimit = penalty.delta - 0.5 * penalty.eps;
-  const double reach = field.boundingRadius + phiLimit;
-  const Eigen::Matrix3d RBt1 = B.pose.R.transpose(), RBt0 = B.last.R.transpose();
-  double alpha = 1.0;
-  for (const PairSample& s : samples) {
-    const Eigen::Vector3d Y1 = RBt1 * (s.y - B.pose.p);
-    if (std::isfinite(reach) && Y1.squaredNorm() >= reach * reach) continue;
-    const double s1 = penalty.delta - field.Value(Y1);
-    if (s1 <= 0.5 * penalty.eps) continue;
-    const double s0 = penalty.delta - field.Value(RBt0 * (s.yLast - B.last.p));
-    const double cap = std::max(2.0 * s0, 0.5 * penalty.eps);
-    if (s1 > cap) alpha = std::min(alpha, (cap - s0) / (s1 - s0));
-  }
-  return alpha;
+StepLimitSink::StepLimitSink(const FrameSide& B, const PenaltyParams& penalty)
+    : B_(B),
+      penalty_(penalty),
+      RBt1_(B.pose.R.transpose()),
+      RBt0_(B.last.R.transpose()),
+      reach_(B.field->boundingRadius + penalty.delta - 0.5 * penalty.eps) {}
+
+void StepLimitSink::Limit(const Eigen::Vector3d& Y1, const Eigen::Vector3d& Y0) {
+  const RigidCollider& field = *B_.field;
+  if (std::isfinite(reach_) && Y1.squaredNorm() >= reach_ * reach_) return;
+  const double s1 = penalty_.delta - field.Value(Y1);
+  if (s1 <= 0.5 * penalty_.eps) return;
+  const double s0 = penalty_.delta - field.Value(Y0);
+  const double cap = std::max(2.0 * s0, 0.5 * penalty_.eps);
+  if (s1 > cap) alpha_ = std::min(alpha_, (cap - s0) / (s1 - s0));
+}
+
+void StepLimitSink::Add(const PairSample& s) {
+  Limit(RBt1_ * (s.y - B_.pose.p), RBt0_ * (s.yLast - B_.last.p));
+}
+
+bool StepLimitSink::BeginRigidBody(const RigidPose&, const RigidPose& an,
+                                   const RigidStageStart*, int, int, double radius,
+                                   const BodyInFrame& inFrame) {
+  A_ = inFrame;
+  // The current configuration's transforms with B's transpose taken inside the products, as the
+  // rigid pairs' limit always formed them: ComposeInFrame's stored transpose gives products that
+  // differ in the last bit, and the recorded runs' limits (tests/regression) are these.
+  A_.Rn = B_.last.R.transpose() * an.R;
+  A_.tn = B_.last.R.transpose() * (an.p - B_.last.p);
+  // |Y₁ − Y₀| <= |t₁ − t₀| + ‖R₁ − R₀‖ |X| for every sample, and |Δs| <= L |Y₁ − Y₀|.
+  const double moved = (inFrame.tn - inFrame.t).norm() + inFrame.turn * radius;
+  return B_.field->lipschitz * moved > 0.25 * penalty_.eps;
+}
+
+void StepLimitSink::AddRigidSamples(const SurfaceSample* samples, int begin, int end, int,
+                                    double) {
+  for (int k = begin; k < end; ++k) Limit(A_.t + A_.R * samples[k].X, A_.tn + A_.Rn * samples[k].X);
+}
+
+double RigidPairStepLimit(const RigidBodyModel& A, const RigidPose& a0, const RigidPose& a1,
+                          const RigidBodyModel& B, const RigidPose& b0, const RigidPose& b1,
+                          const PenaltyParams& params) {
+  RigidStageStart aNow, bNow;  // the current poses as x_n (no stage start: no dissipation)
+  aNow.last = a0;
+  bNow.last = b0;
+  const FrameSide side = RigidFrameSide(B, b1, &bNow, -1);
+  StepLimitSink sink(side, params);
+  GatherRigidSamples(A, a1, &aNow, -1, side, params.delta - 0.5 * params.eps, nullptr, &sink);
+  return sink.Alpha();
 }
 
 namespace {
@@ -469,7 +503,7 @@ void AppendRigidSamples(const RigidBodyModel& A, const RigidPose& a, const Rigid
   auto keep = [&](const Eigen::Vector3d& c, double r) {
     return near.InFrame(in.t + in.R * c, [&] { return Eigen::Vector3d(in.tn + in.Rn * c); }, r);
   };
-  sink->BeginRigidBody(a, an, start, offP, offTheta, A.samplesRadius, in);
+  if (!sink->BeginRigidBody(a, an, start, offP, offTheta, A.samplesRadius, in)) return;
   // A leaf's bound on |Y_n − Y| = |(t_n − t) + (R_n − R) X| over its ball |X − c| <= r:
   // |(t_n − t) + (R_n − R) c| + turn r, with the body bound's round-off margin.
   const Eigen::Vector3d dt = in.tn - in.t;
@@ -484,7 +518,7 @@ void AppendRigidSamples(const RigidBodyModel& A, const RigidPose& a, const Rigid
 
 }  // namespace
 
-void SampleSink::BeginRigidBody(const RigidPose& a, const RigidPose& an,
+bool SampleSink::BeginRigidBody(const RigidPose& a, const RigidPose& an,
                                 const RigidStageStart* start, int offP, int offTheta, double,
                                 const BodyInFrame&) {
   a_ = a;
@@ -496,6 +530,7 @@ void SampleSink::BeginRigidBody(const RigidPose& a, const RigidPose& an,
   rigid_.blocks = 2;
   rigid_.offs[0] = offP;
   rigid_.offs[1] = offTheta;
+  return true;
 }
 
 const PairSample& SampleSink::FormRigidSample(const SurfaceSample& ss, int key) {

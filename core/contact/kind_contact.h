@@ -94,8 +94,10 @@ class SampleSink {
   /// A rigid body's samples, announced by body (pose a now, an at x_n, the stage start `start`
   /// or null; [δp] at stage dof offP, [δθ] at offTheta, −1: none; `radius` >= every sample's
   /// |X| [m]; `inFrame`: a and an composed into the collider's frame, ComposeInFrame), then a
-  /// leaf of its sample tree at a time in the body frame.
-  virtual void BeginRigidBody(const RigidPose& a, const RigidPose& an,
+  /// leaf of its sample tree at a time in the body frame. Returns whether the sink takes the
+  /// body's samples (false: the gather skips them; a sink that can tell from the body's motion
+  /// alone that none of them matters).
+  virtual bool BeginRigidBody(const RigidPose& a, const RigidPose& an,
                               const RigidStageStart* start, int offP, int offTheta,
                               double radius, const BodyInFrame& inFrame);
   /// The samples begin .. end−1 of a body's array, keys from keyOffset + begin; `motion` [m]
@@ -188,7 +190,7 @@ class FrameEvaluation final : public SampleSink {
   void Add(const PairSample& s) override;
   /// A rigid body's samples: each one's pullback Y, and Y_n where the bound needs it, first; the
   /// rest only when the field says it can contribute (most samples a pile's culling keeps do not).
-  void BeginRigidBody(const RigidPose& a, const RigidPose& an, const RigidStageStart* start,
+  bool BeginRigidBody(const RigidPose& a, const RigidPose& an, const RigidStageStart* start,
                       int offP, int offTheta, double radius, const BodyInFrame& inFrame) override;
   void AddRigidSamples(const SurfaceSample* samples, int begin, int end, int keyOffset,
                        double motion) override;
@@ -306,13 +308,51 @@ class BallCulling {
   bool loadAtLast_ = false;
 };
 
-/// Step limit of Newton's global phase on a frame's field (RigidPairStepLimit's rule,
-/// core/contact/rigid_contact.h, for any pair of the generic layer): the samples' y at the trial
-/// configuration and yLast at the current one, B.pose the frame's trial pose and B.last its current
-/// pose; the largest fraction α ∈ (0, 1] of the move, interpolated linearly per sample, that keeps
-/// every sample's depth s = δ − φ within s₁ <= max(2 s₀, ε/2) [m].
-double StepLimitOnFrame(const std::vector<PairSample>& samples, const FrameSide& B,
-                        const PenaltyParams& penalty);
+/// Step limit of Newton's global phase (SceneStageProblem::LimitStep) on a frame's field, for
+/// every pair on one: the largest fraction α ∈ (0, 1] of a move, interpolated linearly per sample,
+/// that keeps every sample's penetration depth s = δ − φ (the ramp's argument, spec: "Normal
+/// penalty") within
+///     s₁ <= max(2 s₀, ε/2)                                                          [m]
+/// (s₁ at the trial configuration, s₀ at the current one). The contact force of a sample grows
+/// like s⁵ on the ramp (h h' ≈ 3 s⁵/(16 ε⁴) for s ≪ ε), so a Newton step taken from where a sample
+/// barely touches predicts its load from a stiffness that is orders of magnitude too small and
+/// overshoots deep into the collider; Newton then returns only at the rate 4/5 per iteration.
+/// Letting the depth at most double per iteration reaches the equilibrium depth in log₂ steps
+/// instead. Samples whose alignment is rejected are not excluded (the limit is only more
+/// cautious).
+///
+/// A sink for a gather at the trial configuration with the current one as its x_n: the samples'
+/// y at the trial and yLast now, B.pose the frame's trial pose and B.last its current one; gather
+/// to the bound δ − ε/2 (samples with φ₁ >= δ − ε/2 have s₁ <= ε/2 and cannot break the limit). A
+/// sample cannot break it either unless its depth grows by more than ε/4 (cap − s₀ =
+/// max(s₀, ε/2 − s₀) for s₀ >= 0, > ε/2 for s₀ < 0): a rigid body whose samples all move by at
+/// most ε/(4L) relative to B is skipped whole.
+class StepLimitSink final : public SampleSink {
+ public:
+  StepLimitSink(const FrameSide& B, const PenaltyParams& penalty);
+  void Add(const PairSample& s) override;
+  bool BeginRigidBody(const RigidPose& a, const RigidPose& an, const RigidStageStart* start,
+                      int offP, int offTheta, double radius, const BodyInFrame& inFrame) override;
+  void AddRigidSamples(const SurfaceSample* samples, int begin, int end, int keyOffset,
+                       double motion) override;
+  /// α of the samples so far (1 without any).
+  double Alpha() const { return alpha_; }
+
+ private:
+  // The rule for one sample at Y1 (trial) and Y0 (current), in B's frame.
+  void Limit(const Eigen::Vector3d& Y1, const Eigen::Vector3d& Y0);
+  const FrameSide& B_;
+  PenaltyParams penalty_;
+  Eigen::Matrix3d RBt1_, RBt0_;
+  double reach_ = 0.0;
+  double alpha_ = 1.0;
+  BodyInFrame A_;
+};
+
+/// StepLimitSink's α for rigid body A's move a0 → a1 on rigid body B's field, B moving b0 → b1.
+double RigidPairStepLimit(const RigidBodyModel& A, const RigidPose& a0, const RigidPose& a1,
+                          const RigidBodyModel& B, const RigidPose& b0, const RigidPose& b1,
+                          const PenaltyParams& params);
 
 /// The samples of a rigid colliding body A (dofs at aOffset, −1 when static) that can contribute
 /// on B's field: its sample tree culled by B's Lipschitz bound at the current pose and, with

@@ -170,49 +170,5 @@ void PairHessianSums::AddTo(const Eigen::Matrix3d& RB, const Eigen::Vector3d& c,
   hess->block<3, 3>(3, 9) += C.transpose();
 }
 
-double RigidPairStepLimit(const RigidBodyModel& A, const RigidPose& a0, const RigidPose& a1,
-                          const RigidBodyModel& B, const RigidPose& b0, const RigidPose& b1,
-                          const PenaltyParams& params) {
-  // Samples with φ₁ >= δ − ε/2 have s₁ <= ε/2 and cannot break the limit.
-  const double phiLimit = params.delta - 0.5 * params.eps;
-  const double reach = B.collider.boundingRadius + phiLimit;
-  const Eigen::Matrix3d RBt1 = b1.R.transpose();
-  const Eigen::Matrix3d RBtRA1 = RBt1 * a1.R;
-  const Eigen::Vector3d YA1 = RBt1 * (a1.p - b1.p);
-  const Eigen::Matrix3d RBtRA0 = b0.R.transpose() * a0.R;
-  const Eigen::Vector3d YA0 = b0.R.transpose() * (a0.p - b0.p);
-  const double L = B.collider.lipschitz;
-  double alpha = 1.0;
-  // A sample cannot break the limit unless its depth grows by more than ε/4 (cap − s₀ =
-  // max(s₀, ε/2 − s₀) for s₀ >= 0, > ε/2 for s₀ < 0), and the depth moves by at most L times the
-  // sample's displacement relative to B: |Δp_A| + θ_A r_A + |Δp_B| + θ_B (|p_A − p_B| + r_A),
-  // θ the rotation angle of each body's move, r_A = A.samplesRadius.
-  auto angle = [](const Eigen::Matrix3d& R1, const Eigen::Matrix3d& R0) {
-    return std::acos(std::clamp(0.5 * ((R1 * R0.transpose()).trace() - 1.0), -1.0, 1.0));
-  };
-  auto deep = [&](const Eigen::Vector3d& center, double radius) {
-    return B.collider.Value(YA1 + RBtRA1 * center) - L * radius < phiLimit;
-  };
-  // No sample deep at the trial pose (the sample tree's root test, which the sweep below would
-  // make first): nothing to limit, without the rotation angles (a body in free flight).
-  if (A.sampleTree.empty() || !deep(A.sampleTree[0].center, A.sampleTree[0].radius)) return alpha;
-  const double rA = A.samplesRadius;
-  const double moved = (a1.p - a0.p).norm() + angle(a1.R, a0.R) * rA + (b1.p - b0.p).norm() +
-                       angle(b1.R, b0.R) * ((a0.p - b0.p).norm() + rA);
-  if (L * moved <= 0.25 * params.eps) return alpha;
-  ForEachSampleRange(A, deep, [&](int begin, int end) {
-    for (int k = begin; k < end; ++k) {
-      const Eigen::Vector3d Y1 = YA1 + RBtRA1 * A.samples[k].X;
-      if (std::isfinite(reach) && Y1.squaredNorm() >= reach * reach) continue;
-      const double s1 = params.delta - B.collider.Value(Y1);
-      if (s1 <= 0.5 * params.eps) continue;
-      const double s0 =
-          params.delta - B.collider.Value(YA0 + RBtRA0 * A.samples[k].X);
-      const double cap = std::max(2.0 * s0, 0.5 * params.eps);
-      if (s1 > cap) alpha = std::min(alpha, (cap - s0) / (s1 - s0));
-    }
-  });
-  return alpha;
-}
 
 }  // namespace superdex

@@ -47,20 +47,6 @@ struct ContactSampleRecord {
 /// exactly perpendicular to the collider's surface has s = 0 up to round-off.
 constexpr double kAlignmentRoundoff = 1e-9;
 
-/// Step limit of Newton's global phase (SceneStageProblem::LimitStep): the largest fraction
-/// α ∈ (0, 1] of the move (a0 → a1, b0 → b1), interpolated linearly per sample, that keeps every
-/// sample's penetration depth s = δ − φ (the ramp's argument, spec: "Normal penalty") within
-///     s₁ <= max(2 s₀, ε/2)                                                          [m]
-/// (s₀ at the poses a0, b0). The contact force of a sample grows like s⁵ on the ramp
-/// (h h' ≈ 3 s⁵/(16 ε⁴) for s ≪ ε), so a Newton step taken from where a sample barely touches
-/// predicts its load from a stiffness that is orders of magnitude too small and overshoots deep
-/// into the collider; Newton then returns only at the rate 4/5 per iteration. Letting the depth at
-/// most double per iteration reaches the equilibrium depth in log₂ steps instead. Samples whose
-/// alignment is rejected are not excluded (the limit is only more cautious).
-double RigidPairStepLimit(const RigidBodyModel& A, const RigidPose& a0, const RigidPose& a1,
-                          const RigidBodyModel& B, const RigidPose& b0, const RigidPose& b1,
-                          const PenaltyParams& params);
-
 /// Chains a scalar function f(Y) of the pullback Y = R_Bᵀ(p_A + r − p_B), r = R_A X, through the
 /// rigid retractions (the stencil above): adds w·J_Yᵀ g_Y = w·[n, r × n, −n, −d × n] (n = R_B g_Y,
 /// d = p_A + r − p_B) to *grad and, if hess is not null, w·(J_xᵀ R_B H_Y R_Bᵀ J_x + S(n)) with S the
