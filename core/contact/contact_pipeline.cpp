@@ -29,7 +29,8 @@ void ForEachPair(size_t n, bool parallel, F&& f) {
 }
 
 /// A rigid pair's matrix as dense 6 × 6 blocks at the bodies' offsets (−1: static).
-void AppendBlocks(const StencilMatrix& M, const int offs[2], int blocks,
+template <typename Matrix>
+void AppendBlocks(const Matrix& M, const int offs[2], int blocks,
                   std::vector<DenseBlock6>* out) {
   for (int bi = 0; bi < blocks; ++bi) {
     if (offs[bi] < 0) continue;
@@ -46,7 +47,8 @@ void AppendBlocks(const StencilMatrix& M, const int offs[2], int blocks,
 
 /// Adds a stencil pair's counts and energies to *st; returns the energy it adds to the stage value
 /// (penalty plus dissipation) [J].
-double AddPairStats(const PairStencils& r, ContactStats* st) {
+template <typename Stencil>
+double AddPairStats(const BasicPairStencils<Stencil>& r, ContactStats* st) {
   double energy = 0.0;
   st->minSignedDistance = std::min(st->minSignedDistance, r.minPhi);
   if (r.activeSamples > 0) {
@@ -81,9 +83,10 @@ PenaltyParams PenaltyOf(const PairContactParams& p) {
   return pp;
 }
 
-void AddBlocks(const StencilVector& g, const int offs[2], int blocks, Eigen::VectorXd* out) {
+template <typename Vector>
+void AddBlocks(const Vector& g, const int offs[2], int blocks, Eigen::VectorXd* out) {
   for (int bi = 0; bi < blocks; ++bi)
-    if (offs[bi] >= 0) out->segment<6>(offs[bi]) += g.segment<6>(6 * bi);
+    if (offs[bi] >= 0) out->segment<6>(offs[bi]) += g.template segment<6>(6 * bi);
 }
 
 }  // namespace
@@ -413,7 +416,7 @@ bool ContactPipeline::SplitLastEvaluation(const std::vector<int>& dofOffset,
   for (const KindPair& kp : kindPairs_)
     if (kp.aSoft) return false;  // soft actors are not split
   // Each pair's values to its first dynamic actor; two dynamic actors with an active sample join.
-  auto add = [&](const PairStencils& r, int a, bool aDynamic, int b, bool bDynamic) {
+  auto add = [&](const auto& r, int a, bool aDynamic, int b, bool bDynamic) {
     if (r.activeSamples == 0 && r.dissipativeSamples == 0) return;
     if (!aDynamic && !bDynamic) return;
     const int owner = aDynamic ? a : b;
@@ -608,27 +611,30 @@ void ContactPipeline::EvaluateRigidPairs(const Request& q, double* energy, Conta
     const int a = cp.colliding, b = cp.collider;
     const FrameSide B = RigidFrameSide(models[b], poses[b], start ? &(*start)[b] : nullptr,
                                        dofOffset[b]);
-    PairStencils& r = results_[k];
+    // Evaluated into the worker's own stencils, then kept in the pair's compact ones.
+    static thread_local PairStencils scratch;
     FrameEvaluation evaluation(B, PenaltyOf(cp.params), cp.params.maxAlignmentNormals,
-                               dissipation ? &setup : nullptr, order, &r);
+                               dissipation ? &setup : nullptr, order, &scratch);
     GatherRigidSamples(models[a], poses[a], start ? &(*start)[a] : nullptr, dofOffset[a], B,
                        cp.params.threshold, dissipation ? &setup : nullptr, &evaluation);
     evaluation.Finish();
-    if (order < 2) return;
-    for (int e = 0; e < r.count; ++e) ProjectStencil(potential, q.projection, &r.stencils[e]);
+    if (order >= 2)
+      for (int e = 0; e < scratch.count; ++e)
+        ProjectStencil(potential, q.projection, &scratch.stencils[e]);
+    results_[k].CopyFrom(scratch, order);
   };
   SweepPairs(dissipation, SlipPairKind::Rigid, pairs_.size(),
              RigidPairWork() >= kParallelSampleWork, rigidId, evaluate);
   // Fixed-order reduction; the matrices as dense 6 × 6 blocks.
   for (size_t k = 0; k < pairs_.size(); ++k) {
-    const PairStencils& r = results_[k];
+    const RigidPairStencils& r = results_[k];
     ++st->candidatePairs;
     *energy += AddPairStats(r, st);
     if (order < 1) continue;
     const int offs[2] = {dofOffset[pairs_[k].colliding], dofOffset[pairs_[k].collider]};
     const int blocks = models[pairs_[k].collider].dynamic ? 2 : 1;
     for (int e = 0; e < r.count; ++e) {
-      const ContactStencil& cs = r.stencils[e];
+      const RigidPairStencil& cs = r.stencils[e];
       if (cs.penaltyActive) AddBlocks(cs.penaltyGradient, offs, blocks, q.gradient);
       if (cs.dissipationActive)
         AddBlocks(cs.dissipationResidual, offs, blocks,

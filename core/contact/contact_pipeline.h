@@ -240,7 +240,7 @@ class ContactPipeline {
   std::vector<std::pair<int, int>> overlaps_;
   OverlapCache overlapCache_;  // the broad phase's candidates, kept while the boxes stay inside
   std::vector<ContactPair> pairs_;
-  std::vector<PairStencils> results_;               // per rigid pair
+  std::vector<RigidPairStencils> results_;          // per rigid pair
   std::vector<double> pairLimits_, kindPairLimits_;
   const std::vector<SoftBodyModel>* softModels_ = nullptr;
   std::vector<int> rigidActor_, softActor_;

@@ -2,31 +2,6 @@
 
 namespace superdex {
 
-void PairStencils::Reset() {
-  penaltyValue = dissipationValue = 0.0;
-  activeSamples = dissipativeSamples = 0;
-  minPhi = INFINITY;
-  maxCoulombRatio = 0.0;
-  count = 0;
-}
-
-ContactStencil& PairStencils::Slot(int face, int tet, int n, int order) {
-  if (count == static_cast<int>(stencils.size())) stencils.emplace_back();
-  ContactStencil& s = stencils[count];
-  s.aFace = face;
-  s.bTet = tet;
-  s.penaltyActive = s.dissipationActive = false;
-  if (order >= 1) {
-    s.penaltyGradient.setZero(n);
-    s.dissipationResidual.setZero(n);
-  }
-  if (order >= 2) {
-    s.penaltyHessian.setZero(n, n);
-    s.dissipationJacobian.setZero(n, n);
-  }
-  return s;
-}
-
 void ScatterStencil(const ContactStencil& s, const int* offs, int blocks, bool potential,
                     Eigen::VectorXd* gradient, Eigen::VectorXd* dissipationResidual,
                     std::vector<Eigen::Triplet<double>>* triplets) {
