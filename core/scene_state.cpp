@@ -75,6 +75,16 @@ std::string Scene::ValidateKind(const ActorKind& kind) const {
   if (!s.x.allFinite() || !s.v.allFinite()) return name + ": the initial state must be finite";
   const int m = kind.NumTangentDofs();
   if (m <= 0 || m > n) return name + ": NumTangentDofs must be in [1, NumDofs]";
+  {  // A stage load at the first stage's time: m finite entries.
+    KindStageData stage;
+    stage.dt = 1.0;
+    stage.gravity = settings_.gravity;
+    stage.qHat = stage.q0 = stage.qLast = s.x;
+    Eigen::VectorXd f;
+    if (kind.StageLoad(stage, &f) && (f.size() != m || !f.allFinite()))
+      return name + ": StageLoad must give NumTangentDofs (" + std::to_string(m) +
+             ") finite entries, got " + std::to_string(f.size());
+  }
   // Blocks read by the contact assembler: whole 3-dof blocks of δ, prescribed all or none.
   auto badBlock = [&](int first) {
     if (first < 0 || first + 3 > m) return true;
