@@ -311,20 +311,15 @@ void ContactPipeline::SoftColliderInputs(const SoftColliderPair& sp,
                                          RigidPose* pose, RigidStageStart* start,
                                          CollidingInput* a, SoftColliderInput* b) const {
   *a = CollidingInput();
-  if (sp.collidingKind) {  // as GatherKindSamples forms a sample body's poses
+  if (sp.collidingKind) {
     const ActorKind& A = *(*kinds_)[sp.colliding];
-    const Eigen::VectorXd& q = (*kinds->q)[kinds->first + sp.colliding];
-    const Eigen::VectorXd* qLast = EntryOf(kinds->qLast, sp.colliding);
-    const Eigen::VectorXd* q0 = stageStart ? EntryOf(kinds->q0, sp.colliding) : nullptr;
-    *pose = A.SampleBodyPose(sp.body, q);
-    start->last = qLast ? A.SampleBodyPose(sp.body, *qLast) : *pose;
-    const RigidPose p0 = q0 ? A.SampleBodyPose(sp.body, *q0) : *pose;
-    start->p = p0.p;
-    start->R = p0.R;
-    start->Rinv = p0.R.inverse();  // R⁰ an affine combination, not always a rotation
+    const bool hasStart =
+        SampleBodyAt(A, sp.body, (*kinds->q)[kinds->first + sp.colliding],
+                     EntryOf(kinds->qLast, sp.colliding),
+                     stageStart ? EntryOf(kinds->q0, sp.colliding) : nullptr, pose, start);
     a->rigid = A.SampleBody(sp.body);
     a->pose = pose;
-    a->start = qLast || q0 ? start : nullptr;
+    a->start = hasStart ? start : nullptr;
   } else if (sp.collidingSoft) {
     a->soft = &(*softModels_)[sp.colliding];
     a->x = &(*soft.x)[sp.colliding];

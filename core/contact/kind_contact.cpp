@@ -588,14 +588,10 @@ void GatherKindSamples(const ActorKind& A, const Eigen::VectorXd& q, const Eigen
       const RigidBodyModel& body = *A.SampleBody(b);
       int dof[2];
       A.SampleBodyDofs(b, dof);
-      const RigidPose pose = A.SampleBodyPose(b, q);
+      RigidPose pose;
       RigidStageStart start;
-      start.last = qLast ? A.SampleBodyPose(b, *qLast) : pose;
-      const RigidPose p0 = q0 ? A.SampleBodyPose(b, *q0) : pose;  // without x⁰: y⁰ = y
-      start.p = p0.p;
-      start.R = p0.R;
-      start.Rinv = p0.R.inverse();  // R⁰ an affine combination, not always a rotation
-      AppendRigidSamples(body, pose, qLast || q0 ? &start : nullptr, stageDof[dof[0]],
+      const bool hasStart = SampleBodyAt(A, b, q, qLast, q0, &pose, &start);
+      AppendRigidSamples(body, pose, hasStart ? &start : nullptr, stageDof[dof[0]],
                          stageDof[dof[1]], keyOffset, B, delta, dissipation, sink);
       keyOffset += static_cast<int>(body.samples.size());
     }
@@ -609,13 +605,16 @@ void GatherKindSamples(const ActorKind& A, const Eigen::VectorXd& q, const Eigen
   });
 }
 
-void GatherKindSamples(const ActorKind& A, const Eigen::VectorXd& q, const Eigen::VectorXd* qLast,
-                       const Eigen::VectorXd* q0, const std::vector<int>& stageDof,
-                       const FrameSide& B, double delta, const DissipationSetup* dissipation,
-                       std::vector<PairSample>* out) {
-  out->clear();
-  SampleList list(out);
-  GatherKindSamples(A, q, qLast, q0, stageDof, B, delta, dissipation, &list);
+bool SampleBodyAt(const ActorKind& A, int b, const Eigen::VectorXd& q,
+                  const Eigen::VectorXd* qLast, const Eigen::VectorXd* q0, RigidPose* pose,
+                  RigidStageStart* start) {
+  *pose = A.SampleBodyPose(b, q);
+  start->last = qLast ? A.SampleBodyPose(b, *qLast) : *pose;
+  const RigidPose p0 = q0 ? A.SampleBodyPose(b, *q0) : *pose;  // without x⁰: y⁰ = y
+  start->p = p0.p;
+  start->R = p0.R;
+  start->Rinv = p0.R.inverse();  // R⁰ an affine combination, not always a rotation
+  return qLast || q0;
 }
 
 void GatherKindSampleRange(const ActorKind& A, const Eigen::VectorXd& q,

@@ -373,11 +373,12 @@ void GatherKindSamples(const ActorKind& A, const Eigen::VectorXd& q, const Eigen
                        const Eigen::VectorXd* q0, const std::vector<int>& stageDof,
                        const FrameSide& B, double delta, const DissipationSetup* dissipation,
                        SampleSink* sink);
-/// The same into a list (cleared first).
-void GatherKindSamples(const ActorKind& A, const Eigen::VectorXd& q, const Eigen::VectorXd* qLast,
-                       const Eigen::VectorXd* q0, const std::vector<int>& stageDof,
-                       const FrameSide& B, double delta, const DissipationSetup* dissipation,
-                       std::vector<PairSample>* out);
+/// Sample body b of kind A at q: its pose, and as its stage start its pose at x_n (qLast) and at
+/// x⁰ (q0) (each the pose at q where null; R⁰ with its exact inverse, an affine combination of
+/// rotations). Returns whether it has a start (qLast or q0 given).
+bool SampleBodyAt(const ActorKind& A, int b, const Eigen::VectorXd& q,
+                  const Eigen::VectorXd* qLast, const Eigen::VectorXd* q0, RigidPose* pose,
+                  RigidStageStart* start);
 /// The kind's samples begin .. end−1 (no culling).
 void GatherKindSampleRange(const ActorKind& A, const Eigen::VectorXd& q,
                            const Eigen::VectorXd* qLast, const Eigen::VectorXd* q0,

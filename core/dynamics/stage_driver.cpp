@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/dynamics/warm_start.h"
+#include "core/model/rigid_kind.h"
 #include "energies/rigid_inertia.h"
 #include "optim/ceres_stage_solver.h"
 #include "optim/ipopt_stage_solver.h"
@@ -284,11 +285,11 @@ bool StageDriver::FreeStage(const SceneSettings& settings, const StageScene& sce
   free = *poses;
   for (size_t i = 0; i < models.size(); ++i) {
     if (dofOffset[i] < 0) continue;
-    // An applied force adds F/m to the body's acceleration; a torque has no closed form.
-    if (!targets.torque.empty() && targets.torque[i].any()) return false;
-    const Eigen::Vector3d g = targets.force.empty()
-                                  ? settings.gravity
-                                  : Eigen::Vector3d(settings.gravity + targets.force[i] / models[i].mass);
+    Eigen::Vector3d g;
+    if (!FreeStageAcceleration(models[i].mass, settings.gravity,
+                               targets.force.empty() ? nullptr : &targets.force[i],
+                               targets.torque.empty() ? nullptr : &targets.torque[i], &g))
+      return false;
     const RigidInertiaMinimum x = MinimizeRigidInertia(models[i].secondMoment, targets.pHat[i],
                                                        targets.RHat[i], targets.dt, g);
     // A non-finite target (a state gone bad) is left to Newton, which reports it.

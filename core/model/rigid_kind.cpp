@@ -69,6 +69,14 @@ Eigen::Matrix3d SpinCorrectedRate(const Eigen::Matrix3d& J, const Eigen::Matrix3
   return Rdot + Skew(WorldInertia(R, J).ldlt().solve(missing)) * R;
 }
 
+bool FreeStageAcceleration(double mass, const Eigen::Vector3d& gravity,
+                           const Eigen::Vector3d* force, const Eigen::Vector3d* torque,
+                           Eigen::Vector3d* a) {
+  if (torque && torque->any()) return false;
+  *a = force ? Eigen::Vector3d(gravity + *force / mass) : gravity;
+  return true;
+}
+
 RigidPose PredictRigidPose(const RigidBodyState& s, const RigidBodyState* previous,
                            double hPrevious, double tau, const Eigen::Vector3d* stageStart,
                            double stageDt) {
@@ -285,14 +293,16 @@ bool RigidKind::FreeStageMinimizer(const KindStageData& stage, Eigen::VectorXd* 
     Prescribe(stage.time, q);
     return true;
   }
-  // An applied force adds F/m to the acceleration; a torque has no closed form.
-  if (!model_.appliedTorque.empty() && PiecewiseLinear(model_.appliedTorque, stage.time).any())
+  const Eigen::Vector3d F = model_.appliedForce.empty()
+                                ? Eigen::Vector3d::Zero()
+                                : PiecewiseLinear(model_.appliedForce, stage.time);
+  const Eigen::Vector3d tau = model_.appliedTorque.empty()
+                                  ? Eigen::Vector3d::Zero()
+                                  : PiecewiseLinear(model_.appliedTorque, stage.time);
+  Eigen::Vector3d g;
+  if (!FreeStageAcceleration(model_.mass, stage.gravity,
+                             model_.appliedForce.empty() ? nullptr : &F, &tau, &g))
     return false;
-  const Eigen::Vector3d g =
-      model_.appliedForce.empty()
-          ? stage.gravity
-          : Eigen::Vector3d(stage.gravity +
-                            PiecewiseLinear(model_.appliedForce, stage.time) / model_.mass);
   const RigidInertiaMinimum x =
       MinimizeRigidInertia(model_.secondMoment, stage.qHat.head<3>(), RotationOf(stage.qHat),
                            stage.dt, g);

@@ -65,6 +65,13 @@ DirkRotationSlope DirkStageRotation(const Eigen::Matrix3d& J, const Eigen::Matri
 Eigen::Matrix3d SpinCorrectedRate(const Eigen::Matrix3d& J, const Eigen::Matrix3d& R,
                                   const Eigen::Matrix3d& Rdot, const Eigen::Vector3d& spin);
 
+/// The acceleration of a body in a closed-form free stage (energies/rigid_inertia.h,
+/// MinimizeRigidInertia): gravity plus an applied force F [N] over the mass m [kg] (`force` null:
+/// none) into *a [m/s²]; false when an applied torque (`torque`, may be null) is nonzero, which
+/// has no closed form.
+bool FreeStageAcceleration(double mass, const Eigen::Vector3d& gravity,
+                           const Eigen::Vector3d* force, const Eigen::Vector3d* torque,
+                           Eigen::Vector3d* a);
 /// The warm start's predicted pose of a body τ [s] after t_n (core/dynamics/warm_start.h):
 ///   R = Exp(τ ω_n + ½ τ² α) R_n,   α = (ω_n − ω_{n−1}) / h_{n−1},
 ///   p = p⁰ + Δt_i (v_n + τ a)  with the stage's start p⁰ (`stageStart`, Δt_i = stageDt), or

@@ -63,6 +63,21 @@ struct Twin {
     }
     REQUIRE(b.back().IsValid());
   }
+  // A soft actor added to both scenes: its handles in the built-in and in the kinds' scene.
+  std::pair<ActorHandle, ActorHandle> AddSoft(const SoftActorDesc& d) {
+    Error error;
+    const ActorHandle s0 = builtIn.AddSoftActor(d, &error);
+    const ActorHandle s1 = kinds.AddSoftActor(d, &error);
+    REQUIRE(s0.IsValid());
+    REQUIRE(s1.IsValid());
+    return {s0, s1};
+  }
+  // The largest difference of the soft actor's node positions [m] and velocities [m/s].
+  Eigen::Vector2d SoftDifference(const std::pair<ActorHandle, ActorHandle>& s) const {
+    const SoftBodyState& x = builtIn.SoftState(s.first);
+    const SoftBodyState& y = kinds.SoftState(s.second);
+    return {(x.x - y.x).lpNorm<Eigen::Infinity>(), (x.v - y.v).lpNorm<Eigen::Infinity>()};
+  }
   RigidBodyState KindsState(size_t i) const {
     return kinds.IsKind(b[i]) ? RigidKind::Unpack(kinds.KindStateOf(b[i])) : kinds.State(b[i]);
   }
@@ -539,24 +554,18 @@ TEST_CASE("a soft cube lands on rigid kinds as on the built-in rigid actors",
     d.material.density = 1000.0;
     d.contact.penaltyCoefficient = 1e7;
     d.contact.normalViscousDampingCoefficient = 1.0;
-    Error error;
-    const ActorHandle s0 = twin.builtIn.AddSoftActor(d, &error);
-    const ActorHandle s1 = twin.kinds.AddSoftActor(d, &error);
-    REQUIRE(s0.IsValid());
-    REQUIRE(s1.IsValid());
+    const auto soft = twin.AddSoft(d);
     CheckFollowsInContact(twin.Run(150, 2e-3));
     CHECK(twin.iterations[0] == twin.iterations[1]);
-    const double dx =
-        (twin.builtIn.SoftState(s0).x - twin.kinds.SoftState(s1).x).lpNorm<Eigen::Infinity>();
-    const double dv =
-        (twin.builtIn.SoftState(s0).v - twin.kinds.SoftState(s1).v).lpNorm<Eigen::Infinity>();
+    const Eigen::Vector2d diff = twin.SoftDifference(soft);
+    const double dx = diff[0], dv = diff[1];
     INFO("soft nodes differ by " << dx << " m, " << dv << " m/s; Newton iterations "
                                  << twin.iterations[0] << " and " << twin.iterations[1]);
     CHECK(dx < 1e-8);
     CHECK(dv < 1e-6);
     // The box stopped it: in free fall its centre would be at 0.16 − g (0.3 s)²/2 = −0.28 m; it
     // bounces on the box's top face (z = 0.1) with its centre near 0.15 m.
-    const double z = twin.kinds.CenterOfMass(s1).z();
+    const double z = twin.kinds.CenterOfMass(soft.second).z();
     INFO("centre height " << z << " m");
     CHECK(z > 0.14);
     CHECK(z < 0.17);
@@ -586,11 +595,7 @@ TEST_CASE("a rigid kind lands on a soft Sdf collider as the built-in rigid actor
     d.contact.penaltyCoefficient = 1e7;
     d.contact.coulombFrictionCoefficient = 0.3;
     d.contact.normalViscousDampingCoefficient = 1.0;
-    Error error;
-    const ActorHandle s0 = twin.builtIn.AddSoftActor(d, &error);
-    const ActorHandle s1 = twin.kinds.AddSoftActor(d, &error);
-    REQUIRE(s0.IsValid());
-    REQUIRE(s1.IsValid());
+    const auto slab = twin.AddSoft(d);
     RigidActorDesc cube = test::Cube(1e7, 0.3, 1.0);
     cube.shape.halfExtents = Eigen::Vector3d::Constant(0.05);
     cube.mass = 0.5;
@@ -603,8 +608,7 @@ TEST_CASE("a rigid kind lands on a soft Sdf collider as the built-in rigid actor
     // samples cross the slab's tet faces (after 0.1 s here) the twins' round-off difference
     // (1e-15 m) grows tenfold per step in either scene; the twins are compared up to there.
     const Eigen::Vector4d worst = twin.Run(mode == 0 ? 45 : 100, 2e-3);
-    const double dx =
-        (twin.builtIn.SoftState(s0).x - twin.kinds.SoftState(s1).x).lpNorm<Eigen::Infinity>();
+    const double dx = twin.SoftDifference(slab)[0];
     INFO("|Δp| " << worst[0] << " |ΔR| " << worst[1] << " |Δv| " << worst[2] << " |ΔṘ| "
                  << worst[3] << "; soft nodes differ by " << dx << " m; Newton iterations "
                  << twin.iterations[0] << " and " << twin.iterations[1]);
