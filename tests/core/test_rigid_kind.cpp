@@ -139,7 +139,9 @@ RigidActorDesc TumblingBox() {
 
 TEST_CASE("the rigid kind's stage energy: gradient and Hessian in δ = [δp, δθ] by differences",
           "[core][kind][rigid][derivatives]") {
+  // With an applied force ramp (its potential −F(t_i)·p at a stage time between the keyframes).
   RigidActorDesc d = TumblingBox();
+  d.appliedForce = {{0.0, Eigen::Vector3d(1.0, -2.0, 0.5)}, {1.0, Eigen::Vector3d(3.0, 0.0, -1.0)}};
   Error error;
   const std::unique_ptr<RigidKind> body = RigidKind::Build(d, &error);
   REQUIRE(body);
@@ -149,6 +151,7 @@ TEST_CASE("the rigid kind's stage energy: gradient and Hessian in δ = [δp, δ�
   q.tail<9>() = Eigen::Map<const Eigen::Matrix<double, 9, 1>>(R.data());
   KindStageData stage;
   stage.dt = 0.01;
+  stage.time = 0.3;
   stage.gravity = Eigen::Vector3d(0.3, -0.2, -9.81);
   // An inertial target whose R̂ is an affine combination of rotations, not a rotation.
   const Eigen::Matrix3d Rhat = 1.5 * ExpSo3(Eigen::Vector3d(0.41, -0.88, 0.33)) -
