@@ -1,7 +1,8 @@
 // What the generic actor layer costs: the same heap of rigid spheres as built-in rigid actors and
 // as rigid kinds (core/model/rigid_kind.h), which the stage, the integrators and the one contact
 // assembler carry without knowing them.
-//   superdex_bench_kinds [--quick]
+//   superdex_bench_kinds [--quick | --only built-in|kinds N]
+// (--only: one layer at N³ spheres, for profiling it.)
 // Scene: n³ spheres (r = 0.05 m, 1 kg, surface resolution 2) on a cubic lattice, each pressed
 // 0.5 mm into its neighbours and the lowest layer into a static ground, BDF2, Δt = 1e-2, default
 // contact parameters (friction 0.5), every stage solved by Newton from the last state (no warm
@@ -79,15 +80,18 @@ Run Measure(int n, bool kinds, int steps) {
 int main(int argc, char** argv) {
   const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
   const int steps = quick ? 5 : 20;
+  if (argc > 3 && std::strcmp(argv[1], "--only") == 0) {
+    const bool kinds = std::strcmp(argv[2], "kinds") == 0;
+    const int n = std::atoi(argv[3]);
+    const Run run = Measure(n, kinds, steps);
+    std::printf("%8d %-9s %12.4g %10.2f %8d\n", n * n * n, kinds ? "kinds" : "built-in",
+                run.secondsPerStep, run.newtonPerStep, run.active);
+    return 0;
+  }
   std::printf("%8s %-9s %12s %10s %8s %12s %12s\n", "spheres", "layer", "s/step", "newton/st",
               "active", "kinds/built", "max |Δx| [m]");
   for (int n : quick ? std::vector<int>{2, 3} : std::vector<int>{2, 3, 4}) {
     const Run built = Measure(n, false, steps);
-    if (std::getenv("SUPERDEX_BENCH_BUILT_IN_ONLY")) {  // for profiling one layer
-      std::printf("%8d %-9s %12.4g %10.2f %8d\n", n * n * n, "built-in", built.secondsPerStep,
-                  built.newtonPerStep, built.active);
-      continue;
-    }
     const Run kinds = Measure(n, true, steps);
     double diff = 0.0;
     for (size_t i = 0; i < built.centres.size(); ++i)

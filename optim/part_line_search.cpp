@@ -34,7 +34,11 @@ bool PartLineSearch::Label() {
     if (partOfUnit_[root] < 0) partOfUnit_[root] = parts_++;
     partOfUnit_[u] = partOfUnit_[root];
   }
-  return parts_ > 1;
+  // A part without a dof (a unit the problem reports with none) takes no step: it neither
+  // holds back the reported step length nor makes a second part.
+  partHasDofs_.assign(parts_, 0);
+  for (int u : base_.unitOfDof) partHasDofs_[partOfUnit_[u]] = 1;
+  return std::count(partHasDofs_.begin(), partHasDofs_.end(), 1) > 1;
 }
 
 bool PartLineSearch::Begin(StageProblem& problem) {
@@ -207,13 +211,12 @@ bool PartLineSearch::Test(StageProblem& problem, double trialValue, const Eigen:
   return false;
 }
 
-bool PartLineSearch::AllFull() const {
-  return std::all_of(alpha_.begin(), alpha_.end(), [](double a) { return a == 1.0; });
-}
+bool PartLineSearch::AllFull() const { return MinAlpha() == 1.0; }
 
 double PartLineSearch::MinAlpha() const {
   double m = 1.0;
-  for (double a : alpha_) m = std::min(m, a);
+  for (int p = 0; p < parts_; ++p)
+    if (partHasDofs_[p]) m = std::min(m, alpha_[p]);
   return m;
 }
 

@@ -72,7 +72,7 @@ class PartLineSearch {
   /// Cuts every α_P by beta (a non-finite trial value).
   void CutAll(double beta);
 
-  /// Whether every α_P is 1; the smallest α_P.
+  /// Whether every α_P is 1; the smallest α_P (over the parts that own a dof).
   bool AllFull() const;
   double MinAlpha() const;
 
@@ -88,6 +88,7 @@ class PartLineSearch {
   StageSplit base_, trial_;
   int parts_ = 0;
   std::vector<int> partOfUnit_;     // per unit: its part at s
+  std::vector<char> partHasDofs_;   // per part: whether a dof belongs to it
   std::vector<double> alpha_;       // per part
   std::vector<double> value_;       // per part: f_P(s) or θ_P(s)
   std::vector<double> slope_;       // per part: g_P·d_P, or ½|r_P·d_P|

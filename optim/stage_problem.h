@@ -21,14 +21,16 @@ enum class PsdProjection {
   None,   ///< exact Hessian (may be indefinite)
   Clamp,  ///< negative eigenvalues set to zero
   Abs,    ///< negative eigenvalues replaced by their absolute value
-};EnumNames<PsdProjection> NamesOf(PsdProjection);
+};
+EnumNames<PsdProjection> NamesOf(PsdProjection);
 
 
 /// How the objective of one evaluation splits into independent parts (StageProblem::LastSplit).
 /// The dofs are grouped into units (e.g. a block of dofs); f is the sum of the units' shares, and
 /// the only terms that couple units are those listed in `joins`: every term that was nonzero at
 /// that state and involves two units. Units not linked through `joins` were independent there:
-/// f's Hessian (the residual's Jacobian) has no entry between them.
+/// f's Hessian (the residual's Jacobian) has no entry between them. A unit may own no dof (an
+/// actor without stage unknowns); its share is then constant and it takes no step.
 struct StageSplit {
   std::vector<int> unitOfDof;                ///< per dof: its unit, 0 … units − 1
   int units = 0;

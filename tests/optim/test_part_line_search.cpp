@@ -216,7 +216,9 @@ namespace {
 /// part), unit 2 stands alone. At x = 0, g = −b.
 class ThreeUnits : public StageProblem {
  public:
-  explicit ThreeUnits(const Eigen::Vector3d& b) : b_(b) {}
+  /// `emptyUnits`: that many more units reported after the three, with no dof (an actor the
+  /// stage holds no unknown of).
+  explicit ThreeUnits(const Eigen::Vector3d& b, int emptyUnits = 0) : b_(b), empty_(emptyUnits) {}
   int NumDofs() const override { return 3; }
   double Value(const Eigen::VectorXd& d) override { return At(x_ + d, nullptr); }
   double Evaluate(Eigen::VectorXd* g, Eigen::SparseMatrix<double>* H, PsdProjection) override {
@@ -232,8 +234,9 @@ class ThreeUnits : public StageProblem {
   void EvaluateResidual(Eigen::VectorXd*, Eigen::SparseMatrix<double>*) override {}
   bool LastSplit(StageSplit* split) override {
     split->unitOfDof = {0, 1, 2};
-    split->units = 3;
+    split->units = 3 + empty_;
     split->share = share_;
+    split->share.resize(3 + empty_, 0.0);
     split->joins = {{0, 1}};
     return true;
   }
@@ -245,6 +248,7 @@ class ThreeUnits : public StageProblem {
     return share_[0] + share_[1] + share_[2];
   }
   Eigen::Vector3d b_, x_ = Eigen::Vector3d::Zero();
+  int empty_ = 0;
   std::vector<double> share_{0.0, 0.0, 0.0};
 };
 
@@ -282,4 +286,57 @@ TEST_CASE("Part line search: a shortened step that no longer descends is scaled 
   CHECK(step[1] == 0.1 * x[1]);
   CHECK(step[2] == 0.25 * x[2]);
   CHECK(parts.MinAlpha() == 0.1);
+}
+
+TEST_CASE("Part line search: a unit without a dof neither holds back the step nor makes a part",
+          "[optim][parts]") {
+  // f = ½‖x‖² − b·x: Newton's step −g is exact, so every part passes at its full step.
+  for (bool residual : {false, true}) {
+    INFO((residual ? "residual" : "minimization"));
+    ThreeUnits problem(Eigen::Vector3d(-0.9, 0.5, 1.0), 1);
+    Eigen::VectorXd g, step, trial;
+    Eigen::SparseMatrix<double> H, trialH;
+    problem.Evaluate(&g, &H, PsdProjection::None);
+    const Eigen::VectorXd d = -g;
+    PartLineSearch parts;
+    REQUIRE(parts.Begin(problem));
+    CHECK(parts.Parts() == 3);  // {0, 1}, {2} and the empty unit's
+    if (residual) {
+      parts.StartResidual(g, d, &d);  // r = g, J = I: J d = d, r·(J d) < 0 on both parts
+    } else {
+      parts.StartMinimization(g, d);
+    }
+    parts.Step(d, &step);
+    CHECK(step == d);
+    CHECK(parts.AllFull());  // the empty part's α (0: no descent) is not a step length
+    CHECK(parts.MinAlpha() == 1.0);
+    // Through the line search: a full step is reported as one (the residual solver's quadratic
+    // regime and its stagnation test read it).
+    LineSearch ls;
+    ls.SetOptions(LineSearch::Options());
+    ls.ReadSplit(problem);
+    REQUIRE(ls.Split());
+    const double slope = g.dot(d);
+    const LineSearch::Summary sum = ls.Search(
+        problem,
+        LineSearch::Start::Potential(problem.Value(Eigen::Vector3d::Zero()), g, slope, slope), d,
+        &step, &trial, &trialH);
+    CHECK(sum.accepted);
+    CHECK(sum.alpha == 1.0);
+  }
+  // Two dof-owning units joined, and one without: a single part with dofs, no split.
+  class Joined : public ThreeUnits {
+   public:
+    Joined() : ThreeUnits(Eigen::Vector3d(1.0, 1.0, 1.0), 0) {}
+    bool LastSplit(StageSplit* split) override {
+      ThreeUnits::LastSplit(split);
+      split->unitOfDof = {0, 0, 0};
+      return true;
+    }
+  } joined;
+  Eigen::VectorXd g;
+  Eigen::SparseMatrix<double> H;
+  joined.Evaluate(&g, &H, PsdProjection::None);
+  PartLineSearch parts;
+  CHECK_FALSE(parts.Begin(joined));
 }
