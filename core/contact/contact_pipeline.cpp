@@ -28,23 +28,6 @@ void ForEachPair(size_t n, bool parallel, F&& f) {
   }
 }
 
-/// A rigid pair's matrix as dense 6 × 6 blocks at the bodies' offsets (−1: static).
-template <typename Matrix>
-void AppendBlocks(const Matrix& M, const int offs[2], int blocks,
-                  std::vector<DenseBlock6>* out) {
-  for (int bi = 0; bi < blocks; ++bi) {
-    if (offs[bi] < 0) continue;
-    for (int bj = 0; bj < blocks; ++bj) {
-      if (offs[bj] < 0) continue;
-      DenseBlock6& b = out->emplace_back();
-      b.row = offs[bi];
-      b.col = offs[bj];
-      for (int c = 0; c < 6; ++c)
-        for (int r = 0; r < 6; ++r) b.v[6 * c + r] = M(6 * bi + r, 6 * bj + c);
-    }
-  }
-}
-
 /// Adds a stencil pair's counts and energies to *st; returns the energy it adds to the stage value
 /// (penalty plus dissipation) [J].
 template <typename Stencil>
@@ -83,12 +66,6 @@ PenaltyParams PenaltyOf(const PairContactParams& p) {
   return pp;
 }
 
-template <typename Vector>
-void AddBlocks(const Vector& g, const int offs[2], int blocks, Eigen::VectorXd* out) {
-  for (int bi = 0; bi < blocks; ++bi)
-    if (offs[bi] >= 0) out->segment<6>(offs[bi]) += g.template segment<6>(6 * bi);
-}
-
 }  // namespace
 
 void ContactPipeline::Configure(const std::vector<RigidBodyModel>* models,
@@ -102,12 +79,18 @@ void ContactPipeline::Configure(const std::vector<RigidBodyModel>* models,
   kindActor_ = std::move(kindActor);
   kindInflation_.clear();
   kindHasDofs_.clear();
+  kindColliding_.clear();
+  kindCollider_.clear();
+  kindStatic_.clear();
   if (kinds_)
     for (const ActorKind* k : *kinds_) {
       kindInflation_.push_back(k->Collider() ? ColliderReach(k->contact) : 0.0);
+      kindCollider_.push_back(k->Collider() != nullptr);
       bool free = false;
       for (int i = 0; i < k->NumTangentDofs() && !free; ++i) free = !k->IsPrescribed(i);
       kindHasDofs_.push_back(free);
+      kindColliding_.push_back(k->IsColliding());
+      kindStatic_.push_back(k->IsStatic());
     }
   filter_ = filter;
   softModels_ = softModels && !softModels->empty() ? softModels : nullptr;
@@ -235,8 +218,8 @@ void ContactPipeline::ConsiderKindPair(bool aKind, int a, bool bKind, int b) {
   if (aKind == bKind && a == b) return;  // self-contact of a kind: not in this layer yet
   const ActorKind* A = aKind ? (*kinds_)[a] : nullptr;
   const ActorKind* B = bKind ? (*kinds_)[b] : nullptr;
-  if (aKind ? !A->IsColliding() : !IsColliding(models[a])) return;
-  if (bKind ? B->Collider() == nullptr : !IsCollider(models[b])) return;
+  if (aKind ? !kindColliding_[a] : !IsColliding(models[a])) return;
+  if (bKind ? !kindCollider_[b] : !IsCollider(models[b])) return;
   if (!aKind && !bKind) return;
   // Neither has a stage unknown (static, kinematic or all prescribed): nothing to solve for.
   const bool aDofs = aKind ? kindHasDofs_[a] : models[a].dynamic;
@@ -251,14 +234,14 @@ void ContactPipeline::ConsiderKindPair(bool aKind, int a, bool bKind, int b) {
   p.a = a;
   p.b = b;
   const bool aNoCollider =
-      aKind ? A->Collider() == nullptr
+      aKind ? !kindCollider_[a]
             : (models[a].collider.type == ColliderType::None ||
                models[a].collider.type == ColliderType::PointCloud);
   // A kinematic collider moves: its parameters combine as a dynamic one's (spec: "taken from the
   // colliding actor when the collider is static").
   p.params = CombineContactParams(aKind ? A->contact : models[a].contact,
                                   bKind ? B->contact : models[b].contact,
-                                  bKind ? B->IsStatic() : !models[b].Moves(), aNoCollider);
+                                  bKind ? kindStatic_[b] : !models[b].Moves(), aNoCollider);
   kindPairs_.push_back(p);
 }
 
@@ -521,8 +504,14 @@ void ContactPipeline::ReducePair(const Request& q, const PairStencils& r, bool a
   for (int e = 0; e < r.count; ++e) {
     const ContactStencil& cs = r.stencils[e];
     if (cs.blocks > 0) {
-      ScatterStencil(cs, cs.offs, cs.blocks, q.potential, q.gradient, q.dissipationResidual,
-                     q.order >= 2 ? q.triplets : nullptr);
+      int offs6[4];  // ContactStencil::offs holds 8 blocks
+      if ((q.order < 2 || q.blocks) && SixDofGroups(cs.offs, cs.blocks, offs6)) {
+        ScatterStencil6(cs, offs6, cs.blocks / 2, q.potential, q.gradient, q.dissipationResidual,
+                        q.order >= 2 ? q.blocks : nullptr);
+      } else {
+        ScatterStencil(cs, cs.offs, cs.blocks, q.potential, q.gradient, q.dissipationResidual,
+                       q.order >= 2 ? q.triplets : nullptr);
+      }
       continue;
     }
     int offs[7];
@@ -627,19 +616,10 @@ void ContactPipeline::EvaluateRigidPairs(const Request& q, double* energy, Conta
     *energy += AddPairStats(r, st);
     if (order < 1) continue;
     const int offs[2] = {dofOffset[pairs_[k].colliding], dofOffset[pairs_[k].collider]};
-    const int blocks = models[pairs_[k].collider].dynamic ? 2 : 1;
-    for (int e = 0; e < r.count; ++e) {
-      const RigidPairStencil& cs = r.stencils[e];
-      if (cs.penaltyActive) AddBlocks(cs.penaltyGradient, offs, blocks, q.gradient);
-      if (cs.dissipationActive)
-        AddBlocks(cs.dissipationResidual, offs, blocks,
-                  q.dissipationResidual ? q.dissipationResidual : q.gradient);
-      if (order < 2) continue;
-      if (cs.penaltyActive || (potential && cs.dissipationActive))
-        AppendBlocks(cs.penaltyHessian, offs, blocks, q.blocks);
-      if (!potential && cs.dissipationActive)
-        AppendBlocks(cs.dissipationJacobian, offs, blocks, q.blocks);
-    }
+    const int groups = models[pairs_[k].collider].dynamic ? 2 : 1;
+    for (int e = 0; e < r.count; ++e)
+      ScatterStencil6(r.stencils[e], offs, groups, potential, q.gradient, q.dissipationResidual,
+                      order >= 2 ? q.blocks : nullptr);
   }
 }
 
@@ -708,14 +688,35 @@ SoftPairInput ContactPipeline::SoftInputOf(const SoftView& soft, int s) const {
   return in;
 }
 
-FrameSide ContactPipeline::KindPairCollider(const Request& q, const KindPair& kp) const {
-  if (kp.bKind) {
-    const KindView& kv = *q.kinds;
-    return KindFrameSide(*(*kinds_)[kp.b], (*kv.q)[kv.first + kp.b], EntryOf(kv.qLast, kp.b),
-                         q.dissipation ? EntryOf(kv.q0, kp.b) : nullptr, (*kv.stageDof)[kp.b]);
+const FrameSide& ContactPipeline::KindPairCollider(const Request& q, const KindPair& kp,
+                                                  FrameSide* rigid) const {
+  if (kp.bKind) return kindSides_[kp.b];
+  *rigid = RigidFrameSide((*models_)[kp.b], (*q.poses)[kp.b],
+                          q.stageStart ? &(*q.stageStart)[kp.b] : nullptr, (*q.dofOffset)[kp.b]);
+  return *rigid;
+}
+
+void ContactPipeline::FormKindSides(const Request& q) {
+  if (!kinds_ || !q.kinds) return;
+  const size_t nk = kinds_->size();
+  kindRoles_.assign(nk, 0);
+  for (const KindPair& kp : kindPairs_) {
+    if (kp.bKind) kindRoles_[kp.b] |= 1;
+    if (kp.aKind) kindRoles_[kp.a] |= 2;
   }
-  return RigidFrameSide((*models_)[kp.b], (*q.poses)[kp.b],
-                        q.stageStart ? &(*q.stageStart)[kp.b] : nullptr, (*q.dofOffset)[kp.b]);
+  kindSides_.resize(nk);
+  kindBodies_.resize(nk);
+  const KindView& kv = *q.kinds;
+  for (size_t k = 0; k < nk; ++k) {
+    if (!kindRoles_[k]) continue;
+    const ActorKind& kind = *(*kinds_)[k];
+    const Eigen::VectorXd& x = (*kv.q)[kv.first + k];
+    const Eigen::VectorXd* x0 = q.dissipation ? EntryOf(kv.q0, k) : nullptr;  // with dissipation
+    if (kindRoles_[k] & 1)
+      kindSides_[k] = KindFrameSide(kind, x, EntryOf(kv.qLast, k), x0, (*kv.stageDof)[k]);
+    if ((kindRoles_[k] & 2) && kind.NumSampleBodies() > 0)
+      kindBodies_[k].Form(kind, x, EntryOf(kv.qLast, k), x0);
+  }
 }
 
 void ContactPipeline::GatherKindPairSamples(const Request& q, const KindPair& kp,
@@ -727,7 +728,7 @@ void ContactPipeline::GatherKindPairSamples(const Request& q, const KindPair& kp
     const KindView& kv = *q.kinds;
     GatherKindSamples(*(*kinds_)[kp.a], (*kv.q)[kv.first + kp.a], EntryOf(kv.qLast, kp.a),
                       q.dissipation ? EntryOf(kv.q0, kp.a) : nullptr, (*kv.stageDof)[kp.a], B,
-                      kp.params.threshold, setup, sink);
+                      kp.params.threshold, setup, sink, &kindBodies_[kp.a]);
   } else {
     GatherRigidSamples((*models_)[kp.a], (*q.poses)[kp.a],
                        q.stageStart ? &(*q.stageStart)[kp.a] : nullptr, (*q.dofOffset)[kp.a], B,
@@ -738,12 +739,14 @@ void ContactPipeline::GatherKindPairSamples(const Request& q, const KindPair& kp
 void ContactPipeline::EvaluateKindPairs(const Request& q, double* energy, ContactStats* st) {
   const DissipationContext* dissipation = q.dissipation;
   kindResults_.resize(kindPairs_.size());
+  FormKindSides(q);
   auto evaluate = [&](size_t k) {
     const KindPair& kp = kindPairs_[k];
     DissipationSetup setup;
     if (dissipation) setup = MakeSetup(kp.params, *dissipation, q.isotropic);
     setup.slips = SlipUse(SlipPairKind::Kind, k);
-    const FrameSide B = KindPairCollider(q, kp);
+    FrameSide rigidB;
+    const FrameSide& B = KindPairCollider(q, kp, &rigidB);
     PairStencils& r = kindResults_[k];
     FrameEvaluation evaluation(B, PenaltyOf(kp.params), kp.params.maxAlignmentNormals,
                                dissipation ? &setup : nullptr, q.order, &r);
@@ -825,8 +828,10 @@ void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,
   PairStencils scratchKind;
   const std::vector<int> noDofs(models.size(), -1);
   q.dofOffset = &noDofs;
+  FormKindSides(q);
   for (const KindPair& kp : kindPairs_) {
-    const FrameSide B = KindPairCollider(q, kp);
+    FrameSide rigidB;
+    const FrameSide& B = KindPairCollider(q, kp, &rigidB);
     const DissipationSetup setup = setupOf(kp.params);
     const size_t first = records->size();
     FrameEvaluation evaluation(B, PenaltyOf(kp.params), kp.params.maxAlignmentNormals,

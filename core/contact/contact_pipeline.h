@@ -200,9 +200,11 @@ class ContactPipeline {
   // roles and the filter allow it. A kind's own samples (ActorKind::Sample) do not collide with
   // soft colliders yet.
   void ConsiderKindOnSoft(int k, int b);
-  // A kind pair's collider side at the request's configuration, and the colliding side's samples
-  // that can contribute on it.
-  FrameSide KindPairCollider(const Request& q, const KindPair& kp) const;
+  // A kind pair's collider side at the request's configuration (a kind's from kindSides_, a rigid
+  // body's formed in *rigid), and the colliding side's samples that can contribute on it.
+  const FrameSide& KindPairCollider(const Request& q, const KindPair& kp, FrameSide* rigid) const;
+  // kindSides_ and kindBodies_ at the request's configurations, for the kinds of kindPairs_.
+  void FormKindSides(const Request& q);
   // Soft actor s's side of a pair at the view's positions (dofOffset 0 without the view's).
   SoftPairInput SoftInputOf(const SoftView& soft, int s) const;
   void GatherKindPairSamples(const Request& q, const KindPair& kp, const FrameSide& B,
@@ -253,8 +255,15 @@ class ContactPipeline {
   std::vector<int> kindActor_;
   std::vector<double> kindInflation_;
   std::vector<char> kindHasDofs_;  // per kind: some tangent dof is not prescribed
+  // Per kind: IsColliding(), Collider() != null, IsStatic().
+  std::vector<char> kindColliding_, kindCollider_, kindStatic_;
   std::vector<KindPair> kindPairs_;
   std::vector<PairStencils> kindResults_;
+  // Per kind, at the kind pairs' evaluation under way: its collider frame and its sample bodies,
+  // formed once for all its pairs (FormKindSides; only for kinds in a pair in that role).
+  std::vector<FrameSide> kindSides_;
+  std::vector<SampleBodyPoses> kindBodies_;
+  std::vector<char> kindRoles_;  // per kind: 1 collider, 2 sample bodies (bits)
   // Per pair kind (SlipPairKind): the pairs' slip use in the evaluation under way and, when
   // recording, their buffers.
   struct SlipLists {

@@ -1,8 +1,8 @@
 // A pair's contact contributions as stencils of 3-dof blocks, and the one place where they are
 // projected to PSD and scattered into the stage's gradient, dissipative residual and matrix.
-// Rigid pairs keep their results in RigidPairStencils (12 dofs) and scatter them as 6-dof blocks
-// (core/contact/contact_pipeline.cpp); every other pair kind (anything on a kind's or a soft
-// collider's field, soft actors on rigid bodies) scatters ContactStencils by ScatterStencil.
+// Stencils over rigid bodies' [δp, δθ] (rigid pairs, kinds' sample bodies on rigid frames) scatter
+// as dense 6 × 6 blocks by ScatterStencil6; every other (soft nodes, translating frames) by
+// ScatterStencil, as triplets.
 #pragma once
 
 #include <Eigen/Core>
@@ -15,6 +15,7 @@
 #include "energies/psd_projection.h"
 #include "energies/stencil.h"
 #include "optim/stage_problem.h"
+#include "optim/triplet_assembly.h"
 
 namespace superdex {
 
@@ -155,5 +156,51 @@ void ProjectStencil(bool potential, PsdProjection projection, BasicContactStenci
 void ScatterStencil(const ContactStencil& s, const int* offs, int blocks, bool potential,
                     Eigen::VectorXd* gradient, Eigen::VectorXd* dissipationResidual,
                     std::vector<Eigen::Triplet<double>>* triplets);
+
+/// ScatterStencil for a stencil over rigid bodies: `groups` 6-dof groups [δp, δθ] at the stage
+/// offsets offs6[g] (−1: a body without dofs), each two consecutive 3-dof blocks of the stencil;
+/// with `blocks`, the matrices are appended as dense 6 × 6 blocks (the Hessian, then in the
+/// residual modes the dissipation Jacobian), entries as they are.
+template <typename Stencil>
+void ScatterStencil6(const Stencil& s, const int* offs6, int groups, bool potential,
+                     Eigen::VectorXd* gradient, Eigen::VectorXd* dissipationResidual,
+                     std::vector<DenseBlock6>* blocks) {
+  Eigen::VectorXd* dr = dissipationResidual ? dissipationResidual : gradient;
+  for (int g = 0; g < groups; ++g) {
+    if (offs6[g] < 0) continue;
+    if (s.penaltyActive) gradient->segment<6>(offs6[g]) += s.penaltyGradient.template segment<6>(6 * g);
+    if (s.dissipationActive)
+      dr->segment<6>(offs6[g]) += s.dissipationResidual.template segment<6>(6 * g);
+  }
+  if (!blocks) return;
+  auto append = [&](const auto& M) {
+    for (int gi = 0; gi < groups; ++gi) {
+      if (offs6[gi] < 0) continue;
+      for (int gj = 0; gj < groups; ++gj) {
+        if (offs6[gj] < 0) continue;
+        DenseBlock6& b = blocks->emplace_back();
+        b.row = offs6[gi];
+        b.col = offs6[gj];
+        for (int c = 0; c < 6; ++c)
+          for (int r = 0; r < 6; ++r) b.v[6 * c + r] = M(6 * gi + r, 6 * gj + c);
+      }
+    }
+  };
+  if (s.penaltyActive || (potential && s.dissipationActive)) append(s.penaltyHessian);
+  if (!potential && s.dissipationActive) append(s.dissipationJacobian);
+}
+
+/// The 6-dof groups of a stencil's 3-dof block offsets (ScatterStencil6's offs6): whether every
+/// pair of consecutive blocks covers six consecutive dofs (offs[2g + 1] = offs[2g] + 3, or both
+/// −1), as a rigid sample body's [δp, δθ] and a rigid collider frame's do.
+inline bool SixDofGroups(const int* offs, int blocks, int* offs6) {
+  if (blocks % 2 != 0) return false;
+  for (int g = 0; 2 * g < blocks; ++g) {
+    const int p = offs[2 * g], t = offs[2 * g + 1];
+    if (p < 0 ? t >= 0 : t != p + 3) return false;
+    offs6[g] = p < 0 ? -1 : p;
+  }
+  return true;
+}
 
 }  // namespace superdex

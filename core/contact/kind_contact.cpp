@@ -578,10 +578,18 @@ void GatherRigidSamples(const RigidBodyModel& A, const RigidPose& a, const Rigid
   GatherRigidSamples(A, a, start, aOffset, B, delta, dissipation, &list);
 }
 
+void SampleBodyPoses::Form(const ActorKind& A, const Eigen::VectorXd& q,
+                           const Eigen::VectorXd* qLast, const Eigen::VectorXd* q0) {
+  const int n = A.NumSampleBodies();
+  pose.resize(n);
+  start.resize(n);
+  for (int b = 0; b < n; ++b) hasStart = SampleBodyAt(A, b, q, qLast, q0, &pose[b], &start[b]);
+}
+
 void GatherKindSamples(const ActorKind& A, const Eigen::VectorXd& q, const Eigen::VectorXd* qLast,
                        const Eigen::VectorXd* q0, const std::vector<int>& stageDof,
                        const FrameSide& B, double delta, const DissipationSetup* dissipation,
-                       SampleSink* sink) {
+                       SampleSink* sink, const SampleBodyPoses* bodies) {
   if (A.NumSampleBodies() > 0) {  // rigid bodies' samples: the rigid gather per body
     int keyOffset = 0;
     for (int b = 0; b < A.NumSampleBodies(); ++b) {
@@ -590,9 +598,11 @@ void GatherKindSamples(const ActorKind& A, const Eigen::VectorXd& q, const Eigen
       A.SampleBodyDofs(b, dof);
       RigidPose pose;
       RigidStageStart start;
-      const bool hasStart = SampleBodyAt(A, b, q, qLast, q0, &pose, &start);
-      AppendRigidSamples(body, pose, hasStart ? &start : nullptr, stageDof[dof[0]],
-                         stageDof[dof[1]], keyOffset, B, delta, dissipation, sink);
+      const bool hasStart = bodies ? bodies->hasStart : SampleBodyAt(A, b, q, qLast, q0, &pose, &start);
+      const RigidPose& p = bodies ? bodies->pose[b] : pose;
+      const RigidStageStart& s = bodies ? bodies->start[b] : start;
+      AppendRigidSamples(body, p, hasStart ? &s : nullptr, stageDof[dof[0]], stageDof[dof[1]],
+                         keyOffset, B, delta, dissipation, sink);
       keyOffset += static_cast<int>(body.samples.size());
     }
     return;

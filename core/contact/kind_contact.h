@@ -365,14 +365,27 @@ void GatherRigidSamples(const RigidBodyModel& A, const RigidPose& a, const Rigid
                         int aOffset, const FrameSide& B, double delta,
                         const DissipationSetup* dissipation, std::vector<PairSample>* out);
 
+/// A kind's sample bodies at one configuration (SampleBodyAt for each), formed once for all the
+/// pairs it takes part in.
+struct SampleBodyPoses {
+  std::vector<RigidPose> pose;
+  std::vector<RigidStageStart> start;
+  bool hasStart = false;
+  /// Forms them for A at q, x_n (qLast) and x⁰ (q0), as SampleBodyAt does (no allocation once
+  /// sized for A's bodies).
+  void Form(const ActorKind& A, const Eigen::VectorXd& q, const Eigen::VectorXd* qLast,
+            const Eigen::VectorXd* q0);
+};
+
 /// The samples of a kind's actor at q (x_n: qLast, x⁰: q0, either may be null), with the stage
 /// offsets of its local dofs (`stageDof`, −1 for prescribed ones), that can contribute on B's
 /// field: the kind's bounding balls (ActorKind::ForEachSampleNear) culled as GatherRigidSamples
-/// culls a rigid body's tree.
+/// culls a rigid body's tree. `bodies` (may be null): A's sample bodies formed at the same
+/// configurations (SampleBodyPoses::Form), read instead of forming them again.
 void GatherKindSamples(const ActorKind& A, const Eigen::VectorXd& q, const Eigen::VectorXd* qLast,
                        const Eigen::VectorXd* q0, const std::vector<int>& stageDof,
                        const FrameSide& B, double delta, const DissipationSetup* dissipation,
-                       SampleSink* sink);
+                       SampleSink* sink, const SampleBodyPoses* bodies = nullptr);
 /// Sample body b of kind A at q: its pose, and as its stage start its pose at x_n (qLast) and at
 /// x⁰ (q0) (each the pose at q where null; R⁰ with its exact inverse, an affine combination of
 /// rotations). Returns whether it has a start (qLast or q0 given).
