@@ -268,13 +268,8 @@ void Scene::Prepare() {
       dofOffset_[i] = numDofs_;
       numDofs_ += 6;
     }
-  // Soft free nodes after every rigid dof (the stage's step norm relies on this order), then the
-  // kinds' free dofs.
-  softDofOffset_.assign(softModels_.size(), 0);
-  for (size_t s = 0; s < softModels_.size(); ++s) {
-    softDofOffset_[s] = numDofs_;
-    numDofs_ += 3 * softModels_[s].numFree;
-  }
+  // Then the kinds' free dofs, then the soft free nodes, last and in one range (the stage's step
+  // norm and block layout rely on this order).
   kindPtrs_.clear();
   kindStageDof_.resize(kinds_.size());
   for (size_t k = 0; k < kinds_.size(); ++k) {
@@ -282,6 +277,11 @@ void Scene::Prepare() {
     kindStageDof_[k].resize(kinds_[k]->NumTangentDofs());
     for (int i = 0; i < kinds_[k]->NumTangentDofs(); ++i)
       kindStageDof_[k][i] = kinds_[k]->IsPrescribed(i) ? -1 : numDofs_++;
+  }
+  softDofOffset_.assign(softModels_.size(), 0);
+  for (size_t s = 0; s < softModels_.size(); ++s) {
+    softDofOffset_[s] = numDofs_;
+    numDofs_ += 3 * softModels_[s].numFree;
   }
   std::vector<int> rigidActor, softActor, kindActor;
   for (int i = 0; i < NumActors(); ++i)

@@ -175,7 +175,7 @@ class Scene : private StageHost {
   void Restore(const Snapshot& s);
 
   // --- The stage's unknowns (valid once the scene has stepped): 6 per dynamic rigid actor
-  // [δp, δθ], then 3 per free soft node, then the kinds' free dofs.
+  // [δp, δθ], then the kinds' free dofs, then 3 per free soft node.
   int StageDofs() const { return numDofs_; }
   /// First stage dof of actor a (−1 for a static rigid actor).
   int StageDofOffset(ActorHandle a) const;

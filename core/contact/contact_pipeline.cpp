@@ -114,8 +114,10 @@ void ContactPipeline::FindPairs(const std::vector<RigidPose>& poses,
   const size_t ns = soft && softModels_ ? softModels_->size() : 0;
   const size_t nk = kinds && kinds_ ? kinds_->size() : 0;
   boxes_.resize(n + ns + nk);
-  // Explicit normals retain the stage-start contacts: the boxes sweep from x⁰ to x.
-  const bool sweep = dissipation && dissipation->mode == DissipationMode::ExplicitNormals;
+  // With dissipation the terms read x_n's geometry too (explicit normals keep the stage-start
+  // contacts; the reconstructed load φ + G·(Y_n − Y) can be positive where φ > δ, its bound
+  // growing with |Y_n − Y|): the boxes sweep from x_n to x, as the soft actors' and the kinds' do.
+  const bool sweep = dissipation && stageStart;
   for (size_t i = 0; i < n; ++i) {
     boxes_[i] = WorldBounds(models[i], poses[i].p, poses[i].R);
     if (sweep) {
@@ -291,15 +293,16 @@ void ContactPipeline::SoftColliderInputs(const SoftColliderPair& sp,
                                          const std::vector<RigidPose>& poses,
                                          const std::vector<RigidStageStart>* stageStart,
                                          const SoftView& soft, const KindView* kinds,
-                                         RigidPose* pose, RigidStageStart* start,
-                                         CollidingInput* a, SoftColliderInput* b) const {
+                                         bool kindStart, RigidPose* pose,
+                                         RigidStageStart* start, CollidingInput* a,
+                                         SoftColliderInput* b) const {
   *a = CollidingInput();
   if (sp.collidingKind) {
     const ActorKind& A = *(*kinds_)[sp.colliding];
     const bool hasStart =
         SampleBodyAt(A, sp.body, (*kinds->q)[kinds->first + sp.colliding],
                      EntryOf(kinds->qLast, sp.colliding),
-                     stageStart ? EntryOf(kinds->q0, sp.colliding) : nullptr, pose, start);
+                     kindStart ? EntryOf(kinds->q0, sp.colliding) : nullptr, pose, start);
     a->rigid = A.SampleBody(sp.body);
     a->pose = pose;
     a->start = hasStart ? start : nullptr;
@@ -657,7 +660,8 @@ void ContactPipeline::EvaluateOnSoftPairs(const Request& q, double* energy, Cont
     SoftColliderInput b;
     RigidPose pose;
     RigidStageStart start;
-    SoftColliderInputs(sp, *q.poses, q.stageStart, *soft, q.kinds, &pose, &start, &a, &b);
+    SoftColliderInputs(sp, *q.poses, q.stageStart, *soft, q.kinds, dissipation != nullptr, &pose,
+                       &start, &a, &b);
     DissipationSetup setup;
     if (dissipation) setup = MakeSetup(sp.params, *dissipation, q.isotropic);
     setup.slips = SlipUse(SlipPairKind::OnSoft, k);
@@ -808,7 +812,7 @@ void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,
     SoftColliderInput b;
     RigidPose pose;
     RigidStageStart start;
-    SoftColliderInputs(sp, poses, nullptr, *soft, kinds, &pose, &start, &a, &b);
+    SoftColliderInputs(sp, poses, nullptr, *soft, kinds, false, &pose, &start, &a, &b);
     const size_t first = records->size();
     EvaluatePairOnSoftCollider(a, b, pp, sp.params.maxAlignmentNormals, nullptr, 0, &scratchOnSoft,
                                records);

@@ -226,12 +226,13 @@ class ContactPipeline {
   void ReducePair(const Request& q, const PairStencils& r, bool aSoft, int a, bool bSoft, int b,
                   double* energy, ContactStats* st, const int* aOffs = nullptr) const;
   // The two sides of a pair on a soft collider (the locators must be built); a kind's sample
-  // body's pose and stage start are formed in *pose and *start (from the kinds' view), which
-  // must outlive *a.
+  // body's pose and stage start are formed in *pose and *start (from the kinds' view; its x⁰
+  // where `kindStart`, as with dissipation), which must outlive *a.
   void SoftColliderInputs(const SoftColliderPair& pair, const std::vector<RigidPose>& poses,
                           const std::vector<RigidStageStart>* stageStart, const SoftView& soft,
-                          const KindView* kinds, RigidPose* pose, RigidStageStart* start,
-                          CollidingInput* a, SoftColliderInput* b) const;
+                          const KindView* kinds, bool kindStart, RigidPose* pose,
+                          RigidStageStart* start, CollidingInput* a,
+                          SoftColliderInput* b) const;
   // The stage offsets of kind k's sample body `body`'s [δp, δθ] (−1: prescribed).
   void SampleBodyOffsets(const KindView& kinds, int k, int body, int offs[2]) const;
 

@@ -38,13 +38,10 @@ SceneStageProblem::SceneStageProblem(const std::vector<RigidBodyModel>& models,
   if (soft_) {
     softTrial_ = *softX_;
     if (ws_->soft.size() < soft_->targets.size()) ws_->soft.resize(soft_->targets.size());
-    // The soft nodes' dofs: after every rigid dof, before the kinds'.
-    for (size_t i = 0; i < models_.size(); ++i)
-      if (dofOffset_[i] >= 0) softBegin_ += 6;
-    softEnd_ = numDofs_;
-    for (const std::vector<int>& dof : soft_->kinds.stageDof)
-      for (int i : dof)
-        if (i >= 0) softEnd_ = std::min(softEnd_, i);
+    // The soft nodes' dofs: one range, the last dofs (Scene::Prepare).
+    softBegin_ = softEnd_ = numDofs_;
+    for (size_t s = 0; s < soft_->targets.size(); ++s)
+      if ((*soft_->models)[s].numFree > 0) softBegin_ = std::min(softBegin_, soft_->dofOffset[s]);
   }
   context_ = ContextOf(dissipation_, targets_.dt);
   for (size_t i = 0; i < targets_.torque.size(); ++i)
@@ -509,8 +506,8 @@ bool SceneStageProblem::LimitStep(Eigen::VectorXd* d) {
 }
 
 void SceneStageProblem::BlockLayout(DofBlockLayout* layout) const {
-  // In dof order: the dynamic rigid bodies (6 each, leading without gaps), the free soft nodes
-  // (3 each), then each kind's free dofs in blocks of its DofBlockSize.
+  // In dof order: the dynamic rigid bodies (6 each, leading without gaps), each kind's free dofs
+  // in blocks of its DofBlockSize, then the free soft nodes (3 each).
   std::vector<int>& sizes = layout->sizes;
   sizes.clear();
   int expected = 0;
@@ -525,8 +522,6 @@ void SceneStageProblem::BlockLayout(DofBlockLayout* layout) const {
     expected += 6;
   }
   if (!soft_) return;
-  for (size_t s = 0; s < soft_->targets.size(); ++s)
-    sizes.insert(sizes.end(), (*soft_->models)[s].numFree, 3);
   for (size_t k = 0; k < soft_->kinds.Size(); ++k) {
     int free = 0;
     for (int i : soft_->kinds.stageDof[k]) free += i >= 0;
@@ -537,6 +532,8 @@ void SceneStageProblem::BlockLayout(DofBlockLayout* layout) const {
     }
     sizes.insert(sizes.end(), free / size, size);
   }
+  for (size_t s = 0; s < soft_->targets.size(); ++s)
+    sizes.insert(sizes.end(), (*soft_->models)[s].numFree, 3);
 }
 
 double SceneStageProblem::StepNorm(const Eigen::VectorXd& d) const {
