@@ -389,10 +389,9 @@ size_t ContactPipeline::RigidPairWork() const {
 
 bool ContactPipeline::SplitLastEvaluation(const std::vector<int>& dofOffset,
                                           std::vector<double>* share,
-                                          std::vector<std::pair<int, int>>* joins,
-                                          const std::vector<std::vector<int>>* kindStageDof) const {
+                                          std::vector<std::pair<int, int>>* joins) const {
   if (!softColliderPairs_.empty() || results_.size() != pairs_.size() ||
-      (!kindPairs_.empty() && (!kindStageDof || kindResults_.size() != kindPairs_.size())))
+      kindResults_.size() != kindPairs_.size())
     return false;
   for (const KindPair& kp : kindPairs_)
     if (kp.aSoft) return false;  // soft actors are not split
@@ -410,16 +409,11 @@ bool ContactPipeline::SplitLastEvaluation(const std::vector<int>& dofOffset,
     add(results_[k], a, dofOffset[a] >= 0, b, dofOffset[b] >= 0);
   }
   const int n = static_cast<int>(dofOffset.size());
-  auto dynamicKind = [&](int k) {
-    for (int i : (*kindStageDof)[k])
-      if (i >= 0) return true;
-    return false;
-  };
   for (size_t k = 0; k < kindPairs_.size(); ++k) {
     const KindPair& kp = kindPairs_[k];
     add(kindResults_[k], kp.aKind ? n + kp.a : kp.a,
-        kp.aKind ? dynamicKind(kp.a) : dofOffset[kp.a] >= 0, kp.bKind ? n + kp.b : kp.b,
-        kp.bKind ? dynamicKind(kp.b) : dofOffset[kp.b] >= 0);
+        kp.aKind ? kindHasDofs_[kp.a] != 0 : dofOffset[kp.a] >= 0, kp.bKind ? n + kp.b : kp.b,
+        kp.bKind ? kindHasDofs_[kp.b] != 0 : dofOffset[kp.b] >= 0);
   }
   return true;
 }

@@ -154,13 +154,11 @@ class ContactPipeline {
   /// i (dofOffset[i] >= 0), and each pair of two dynamic actors with an active sample (penalty or
   /// dissipation) appended to *joins as (colliding, collider). False, with nothing added, if that
   /// evaluation had pairs with soft actors (not split) or the pairs changed since (StepLimits).
-  /// Pairs of the generic layer count too when `kindStageDof` (per kind, its stage dofs, −1 for
-  /// prescribed ones) is given: actor indices then run over the rigid models, then the kinds
-  /// (models.size() + k; a kind is dynamic when it has a stage dof), and *share has an entry for
-  /// each.
+  /// Pairs of the generic layer count too: actor indices run over the rigid models, then the
+  /// kinds (models.size() + k; a kind is dynamic when some tangent dof is not prescribed), and
+  /// *share has an entry for each.
   bool SplitLastEvaluation(const std::vector<int>& dofOffset, std::vector<double>* share,
-                           std::vector<std::pair<int, int>>* joins,
-                           const std::vector<std::vector<int>>* kindStageDof = nullptr) const;
+                           std::vector<std::pair<int, int>>* joins) const;
 
   /// The ordered pairs found by the last evaluation.
   const std::vector<ContactPair>& Pairs() const { return pairs_; }

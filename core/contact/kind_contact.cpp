@@ -583,6 +583,7 @@ void SampleBodyPoses::Form(const ActorKind& A, const Eigen::VectorXd& q,
   const int n = A.NumSampleBodies();
   pose.resize(n);
   start.resize(n);
+  hasStart = false;
   for (int b = 0; b < n; ++b) hasStart = SampleBodyAt(A, b, q, qLast, q0, &pose[b], &start[b]);
 }
 

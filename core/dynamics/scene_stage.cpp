@@ -439,9 +439,7 @@ bool SceneStageProblem::LastSplit(StageSplit* split) {
   value = ws_->bodyValue;
   value.insert(value.end(), ws_->kindValue.begin(), ws_->kindValue.end());
   split->joins.clear();
-  if (contact_ && !contact_->SplitLastEvaluation(dofOffset_, &value, &split->joins,
-                                                 kinds ? &kinds->stageDof : nullptr))
-    return false;
+  if (contact_ && !contact_->SplitLastEvaluation(dofOffset_, &value, &split->joins)) return false;
   auto unit = [&](int actor) {
     const int n = static_cast<int>(models_.size());
     return actor < n ? dofOffset_[actor] / 6 : rigidUnits + actor - n;
