@@ -145,9 +145,9 @@ bool AddPenalty(const PairSample& s, const FrameSide& B, const SamplePullback& p
   if (!(field.value < penalty.delta)) return false;
   if (s.hasNormal && std::isfinite(m)) {
     SdfSample atLast;  // the gradient alone
-    if (B.hasStart) B.field->EvaluateFirstOrderBelow(p.Yn, INFINITY, &atLast);
-    const Eigen::Vector3d& G = B.hasStart ? atLast.gradient : field.gradient;
-    const Eigen::Vector3d NA = B.hasStart ? p.NAn : p.NA;
+    if (B.hasLast) B.field->EvaluateFirstOrderBelow(p.Yn, INFINITY, &atLast);
+    const Eigen::Vector3d& G = B.hasLast ? atLast.gradient : field.gradient;
+    const Eigen::Vector3d NA = B.hasLast ? p.NAn : p.NA;
     if (G.dot(NA) > m + kAlignmentRoundoff) return false;
   }
   ++out->activeSamples;
@@ -663,6 +663,7 @@ FrameSide KindFrameSide(const ActorKind& B, const Eigen::VectorXd& q, const Eige
   side.field = B.Collider();
   side.pose = f.pose;
   side.last = qLast ? B.ColliderFrame(*qLast).pose : f.pose;
+  side.hasLast = qLast != nullptr;
   if (q0) {
     const RigidPose p0 = B.ColliderFrame(*q0).pose;
     side.start.p = p0.p;
@@ -694,6 +695,7 @@ FrameSide RigidFrameSide(const RigidBodyModel& B, const RigidPose& b, const Rigi
   if (start) {
     side.start = *start;
     side.hasStart = true;
+    side.hasLast = true;
   }
   if (B.dynamic && offset >= 0) {
     side.motion = FrameSide::Motion::Rigid;

@@ -66,6 +66,10 @@ struct FrameSide {
   RigidPose last;                          ///< x_n (the geometry reference)
   RigidStageStart start;                   ///< x⁰ (dissipation; valid when hasStart)
   bool hasStart = false;
+  /// x_n given (`last` is the step start's pose, not a copy of the current one): the penalty's
+  /// alignment test reads the normals at x_n then, so that a stage's contact set does not change
+  /// with the iterate (a face perpendicular to the collider flips s's sign at round-off).
+  bool hasLast = false;
   /// Static: no dofs. Rigid: [δp_B, δθ_B] at offs[0], offs[1]. Translation: δp_B = F_p δq_B over
   /// `blocks` 3-dof blocks.
   Motion motion = Motion::Static;
