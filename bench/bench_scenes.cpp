@@ -91,9 +91,9 @@ int main(int argc, char** argv) {
     if (c.scene == "drop" || c.scene == "pile") {
       err << s.maxPenetration * 1e3 << " mm pen";
     } else if (c.scene == "box_rest") {
-      err << std::abs(f.scene->States()[1].p.z() - zRest) * 1e6 << " um";
+      err << std::abs(f.scene->State(f.scene->RigidActors()[1]).p.z() - zRest) * 1e6 << " um";
     } else {
-      err << std::abs(f.scene->States()[10].p.z() - zTop) * 1e3 << " mm top";
+      err << std::abs(f.scene->State(f.scene->RigidActors()[10]).p.z() - zTop) * 1e3 << " mm top";
     }
     std::printf("%-9s %-17s %8.0e %7.2f %12.4g %10.2f %8d %14s\n", c.scene.c_str(),
                 ToString(c.method), c.dt, s.simulatedSeconds,

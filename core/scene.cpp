@@ -88,14 +88,22 @@ ActorHandle Scene::AddRigidActor(const RigidActorDesc& desc, Error* error, Actor
     const std::size_t hash = SamplesHash(model);
     bool shared = false;
     for (auto [it, end] = sampleSets_.equal_range(hash); it != end && !shared; ++it)
-      shared = ShareSamples(models_[it->second], &model);
-    if (!shared) sampleSets_.emplace(hash, static_cast<int>(models_.size()));
+      shared = ShareSamples(static_cast<const RigidKind&>(*kinds_[it->second]).Model(), &model);
+    if (!shared) sampleSets_.emplace(hash, static_cast<int>(kinds_.size()));
   }
-  const int local = static_cast<int>(models_.size());
-  models_.push_back(std::move(model));
+  // A rigid actor is the generic layer's RigidKind.
+  const int local = static_cast<int>(kinds_.size());
+  step_.softStates.push_back(RigidKind::Pack(state));
+  kinds_.push_back(std::make_shared<RigidKind>(std::move(model), state));
   rigidDescs_.push_back(desc);
-  step_.states.push_back(state);
-  return Register(false, local, desc.contactLayer, parent);
+  const ActorHandle h = Register(false, local, desc.contactLayer, parent, true);
+  actors_[h.index].rigid = true;
+  actors_[h.index].desc = static_cast<int>(rigidDescs_.size()) - 1;
+  return h;
+}
+
+const RigidKind& Scene::RigidOf(ActorHandle a) const {
+  return static_cast<const RigidKind&>(*kinds_[actors_[a.index].local]);
 }
 
 ActorHandle Scene::AddSoftActor(const SoftActorDesc& desc, Error* error, ActorHandle parent) {
@@ -127,7 +135,7 @@ ActorHandle Scene::AddActor(std::unique_ptr<ActorKind> actor, Error* error,
 std::vector<ActorHandle> Scene::RigidActors() const {
   std::vector<ActorHandle> out;
   for (int i = 0; i < NumActors(); ++i)
-    if (!actors_[i].soft && !actors_[i].kind) out.push_back({i});
+    if (actors_[i].rigid) out.push_back({i});
   return out;
 }
 
@@ -171,14 +179,12 @@ bool ValidHandle(ActorHandle a, int n, const char* field, Error* error) {
 bool Scene::SetContactLayer(ActorHandle actor, const std::string& layer, Error* error) {
   if (!ValidHandle(actor, NumActors(), "actor", error)) return false;
   filter_.SetLayer(actor.index, layer);
-  if (actors_[actor.index].kind) {
-    // the filter holds a kind's layer
-  } else if (actors_[actor.index].soft) {
-    softModels_[actors_[actor.index].local].contactLayer = layer;
-    softDescs_[actors_[actor.index].local].contactLayer = layer;
-  } else {
-    models_[actors_[actor.index].local].contactLayer = layer;
-    rigidDescs_[actors_[actor.index].local].contactLayer = layer;
+  const ActorRef& r = actors_[actor.index];
+  if (r.rigid) {  // the filter holds a kind's layer
+    rigidDescs_[r.desc].contactLayer = layer;
+  } else if (r.soft) {
+    softModels_[r.local].contactLayer = layer;
+    softDescs_[r.local].contactLayer = layer;
   }
   return true;
 }
@@ -244,9 +250,9 @@ bool Scene::SetSolverParams(const NonlinearSolverParams& params, Error* error) {
 
 bool Scene::SetState(ActorHandle a, const RigidBodyState& state, Error* error) {
   if (a.index < 0 || a.index >= NumActors()) return Fail(error, "actor: invalid handle");
-  if (actors_[a.index].soft) return Fail(error, "actor: a soft actor has no rigid state");
-  if (models_[actors_[a.index].local].kinematic)
-    return Fail(error, "actor: '" + models_[actors_[a.index].local].name +
+  if (!actors_[a.index].rigid) return Fail(error, "actor: '" + ActorName(a) + "' is not rigid");
+  if (Model(a).kinematic)
+    return Fail(error, "actor: '" + Model(a).name +
                            "' is a kinematic actor: its motion is prescribed (path or velocity)");
   if (!state.p.allFinite() || !state.R.allFinite() || !state.v.allFinite() ||
       !state.Rdot.allFinite())
@@ -254,7 +260,8 @@ bool Scene::SetState(ActorHandle a, const RigidBodyState& state, Error* error) {
   if ((state.R.transpose() * state.R - Eigen::Matrix3d::Identity()).norm() > 1e-9 ||
       state.R.determinant() <= 0)
     return Fail(error, "state.R: must be a rotation matrix");
-  step_.states[actors_[a.index].local] = state;
+  HoldStatic(actors_[a.index], state);
+  step_.softStates[VectorIndex(actors_[a.index])] = RigidKind::Pack(state);
   ClearHistory();
   return true;
 }
@@ -268,8 +275,8 @@ void Scene::Prepare() {
       dofOffset_[i] = numDofs_;
       numDofs_ += 6;
     }
-  // Then the kinds' free dofs, then the soft free nodes, last and in one range (the stage's step
-  // norm and block layout rely on this order).
+  // The kinds' free dofs (rigid actors among them), then the soft free nodes, last and in one
+  // range (the stage's step norm and block layout rely on this order).
   kindPtrs_.clear();
   kindStageDof_.resize(kinds_.size());
   for (size_t k = 0; k < kinds_.size(); ++k) {
@@ -298,9 +305,9 @@ std::vector<Eigen::VectorXd> Scene::CurrentSoftPositions() const {
   return x;
 }
 
-SoftStage Scene::MakeSoftStage(double dt, double t, const std::vector<SoftBodyState>& start,
-                               const std::vector<Eigen::VectorXd>& last) const {
-  SoftStage st;
+void Scene::MakeSoftStage(double dt, double t, const std::vector<SoftBodyState>& start,
+                          const std::vector<Eigen::VectorXd>& last, SoftStage* out) const {
+  SoftStage& st = *out;
   st.models = &softModels_;
   st.dofOffset = softDofOffset_;
   st.targets.resize(softModels_.size());
@@ -332,7 +339,6 @@ SoftStage Scene::MakeSoftStage(double dt, double t, const std::vector<SoftBodySt
     ks.q0[k] = d.q0;
     ks.qLast[k] = d.qLast;
   }
-  return st;
 }
 
 void Scene::ApplyConstraints(double t, std::vector<Eigen::VectorXd>* x) const {
@@ -391,10 +397,17 @@ void Scene::SolveStage(double dt, const std::vector<RigidBodyState>& start,
   r.mode = st.fallback ? DissipationMode::ExplicitNormals : ModeOf(settings_.eval);
   r.fadeFriction = settings_.eval.fadeFriction;
   r.start = driver_.LastTargets().start;
-  r.x0 = soft ? soft->x0 : std::vector<Eigen::VectorXd>();
-  r.xLast = soft ? soft->xLast : std::vector<Eigen::VectorXd>();
-  r.q0 = soft ? soft->kinds.q0 : std::vector<Eigen::VectorXd>();
-  r.qLast = soft ? soft->kinds.qLast : std::vector<Eigen::VectorXd>();
+  if (!soft) {
+    r.x0.clear();
+    r.xLast.clear();
+    r.q0.clear();
+    r.qLast.clear();
+    return;
+  }
+  r.x0 = soft->x0;  // copies into the kept storage
+  r.xLast = soft->xLast;
+  r.q0 = soft->kinds.q0;
+  r.qLast = soft->kinds.qLast;
 }
 
 bool Scene::Step(double h, StepReport* report, Error* error, StageRecorder* recorder) {
@@ -413,9 +426,12 @@ bool Scene::Step(double h, StepReport* report, Error* error, StageRecorder* reco
   CurrentPoses(&buffers_.poses);
   buffers_.stepStart = buffers_.poses;
   buffers_.next = step_.states;
-  StepWork w{buffers_.poses, buffers_.stepStart, buffers_.next, CurrentSoftPositions(), {},
-             step_.softStates, StepReport()};
-  w.softStepStart = w.softX;
+  buffers_.softX.resize(step_.softStates.size());
+  for (size_t s = 0; s < step_.softStates.size(); ++s) buffers_.softX[s] = step_.softStates[s].x;
+  buffers_.softStepStart = buffers_.softX;
+  buffers_.softNext = step_.softStates;
+  StepWork w{buffers_.poses, buffers_.stepStart, buffers_.next, buffers_.softX,
+             buffers_.softStepStart, buffers_.softNext, StepReport()};
   StepReport& rep = w.report;
   rep.dt = h;
   const IntegrationMethod method = settings_.integrator;
@@ -448,7 +464,9 @@ bool Scene::Step(double h, StepReport* report, Error* error, StageRecorder* reco
 ContactStats Scene::ContactState() {
   Prepare();
   ContactStats st;
-  const std::vector<Eigen::VectorXd> x = CurrentSoftPositions();
+  std::vector<Eigen::VectorXd>& x = buffers_.softX;  // scratch between steps
+  x.resize(step_.softStates.size());
+  for (size_t s = 0; s < step_.softStates.size(); ++s) x[s] = step_.softStates[s].x;
   SoftView view;
   view.x = &x;
   view.dofOffset = &softDofOffset_;
@@ -470,7 +488,9 @@ KindView Scene::CurrentKindView(const std::vector<Eigen::VectorXd>& x) const {
 std::vector<ContactSampleRecord> Scene::ContactSamples() {
   Prepare();
   std::vector<ContactSampleRecord> out;
-  const std::vector<Eigen::VectorXd> x = CurrentSoftPositions();
+  std::vector<Eigen::VectorXd>& x = buffers_.softX;  // scratch between steps
+  x.resize(step_.softStates.size());
+  for (size_t s = 0; s < step_.softStates.size(); ++s) x[s] = step_.softStates[s].x;
   SoftView view;
   view.x = &x;
   view.dofOffset = &softDofOffset_;
@@ -573,12 +593,13 @@ Eigen::Vector3d Scene::TotalAngularMomentum() const {
 
 std::vector<std::string> Scene::Notices() const {
   std::vector<std::string> out;
-  for (const auto& m : models_)
-    if (!m.notice.empty()) out.push_back(m.notice);
+  for (ActorHandle a : RigidActors())
+    if (!Model(a).notice.empty()) out.push_back(Model(a).notice);
   for (const auto& m : softModels_)
     if (!m.notice.empty()) out.push_back(m.notice);
+  // Kinds' own samples (not on sample bodies) do not collide on soft fields.
   bool kindColliding = false, softCollider = false;
-  for (const auto& k : kinds_) kindColliding = kindColliding || k->IsColliding();
+  for (const auto& k : kinds_) kindColliding = kindColliding || k->NumSamples() > 0;
   for (const auto& m : softModels_) softCollider = softCollider || m.collider == ColliderType::Sdf;
   if (kindColliding && softCollider)
     out.push_back("actors of the generic layer (" + kinds_.front()->KindName() +
@@ -635,20 +656,17 @@ bool Scene::HasDissipation() const {
   // dynamic, that both have a nonzero coefficient of the same kind.
   auto twoWith = [&](auto coefficient) {
     int count = 0, dynamic = 0;
-    for (const auto& m : models_)
-      if (coefficient(m.contact) > 0) {
-        ++count;
-        dynamic += m.dynamic;
-      }
     for (const auto& m : softModels_)  // soft actors are always dynamic
       if (coefficient(m.contact) > 0) {
         ++count;
         ++dynamic;
       }
-    for (const auto& k : kinds_)  // so are the kinds' actors
+    for (const auto& k : kinds_)  // a kind's actor is, where a dof is free
       if (coefficient(k->contact) > 0) {
         ++count;
-        ++dynamic;
+        bool free = false;
+        for (int i = 0; i < k->NumTangentDofs() && !free; ++i) free = !k->IsPrescribed(i);
+        dynamic += free;
       }
     return count >= 2 && dynamic >= 1;
   };

@@ -23,6 +23,7 @@
 #include "core/model/eval_params.h"
 #include "core/model/reset_on_copy.h"
 #include "core/model/rigid_body.h"
+#include "core/model/rigid_kind.h"
 #include "core/model/soft_body.h"
 
 namespace superdex {
@@ -81,30 +82,31 @@ class Scene : private StageHost {
   /// Every actor, rigid and soft; handles index this range in the order of creation.
   int NumActors() const { return static_cast<int>(actors_.size()); }
   bool IsSoft(ActorHandle a) const { return actors_[a.index].soft; }
-  /// Whether a is an actor of the generic layer (AddActor), its kind, and its state (x: its q).
-  bool IsKind(ActorHandle a) const { return actors_[a.index].kind; }
+  /// Whether a was added by AddActor (a kind of the generic layer that is not a rigid actor).
+  bool IsKind(ActorHandle a) const { return actors_[a.index].kind && !actors_[a.index].rigid; }
+  /// Whether a is carried by the generic layer: every actor but a soft one (rigid actors are
+  /// RigidKinds). Its kind, and its state (x: its q).
+  bool HasKind(ActorHandle a) const { return actors_[a.index].kind; }
   const ActorKind& Kind(ActorHandle a) const { return *kinds_[actors_[a.index].local]; }
   const KindState& KindStateOf(ActorHandle a) const;
   /// Replaces a kind's state (its NumDofs entries in x and v, finite); clears BDF history.
   bool SetKindState(ActorHandle a, const KindState& state, Error* error);
   /// Rigid actors (a must be one).
-  const RigidBodyModel& Model(ActorHandle a) const { return models_[actors_[a.index].local]; }
+  const RigidBodyModel& Model(ActorHandle a) const { return RigidOf(a).Model(); }
   /// The description a rigid (soft) actor was created from, with the changes of the setters of
   /// its parameters since (SetContactParams, SetContactLayer, SetRigidMass, SetSoftMaterial), not
   /// of its state (the scene writer, scenes/scene_writer.h, reads both).
-  const RigidActorDesc& RigidDesc(ActorHandle a) const { return rigidDescs_[actors_[a.index].local]; }
+  const RigidActorDesc& RigidDesc(ActorHandle a) const { return rigidDescs_[actors_[a.index].desc]; }
   const SoftActorDesc& SoftDesc(ActorHandle a) const;
   /// The actor a is nested under (invalid handle: none).
   ActorHandle Parent(ActorHandle a) const { return {filter_.Parent(a.index)}; }
   const ContactFilter& Filter() const { return filter_; }
-  const RigidBodyState& State(ActorHandle a) const;
+  /// A rigid actor's state (a must be one), formed from its kind's.
+  RigidBodyState State(ActorHandle a) const;
   /// Soft actors (a must be one).
   const SoftBodyModel& SoftModel(ActorHandle a) const;
   const SoftBodyState& SoftState(ActorHandle a) const;
-  /// The rigid actors' models and states, in creation order among rigid actors; RigidActors()[i]
-  /// is the handle of Models()[i].
-  const std::vector<RigidBodyModel>& Models() const { return models_; }
-  const std::vector<RigidBodyState>& States() const { return step_.states; }
+  /// The rigid actors' handles, in creation order.
   std::vector<ActorHandle> RigidActors() const;
   /// Centre of mass [m] and its velocity [m/s] of any actor (soft: of the lumped node masses).
   Eigen::Vector3d CenterOfMass(ActorHandle a) const;
@@ -174,8 +176,8 @@ class Scene : private StageHost {
   Snapshot Save() const;
   void Restore(const Snapshot& s);
 
-  // --- The stage's unknowns (valid once the scene has stepped): 6 per dynamic rigid actor
-  // [δp, δθ], then the kinds' free dofs, then 3 per free soft node.
+  // --- The stage's unknowns (valid once the scene has stepped): the kinds' free dofs in creation
+  // order (6 per dynamic rigid actor, [δp, δθ]), then 3 per free soft node.
   int StageDofs() const { return numDofs_; }
   /// First stage dof of actor a (−1 for a static rigid actor).
   int StageDofOffset(ActorHandle a) const;
@@ -186,9 +188,12 @@ class Scene : private StageHost {
  private:
   struct ActorRef {
     bool soft = false;
-    int local = 0;  ///< index into models_, step_.states; softModels_, step_.softStates; kinds_
+    int local = 0;  ///< index into softModels_, step_.softStates; kinds_
     bool kind = false;
+    bool rigid = false;  ///< a rigid actor (a RigidKind in kinds_)
+    int desc = -1;       ///< a rigid actor's index into rigidDescs_
   };
+  const RigidKind& RigidOf(ActorHandle a) const;
   // Solves one stage with the stage policy (StageDriver::Solve) and the step's recorder, and
   // accounts it in *rep.
   void SolveStage(double dt, const std::vector<RigidBodyState>& start,
@@ -201,6 +206,13 @@ class Scene : private StageHost {
   void VisitStateLayout(int blocks, Visit&& visit) const;
   // A vector-state actor's index in step_.softStates, and an actor's entries in PackState.
   int VectorIndex(const ActorRef& r) const;
+  // A static rigid actor r is held at `state` from now on (its kind copied first if it changes).
+  void HoldStatic(const ActorRef& r, const RigidBodyState& state);
+  // A snapshot's layout (Save) from the vector states and back.
+  void SplitRigid(const std::vector<SoftBodyState>& vector, std::vector<RigidBodyState>* rigid,
+                  std::vector<SoftBodyState>* rest) const;
+  void JoinRigid(const std::vector<RigidBodyState>& rigid, const std::vector<SoftBodyState>& rest,
+                 std::vector<SoftBodyState>* vector) const;
   int BlockSize(const ActorRef& r) const;
   // 1 + the history blocks that hold a state.
   int FilledStateBlocks() const;
@@ -217,8 +229,8 @@ class Scene : private StageHost {
   std::vector<Eigen::VectorXd> CurrentSoftPositions() const;
   // The vector-state actors' stage data (soft, then the kinds' at stage time t [s]): targets from
   // the stage start, geometry from the last configuration.
-  SoftStage MakeSoftStage(double dt, double t, const std::vector<SoftBodyState>& start,
-                          const std::vector<Eigen::VectorXd>& last) const override;
+  void MakeSoftStage(double dt, double t, const std::vector<SoftBodyState>& start,
+                     const std::vector<Eigen::VectorXd>& last, SoftStage* out) const override;
   const ActorKind* VectorKind(size_t s) const override {
     return s < softModels_.size() ? nullptr : kinds_[s - softModels_.size()].get();
   }

@@ -34,9 +34,7 @@ void UnpackRigid(const double* in, RigidBodyState* s) {
 
 }  // namespace
 
-const RigidBodyState& Scene::State(ActorHandle a) const {
-  return step_.states[actors_[a.index].local];
-}
+RigidBodyState Scene::State(ActorHandle a) const { return RigidKind::Unpack(KindStateOf(a)); }
 
 const SoftBodyModel& Scene::SoftModel(ActorHandle a) const {
   return softModels_[actors_[a.index].local];
@@ -149,12 +147,16 @@ bool Scene::SetContactParams(ActorHandle a, const ContactParams& params, Error* 
   if (r.kind) {  // copied first: scenes copied from this one keep theirs
     std::shared_ptr<ActorKind> changed = kinds_[r.local]->Clone();
     changed->contact = params;
+    if (r.rigid) {
+      static_cast<RigidKind&>(*changed).SetContactParams(params);
+      rigidDescs_[r.desc].contact = params;
+    }
     kinds_[r.local] = std::move(changed);
     prepared_ = false;
     return true;
   }
-  (r.soft ? softModels_[r.local].contact : models_[r.local].contact) = params;
-  (r.soft ? softDescs_[r.local].contact : rigidDescs_[r.local].contact) = params;
+  softModels_[r.local].contact = params;
+  softDescs_[r.local].contact = params;
   prepared_ = false;  // pair padding and the dissipation flag follow the parameters
   return true;
 }
@@ -162,7 +164,7 @@ bool Scene::SetContactParams(ActorHandle a, const ContactParams& params, Error* 
 const ContactParams& Scene::GetContactParams(ActorHandle a) const {
   const ActorRef& r = actors_[a.index];
   if (r.kind) return kinds_[r.local]->contact;
-  return r.soft ? softModels_[r.local].contact : models_[r.local].contact;
+  return softModels_[r.local].contact;
 }
 
 const SoftActorDesc& Scene::SoftDesc(ActorHandle a) const {
@@ -172,16 +174,18 @@ const SoftActorDesc& Scene::SoftDesc(ActorHandle a) const {
 bool Scene::SetRigidMass(ActorHandle a, double mass, Error* error) {
   if (!ValidHandle(*this, a, error)) return false;
   const ActorRef& r = actors_[a.index];
-  if (r.soft || r.kind || !models_[r.local].dynamic)
+  if (!r.rigid || !Model(a).dynamic)
     return Fail(error, "mass: '" + ActorName(a) + "' is not a dynamic rigid actor");
   if (!(std::isfinite(mass) && mass > 0))
     return Fail(error, "mass: must be > 0 and finite, got " + std::to_string(mass));
-  RigidBodyModel& m = models_[r.local];
-  RigidActorDesc& d = rigidDescs_[r.local];
-  if (d.inertia) *d.inertia *= mass / m.mass;
+  RigidActorDesc& d = rigidDescs_[r.desc];
+  if (d.inertia) *d.inertia *= mass / Model(a).mass;
   d.mass = mass;
-  m.secondMoment *= mass / m.mass;
-  m.mass = mass;
+  // Copied first: scenes copied from this one keep theirs.
+  std::shared_ptr<ActorKind> changed = kinds_[r.local]->Clone();
+  static_cast<RigidKind&>(*changed).SetMass(mass);
+  kinds_[r.local] = std::move(changed);
+  prepared_ = false;
   return true;
 }
 
@@ -242,7 +246,7 @@ void Scene::VisitStateLayout(int blocks, Visit&& visit) const {
   for (int b = 0; b < blocks; ++b)
     for (int i = 0; i < NumActors(); ++i) {
       const ActorRef& r = actors_[i];
-      if (!r.soft && !r.kind && !models_[r.local].dynamic) continue;
+      if (r.rigid && !RigidOf({i}).Model().dynamic) continue;
       visit(b, offset, r, i);
       offset += BlockSize(r);
     }
@@ -311,10 +315,73 @@ void Scene::UnpackState(const Eigen::VectorXd& s) {
   });
 }
 
-Scene::Snapshot Scene::Save() const { return {step_, driver_.GetState()}; }
+// A snapshot's layout is the one of checkpoint files and of Python's SceneState: the rigid
+// actors' states in their order of creation under `states` (p, R, v, Ṙ), the other vector-state
+// actors (soft, then the other kinds) under `softStates`. Inside the scene a rigid actor's state
+// is its RigidKind's vector state among the kinds' (RigidKind::Pack, exact both ways).
+void Scene::SplitRigid(const std::vector<SoftBodyState>& vector, std::vector<RigidBodyState>* rigid,
+                       std::vector<SoftBodyState>* rest) const {
+  std::vector<char> isRigid(vector.size(), 0);
+  rigid->assign(rigidDescs_.size(), RigidBodyState());
+  for (const ActorRef& r : actors_)
+    if (r.rigid) {
+      isRigid[VectorIndex(r)] = 1;
+      (*rigid)[r.desc] = RigidKind::Unpack(vector[VectorIndex(r)]);
+    }
+  rest->clear();
+  for (size_t v = 0; v < vector.size(); ++v)
+    if (!isRigid[v]) rest->push_back(vector[v]);
+}
+
+void Scene::HoldStatic(const ActorRef& r, const RigidBodyState& state) {
+  const RigidKind& kind = static_cast<const RigidKind&>(*kinds_[r.local]);
+  if (kind.Model().dynamic) return;
+  const RigidBodyState& held = kind.Held();
+  if (held.p == state.p && held.R == state.R && held.v == state.v && held.Rdot == state.Rdot) return;
+  // Copied first, as SetRigidMass: scenes copied from this one keep theirs.
+  std::shared_ptr<ActorKind> changed = kind.Clone();
+  static_cast<RigidKind&>(*changed).Hold(state);
+  kinds_[r.local] = std::move(changed);
+  prepared_ = false;
+}
+
+void Scene::JoinRigid(const std::vector<RigidBodyState>& rigid,
+                      const std::vector<SoftBodyState>& rest,
+                      std::vector<SoftBodyState>* vector) const {
+  vector->assign(rigid.size() + rest.size(), SoftBodyState());
+  std::vector<char> isRigid(vector->size(), 0);
+  for (const ActorRef& r : actors_)
+    if (r.rigid) {
+      isRigid[VectorIndex(r)] = 1;
+      (*vector)[VectorIndex(r)] = RigidKind::Pack(rigid[r.desc]);
+    }
+  size_t next = 0;
+  for (size_t v = 0; v < vector->size(); ++v)
+    if (!isRigid[v]) (*vector)[v] = rest[next++];
+}
+
+Scene::Snapshot Scene::Save() const {
+  Snapshot s{StepState(), driver_.GetState()};
+  s.step.time = step_.time;
+  s.step.historyTimes = step_.historyTimes;
+  SplitRigid(step_.softStates, &s.step.states, &s.step.softStates);
+  s.step.history.resize(step_.softHistory.size());
+  s.step.softHistory.resize(step_.softHistory.size());
+  for (size_t h = 0; h < step_.softHistory.size(); ++h)
+    SplitRigid(step_.softHistory[h], &s.step.history[h], &s.step.softHistory[h]);
+  return s;
+}
 
 void Scene::Restore(const Snapshot& s) {
-  step_ = s.step;
+  step_.time = s.step.time;
+  step_.historyTimes = s.step.historyTimes;
+  JoinRigid(s.step.states, s.step.softStates, &step_.softStates);
+  for (const ActorRef& r : actors_)
+    if (r.rigid) HoldStatic(r, s.step.states[r.desc]);
+  step_.softHistory.resize(s.step.softHistory.size());
+  step_.history.assign(s.step.softHistory.size(), {});
+  for (size_t h = 0; h < s.step.softHistory.size(); ++h)
+    JoinRigid(s.step.history[h], s.step.softHistory[h], &step_.softHistory[h]);
   driver_.SetState(s.driver);
   buffers_.reportStage.valid = false;  // the state is not the last stage's any more
 }

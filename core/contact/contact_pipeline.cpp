@@ -82,6 +82,7 @@ void ContactPipeline::Configure(const std::vector<RigidBodyModel>* models,
   kindColliding_.clear();
   kindCollider_.clear();
   kindStatic_.clear();
+  kindSamples_.clear();
   if (kinds_)
     for (const ActorKind* k : *kinds_) {
       kindInflation_.push_back(k->Collider() ? ColliderReach(k->contact) : 0.0);
@@ -91,6 +92,9 @@ void ContactPipeline::Configure(const std::vector<RigidBodyModel>* models,
       kindHasDofs_.push_back(free);
       kindColliding_.push_back(k->IsColliding());
       kindStatic_.push_back(k->IsStatic());
+      size_t samples = static_cast<size_t>(k->NumSamples());
+      for (int b = 0; b < k->NumSampleBodies(); ++b) samples += k->SampleBody(b)->samples.size();
+      kindSamples_.push_back(samples);
     }
   filter_ = filter;
   softModels_ = softModels && !softModels->empty() ? softModels : nullptr;
@@ -387,6 +391,15 @@ size_t ContactPipeline::RigidPairWork() const {
   return work;
 }
 
+size_t ContactPipeline::KindPairWork() const {
+  size_t work = 0;
+  for (const KindPair& kp : kindPairs_) {
+    if (kp.aSoft) return kParallelSampleWork;  // a soft surface's samples: always in parallel
+    work += kp.aKind ? kindSamples_[kp.a] : (*models_)[kp.a].samples.size();
+  }
+  return work;
+}
+
 bool ContactPipeline::SplitLastEvaluation(const std::vector<int>& dofOffset,
                                           std::vector<double>* share,
                                           std::vector<std::pair<int, int>>* joins) const {
@@ -411,9 +424,13 @@ bool ContactPipeline::SplitLastEvaluation(const std::vector<int>& dofOffset,
   const int n = static_cast<int>(dofOffset.size());
   for (size_t k = 0; k < kindPairs_.size(); ++k) {
     const KindPair& kp = kindPairs_[k];
-    add(kindResults_[k], kp.aKind ? n + kp.a : kp.a,
-        kp.aKind ? kindHasDofs_[kp.a] != 0 : dofOffset[kp.a] >= 0, kp.bKind ? n + kp.b : kp.b,
-        kp.bKind ? kindHasDofs_[kp.b] != 0 : dofOffset[kp.b] >= 0);
+    const int a = kp.aKind ? n + kp.a : kp.a, b = kp.bKind ? n + kp.b : kp.b;
+    const bool aDynamic = kp.aKind ? kindHasDofs_[kp.a] != 0 : dofOffset[kp.a] >= 0;
+    const bool bDynamic = kp.bKind ? kindHasDofs_[kp.b] != 0 : dofOffset[kp.b] >= 0;
+    if (kindWide_[k])
+      add(kindWideResults_[k], a, aDynamic, b, bDynamic);
+    else
+      add(kindResults_[k], a, aDynamic, b, bDynamic);
   }
   return true;
 }
@@ -474,7 +491,7 @@ void ContactPipeline::StepLimits(const std::vector<RigidPose>& poses,
     }
     kindPairLimits_[k] = sink.Alpha();
   };
-  ForEachPair(kindPairs_.size(), true, evaluateKind);
+  ForEachPair(kindPairs_.size(), KindPairWork() >= kParallelSampleWork, evaluateKind);
   for (size_t k = 0; k < kindPairs_.size(); ++k) {
     const KindPair& kp = kindPairs_[k];
     if (kp.aSoft) continue;
@@ -485,7 +502,8 @@ void ContactPipeline::StepLimits(const std::vector<RigidPose>& poses,
   }
 }
 
-void ContactPipeline::ReducePair(const Request& q, const PairStencils& r, bool aSoft, int a,
+template <typename Stencils>
+void ContactPipeline::ReducePair(const Request& q, const Stencils& r, bool aSoft, int a,
                                  bool bSoft, int b, double* energy, ContactStats* st,
                                  const int* aOffs) const {
   ++st->candidatePairs;
@@ -499,7 +517,7 @@ void ContactPipeline::ReducePair(const Request& q, const PairStencils& r, bool a
     return free < 0 ? -1 : (*soft->dofOffset)[actor] + 3 * free;
   };
   for (int e = 0; e < r.count; ++e) {
-    const ContactStencil& cs = r.stencils[e];
+    const auto& cs = r.stencils[e];
     if (cs.blocks > 0) {
       int offs6[4];  // ContactStencil::offs holds 8 blocks
       if ((q.order < 2 || q.blocks) && SixDofGroups(cs.offs, cs.blocks, offs6)) {
@@ -737,6 +755,8 @@ void ContactPipeline::GatherKindPairSamples(const Request& q, const KindPair& kp
 void ContactPipeline::EvaluateKindPairs(const Request& q, double* energy, ContactStats* st) {
   const DissipationContext* dissipation = q.dissipation;
   kindResults_.resize(kindPairs_.size());
+  kindWideResults_.resize(kindPairs_.size());
+  kindWide_.resize(kindPairs_.size());
   FormKindSides(q);
   auto evaluate = [&](size_t k) {
     const KindPair& kp = kindPairs_[k];
@@ -745,13 +765,23 @@ void ContactPipeline::EvaluateKindPairs(const Request& q, double* energy, Contac
     setup.slips = SlipUse(SlipPairKind::Kind, k);
     FrameSide rigidB;
     const FrameSide& B = KindPairCollider(q, kp, &rigidB);
-    PairStencils& r = kindResults_[k];
+    // Evaluated into the worker's own stencils, then kept in the pair's compact ones where they
+    // fit (a pair of rigid bodies' [δp, δθ]: the memory the sweeps touch is a quarter).
+    static thread_local PairStencils scratch;
     FrameEvaluation evaluation(B, PenaltyOf(kp.params), kp.params.maxAlignmentNormals,
-                               dissipation ? &setup : nullptr, q.order, &r);
+                               dissipation ? &setup : nullptr, q.order, &scratch);
     GatherKindPairSamples(q, kp, B, dissipation ? &setup : nullptr, &evaluation);
     evaluation.Finish();
-    if (q.order < 2) return;
-    for (int e = 0; e < r.count; ++e) ProjectStencil(q.potential, q.projection, &r.stencils[e]);
+    bool fits = true;
+    for (int e = 0; e < scratch.count; ++e) {
+      if (3 * scratch.stencils[e].blocks > kMaxSmallStencil) fits = false;
+      if (q.order >= 2) ProjectStencil(q.potential, q.projection, &scratch.stencils[e]);
+    }
+    kindWide_[k] = !fits;
+    if (fits)
+      kindResults_[k].CopyFrom(scratch, q.order);
+    else
+      kindWideResults_[k].CopyFrom(scratch, q.order);
   };
   const int n = static_cast<int>(models_->size());
   const int nk = static_cast<int>(kinds_ ? kinds_->size() : 0);
@@ -760,9 +790,14 @@ void ContactPipeline::EvaluateKindPairs(const Request& q, double* energy, Contac
     return std::make_pair(kp.aSoft ? n + nk + kp.a : kp.aKind ? n + kp.a : kp.a,
                           kp.bKind ? n + kp.b : kp.b);
   };
-  SweepPairs(dissipation, SlipPairKind::Kind, kindPairs_.size(), true, kindId, evaluate);
-  for (size_t k = 0; k < kindPairs_.size(); ++k)
-    ReducePair(q, kindResults_[k], false, -1, false, -1, energy, st);
+  SweepPairs(dissipation, SlipPairKind::Kind, kindPairs_.size(),
+             KindPairWork() >= kParallelSampleWork, kindId, evaluate);
+  for (size_t k = 0; k < kindPairs_.size(); ++k) {
+    if (kindWide_[k])
+      ReducePair(q, kindWideResults_[k], false, -1, false, -1, energy, st);
+    else
+      ReducePair(q, kindResults_[k], false, -1, false, -1, energy, st);
+  }
 }
 
 void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,

@@ -210,6 +210,8 @@ class ContactPipeline {
   int RigidActor(int i) const { return rigidActor_.empty() ? i : rigidActor_[i]; }
   /// Samples of the colliding actors over pairs_: whether a sweep pays for parallel workers.
   size_t RigidPairWork() const;
+  // The kind pairs' tested samples (the colliding sides' counts), as RigidPairWork.
+  size_t KindPairWork() const;
   /// `isotropicFriction`: DissipationSetup::isotropicFrictionHessian.
   DissipationSetup MakeSetup(const PairContactParams& params,
                              const DissipationContext& dissipation,
@@ -221,7 +223,8 @@ class ContactPipeline {
   /// scattered by those.
   /// `aOffs` (may be null): a rigid A's [δp, δθ] offsets in place of dofOffset[a] (a kind's
   /// sample body).
-  void ReducePair(const Request& q, const PairStencils& r, bool aSoft, int a, bool bSoft, int b,
+  template <typename Stencils>
+  void ReducePair(const Request& q, const Stencils& r, bool aSoft, int a, bool bSoft, int b,
                   double* energy, ContactStats* st, const int* aOffs = nullptr) const;
   // The two sides of a pair on a soft collider (the locators must be built); a kind's sample
   // body's pose and stage start are formed in *pose and *start (from the kinds' view; its x⁰
@@ -256,8 +259,14 @@ class ContactPipeline {
   std::vector<char> kindHasDofs_;  // per kind: some tangent dof is not prescribed
   // Per kind: IsColliding(), Collider() != null, IsStatic().
   std::vector<char> kindColliding_, kindCollider_, kindStatic_;
+  std::vector<size_t> kindSamples_;  // per kind: its samples and its sample bodies'
+
   std::vector<KindPair> kindPairs_;
-  std::vector<PairStencils> kindResults_;
+  // Per kind pair, its stencils: compact (12 dofs each, as rigid pairs') when all of them fit,
+  // else wide (kindWide_[k]).
+  std::vector<RigidPairStencils> kindResults_;
+  std::vector<PairStencils> kindWideResults_;
+  std::vector<char> kindWide_;
   // Per kind, at the kind pairs' evaluation under way: its collider frame and its sample bodies,
   // formed once for all its pairs (FormKindSides; only for kinds in a pair in that role).
   std::vector<FrameSide> kindSides_;

@@ -153,9 +153,34 @@ void ProjectStencil(bool potential, PsdProjection projection, BasicContactStenci
 /// *dissipationResidual (null: into *gradient), and with `triplets` appends its matrix: the
 /// (projected) Hessian, plus the dissipation Jacobian in the residual modes, 3 × 3 block by block
 /// at offs[b] (−1: a block without dofs, e.g. a prescribed node), nonzero entries only.
-void ScatterStencil(const ContactStencil& s, const int* offs, int blocks, bool potential,
+template <typename Stencil>
+void ScatterStencil(const Stencil& s, const int* offs, int blocks, bool potential,
                     Eigen::VectorXd* gradient, Eigen::VectorXd* dissipationResidual,
-                    std::vector<Eigen::Triplet<double>>* triplets);
+                    std::vector<Eigen::Triplet<double>>* triplets) {
+  Eigen::VectorXd* dr = dissipationResidual ? dissipationResidual : gradient;
+  for (int b = 0; b < blocks; ++b) {
+    if (offs[b] < 0) continue;
+    if (s.penaltyActive) gradient->segment<3>(offs[b]) += s.penaltyGradient.template segment<3>(3 * b);
+    if (s.dissipationActive)
+      dr->segment<3>(offs[b]) += s.dissipationResidual.template segment<3>(3 * b);
+  }
+  if (!triplets) return;
+  const bool withH = s.penaltyActive || (potential && s.dissipationActive);
+  const bool withJ = !potential && s.dissipationActive;
+  for (int bi = 0; bi < blocks; ++bi) {
+    if (offs[bi] < 0) continue;
+    for (int bj = 0; bj < blocks; ++bj) {
+      if (offs[bj] < 0) continue;
+      for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) {
+          double v = 0.0;
+          if (withH) v += s.penaltyHessian(3 * bi + r, 3 * bj + c);
+          if (withJ) v += s.dissipationJacobian(3 * bi + r, 3 * bj + c);
+          if (v != 0.0) triplets->emplace_back(offs[bi] + r, offs[bj] + c, v);
+        }
+    }
+  }
+}
 
 /// ScatterStencil for a stencil over rigid bodies: `groups` 6-dof groups [δp, δθ] at the stage
 /// offsets offs6[g] (−1: a body without dofs), each two consecutive 3-dof blocks of the stencil;

@@ -171,7 +171,8 @@ bool StageDriver::SolveResidual(const SceneSettings& settings, const StageInputs
   SolverStats& st = *result;
   std::vector<RigidPose>& guess = guess_;
   guess = *poses;
-  const std::vector<Eigen::VectorXd> softGuess = softX ? *softX : std::vector<Eigen::VectorXd>();
+  std::vector<Eigen::VectorXd>& softGuess = softGuess_;
+  if (softX) softGuess = *softX;
   StageDissipation potential = dissipation;
   potential.mode = DissipationMode::ExplicitNormals;
   ContactStats explicitContact;
@@ -185,7 +186,7 @@ bool StageDriver::SolveResidual(const SceneSettings& settings, const StageInputs
   if (explicitFirst) --state_.explicitFirstStages;
   SolverStats first;  // the explicit-normals solve that gave the start (explicitFirst)
   bool haveExplicit = false;
-  std::vector<Eigen::VectorXd> softExplicit;
+  std::vector<Eigen::VectorXd>& softExplicit = softExplicit_;
   if (explicitFirst) {
     NonlinearSolverParams start = settings.solver;
     start.relativeTolerance = std::max(start.relativeTolerance, kStartRelativeGradient);

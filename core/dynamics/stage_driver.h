@@ -116,6 +116,7 @@ class StageDriver {
   std::vector<char> steady_;  // per body: moved steadily over the last two steps (SteadyMotion)
   std::vector<char> kindSteady_;                // per kind: the same (ActorKind::ForceChange)
   std::vector<Eigen::VectorXd> freeSoft_;       // the kinds' free-stage configurations
+  std::vector<Eigen::VectorXd> softGuess_, softExplicit_;  // SolveResidual's vector states
   Eigen::VectorXd kindPredicted_, kindDelta_;   // one kind's prediction and its tangent step
 };
 

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/contact/dissipation_setup.h"
+#include "core/dynamics/scene_stage.h"
 #include "core/dynamics/step_report.h"
 #include "core/model/actor_kind.h"
 #include "core/model/rigid_body.h"
@@ -31,8 +32,9 @@ struct StepWork {
   std::vector<RigidPose>& poses;
   const std::vector<RigidPose>& stepStart;
   std::vector<RigidBodyState>& next;
-  std::vector<Eigen::VectorXd> softX, softStepStart;
-  std::vector<SoftBodyState> softNext;
+  std::vector<Eigen::VectorXd>& softX;
+  const std::vector<Eigen::VectorXd>& softStepStart;
+  std::vector<SoftBodyState>& softNext;
   StepReport report;
 };
 
@@ -59,6 +61,11 @@ struct StepBuffers {
   std::vector<double> bdfTimes, bdfWeights;
   std::vector<std::vector<KindSlope>> vectorSlopes;  ///< a DIRK step's slopes per vector state
   std::vector<double> stageWeights;                  ///< a DIRK step's h b_i
+  // The vector states' (soft actors', then the kinds') iterate, step start, next state, stage
+  // start and last configuration, and the stage data built from them.
+  std::vector<Eigen::VectorXd> softX, softStepStart, softLast, softEnd;
+  std::vector<SoftBodyState> softNext, softStart;
+  SoftStage softStage;
   ReportStage reportStage;                           ///< the last stage solved
 };
 

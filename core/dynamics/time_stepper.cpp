@@ -9,6 +9,18 @@
 namespace superdex {
 namespace {
 
+// A kind's state at the step's end where it is prescribed: a static kind's stays as it was (held
+// exactly, not through the integrator's combinations of equal states), a moving one's dofs on
+// its path (ActorKind::EndPrescribed).
+void EndPrescribed(const ActorKind& kind, const KindState& before, double t, KindState* end) {
+  if (kind.IsStatic()) {
+    end->x = before.x;
+    end->v = before.v;
+    return;
+  }
+  kind.EndPrescribed(t, end);
+}
+
 // a·x + b·y over every field (poses as matrices: the result's R need not be a rotation).
 RigidBodyState Affine(double a, const RigidBodyState& x, double b, const RigidBodyState& y) {
   RigidBodyState s;
@@ -56,7 +68,8 @@ void StepBdf(const std::vector<RigidBodyModel>& models, const StepState& step, d
     start[i] = Affine(weights[0], step.states[i], 0.0, step.states[i]);
     for (int j = 1; j < k; ++j) start[i] = Affine(1.0, start[i], weights[j], step.history[j - 1][i]);
   }
-  std::vector<SoftBodyState> softStart(ns);
+  std::vector<SoftBodyState>& softStart = buffers.softStart;
+  softStart.resize(ns);
   for (size_t s = 0; s < ns; ++s) {
     softStart[s].x = weights[0] * step.softStates[s].x;
     softStart[s].v = weights[0] * step.softStates[s].v;
@@ -67,12 +80,13 @@ void StepBdf(const std::vector<RigidBodyModel>& models, const StepState& step, d
   }
   host.ApplyConstraints(step.time + h, &softX);
   PlaceKinematic(models, step.time + h, &poses);
-  const SoftStage soft = host.MakeSoftStage(dt, step.time + h, softStart, softStepStart);
+  SoftStage& soft = buffers.softStage;
+  host.MakeSoftStage(dt, step.time + h, softStart, softStepStart, &soft);
   host.SolveStage(dt, start, stepStart, &poses, &soft, &softX, h, &rep);
   for (size_t s = 0; s < ns; ++s) {
     softNext[s].x = softX[s];
     softNext[s].v = (softX[s] - softStart[s].x) / dt;
-    if (const ActorKind* kind = host.VectorKind(s)) kind->EndPrescribed(step.time + h, &softNext[s]);
+    if (const ActorKind* kind = host.VectorKind(s)) EndPrescribed(*kind, step.softStates[s], step.time + h, &softNext[s]);
   }
   for (size_t i = 0; i < n; ++i) {
     if (!models[i].dynamic) continue;
@@ -109,7 +123,8 @@ void StepDirk(const std::vector<RigidBodyModel>& models, const StepState& step, 
   std::vector<std::vector<KindSlope>>& softVK = buffers.vectorSlopes;
   softVK.resize(ns);
   for (std::vector<KindSlope>& slopes : softVK) slopes.resize(T.stages);
-  std::vector<Eigen::VectorXd> softLast = softStepStart;
+  std::vector<Eigen::VectorXd>& softLast = buffers.softLast;
+  softLast = softStepStart;
   for (int st = 0; st < T.stages; ++st) {
     std::vector<RigidBodyState>& start = buffers.start;
     start = step.states;
@@ -121,7 +136,8 @@ void StepDirk(const std::vector<RigidBodyModel>& models, const StepState& step, 
         start[i].v += c * VK[j][i].v;
         start[i].Rdot += c * VK[j][i].Rdot;
       }
-    std::vector<SoftBodyState> softStart = step.softStates;
+    std::vector<SoftBodyState>& softStart = buffers.softStart;
+    softStart = step.softStates;
     double cStage = 0.0;  // the stage's abscissa c_i = Σ_j a_ij
     for (int j = 0; j <= st; ++j) cStage += T.a[st][j];
     for (size_t s = 0; s < ns; ++s)
@@ -135,7 +151,8 @@ void StepDirk(const std::vector<RigidBodyModel>& models, const StepState& step, 
     const std::vector<RigidPose>& last = st == 0 ? stepStart : Q[st - 1];
     host.ApplyConstraints(step.time + cStage * h, &softX);
     PlaceKinematic(models, step.time + cStage * h, &poses);
-    const SoftStage soft = host.MakeSoftStage(dt, step.time + cStage * h, softStart, softLast);
+    SoftStage& soft = buffers.softStage;
+    host.MakeSoftStage(dt, step.time + cStage * h, softStart, softLast, &soft);
     host.SolveStage(dt, start, last, &poses, &soft, &softX, cStage * h, &rep);
     Q[st] = poses;
     for (size_t s = 0; s < ns; ++s) {
@@ -202,12 +219,13 @@ void StepDirk(const std::vector<RigidBodyModel>& models, const StepState& step, 
                         &softNext[s]);
   }
   // Prescribed nodes sit exactly on their path at the step's end.
-  std::vector<Eigen::VectorXd> endX(ns);
+  std::vector<Eigen::VectorXd>& endX = buffers.softEnd;
+  endX.resize(ns);
   for (size_t s = 0; s < ns; ++s) endX[s] = softNext[s].x;
   host.ApplyConstraints(step.time + h, &endX);
   for (size_t s = 0; s < ns; ++s) {
     softNext[s].x = endX[s];
-    if (const ActorKind* kind = host.VectorKind(s)) kind->EndPrescribed(step.time + h, &softNext[s]);
+    if (const ActorKind* kind = host.VectorKind(s)) EndPrescribed(*kind, step.softStates[s], step.time + h, &softNext[s]);
   }
   EndKinematic(models, step.time + h, &next);
 }
@@ -227,7 +245,7 @@ void EndStep(double h, StepWork* work, StepState* step) {
     step->historyTimes[0] = step->time;
   }
   step->states.swap(work->next);  // next keeps the former state's storage for the next step
-  step->softStates = std::move(work->softNext);
+  step->softStates.swap(work->softNext);  // both keep their storage
   step->time += h;
 }
 

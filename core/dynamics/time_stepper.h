@@ -27,9 +27,9 @@ class StageHost {
   /// Writes the prescribed node positions (and the kinds' prescribed dofs) at time t [s] into x.
   virtual void ApplyConstraints(double t, std::vector<Eigen::VectorXd>* x) const = 0;
   /// The vector-state actors' data for a stage of step dt [s] at time t [s]: targets from the
-  /// stage start, geometry from the last configuration.
-  virtual SoftStage MakeSoftStage(double dt, double t, const std::vector<SoftBodyState>& start,
-                                  const std::vector<Eigen::VectorXd>& last) const = 0;
+  /// stage start, geometry from the last configuration; into *out (its storage reused).
+  virtual void MakeSoftStage(double dt, double t, const std::vector<SoftBodyState>& start,
+                             const std::vector<Eigen::VectorXd>& last, SoftStage* out) const = 0;
   /// Solves one stage (x⁰, v⁰ in `start`, the last configuration `last`) from *poses and
   /// *softX, which then hold its solution; accounts it in *rep. `predictTime` > 0 (the stage's
   /// time after t_n [s]) allows the warm start.

@@ -120,6 +120,16 @@ RigidKind::RigidKind(RigidBodyModel model, const RigidBodyState& state)
   name = model_.name;
 }
 
+void RigidKind::SetMass(double mass) {
+  model_.secondMoment *= mass / model_.mass;
+  model_.mass = mass;
+}
+
+void RigidKind::SetContactParams(const ContactParams& params) {
+  contact = params;
+  model_.contact = params;
+}
+
 std::unique_ptr<RigidKind> RigidKind::Build(const RigidActorDesc& desc, Error* error) {
   RigidBodyModel model;
   RigidBodyState state;
@@ -187,13 +197,27 @@ bool RigidKind::StageLoad(const KindStageData& stage, Eigen::VectorXd* f) const 
   return true;
 }
 
+namespace {
+// [a, vec M] into *out (12 entries; no allocation once sized).
+void PackInto(const Eigen::Vector3d& a, const Eigen::Matrix3d& M, Eigen::VectorXd* out) {
+  out->resize(12);
+  out->head<3>() = a;
+  out->tail<9>() = Eigen::Map<const Eigen::Matrix<double, 9, 1>>(M.data());
+}
+}  // namespace
+
 void RigidKind::Prescribe(double t, Eigen::VectorXd* q) const {
   if (model_.dynamic) return;
-  *q = model_.kinematic ? Pack(KinematicStateAt(model_, t)).x : Pack(initial_).x;
+  if (!model_.kinematic) return PackInto(initial_.p, initial_.R, q);
+  const RigidBodyState s = KinematicStateAt(model_, t);
+  PackInto(s.p, s.R, q);
 }
 
 void RigidKind::EndPrescribed(double t, KindState* s) const {
-  if (model_.kinematic) *s = Pack(KinematicStateAt(model_, t));
+  if (!model_.kinematic) return;
+  const RigidBodyState k = KinematicStateAt(model_, t);
+  PackInto(k.p, k.R, &s->x);
+  PackInto(k.v, k.Rdot, &s->v);
 }
 
 void RigidKind::Retract(const Eigen::VectorXd& q, const Eigen::VectorXd& delta,
@@ -234,8 +258,11 @@ void RigidKind::DirkStageSlope(const Eigen::VectorXd& x, const KindState& start,
   vk.v.head<3>() = (vk.x.head<3>() - start.v.head<3>()) / dt;
   out->extra.setZero(3);
   if (!model_.dynamic) {  // a kinematic body's stage poses' slope, for the next stages' x⁰
-    vk.x.tail<9>() = model_.kinematic ? Eigen::VectorXd((x.tail<9>() - start.x.tail<9>()) / dt)
-                                      : Eigen::VectorXd::Zero(9);
+    if (model_.kinematic) {
+      vk.x.tail<9>() = (x.tail<9>() - start.x.tail<9>()) / dt;
+    } else {
+      vk.x.tail<9>().setZero();
+    }
     vk.v.tail<9>().setZero();
     return;
   }

@@ -96,6 +96,13 @@ class RigidKind : public ActorKind {
   static std::unique_ptr<RigidKind> Build(const RigidActorDesc& desc, Error* error);
 
   const RigidBodyModel& Model() const { return model_; }
+  /// Replaces the mass [kg] (> 0); J scales with it (the same shape, uniformly denser).
+  void SetMass(double mass);
+  /// A static body's state from now on: it is held there (Scene::SetState, Scene::Restore).
+  void Hold(const RigidBodyState& s) { initial_ = s; }
+  const RigidBodyState& Held() const { return initial_; }
+  /// Replaces the contact parameters (the kind's and its model's).
+  void SetContactParams(const ContactParams& params);
   /// The configuration and state in and out of the kind's layout.
   static KindState Pack(const RigidBodyState& s);
   static RigidBodyState Unpack(const KindState& s);

@@ -87,7 +87,7 @@ std::vector<int> AddKindMovers(Scene& scene, const Eigen::VectorXd& S0, const St
   const int s = z.s, nd = z.nd, ns = z.ns, blockSize = ns / blocks;
   std::vector<int> moverOfKind(scene.NumActors(), -1);
   for (int a = 0; a < scene.NumActors(); ++a) {
-    if (!scene.IsKind({a})) continue;
+    if (!scene.HasKind({a})) continue;
     const ActorKind& kind = scene.Kind({a});
     const int n = kind.NumDofs(), o = scene.StateOffset({a});
     const std::vector<int>& stageDof = scene.KindStageDofs({a});
@@ -169,48 +169,6 @@ MoverLayout LayOutMovers(Scene& scene, const StepTape& tape,
   auto addColumns = [&](Mover* mv, int first, int count, double step) {
     for (int k = 0; k < count; ++k) mv->directions.push_back({{{first + k, 1.0}}, {{first + k, 1.0}}, step});
   };
-  // The rotation block R (9 entries from `first`): only the three tangent directions [e_k]× R are
-  // differenced — every state the step sees has R on SO(3), and so has every variation of it
-  // (dR = [ξ]× R) — and each derivative D_k is entered as D_k V_kᵀ/2 over the nine entries
-  // (V_k = vec([e_k]× R), V_kᵀV_l = 2δ_kl), which reproduces D_k on every tangent variation.
-  auto addRotation = [&](Mover* mv, int first, double step) {
-    const Eigen::Matrix3d R = Eigen::Map<const Eigen::Matrix3d>(S0.data() + first);
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Matrix3d V = Skew(Eigen::Vector3d::Unit(k)) * R;
-      Direction d;
-      d.step = step;
-      for (int e = 0; e < 9; ++e) {
-        d.move.emplace_back(first + e, V.data()[e]);
-        d.spread.emplace_back(first + e, 0.5 * V.data()[e]);
-      }
-      mv->directions.push_back(std::move(d));
-    }
-  };
-  const std::vector<ActorHandle> rigid = scene.RigidActors();
-  for (size_t i = 0; i < scene.Models().size(); ++i) {
-    const RigidBodyModel& body = scene.Models()[i];
-    if (!body.dynamic) continue;
-    const int u = static_cast<int>(movers.size());
-    Mover mv;
-    const double radius = std::max(RmsRadius(body), 1e-6);
-    const int o = scene.StateOffset(rigid[i]);
-    for (int b = 0; b < blocks; ++b) {  // p, R, v, Ṙ
-      const int base = b * blockSize + o;
-      addColumns(&mv, base, 3, h);
-      addRotation(&mv, base + 3, h / radius);
-      addColumns(&mv, base + 12, 3, h / dt);
-      addColumns(&mv, base + 15, 9, h / (dt * radius));
-    }
-    claimRows(u, o, 24);
-    const int dof = scene.StageDofOffset(rigid[i]);
-    for (int k = 0; k < 6; ++k) dofUnit[dof + k] = u;
-    for (int st = 0; st < s; ++st) {
-      addColumns(&mv, ns + st * nd + dof, 3, h);
-      addColumns(&mv, ns + st * nd + dof + 3, 3, h / radius);
-      for (int k = 0; k < 6; ++k) rowUnit[st * nd + dof + k] = u;
-    }
-    movers.push_back(std::move(mv));
-  }
   const std::vector<ActorHandle> soft = scene.SoftActors();
   for (size_t a = 0; a < soft.size(); ++a) {
     const SoftBodyModel& body = scene.SoftModel(soft[a]);
@@ -258,10 +216,7 @@ MoverLayout LayOutMovers(Scene& scene, const StepTape& tape,
   std::vector<std::vector<int>> owned(U);
   std::vector<int> aloneParameters;
   {
-    std::vector<int> moverOfActor = moverOfKind;  // and the dynamic rigid actors' movers
-    int u = 0;
-    for (size_t i = 0; i < scene.Models().size(); ++i)
-      if (scene.Models()[i].dynamic) moverOfActor[rigid[i].index] = u++;
+    const std::vector<int>& moverOfActor = moverOfKind;
     for (int p = 0; p < P; ++p) {
       const int mover = moverOfActor[model[p].actor.index];
       if (mover >= 0 && model[p].kind <= SceneParameterKind::FrictionFalloffVel)

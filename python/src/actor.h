@@ -19,7 +19,7 @@ struct Actor {
     return IsSoft() ? scene->SoftModel(Handle()).name : scene->Model(Handle()).name;
   }
   /// The rigid state; TypeError naming `field` for a soft actor.
-  const RigidBodyState& RigidState(const char* field) const {
+  RigidBodyState RigidState(const char* field) const {
     if (IsSoft())
       throw py::type_error(std::string(field) + ": '" + Name() +
                            "' is a soft actor; rotation, orientation and angular_velocity are "
