@@ -368,10 +368,12 @@ void Scene::CurrentPoses(std::vector<RigidPose>* poses) const {
   for (size_t i = 0; i < step_.states.size(); ++i) (*poses)[i] = {step_.states[i].p, step_.states[i].R};
 }
 
-void Scene::SolveStage(double dt, const std::vector<RigidBodyState>& start,
-                       const std::vector<RigidPose>& last, std::vector<RigidPose>* poses,
-                       const SoftStage* soft, std::vector<Eigen::VectorXd>* softX,
+void Scene::SolveStage(double dt, const SoftStage* soft, std::vector<Eigen::VectorXd>* softX,
                        double predictTime, StepReport* rep) {
+  // The built-in rigid arrays are empty (rigid actors are kinds): no rigid start, pose or x_n.
+  const std::vector<RigidBodyState>& start = buffers_.start;
+  const std::vector<RigidPose>& last = buffers_.stepStart;
+  std::vector<RigidPose>* poses = &buffers_.poses;
   StageScene scene;
   scene.models = &models_;
   scene.dofOffset = &dofOffset_;
@@ -423,15 +425,11 @@ bool Scene::Step(double h, StepReport* report, Error* error, StageRecorder* reco
   Prepare();
   recorder_ = recorder;
   if (recorder_) recorder_->BeginStep();
-  CurrentPoses(&buffers_.poses);
-  buffers_.stepStart = buffers_.poses;
-  buffers_.next = step_.states;
   buffers_.softX.resize(step_.softStates.size());
   for (size_t s = 0; s < step_.softStates.size(); ++s) buffers_.softX[s] = step_.softStates[s].x;
   buffers_.softStepStart = buffers_.softX;
   buffers_.softNext = step_.softStates;
-  StepWork w{buffers_.poses, buffers_.stepStart, buffers_.next, buffers_.softX,
-             buffers_.softStepStart, buffers_.softNext, StepReport()};
+  StepWork w{buffers_.softX, buffers_.softStepStart, buffers_.softNext, StepReport()};
   StepReport& rep = w.report;
   rep.dt = h;
   const IntegrationMethod method = settings_.integrator;
@@ -439,12 +437,11 @@ bool Scene::Step(double h, StepReport* report, Error* error, StageRecorder* reco
   // BDF3 starts with DIRK33 steps while its history fills: a Backward Euler start (local error
   // O(h²)) would cap its global order at 2. BDF2 starts with one BDF1 (Backward Euler) step, whose
   // O(h²) local error is within BDF2's own global order (core/dynamics/time_stepper.h).
-  const bool bdf3Startup = method == IntegrationMethod::BDF3 && step_.history.size() < 2;
+  const bool bdf3Startup = method == IntegrationMethod::BDF3 && step_.softHistory.size() < 2;
   if (IsMultistep(method) && !bdf3Startup)
-    StepBdf(models_, step_, h, method, *this, &buffers_, &w);
+    StepBdf(step_, h, method, *this, &buffers_, &w);
   else
-    StepDirk(models_, step_, h, bdf3Startup ? IntegrationMethod::DIRK33 : method, *this,
-             &buffers_, &w);
+    StepDirk(step_, h, bdf3Startup ? IntegrationMethod::DIRK33 : method, *this, &buffers_, &w);
   EndStep(h, &w, &step_);
   rep.time = step_.time;
   const bool supplied = recorder_ && recorder_->Supplies();

@@ -138,7 +138,7 @@ class Scene : private StageHost {
   /// lumped masses follow. Poisson's ratio and stiffness damping are kept.
   bool SetSoftMaterial(ActorHandle a, double youngsModulus, double density, Error* error);
   /// Whether the scene holds multistep history (any step since the last state change).
-  bool HasStepHistory() const { return !step_.history.empty(); }
+  bool HasStepHistory() const { return !step_.historyTimes.empty(); }
   /// The smallest V_f over the actors [m/s].
   double MinFrictionFalloffVel() const;
   /// The actor of that name (invalid handle if none).
@@ -196,10 +196,8 @@ class Scene : private StageHost {
   const RigidKind& RigidOf(ActorHandle a) const;
   // Solves one stage with the stage policy (StageDriver::Solve) and the step's recorder, and
   // accounts it in *rep.
-  void SolveStage(double dt, const std::vector<RigidBodyState>& start,
-                  const std::vector<RigidPose>& last, std::vector<RigidPose>* poses,
-                  const SoftStage* soft, std::vector<Eigen::VectorXd>* softX, double predictTime,
-                  StepReport* rep) override;
+  void SolveStage(double dt, const SoftStage* soft, std::vector<Eigen::VectorXd>* softX,
+                  double predictTime, StepReport* rep) override;
   // The packed-state layout: calls visit(block, offset, actor ref, actor index) for every dynamic
   // actor in each of the first `blocks` blocks (0: the current state, b >= 1: step_.history[b−1]).
   template <typename Visit>

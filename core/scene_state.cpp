@@ -269,7 +269,7 @@ int Scene::StateSize() {
 }
 
 int Scene::FilledStateBlocks() const {
-  return 1 + std::min(HistoryBlocks(), static_cast<int>(step_.history.size()));
+  return 1 + std::min(HistoryBlocks(), static_cast<int>(step_.softHistory.size()));
 }
 
 Eigen::VectorXd Scene::PackState() {
@@ -379,7 +379,6 @@ void Scene::Restore(const Snapshot& s) {
   for (const ActorRef& r : actors_)
     if (r.rigid) HoldStatic(r, s.step.states[r.desc]);
   step_.softHistory.resize(s.step.softHistory.size());
-  step_.history.assign(s.step.softHistory.size(), {});
   for (size_t h = 0; h < s.step.softHistory.size(); ++h)
     JoinRigid(s.step.history[h], s.step.softHistory[h], &step_.softHistory[h]);
   driver_.SetState(s.driver);

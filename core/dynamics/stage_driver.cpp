@@ -237,15 +237,18 @@ void StageDriver::WarmStartStage(const SceneSettings& settings, const StageScene
                                  SceneStageProblem* problem) {
   const std::vector<std::vector<RigidBodyState>>& history = *scene.history;
   const std::vector<double>& historyTimes = *scene.historyTimes;
-  const bool one = !history.empty() && !historyTimes.empty();
-  const bool two = history.size() >= 2 && historyTimes.size() >= 2;
+  // The history's times count its entries (the rigid arrays' may be empty).
+  const bool one = !historyTimes.empty();
+  const bool two = historyTimes.size() >= 2;
   const double hPrevious = one ? scene.time - historyTimes[0] : 0.0;
   const double hBefore = two ? historyTimes[0] - historyTimes[1] : 0.0;
-  PredictStagePoses(*scene.models, *scene.states, one ? &history[0] : nullptr, hPrevious,
-                    predictTime, start, dt, &predicted_);
+  const std::vector<RigidBodyState>* rigid0 = history.size() >= 1 ? &history[0] : nullptr;
+  const std::vector<RigidBodyState>* rigid1 = history.size() >= 2 ? &history[1] : nullptr;
+  PredictStagePoses(*scene.models, *scene.states, one ? rigid0 : nullptr, hPrevious, predictTime,
+                    start, dt, &predicted_);
   TangentStep(*scene.dofOffset, scene.numDofs, poses, predicted_, &warmStep_);
-  SteadyMotion(*scene.models, *scene.states, one ? &history[0] : nullptr, hPrevious,
-               two ? &history[1] : nullptr, hBefore, settings.gravity, &steady_);
+  SteadyMotion(*scene.models, *scene.states, one ? rigid0 : nullptr, hPrevious,
+               two ? rigid1 : nullptr, hBefore, settings.gravity, &steady_);
   const KindStage* kinds = soft && soft->kinds.Size() > 0 ? &soft->kinds : nullptr;
   if (kinds) {
     // The kinds' states follow the soft actors' (none here: the warm start is off with them).

@@ -13,9 +13,10 @@
 
 namespace superdex {
 
-/// The rigid and soft actors' states (in the order of their kinds' arrays), the multistep
-/// history (history[j]: the states at step n−1−j, at time historyTimes[j] [s]; at most 2) and
-/// the time t_n [s].
+/// The actors' vector states (softStates: soft actors, then the kinds'), the multistep history
+/// (softHistory[j]: the states at step n−1−j, at time historyTimes[j] [s]; at most 2) and the
+/// time t_n [s]. In the scene `states` and `history` are empty (rigid actors are kinds); a
+/// snapshot (Scene::Save) carries the rigid actors' states there, in the checkpoint layout.
 struct StepState {
   std::vector<RigidBodyState> states;
   std::vector<SoftBodyState> softStates;
@@ -25,13 +26,9 @@ struct StepState {
   double time = 0.0;
 };
 
-/// The step under way's working data: the rigid poses (the stages' iterate), x_n, the rigid end
-/// state, the vector states' positions (soft actors, then kinds), their x_n, their end state, and
-/// the step's report.
+/// The step under way's working data: the vector states' positions (soft actors, then kinds; the
+/// stages' iterate), their x_n, their end state, and the step's report.
 struct StepWork {
-  std::vector<RigidPose>& poses;
-  const std::vector<RigidPose>& stepStart;
-  std::vector<RigidBodyState>& next;
   std::vector<Eigen::VectorXd>& softX;
   const std::vector<Eigen::VectorXd>& softStepStart;
   std::vector<SoftBodyState>& softNext;
@@ -53,11 +50,9 @@ struct ReportStage {
 /// Storage of a scene's steps kept from step to step, so that a rigid step does not allocate once
 /// it has run (scratch: every use overwrites it first).
 struct StepBuffers {
+  // The built-in rigid arrays' stage inputs (empty: rigid actors are kinds), report poses.
   std::vector<RigidPose> poses, stepStart, reportPoses;
-  std::vector<RigidBodyState> next, start;
-  std::vector<std::vector<RigidBodyState>> stageSlopes;  ///< a DIRK step's V_i, K_i per body
-  std::vector<std::vector<Eigen::Vector3d>> stageTorques;
-  std::vector<std::vector<RigidPose>> stagePoses;       ///< Q_i
+  std::vector<RigidBodyState> start;
   std::vector<double> bdfTimes, bdfWeights;
   std::vector<std::vector<KindSlope>> vectorSlopes;  ///< a DIRK step's slopes per vector state
   std::vector<double> stageWeights;                  ///< a DIRK step's h b_i

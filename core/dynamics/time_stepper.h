@@ -1,7 +1,7 @@
 // The time stepper: one step of h [s] by the scene's integrator (core/dynamics/integrators.h) as
-// a sequence of implicit stages — a variable-step BDF step, or the DIRK method's stages with the
-// three rotation rules for rigid bodies — over the rigid states and the vector states (soft
-// actors, then the generic layer's kinds, combined affinely). The host (the Scene) solves each
+// a sequence of implicit stages — a variable-step BDF step, or the DIRK method's stages — over the
+// vector states (soft actors, then the generic layer's kinds, combined affinely; a kind on a
+// manifold, as a rigid body, through its DIRK hooks). The host (the Scene) solves each
 // stage with its stage policy and recorder, and builds the vector states' stage data.
 #pragma once
 
@@ -13,7 +13,6 @@
 #include "core/dynamics/step_state.h"
 #include "core/model/actor_kind.h"
 #include "core/model/enums.h"
-#include "core/model/rigid_body.h"
 
 namespace superdex {
 
@@ -30,22 +29,20 @@ class StageHost {
   /// stage start, geometry from the last configuration; into *out (its storage reused).
   virtual void MakeSoftStage(double dt, double t, const std::vector<SoftBodyState>& start,
                              const std::vector<Eigen::VectorXd>& last, SoftStage* out) const = 0;
-  /// Solves one stage (x⁰, v⁰ in `start`, the last configuration `last`) from *poses and
-  /// *softX, which then hold its solution; accounts it in *rep. `predictTime` > 0 (the stage's
-  /// time after t_n [s]) allows the warm start.
-  virtual void SolveStage(double dt, const std::vector<RigidBodyState>& start,
-                          const std::vector<RigidPose>& last, std::vector<RigidPose>* poses,
-                          const SoftStage* soft, std::vector<Eigen::VectorXd>* softX,
+  /// Solves one stage (its data in *soft, from MakeSoftStage) from *softX, which then holds its
+  /// solution; accounts it in *rep. `predictTime` > 0 (the stage's time after t_n [s]) allows
+  /// the warm start.
+  virtual void SolveStage(double dt, const SoftStage* soft, std::vector<Eigen::VectorXd>* softX,
                           double predictTime, StepReport* rep) = 0;
 };
 
 /// A variable-step BDF step of h [s] (the states of step.history) from step's states to the end
 /// states in *work.
-void StepBdf(const std::vector<RigidBodyModel>& models, const StepState& step, double h,
-             IntegrationMethod method, StageHost& host, StepBuffers* buffers, StepWork* work);
+void StepBdf(const StepState& step, double h, IntegrationMethod method, StageHost& host,
+             StepBuffers* buffers, StepWork* work);
 /// The DIRK method's stages from step's states to the end states in *work.
-void StepDirk(const std::vector<RigidBodyModel>& models, const StepState& step, double h,
-              IntegrationMethod method, StageHost& host, StepBuffers* buffers, StepWork* work);
+void StepDirk(const StepState& step, double h, IntegrationMethod method, StageHost& host,
+              StepBuffers* buffers, StepWork* work);
 /// Ends a step of h [s]: the multistep history takes x_n, the states the end states of *work,
 /// the time advances.
 void EndStep(double h, StepWork* work, StepState* step);
