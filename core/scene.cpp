@@ -299,10 +299,9 @@ void Scene::Prepare() {
   prepared_ = true;
 }
 
-std::vector<Eigen::VectorXd> Scene::CurrentSoftPositions() const {
-  std::vector<Eigen::VectorXd> x(step_.softStates.size());
-  for (size_t s = 0; s < step_.softStates.size(); ++s) x[s] = step_.softStates[s].x;
-  return x;
+void Scene::CurrentSoftPositions(std::vector<Eigen::VectorXd>* x) const {
+  x->resize(step_.softStates.size());
+  for (size_t s = 0; s < step_.softStates.size(); ++s) (*x)[s] = step_.softStates[s].x;
 }
 
 void Scene::MakeSoftStage(double dt, double t, const std::vector<SoftBodyState>& start,
@@ -425,8 +424,7 @@ bool Scene::Step(double h, StepReport* report, Error* error, StageRecorder* reco
   Prepare();
   recorder_ = recorder;
   if (recorder_) recorder_->BeginStep();
-  buffers_.softX.resize(step_.softStates.size());
-  for (size_t s = 0; s < step_.softStates.size(); ++s) buffers_.softX[s] = step_.softStates[s].x;
+  CurrentSoftPositions(&buffers_.softX);
   buffers_.softStepStart = buffers_.softX;
   buffers_.softNext = step_.softStates;
   StepWork w{buffers_.softX, buffers_.softStepStart, buffers_.softNext, StepReport()};
@@ -462,8 +460,7 @@ ContactStats Scene::ContactState() {
   Prepare();
   ContactStats st;
   std::vector<Eigen::VectorXd>& x = buffers_.softX;  // scratch between steps
-  x.resize(step_.softStates.size());
-  for (size_t s = 0; s < step_.softStates.size(); ++s) x[s] = step_.softStates[s].x;
+  CurrentSoftPositions(&x);
   SoftView view;
   view.x = &x;
   view.dofOffset = &softDofOffset_;
@@ -486,8 +483,7 @@ std::vector<ContactSampleRecord> Scene::ContactSamples() {
   Prepare();
   std::vector<ContactSampleRecord> out;
   std::vector<Eigen::VectorXd>& x = buffers_.softX;  // scratch between steps
-  x.resize(step_.softStates.size());
-  for (size_t s = 0; s < step_.softStates.size(); ++s) x[s] = step_.softStates[s].x;
+  CurrentSoftPositions(&x);
   SoftView view;
   view.x = &x;
   view.dofOffset = &softDofOffset_;
@@ -661,9 +657,7 @@ bool Scene::HasDissipation() const {
     for (const auto& k : kinds_)  // a kind's actor is, where a dof is free
       if (coefficient(k->contact) > 0) {
         ++count;
-        bool free = false;
-        for (int i = 0; i < k->NumTangentDofs() && !free; ++i) free = !k->IsPrescribed(i);
-        dynamic += free;
+        dynamic += k->HasFreeDof();
       }
     return count >= 2 && dynamic >= 1;
   };

@@ -204,6 +204,10 @@ class Scene : private StageHost {
   void VisitStateLayout(int blocks, Visit&& visit) const;
   // A vector-state actor's index in step_.softStates, and an actor's entries in PackState.
   int VectorIndex(const ActorRef& r) const;
+  // Changes actor r's kind by change(kind) on a copy (scenes copied from this one share the kind
+  // and keep theirs); the scene prepares again.
+  template <typename Change>
+  void ChangeKind(const ActorRef& r, Change&& change);
   // A static rigid actor r is held at `state` from now on (its kind copied first if it changes).
   void HoldStatic(const ActorRef& r, const RigidBodyState& state);
   // A snapshot's layout (Save) from the vector states and back.
@@ -224,7 +228,7 @@ class Scene : private StageHost {
   void Prepare();
   std::vector<RigidPose> CurrentPoses() const;
   void CurrentPoses(std::vector<RigidPose>* poses) const;
-  std::vector<Eigen::VectorXd> CurrentSoftPositions() const;
+  void CurrentSoftPositions(std::vector<Eigen::VectorXd>* x) const;  // into kept storage
   // The vector-state actors' stage data (soft, then the kinds' at stage time t [s]): targets from
   // the stage start, geometry from the last configuration.
   void MakeSoftStage(double dt, double t, const std::vector<SoftBodyState>& start,

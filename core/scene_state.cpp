@@ -140,19 +140,24 @@ bool Scene::SetKindState(ActorHandle a, const KindState& state, Error* error) {
   return true;
 }
 
+template <typename Change>
+void Scene::ChangeKind(const ActorRef& r, Change&& change) {
+  std::shared_ptr<ActorKind> changed = kinds_[r.local]->Clone();
+  change(*changed);
+  kinds_[r.local] = std::move(changed);
+  prepared_ = false;
+}
+
 bool Scene::SetContactParams(ActorHandle a, const ContactParams& params, Error* error) {
   if (!ValidHandle(*this, a, error)) return false;
   if (std::string m = Validate(params, "contact."); !m.empty()) return Fail(error, m);
   const ActorRef& r = actors_[a.index];
-  if (r.kind) {  // copied first: scenes copied from this one keep theirs
-    std::shared_ptr<ActorKind> changed = kinds_[r.local]->Clone();
-    changed->contact = params;
-    if (r.rigid) {
-      static_cast<RigidKind&>(*changed).SetContactParams(params);
-      rigidDescs_[r.desc].contact = params;
-    }
-    kinds_[r.local] = std::move(changed);
-    prepared_ = false;
+  if (r.kind) {
+    ChangeKind(r, [&](ActorKind& k) {
+      k.contact = params;
+      if (r.rigid) static_cast<RigidKind&>(k).SetContactParams(params);
+    });
+    if (r.rigid) rigidDescs_[r.desc].contact = params;
     return true;
   }
   softModels_[r.local].contact = params;
@@ -181,11 +186,7 @@ bool Scene::SetRigidMass(ActorHandle a, double mass, Error* error) {
   RigidActorDesc& d = rigidDescs_[r.desc];
   if (d.inertia) *d.inertia *= mass / Model(a).mass;
   d.mass = mass;
-  // Copied first: scenes copied from this one keep theirs.
-  std::shared_ptr<ActorKind> changed = kinds_[r.local]->Clone();
-  static_cast<RigidKind&>(*changed).SetMass(mass);
-  kinds_[r.local] = std::move(changed);
-  prepared_ = false;
+  ChangeKind(r, [&](ActorKind& k) { static_cast<RigidKind&>(k).SetMass(mass); });
   return true;
 }
 
@@ -338,11 +339,7 @@ void Scene::HoldStatic(const ActorRef& r, const RigidBodyState& state) {
   if (kind.Model().dynamic) return;
   const RigidBodyState& held = kind.Held();
   if (held.p == state.p && held.R == state.R && held.v == state.v && held.Rdot == state.Rdot) return;
-  // Copied first, as SetRigidMass: scenes copied from this one keep theirs.
-  std::shared_ptr<ActorKind> changed = kind.Clone();
-  static_cast<RigidKind&>(*changed).Hold(state);
-  kinds_[r.local] = std::move(changed);
-  prepared_ = false;
+  ChangeKind(r, [&](ActorKind& k) { static_cast<RigidKind&>(k).Hold(state); });
 }
 
 void Scene::JoinRigid(const std::vector<RigidBodyState>& rigid,

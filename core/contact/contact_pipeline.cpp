@@ -87,9 +87,7 @@ void ContactPipeline::Configure(const std::vector<RigidBodyModel>* models,
     for (const ActorKind* k : *kinds_) {
       kindInflation_.push_back(k->Collider() ? ColliderReach(k->contact) : 0.0);
       kindCollider_.push_back(k->Collider() != nullptr);
-      bool free = false;
-      for (int i = 0; i < k->NumTangentDofs() && !free; ++i) free = !k->IsPrescribed(i);
-      kindHasDofs_.push_back(free);
+      kindHasDofs_.push_back(k->HasFreeDof());
       kindColliding_.push_back(k->IsColliding());
       kindStatic_.push_back(k->IsStatic());
       size_t samples = static_cast<size_t>(k->NumSamples());
@@ -427,10 +425,7 @@ bool ContactPipeline::SplitLastEvaluation(const std::vector<int>& dofOffset,
     const int a = kp.aKind ? n + kp.a : kp.a, b = kp.bKind ? n + kp.b : kp.b;
     const bool aDynamic = kp.aKind ? kindHasDofs_[kp.a] != 0 : dofOffset[kp.a] >= 0;
     const bool bDynamic = kp.bKind ? kindHasDofs_[kp.b] != 0 : dofOffset[kp.b] >= 0;
-    if (kindWide_[k])
-      add(kindWideResults_[k], a, aDynamic, b, bDynamic);
-    else
-      add(kindResults_[k], a, aDynamic, b, bDynamic);
+    WithKindResults(k, [&](const auto& r) { add(r, a, aDynamic, b, bDynamic); });
   }
   return true;
 }
@@ -792,12 +787,8 @@ void ContactPipeline::EvaluateKindPairs(const Request& q, double* energy, Contac
   };
   SweepPairs(dissipation, SlipPairKind::Kind, kindPairs_.size(),
              KindPairWork() >= kParallelSampleWork, kindId, evaluate);
-  for (size_t k = 0; k < kindPairs_.size(); ++k) {
-    if (kindWide_[k])
-      ReducePair(q, kindWideResults_[k], false, -1, false, -1, energy, st);
-    else
-      ReducePair(q, kindResults_[k], false, -1, false, -1, energy, st);
-  }
+  for (size_t k = 0; k < kindPairs_.size(); ++k)
+    WithKindResults(k, [&](const auto& r) { ReducePair(q, r, false, -1, false, -1, energy, st); });
 }
 
 void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,

@@ -267,6 +267,14 @@ class ContactPipeline {
   std::vector<RigidPairStencils> kindResults_;
   std::vector<PairStencils> kindWideResults_;
   std::vector<char> kindWide_;
+  // f(kind pair k's stencils), compact or wide.
+  template <typename F>
+  void WithKindResults(size_t k, F&& f) const {
+    if (kindWide_[k])
+      f(kindWideResults_[k]);
+    else
+      f(kindResults_[k]);
+  }
   // Per kind, at the kind pairs' evaluation under way: its collider frame and its sample bodies,
   // formed once for all its pairs (FormKindSides; only for kinds in a pair in that role).
   std::vector<FrameSide> kindSides_;

@@ -4,6 +4,12 @@
 
 namespace superdex {
 
+bool ActorKind::HasFreeDof() const {
+  for (int i = 0; i < NumTangentDofs(); ++i)
+    if (!IsPrescribed(i)) return true;
+  return false;
+}
+
 void ActorKind::DifferenceGroups(const KindState& s,
                                  std::vector<KindDifferenceGroup>* groups) const {
   const int n = static_cast<int>(s.x.size());

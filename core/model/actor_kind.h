@@ -151,6 +151,8 @@ class ActorKind {
   /// Prescribed dofs: whether tangent dof i is held on a path (it is then no stage unknown), and
   /// Prescribe writes every prescribed part's value at time t [s] into *q.
   virtual bool IsPrescribed(int /*dof*/) const { return false; }
+  /// Whether some tangent dof is not prescribed (the actor is dynamic: it has stage unknowns).
+  bool HasFreeDof() const;
   virtual void Prescribe(double /*t*/, Eigen::VectorXd* /*q*/) const {}
   /// The state at a step's end time t [s], after the integrator's rule (which gives prescribed
   /// parts their positions by Prescribe and their velocities by its differences): a kind whose
