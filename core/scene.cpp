@@ -367,28 +367,20 @@ void Scene::CurrentPoses(std::vector<RigidPose>* poses) const {
   for (size_t i = 0; i < step_.states.size(); ++i) (*poses)[i] = {step_.states[i].p, step_.states[i].R};
 }
 
-void Scene::SolveStage(double dt, const SoftStage* soft, std::vector<Eigen::VectorXd>* softX,
+void Scene::SolveStage(double dt, const SoftStage& soft, std::vector<Eigen::VectorXd>* softX,
                        double predictTime, StepReport* rep) {
-  // The built-in rigid arrays are empty (rigid actors are kinds): no rigid start, pose or x_n.
-  const std::vector<RigidBodyState>& start = buffers_.start;
-  const std::vector<RigidPose>& last = buffers_.stepStart;
-  std::vector<RigidPose>* poses = &buffers_.poses;
   StageScene scene;
-  scene.models = &models_;
-  scene.dofOffset = &dofOffset_;
   scene.numDofs = numDofs_;
   scene.pipeline = &pipeline_;
   scene.hasSoftActors = !softModels_.empty();
   scene.hasDissipation = hasDissipation_;
-  scene.states = &step_.states;
-  scene.history = &step_.history;
   scene.vectorStates = &step_.softStates;
   scene.vectorHistory = &step_.softHistory;
   scene.historyTimes = &step_.historyTimes;
   scene.time = step_.time;
   ContactStats contact;
-  const SolverStats st = driver_.Solve(settings_, scene, dt, start, last, poses, &contact, soft,
-                                       softX, predictTime, recorder_);
+  const SolverStats st =
+      driver_.Solve(settings_, scene, dt, &contact, soft, softX, predictTime, recorder_);
   AccountStage(st, contact, rep);
   // What ContactSamples needs to report this stage's dissipation at the state it produced.
   ReportStage& r = buffers_.reportStage;
@@ -397,18 +389,10 @@ void Scene::SolveStage(double dt, const SoftStage* soft, std::vector<Eigen::Vect
   r.dt = dt;
   r.mode = st.fallback ? DissipationMode::ExplicitNormals : ModeOf(settings_.eval);
   r.fadeFriction = settings_.eval.fadeFriction;
-  r.start = driver_.LastTargets().start;
-  if (!soft) {
-    r.x0.clear();
-    r.xLast.clear();
-    r.q0.clear();
-    r.qLast.clear();
-    return;
-  }
-  r.x0 = soft->x0;  // copies into the kept storage
-  r.xLast = soft->xLast;
-  r.q0 = soft->kinds.q0;
-  r.qLast = soft->kinds.qLast;
+  r.x0 = soft.x0;  // copies into the kept storage
+  r.xLast = soft.xLast;
+  r.q0 = soft.kinds.q0;
+  r.qLast = soft.kinds.qLast;
 }
 
 bool Scene::Step(double h, StepReport* report, Error* error, StageRecorder* recorder) {
@@ -489,7 +473,7 @@ std::vector<ContactSampleRecord> Scene::ContactSamples() {
   view.dofOffset = &softDofOffset_;
   KindView kinds = CurrentKindView(x);
   const ReportStage& r = buffers_.reportStage;
-  if (!r.valid || r.start.size() != models_.size()) {
+  if (!r.valid) {
     pipeline_.CollectSamples(CurrentPoses(), &out, &view, &kinds);
     return out;
   }
@@ -502,7 +486,7 @@ std::vector<ContactSampleRecord> Scene::ContactSamples() {
   context.dt = r.dt;
   context.mode = r.mode;
   context.fadeFriction = r.fadeFriction;
-  pipeline_.CollectSamples(CurrentPoses(), &out, &view, &kinds, &context, &r.start);
+  pipeline_.CollectSamples(CurrentPoses(), &out, &view, &kinds, &context);
   return out;
 }
 

@@ -196,7 +196,7 @@ class Scene : private StageHost {
   const RigidKind& RigidOf(ActorHandle a) const;
   // Solves one stage with the stage policy (StageDriver::Solve) and the step's recorder, and
   // accounts it in *rep.
-  void SolveStage(double dt, const SoftStage* soft, std::vector<Eigen::VectorXd>* softX,
+  void SolveStage(double dt, const SoftStage& soft, std::vector<Eigen::VectorXd>* softX,
                   double predictTime, StepReport* rep) override;
   // The packed-state layout: calls visit(block, offset, actor ref, actor index) for every dynamic
   // actor in each of the first `blocks` blocks (0: the current state, b >= 1: step_.history[b−1]).

@@ -797,7 +797,7 @@ void ContactPipeline::CollectSamples(const std::vector<RigidPose>& poses,
                                      const DissipationContext* dissipation,
                                      const std::vector<RigidStageStart>* stageStart) {
   const std::vector<RigidBodyModel>& models = *models_;
-  if (!stageStart) dissipation = nullptr;
+  if (!stageStart && !models.empty()) dissipation = nullptr;  // built-in rigid pairs need x⁰, x_n
   FindPairs(poses, dissipation, stageStart, soft, kinds);
   records->clear();
   auto setupOf = [&](const PairContactParams& params) {

@@ -4,14 +4,16 @@
 #include <string>
 
 #include "core/dynamics/warm_start.h"
-#include "core/model/rigid_kind.h"
-#include "energies/rigid_inertia.h"
 #include "optim/ceres_stage_solver.h"
 #include "optim/ipopt_stage_solver.h"
 #include "optim/residual_newton.h"
 
 namespace superdex {
 namespace {
+
+// The contact pipeline's built-in rigid arrays: empty (rigid actors are kinds).
+const std::vector<RigidPose> kNoPoses;
+const std::vector<int> kNoDofs;
 
 // Whether a stage's contact statistics show an active sample (penalty or dissipation).
 bool InContact(const ContactStats& c) { return c.activeSamples > 0 || c.dissipativeSamples > 0; }
@@ -36,50 +38,12 @@ void CopySolverWork(const SolverStats& from, SolverStats* to) {
   AddSolverWork(from, to);
 }
 
-// The bodies' applied loads at time t [s] into targets->force and ->torque (each left empty when
-// no body has that kind of load).
-void AppliedLoadsAt(const std::vector<RigidBodyModel>& models, double t, StageTargets* targets) {
-  targets->force.clear();
-  targets->torque.clear();
-  for (size_t i = 0; i < models.size(); ++i) {
-    const RigidBodyModel& m = models[i];
-    if (!m.appliedForce.empty()) {
-      targets->force.resize(models.size(), Eigen::Vector3d::Zero());
-      targets->force[i] = PiecewiseLinear(m.appliedForce, t);
-    }
-    if (!m.appliedTorque.empty()) {
-      targets->torque.resize(models.size(), Eigen::Vector3d::Zero());
-      targets->torque[i] = PiecewiseLinear(m.appliedTorque, t);
-    }
-  }
-}
-
 }  // namespace
 
 SolverStats StageDriver::Solve(const SceneSettings& settings, const StageScene& scene, double dt,
-                               const std::vector<RigidBodyState>& start,
-                               const std::vector<RigidPose>& last, std::vector<RigidPose>* poses,
-                               ContactStats* contact, const SoftStage* soft,
+                               ContactStats* contact, const SoftStage& soft,
                                std::vector<Eigen::VectorXd>* softX, double predictTime,
                                StageRecorder* recorder) {
-  const std::vector<RigidBodyModel>& models = *scene.models;
-  StageTargets& targets = targets_;
-  targets.dt = dt;
-  targets.pHat.resize(models.size());
-  targets.RHat.resize(models.size());
-  for (size_t i = 0; i < models.size(); ++i) {
-    targets.pHat[i] = start[i].p + dt * start[i].v;
-    targets.RHat[i] = start[i].R + dt * start[i].Rdot;
-  }
-  AppliedLoadsAt(models, scene.time + predictTime, &targets);
-  targets.start.resize(models.size());
-  for (size_t i = 0; i < models.size(); ++i) {
-    RigidStageStart& s = targets.start[i];
-    s.p = start[i].p;
-    s.R = start[i].R;
-    s.Rinv = start[i].R.inverse();
-    s.last = last[i];
-  }
   StageDissipation dissipation;
   dissipation.enabled = scene.hasDissipation;
   if (dissipation.enabled) {
@@ -87,17 +51,15 @@ SolverStats StageDriver::Solve(const SceneSettings& settings, const StageScene& 
     dissipation.fadeFriction = settings.eval.fadeFriction;
   }
   StageInputs inputs;
-  inputs.models = scene.models;
-  inputs.dofOffset = scene.dofOffset;
   inputs.numDofs = scene.numDofs;
-  inputs.targets = &targets;
+  inputs.dt = dt;
   inputs.gravity = settings.gravity;
   inputs.pipeline = scene.pipeline;
-  inputs.soft = soft;
+  inputs.soft = &soft;
   inputs.workspace = &workspace_;
   SolverStats st;
   if (recorder && recorder->Supplies()) {
-    recorder->Supply(inputs, dissipation, poses, softX);
+    recorder->Supply(inputs, dissipation, softX);
     st.status = StageStatus::Converged;
     return st;
   }
@@ -107,11 +69,11 @@ SolverStats StageDriver::Solve(const SceneSettings& settings, const StageScene& 
   // longer for nothing. A stage that leaves contact is solved by Newton, the next one tried again.
   if (settings.closedFormFreeStages && settings.stageSolver == StageSolverKind::Newton &&
       !scene.hasSoftActors && !recording && !state_.lastStageInContact &&
-      FreeStage(settings, scene, dissipation, soft, poses, softX, &st, contact)) {
+      FreeStage(scene, dissipation, dt, soft, softX, &st, contact)) {
     state_.lastPotentialIterations = 0;  // a local stage: the next warm start may try the exact Hessian
     return st;
   }
-  SceneStageProblem problem = inputs.Problem(poses, dissipation, softX);
+  SceneStageProblem problem = inputs.Problem(dissipation, softX);
   // The warm start (Newton only: Ipopt and Ceres check the cold stage). Kept cold: (1) scenes with
   // soft actors: soft nodes are not predicted, and a soft collider's stages are only piecewise
   // smooth (its deformed grid SDF's gradient jumps across tet and cell faces), so that at
@@ -120,7 +82,7 @@ SolverStats StageDriver::Solve(const SceneSettings& settings, const StageScene& 
   // recorded solution, which a start reaches only to the solver's tolerance (docs/solver.md).
   const bool warm = settings.stageSolver == StageSolverKind::Newton && predictTime > 0.0 &&
                     settings.warmStart && !scene.hasSoftActors && !recording;
-  if (warm) WarmStartStage(settings, scene, dt, start, soft, *poses, softX, predictTime, &problem);
+  if (warm) WarmStartStage(settings, scene, dt, soft, *softX, predictTime, &problem);
   switch (settings.stageSolver) {
     case StageSolverKind::Newton:
       if (problem.IsPotential()) {
@@ -131,8 +93,7 @@ SolverStats StageDriver::Solve(const SceneSettings& settings, const StageScene& 
             warm && st.status == StageStatus::Converged ? st.iterations : kNoLocalStage;
         break;
       }
-      if (SolveResidual(settings, inputs, problem, dissipation, dt, poses, softX, contact,
-                        recorder, &st))
+      if (SolveResidual(settings, inputs, problem, dissipation, dt, softX, contact, recorder, &st))
         return st;
       break;
     case StageSolverKind::Ipopt:
@@ -144,15 +105,15 @@ SolverStats StageDriver::Solve(const SceneSettings& settings, const StageScene& 
   }
   *contact = problem.LastContactStats();
   state_.lastStageInContact = InContact(*contact);
-  if (recording) recorder->Record(inputs, dissipation, *poses, softX);
+  if (recording) recorder->Record(inputs, dissipation, *softX);
   return st;
 }
 
 bool StageDriver::SolveResidual(const SceneSettings& settings, const StageInputs& inputs,
                                 SceneStageProblem& problem, const StageDissipation& dissipation,
-                                double dt, std::vector<RigidPose>* poses,
-                                std::vector<Eigen::VectorXd>* softX, ContactStats* contact,
-                                StageRecorder* recorder, SolverStats* result) {
+                                double dt, std::vector<Eigen::VectorXd>* softX,
+                                ContactStats* contact, StageRecorder* recorder,
+                                SolverStats* result) {
   // Residual modes: Newton on r has only the merit ½‖r‖² to globalize with, which is badly scaled
   // where stiff contacts and friction meet (landing and settling contacts: ~20 iterations with many
   // backtracks on a sphere pile). A stage that starts from the explicit-normals minimizer (a
@@ -169,15 +130,13 @@ bool StageDriver::SolveResidual(const SceneSettings& settings, const StageInputs
   constexpr int kMaxExplicitFirstStages = 320;
   constexpr double kStartRelativeGradient = 1e-2;
   SolverStats& st = *result;
-  std::vector<RigidPose>& guess = guess_;
-  guess = *poses;
   std::vector<Eigen::VectorXd>& softGuess = softGuess_;
-  if (softX) softGuess = *softX;
+  softGuess = *softX;
   StageDissipation potential = dissipation;
   potential.mode = DissipationMode::ExplicitNormals;
   ContactStats explicitContact;
-  auto minimizeExplicit = [&](const NonlinearSolverParams& params) {  // from *poses, *softX
-    SceneStageProblem stage = inputs.Problem(poses, potential, softX);
+  auto minimizeExplicit = [&](const NonlinearSolverParams& params) {  // from *softX
+    SceneStageProblem stage = inputs.Problem(potential, softX);
     const SolverStats out = MinimizeNewton(stage, params, dt, symmetric_.get(), &newton_);
     explicitContact = stage.LastContactStats();
     return out;
@@ -192,13 +151,10 @@ bool StageDriver::SolveResidual(const SceneSettings& settings, const StageInputs
     start.relativeTolerance = std::max(start.relativeTolerance, kStartRelativeGradient);
     first = minimizeExplicit(start);
     haveExplicit = first.status == StageStatus::Converged;
-    if (haveExplicit) {
-      explicitSolution_ = *poses;
-      if (softX) softExplicit = *softX;
-    } else {
-      *poses = guess;
-      if (softX) *softX = softGuess;
-    }
+    if (haveExplicit)
+      softExplicit = *softX;
+    else
+      *softX = softGuess;
   }
   st = SolveResidualNewton(problem, settings.solver, dt, unsymmetric_.get(), &newton_);
   if (!explicitFirst) {
@@ -214,8 +170,7 @@ bool StageDriver::SolveResidual(const SceneSettings& settings, const StageInputs
   // Fallback: the explicit-normals minimizer to full accuracy (from the start it gave, or from the
   // stage's guess); the report carries its outcome and the work of every solve of the stage.
   SolverStats work = st;
-  *poses = haveExplicit ? explicitSolution_ : guess;
-  if (softX) *softX = haveExplicit ? softExplicit : softGuess;
+  *softX = haveExplicit ? softExplicit : softGuess;
   const SolverStats outcome = minimizeExplicit(settings.solver);
   AddSolverWork(outcome, &work);
   const std::string why = st.Message();
@@ -226,102 +181,65 @@ bool StageDriver::SolveResidual(const SceneSettings& settings, const StageInputs
   st.fallback = true;
   *contact = explicitContact;
   state_.lastStageInContact = InContact(*contact);
-  if (recorder && recorder->Records()) recorder->Record(inputs, potential, *poses, softX);
+  if (recorder && recorder->Records()) recorder->Record(inputs, potential, *softX);
   return true;
 }
 
 void StageDriver::WarmStartStage(const SceneSettings& settings, const StageScene& scene,
-                                 double dt, const std::vector<RigidBodyState>& start,
-                                 const SoftStage* soft, const std::vector<RigidPose>& poses,
-                                 const std::vector<Eigen::VectorXd>* softX, double predictTime,
+                                 double dt, const SoftStage& soft,
+                                 const std::vector<Eigen::VectorXd>& softX, double predictTime,
                                  SceneStageProblem* problem) {
-  const std::vector<std::vector<RigidBodyState>>& history = *scene.history;
   const std::vector<double>& historyTimes = *scene.historyTimes;
-  // The history's times count its entries (the rigid arrays' may be empty).
   const bool one = !historyTimes.empty();
   const bool two = historyTimes.size() >= 2;
   const double hPrevious = one ? scene.time - historyTimes[0] : 0.0;
   const double hBefore = two ? historyTimes[0] - historyTimes[1] : 0.0;
-  const std::vector<RigidBodyState>* rigid0 = history.size() >= 1 ? &history[0] : nullptr;
-  const std::vector<RigidBodyState>* rigid1 = history.size() >= 2 ? &history[1] : nullptr;
-  PredictStagePoses(*scene.models, *scene.states, one ? rigid0 : nullptr, hPrevious, predictTime,
-                    start, dt, &predicted_);
-  TangentStep(*scene.dofOffset, scene.numDofs, poses, predicted_, &warmStep_);
-  SteadyMotion(*scene.models, *scene.states, one ? rigid0 : nullptr, hPrevious,
-               two ? rigid1 : nullptr, hBefore, settings.gravity, &steady_);
-  const KindStage* kinds = soft && soft->kinds.Size() > 0 ? &soft->kinds : nullptr;
-  if (kinds) {
-    // The kinds' states follow the soft actors' (none here: the warm start is off with them).
-    const size_t ns = soft->targets.size();
-    const std::vector<VectorState>& states = *scene.vectorStates;
-    const std::vector<std::vector<VectorState>>& vectorHistory = *scene.vectorHistory;
-    const double bound = SteadyBound(settings.gravity);
-    kindSteady_.assign(kinds->Size(), 1);
-    for (size_t k = 0; k < kinds->Size(); ++k) {
-      const ActorKind& kind = *(*kinds->kinds)[k];
-      const size_t s = ns + k;
-      const VectorState* previous =
-          one && vectorHistory.size() >= 1 ? &vectorHistory[0][s] : nullptr;
-      kind.PredictStage(states[s], previous, hPrevious, predictTime, kinds->q0[k], dt,
-                        &kindPredicted_);
-      kind.TangentBetween((*softX)[s], kindPredicted_, &kindDelta_);
-      const std::vector<int>& dof = kinds->stageDof[k];
-      for (size_t j = 0; j < dof.size(); ++j)
-        if (dof[j] >= 0) warmStep_[dof[j]] = kindDelta_[j];
-      if (two && vectorHistory.size() >= 2)
-        kindSteady_[k] = kind.ForceChange(states[s], vectorHistory[0][s], hPrevious,
-                                          vectorHistory[1][s], hBefore) <= bound;
-    }
+  warmStep_.setZero(scene.numDofs);
+  const KindStage& kinds = soft.kinds;
+  // The kinds' states follow the soft actors' (none here: the warm start is off with them).
+  const size_t ns = soft.targets.size();
+  const std::vector<VectorState>& states = *scene.vectorStates;
+  const std::vector<std::vector<VectorState>>& history = *scene.vectorHistory;
+  const double bound = SteadyBound(settings.gravity);
+  kindSteady_.assign(kinds.Size(), 1);
+  for (size_t k = 0; k < kinds.Size(); ++k) {
+    const ActorKind& kind = *(*kinds.kinds)[k];
+    const size_t s = ns + k;
+    const VectorState* previous = one && history.size() >= 1 ? &history[0][s] : nullptr;
+    kind.PredictStage(states[s], previous, hPrevious, predictTime, kinds.q0[k], dt,
+                      &kindPredicted_);
+    kind.TangentBetween(softX[s], kindPredicted_, &kindDelta_);
+    const std::vector<int>& dof = kinds.stageDof[k];
+    for (size_t j = 0; j < dof.size(); ++j)
+      if (dof[j] >= 0) warmStep_[dof[j]] = kindDelta_[j];
+    if (two && history.size() >= 2)
+      kindSteady_[k] = kind.ForceChange(states[s], history[0][s], hPrevious, history[1][s],
+                                        hBefore) <= bound;
   }
-  WarmStart(*problem, *scene.dofOffset, steady_, &warmStep_, &warmScratch_,
-            settings.solver.stepTolerance * dt, kinds ? &kinds->stageDof : nullptr,
-            kinds ? &kindSteady_ : nullptr);
+  WarmStart(*problem, &warmStep_, &warmScratch_, settings.solver.stepTolerance * dt,
+            kinds.stageDof, kindSteady_);
 }
 
-bool StageDriver::FreeStage(const SceneSettings& settings, const StageScene& scene,
-                            const StageDissipation& dissipation, const SoftStage* soft,
-                            std::vector<RigidPose>* poses, std::vector<Eigen::VectorXd>* softX,
+bool StageDriver::FreeStage(const StageScene& scene, const StageDissipation& dissipation,
+                            double dt, const SoftStage& soft, std::vector<Eigen::VectorXd>* softX,
                             SolverStats* stats, ContactStats* contact) {
-  const std::vector<RigidBodyModel>& models = *scene.models;
-  const std::vector<int>& dofOffset = *scene.dofOffset;
-  const StageTargets& targets = targets_;
-  std::vector<RigidPose>& free = free_;
-  free = *poses;
-  for (size_t i = 0; i < models.size(); ++i) {
-    if (dofOffset[i] < 0) continue;
-    Eigen::Vector3d g;
-    if (!FreeStageAcceleration(models[i].mass, settings.gravity,
-                               targets.force.empty() ? nullptr : &targets.force[i],
-                               targets.torque.empty() ? nullptr : &targets.torque[i], &g))
-      return false;
-    const RigidInertiaMinimum x = MinimizeRigidInertia(models[i].secondMoment, targets.pHat[i],
-                                                       targets.RHat[i], targets.dt, g);
-    // A non-finite target (a state gone bad) is left to Newton, which reports it.
-    if (!x.p.allFinite() || !x.R.allFinite()) return false;
-    free[i] = {x.p, x.R};
-  }
-  const KindStage* kinds = soft && soft->kinds.Size() > 0 ? &soft->kinds : nullptr;
-  if (kinds) {
-    freeSoft_ = *softX;
-    const size_t ns = soft->targets.size();
-    for (size_t k = 0; k < kinds->Size(); ++k) {
-      Eigen::VectorXd& q = freeSoft_[ns + k];
-      if (!(*kinds->kinds)[k]->FreeStageMinimizer(kinds->data[k], &q) || !q.allFinite())
-        return false;
-    }
+  const KindStage& kinds = soft.kinds;
+  freeSoft_ = *softX;
+  const size_t ns = soft.targets.size();
+  for (size_t k = 0; k < kinds.Size(); ++k) {
+    Eigen::VectorXd& q = freeSoft_[ns + k];
+    if (!(*kinds.kinds)[k]->FreeStageMinimizer(kinds.data[k], &q) || !q.allFinite()) return false;
   }
   // The contact terms as SceneStageProblem evaluates them there (value only): each pair adds its
   // value, gradient and residual only through samples it counts active.
-  const DissipationContext context = ContextOf(dissipation, targets.dt);
-  const KindView view = kinds ? KindViewOf(*soft, freeSoft_) : KindView();
+  const DissipationContext context = ContextOf(dissipation, dt);
+  const KindView view = KindViewOf(soft, freeSoft_);
   ContactStats found;
-  scene.pipeline->Evaluate(free, dofOffset, 0, PsdProjection::None, nullptr, nullptr, nullptr,
-                           &found, dissipation.enabled ? &context : nullptr, nullptr,
-                           targets.start.empty() ? nullptr : &targets.start, nullptr,
-                           kinds ? &view : nullptr);
+  scene.pipeline->Evaluate(kNoPoses, kNoDofs, 0, PsdProjection::None, nullptr, nullptr, nullptr,
+                           &found, dissipation.enabled ? &context : nullptr, nullptr, nullptr,
+                           nullptr, view.q ? &view : nullptr);
   if (InContact(found)) return false;
-  poses->swap(free);
-  if (kinds) softX->swap(freeSoft_);
+  softX->swap(freeSoft_);
   *contact = found;
   *stats = SolverStats();
   stats->status = StageStatus::Converged;

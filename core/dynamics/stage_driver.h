@@ -1,5 +1,5 @@
 // The stage policy: how one implicit stage is solved (SceneSettings). In order: a recording
-// policy may supply the solution (core/dynamics/stage_recorder.h); a stage of rigid bodies without
+// policy may supply the solution (core/dynamics/stage_recorder.h); a stage of kinds without
 // an active contact sample at the minimizer of inertia and gravity takes that minimizer in closed
 // form; otherwise the chosen solver runs, warm-started from the motion's prediction
 // (core/dynamics/warm_start.h): projected Newton on potential stages, residual Newton on the
@@ -14,24 +14,19 @@
 #include "core/dynamics/scene_settings.h"
 #include "core/dynamics/scene_stage.h"
 #include "core/dynamics/stage_recorder.h"
-#include "core/model/rigid_body.h"
 #include "optim/linear_solver.h"
 #include "optim/newton_solver.h"
 
 namespace superdex {
 
-/// What the stage policy reads of the scene: the rigid models and the stage's dof layout, the
-/// contact pipeline, and the states with their history (the warm start's prediction): the rigid
-/// bodies', and the vector states' (soft actors, then the generic layer's kinds).
+/// What the stage policy reads of the scene: the stage's dof count, the contact pipeline, and the
+/// vector states (soft actors, then the generic layer's kinds) with their history (the warm
+/// start's prediction).
 struct StageScene {
-  const std::vector<RigidBodyModel>* models = nullptr;
-  const std::vector<int>* dofOffset = nullptr;
   int numDofs = 0;
   ContactPipeline* pipeline = nullptr;
   bool hasSoftActors = false;  ///< soft actors: no closed-form stage, no warm start
   bool hasDissipation = false;
-  const std::vector<RigidBodyState>* states = nullptr;               ///< x_n, v_n
-  const std::vector<std::vector<RigidBodyState>>* history = nullptr;  ///< x_{n−1}, x_{n−2}
   const std::vector<VectorState>* vectorStates = nullptr;             ///< x_n, v_n
   const std::vector<std::vector<VectorState>>* vectorHistory = nullptr;
   const std::vector<double>* historyTimes = nullptr;
@@ -65,43 +60,37 @@ class StageDriver {
     return *this;
   }
 
-  /// Solves one stage of step dt [s] with inertial targets x̂ = x⁰ + dt v⁰ from `start` (x⁰, v⁰
-  /// in material-point form), from the initial guess in *poses (and *softX); on return they hold
-  /// the stage's solution. `last` is the last configuration the bodies occupied (the dissipation
-  /// geometry). `predictTime` > 0, the stage's time after t_n [s], allows the warm start.
+  /// Solves one stage of step dt [s] over the actors of `soft` (their stage data: targets x̂,
+  /// x⁰ and the last configuration x_n), from the initial guess in *softX; on return it holds
+  /// the stage's solution. `predictTime` > 0, the stage's time after t_n [s], allows the warm
+  /// start.
   SolverStats Solve(const SceneSettings& settings, const StageScene& scene, double dt,
-                    const std::vector<RigidBodyState>& start, const std::vector<RigidPose>& last,
-                    std::vector<RigidPose>* poses, ContactStats* contact, const SoftStage* soft,
+                    ContactStats* contact, const SoftStage& soft,
                     std::vector<Eigen::VectorXd>* softX, double predictTime,
                     StageRecorder* recorder);
 
   const State& GetState() const { return state_; }
-  /// The last Solve's step and stage start (x⁰, x_n per rigid body).
-  const StageTargets& LastTargets() const { return targets_; }
   void SetState(const State& state) { state_ = state; }
 
  private:
-  // The closed-form stage of SceneSettings::closedFormFreeStages: true, with *poses set to every
-  // dynamic body's MinimizeRigidInertia, the kinds' configurations in *softX to their
-  // FreeStageMinimizer, and *stats, *contact filled, when every kind has it and no contact
-  // sample is active there (penalty or dissipation); false (nothing changed) otherwise.
-  bool FreeStage(const SceneSettings& settings, const StageScene& scene,
-                 const StageDissipation& dissipation, const SoftStage* soft,
-                 std::vector<RigidPose>* poses, std::vector<Eigen::VectorXd>* softX,
-                 SolverStats* stats, ContactStats* contact);
-  // The warm start's tangent step to the predicted solution (rigid bodies and kinds) into
-  // warmStep_, with the steady flags of both, and its application to `problem`.
+  // The closed-form stage of SceneSettings::closedFormFreeStages: true, with the kinds'
+  // configurations in *softX set to their FreeStageMinimizer, and *stats, *contact filled, when
+  // every kind has it and no contact sample is active there (penalty or dissipation); false
+  // (nothing changed) otherwise.
+  bool FreeStage(const StageScene& scene, const StageDissipation& dissipation, double dt,
+                 const SoftStage& soft, std::vector<Eigen::VectorXd>* softX, SolverStats* stats,
+                 ContactStats* contact);
+  // The warm start's tangent step to the kinds' predicted solution into warmStep_, with their
+  // steady flags, and its application to `problem`.
   void WarmStartStage(const SceneSettings& settings, const StageScene& scene, double dt,
-                      const std::vector<RigidBodyState>& start, const SoftStage* soft,
-                      const std::vector<RigidPose>& poses,
-                      const std::vector<Eigen::VectorXd>* softX, double predictTime,
-                      SceneStageProblem* problem);
+                      const SoftStage& soft, const std::vector<Eigen::VectorXd>& softX,
+                      double predictTime, SceneStageProblem* problem);
   // The residual modes' Newton solve with its explicit-normals start and fallback. Returns true
   // when the fallback's outcome stands (its contact statistics then in *contact, recorded).
   bool SolveResidual(const SceneSettings& settings, const StageInputs& inputs,
                      SceneStageProblem& problem, const StageDissipation& dissipation, double dt,
-                     std::vector<RigidPose>* poses, std::vector<Eigen::VectorXd>* softX,
-                     ContactStats* contact, StageRecorder* recorder, SolverStats* st);
+                     std::vector<Eigen::VectorXd>* softX, ContactStats* contact,
+                     StageRecorder* recorder, SolverStats* st);
 
   State state_;
   StageWorkspace workspace_;  // buffers reused from stage to stage
@@ -109,12 +98,9 @@ class StageDriver {
   std::unique_ptr<SymmetricSolver> symmetric_ = std::make_unique<SymmetricSolver>();
   std::unique_ptr<UnsymmetricSolver> unsymmetric_ = std::make_unique<UnsymmetricSolver>();
   NewtonWorkspace newton_;  // the Newton solvers' buffers, from stage to stage
-  // Scratch kept from stage to stage, so that a rigid stage does not allocate once it has run.
-  StageTargets targets_;
-  std::vector<RigidPose> predicted_, guess_, free_, explicitSolution_;
+  // Scratch kept from stage to stage, so that a stage does not allocate once it has run.
   Eigen::VectorXd warmStep_, warmScratch_;
-  std::vector<char> steady_;  // per body: moved steadily over the last two steps (SteadyMotion)
-  std::vector<char> kindSteady_;                // per kind: the same (ActorKind::ForceChange)
+  std::vector<char> kindSteady_;  // per kind: moved steadily over the last two steps (ForceChange)
   std::vector<Eigen::VectorXd> freeSoft_;       // the kinds' free-stage configurations
   std::vector<Eigen::VectorXd> softGuess_, softExplicit_;  // SolveResidual's vector states
   Eigen::VectorXd kindPredicted_, kindDelta_;   // one kind's prediction and its tangent step

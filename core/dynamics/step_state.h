@@ -43,16 +43,13 @@ struct ReportStage {
   double dt = 0.0;  ///< Δt_i [s]
   DissipationMode mode = DissipationMode::ReconstructedLoad;  ///< as solved (a fallback's too)
   bool fadeFriction = true;
-  std::vector<RigidStageStart> start;                 ///< per rigid body: x⁰ and x_n
   std::vector<Eigen::VectorXd> x0, xLast, q0, qLast;  ///< soft actors', kinds' x⁰ and x_n
 };
 
 /// Storage of a scene's steps kept from step to step, so that a rigid step does not allocate once
 /// it has run (scratch: every use overwrites it first).
 struct StepBuffers {
-  // The built-in rigid arrays' stage inputs (empty: rigid actors are kinds), report poses.
-  std::vector<RigidPose> poses, stepStart, reportPoses;
-  std::vector<RigidBodyState> start;
+  std::vector<RigidPose> reportPoses;  ///< the contact pipeline's built-in rigid poses (empty)
   std::vector<double> bdfTimes, bdfWeights;
   std::vector<std::vector<KindSlope>> vectorSlopes;  ///< a DIRK step's slopes per vector state
   std::vector<double> stageWeights;                  ///< a DIRK step's h b_i

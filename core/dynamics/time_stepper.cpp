@@ -46,7 +46,7 @@ void StepBdf(const StepState& step, double h, IntegrationMethod method, StageHos
   host.ApplyConstraints(step.time + h, &softX);
   SoftStage& soft = buffers.softStage;
   host.MakeSoftStage(dt, step.time + h, softStart, softStepStart, &soft);
-  host.SolveStage(dt, &soft, &softX, h, &rep);
+  host.SolveStage(dt, soft, &softX, h, &rep);
   for (size_t s = 0; s < ns; ++s) {
     softNext[s].x = softX[s];
     softNext[s].v = (softX[s] - softStart[s].x) / dt;
@@ -87,7 +87,7 @@ void StepDirk(const StepState& step, double h, IntegrationMethod method, StageHo
     host.ApplyConstraints(step.time + cStage * h, &softX);
     SoftStage& soft = buffers.softStage;
     host.MakeSoftStage(dt, step.time + cStage * h, softStart, softLast, &soft);
-    host.SolveStage(dt, &soft, &softX, cStage * h, &rep);
+    host.SolveStage(dt, soft, &softX, cStage * h, &rep);
     for (size_t s = 0; s < ns; ++s) {
       if (const ActorKind* kind = host.VectorKind(s)) {
         kind->DirkStageSlope(softX[s], softStart[s], dt, &softVK[s][st]);

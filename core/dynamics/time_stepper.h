@@ -32,7 +32,7 @@ class StageHost {
   /// Solves one stage (its data in *soft, from MakeSoftStage) from *softX, which then holds its
   /// solution; accounts it in *rep. `predictTime` > 0 (the stage's time after t_n [s]) allows
   /// the warm start.
-  virtual void SolveStage(double dt, const SoftStage* soft, std::vector<Eigen::VectorXd>* softX,
+  virtual void SolveStage(double dt, const SoftStage& soft, std::vector<Eigen::VectorXd>* softX,
                           double predictTime, StepReport* rep) = 0;
 };
 

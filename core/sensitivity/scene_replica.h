@@ -22,7 +22,6 @@ struct SceneReplica {
     for (int s = 0; s < recorded.used; ++s) {
       const StageTapeEntry& from = recorded.stages[s];
       StageTapeEntry& to = tape.stages[s];
-      to.poses = from.poses;
       to.softX = from.softX;
       to.mode = from.mode;
       to.slips = from.slips;

@@ -3,23 +3,20 @@
 namespace superdex {
 
 void TapeRecorder::Record(const StageInputs& inputs, const StageDissipation& dissipation,
-                          const std::vector<RigidPose>& poses,
-                          const std::vector<Eigen::VectorXd>* softX) {
+                          const std::vector<Eigen::VectorXd>& softX) {
   if (static_cast<int>(tape_->stages.size()) <= stage_) tape_->stages.emplace_back();
   StageTapeEntry& e = tape_->stages[stage_++];
   tape_->used = stage_;
-  e.poses = poses;
-  e.softX = softX ? *softX : std::vector<Eigen::VectorXd>();
+  e.softX = softX;
   e.mode = dissipation.mode;
   // The stage Jacobian at the accepted solution, in the same mode (a copy of the iterate: the
   // problem commits into the vectors it is given).
-  std::vector<RigidPose> at = poses;
   std::vector<Eigen::VectorXd> softAt = e.softX;
   StageDissipation recording = dissipation;
   e.slips.Clear();
   recording.slips = &e.slips;
   recording.recordSlips = true;
-  SceneStageProblem problem = inputs.Problem(&at, recording, softX ? &softAt : nullptr);
+  SceneStageProblem problem = inputs.Problem(recording, &softAt);
   Eigen::VectorXd r;
   Eigen::SparseMatrix<double> J;
   problem.EvaluateResidual(&r, &J);
@@ -28,10 +25,9 @@ void TapeRecorder::Record(const StageInputs& inputs, const StageDissipation& dis
 }
 
 void TapeRecorder::Supply(const StageInputs& inputs, const StageDissipation& dissipation,
-                          std::vector<RigidPose>* poses, std::vector<Eigen::VectorXd>* softX) {
+                          std::vector<Eigen::VectorXd>* softX) {
   StageTapeEntry& e = tape_->stages[stage_++];
-  *poses = e.poses;
-  if (softX) *softX = e.softX;
+  *softX = e.softX;
   const int numDofs = inputs.numDofs;
   if (numDofs == 0) {
     e.residual.resize(0);
@@ -40,7 +36,7 @@ void TapeRecorder::Supply(const StageInputs& inputs, const StageDissipation& dis
   StageDissipation d = dissipation;
   d.mode = e.mode;
   d.slips = &e.slips;
-  SceneStageProblem problem = inputs.Problem(poses, d, softX);
+  SceneStageProblem problem = inputs.Problem(d, softX);
   if (mode_ == Mode::Replay) {  // one Newton step with the recorded factors
     Eigen::VectorXd r;
     problem.Residual(Eigen::VectorXd::Zero(numDofs), &r);

@@ -7,33 +7,36 @@
 #include "core/dynamics/scene_stage.h"
 #include "optim/residual_newton.h"
 #include "derivative_check.h"
+#include "kind_stage.h"
 
 using namespace superdex;
 
 namespace {
 
+// A static plane and two boxes (half extents 0.1 m) pressed into the plane and each other, sliding
+// along x at 0.2 m/s and spinning slowly, their stage start one step back; with `forces` and
+// `torques` applied loads on the boxes.
 struct Fixture {
-  std::vector<RigidBodyModel> models;
-  std::vector<int> dofOffset;
-  StageTargets targets;
-  std::vector<RigidPose> poses;
-  ContactPipeline pipeline;
+  test::HandStage hand;
+  Eigen::Vector3d force[3] = {Eigen::Vector3d::Zero(), {3, -1, 2}, {-2, 4, 1}};
+  Eigen::Vector3d torque[3] = {Eigen::Vector3d::Zero(), {0.5, -0.2, 0.3}, {-0.1, 0.4, 0.2}};
 
-  Fixture() {
+  explicit Fixture(bool forces = false, bool torques = false) {
     auto build = [&](RigidShape shape, bool dynamic, Eigen::Vector3d p, Eigen::Matrix3d R) {
+      const size_t i = hand.kinds.size();
       RigidActorDesc d;
-      d.name = "a" + std::to_string(models.size());
+      d.name = "a" + std::to_string(i);
       d.dynamic = dynamic;
       d.shape = shape;
       d.contact.penaltyCoefficient = 1e6;
       d.contact.normalViscousDampingCoefficient = 0.8;
       d.contact.viscousFrictionCoefficient = 0.1;
-      RigidBodyModel m;
-      RigidBodyState s;
-      Error e;
-      REQUIRE(BuildRigidBody(d, "", &m, &s, &e));
-      models.push_back(m);
-      poses.push_back({p, R});
+      if (dynamic && forces) d.appliedForce = {{0.0, force[i]}};
+      if (dynamic && torques) d.appliedTorque = {{0.0, torque[i]}};
+      RigidPose start = {p - hand.dt * Eigen::Vector3d(0.2, 0.05, -0.1),
+                         ExpSo3(Eigen::Vector3d(0, 0, -0.02)) * R};
+      if (!dynamic) start = {p, R};
+      hand.AddRigid(d, {p, R}, start, {p + Eigen::Vector3d(0.001, 0, -0.001), R});
     };
     RigidShape plane;
     plane.kind = RigidShapeKind::Plane;
@@ -43,44 +46,23 @@ struct Fixture {
     box.halfExtents = Eigen::Vector3d(0.1, 0.1, 0.1);
     build(box, true, Eigen::Vector3d(0.0, 0.0, 0.098), ExpSo3(Eigen::Vector3d(0.02, -0.01, 0.3)));
     build(box, true, Eigen::Vector3d(0.01, 0.02, 0.296), ExpSo3(Eigen::Vector3d(-0.01, 0.02, 0.1)));
-    dofOffset = {-1, 0, 6};
-    targets.dt = 0.01;
-    for (const RigidPose& p : poses) {
-      // Sliding along x at 0.2 m/s, spinning slowly; the stage start one step back.
-      RigidStageStart s;
-      s.p = p.p - targets.dt * Eigen::Vector3d(0.2, 0.05, -0.1);
-      s.R = ExpSo3(Eigen::Vector3d(0, 0, -0.02)) * p.R;
-      s.Rinv = s.R.inverse();
-      if (&p == &poses[0]) { s.p = p.p; s.R = p.R; s.Rinv = p.R.transpose(); }
-      s.last = {s.p, s.R};
-      targets.start.push_back(s);
-      targets.pHat.push_back(p.p + Eigen::Vector3d(0.001, 0, -0.001));
-      targets.RHat.push_back(p.R);
-    }
-    pipeline.Configure(&models);
+    hand.Finish();
+    REQUIRE(hand.numDofs == 12);
   }
 };
 
-// Applied loads on the fixture's two boxes (bodies 1 and 2): forces, and with `torques` torques.
-bool AddLoads(Fixture* f, bool forces, bool torques) {
-  if (forces) f->targets.force = {Eigen::Vector3d::Zero(), {3, -1, 2}, {-2, 4, 1}};
-  if (torques) f->targets.torque = {Eigen::Vector3d::Zero(), {0.5, -0.2, 0.3}, {-0.1, 0.4, 0.2}};
-  return forces || torques;
-}
-
-// The fixture's stage problem in one dissipation mode, on its own copy of the poses.
+// The fixture's stage problem in one dissipation mode, on its own copy of the iterate.
 struct Stage {
   Fixture f;
-  bool loaded = false;
-  std::vector<RigidPose> poses = f.poses;
+  std::vector<Eigen::VectorXd> x = f.hand.x;
   StageDissipation dissipation;
   SceneStageProblem problem;
   explicit Stage(DissipationMode mode, bool enabled = true, bool forces = false,
                  bool torques = false)
-      : loaded(AddLoads(&f, forces, torques)),
+      : f(forces, torques),
         dissipation{enabled, mode, true},
-        problem(f.models, f.dofOffset, 12, f.targets, Eigen::Vector3d(0, 0, -9.81), &f.pipeline,
-                &poses, dissipation) {}
+        problem(12, f.hand.dt, f.hand.gravity, &f.hand.pipeline, f.hand.stage, &x, dissipation) {}
+  RigidPose Pose(size_t k) const { return f.hand.Pose(x, k); }
 };
 
 // Central differences (step 1e-7) of the stage's residual at its current state.
@@ -204,10 +186,7 @@ void CheckSameSolve(const SolverStats& sa, const SolverStats& sb, const Stage& a
   CHECK(sa.iterations >= 2);  // at least one accepted trial was reused
   CHECK(sa.iterations == sb.iterations);
   CHECK(sa.lineSearchSteps == sb.lineSearchSteps);
-  for (size_t i = 0; i < a.poses.size(); ++i) {
-    CHECK(a.poses[i].p == b.poses[i].p);
-    CHECK(a.poses[i].R == b.poses[i].R);
-  }
+  for (size_t i = 0; i < a.x.size(); ++i) CHECK(a.x[i] == b.x[i]);
 }
 
 }  // namespace
@@ -219,8 +198,8 @@ TEST_CASE("residual Newton: reusing the accepted trial's Jacobian leaves the ite
       Stage a(mode), b(mode);
       NonlinearSolverParams params;
       WithoutTrialDerivatives bPlain(b.problem);
-      const SolverStats sa = SolveResidualNewton(a.problem, params, a.f.targets.dt, nullptr);
-      const SolverStats sb = SolveResidualNewton(bPlain, params, b.f.targets.dt, nullptr);
+      const SolverStats sa = SolveResidualNewton(a.problem, params, a.f.hand.dt, nullptr);
+      const SolverStats sb = SolveResidualNewton(bPlain, params, b.f.hand.dt, nullptr);
       CheckSameSolve(sa, sb, a, b);
       CHECK(sa.finalGradientNorm == sb.finalGradientNorm);
     }
@@ -233,14 +212,14 @@ TEST_CASE("rigid stage: the potential's derivatives at a trial step equal those 
     DYNAMIC_SECTION((dissipation ? "explicit-normals dissipation" : "conservative")) {
       Stage stage(DissipationMode::ExplicitNormals, dissipation);
       SceneStageProblem& problem = stage.problem;
-      std::vector<RigidPose>& poses = stage.poses;
+      std::vector<Eigen::VectorXd>& x = stage.x;
       REQUIRE(problem.IsPotential());
       Eigen::VectorXd d(12);
       d << 1e-4, -2e-4, -1e-3, 3e-3, -1e-3, 2e-3, -1e-4, 2e-4, -5e-4, 1e-3, 2e-3, -1e-3;
       for (PsdProjection projection : {PsdProjection::None, PsdProjection::Clamp}) {
         Eigen::VectorXd gTrial, gCommitted;
         Eigen::SparseMatrix<double> HTrial, HCommitted;
-        std::vector<RigidPose> start = poses;
+        const std::vector<Eigen::VectorXd> start = x;
         double fTrial = 0.0;
         REQUIRE(problem.EvaluateAtStep(d, &fTrial, &gTrial, &HTrial, projection));
         CHECK(fTrial == problem.Value(d));
@@ -252,7 +231,7 @@ TEST_CASE("rigid stage: the potential's derivatives at a trial step equal those 
         REQUIRE(HTrial.nonZeros() == HCommitted.nonZeros());
         CHECK(std::memcmp(HTrial.valuePtr(), HCommitted.valuePtr(),
                           sizeof(double) * HTrial.nonZeros()) == 0);
-        poses = start;  // back to the stage's state for the next projection
+        x = start;  // back to the stage's state for the next projection
       }
     }
   }
@@ -266,8 +245,8 @@ TEST_CASE("projected Newton: reusing the accepted trial's derivatives leaves the
       NonlinearSolverParams params;
       params.psdProjection = projection;
       WithoutTrialDerivatives bPlain(b.problem);
-      const SolverStats sa = MinimizeNewton(a.problem, params, a.f.targets.dt, nullptr);
-      const SolverStats sb = MinimizeNewton(bPlain, params, b.f.targets.dt, nullptr);
+      const SolverStats sa = MinimizeNewton(a.problem, params, a.f.hand.dt, nullptr);
+      const SolverStats sb = MinimizeNewton(bPlain, params, b.f.hand.dt, nullptr);
       CheckSameSolve(sa, sb, a, b);
       CHECK(sa.finalValue == sb.finalValue);
     }
@@ -280,12 +259,12 @@ TEST_CASE("rigid stage: the dynamic bodies' six dofs are the Krylov precondition
   DofBlockLayout layout;
   stage.problem.BlockLayout(&layout);
   CHECK(layout.sizes == std::vector<int>{6, 6});  // the static plane has no dofs
-  // Bodies whose dofs are not laid out 0, 6, 12, … in order claim no blocks.
+  // A kind whose free dofs do not fill its blocks (one rotation dof held) claims none.
   Fixture f;
-  std::vector<RigidPose> poses = f.poses;
-  const std::vector<int> swapped = {-1, 6, 0};
-  SceneStageProblem problem(f.models, swapped, 12, f.targets, Eigen::Vector3d(0, 0, -9.81),
-                            &f.pipeline, &poses);
+  std::vector<Eigen::VectorXd> x = f.hand.x;
+  SoftStage held = f.hand.stage;
+  held.kinds.stageDof[2] = {6, 7, 8, 9, 10, -1};
+  SceneStageProblem problem(11, f.hand.dt, f.hand.gravity, &f.hand.pipeline, held, &x);
   problem.BlockLayout(&layout);
   CHECK(layout.sizes.empty());
 }
@@ -293,7 +272,7 @@ TEST_CASE("rigid stage: the dynamic bodies' six dofs are the Krylov precondition
 TEST_CASE("rigid stage: the trust region bounds each body's Newton correction",
           "[core][stage]") {
   Stage s(DissipationMode::ExplicitNormals);
-  const RigidBodyModel& m = s.f.models[1];  // both boxes: half extents 0.1 m
+  const RigidBodyModel& m = s.f.hand.kinds[1]->Model();  // both boxes: half extents 0.1 m
   const double rho = std::max(m.samplesRadius, RmsRadius(m));
   REQUIRE(rho >= 0.1);
   const double trust = kCorrectionTrust * rho;
@@ -341,8 +320,8 @@ TEST_CASE("rigid stage: applied forces are a potential, applied torques a residu
         plain.problem.EvaluateResidual(&r0, &J0);
         Eigen::VectorXd loads = Eigen::VectorXd::Zero(12);
         for (int b = 1; b <= 2; ++b) {
-          loads.segment<3>(6 * (b - 1)) = stage.f.targets.force[b];
-          if (torques) loads.segment<3>(6 * (b - 1) + 3) = stage.f.targets.torque[b];
+          loads.segment<3>(6 * (b - 1)) = stage.f.force[b];
+          if (torques) loads.segment<3>(6 * (b - 1) + 3) = stage.f.torque[b];
         }
         CHECK((r - (r0 - loads)).norm() < 1e-12 * r.norm());
         // Its Jacobian: finite differences of the residual (a constant world torque adds none).
@@ -387,8 +366,8 @@ TEST_CASE("rigid stage: with applied torques both solvers reach the residual's r
   Stage a(DissipationMode::ExplicitNormals, true, true, true);
   Stage b(DissipationMode::ExplicitNormals, true, true, true);
   NonlinearSolverParams params;
-  const SolverStats sa = MinimizeNewton(a.problem, params, a.f.targets.dt, nullptr);
-  const SolverStats sb = SolveResidualNewton(b.problem, params, b.f.targets.dt, nullptr);
+  const SolverStats sa = MinimizeNewton(a.problem, params, a.f.hand.dt, nullptr);
+  const SolverStats sb = SolveResidualNewton(b.problem, params, b.f.hand.dt, nullptr);
   REQUIRE(sa.status == StageStatus::Converged);
   REQUIRE(sb.status == StageStatus::Converged);
   Eigen::VectorXd ra, rb, r0;
@@ -398,8 +377,8 @@ TEST_CASE("rigid stage: with applied torques both solvers reach the residual's r
   start.problem.EvaluateResidual(&r0, nullptr);
   CHECK(ra.lpNorm<Eigen::Infinity>() < 1e-6 * r0.lpNorm<Eigen::Infinity>());
   CHECK(rb.lpNorm<Eigen::Infinity>() < 1e-6 * r0.lpNorm<Eigen::Infinity>());
-  for (size_t i = 1; i < a.poses.size(); ++i) {
-    CHECK((a.poses[i].p - b.poses[i].p).norm() < 1e-9);
-    CHECK((a.poses[i].R - b.poses[i].R).norm() < 1e-8);
+  for (size_t i = 1; i < a.x.size(); ++i) {
+    CHECK((a.Pose(i).p - b.Pose(i).p).norm() < 1e-9);
+    CHECK((a.Pose(i).R - b.Pose(i).R).norm() < 1e-8);
   }
 }

@@ -9,6 +9,7 @@
 #include "core/scene.h"
 #include "core/dynamics/scene_stage.h"
 #include "derivative_check.h"
+#include "kind_stage.h"
 #include "scene_builders.h"
 
 using namespace superdex;
@@ -45,32 +46,22 @@ SoftActorDesc SlidingSoftCube(const Eigen::Vector3d& position, double mu) {
 // A soft cube (2 × 2 × 2 cells, one node pinned) pressed 2 mm into a static plane with a dynamic
 // rigid box pressed 2 mm into its top; everything sliding; stiffness damping on.
 struct SoftStageFixture {
-  std::vector<RigidBodyModel> models;
-  std::vector<SoftBodyModel> soft;
-  std::vector<RigidPose> poses;
-  std::vector<int> dofOffset = {-1, 0};
-  StageTargets targets;
-  SoftStage softStage;
-  std::vector<Eigen::VectorXd> x;
-  ContactPipeline pipeline;
-  int numDofs = 0;
+  test::HandStage hand;
 
   SoftStageFixture() {
     Error e;
-    auto addRigid = [&](const RigidActorDesc& d, const RigidPose& pose) {
-      RigidBodyModel m;
-      RigidBodyState s;
-      REQUIRE(BuildRigidBody(d, "", &m, &s, &e));
-      models.push_back(m);
-      poses.push_back(pose);
-    };
     RigidActorDesc ground = test::StaticGround(1e5, 0.5);
     ground.contact.normalViscousDampingCoefficient = 0.5;
     ground.contact.viscousFrictionCoefficient = 0.2;
-    addRigid(ground, {});
+    hand.AddRigid(ground, {}, {}, {});
     RigidActorDesc box = test::Cube(1e5, 0.4, 0.5);
     box.contact.viscousFrictionCoefficient = 0.2;
-    addRigid(box, {Eigen::Vector3d(0.01, 0.0, 0.298), ExpSo3(Eigen::Vector3d(0.01, -0.02, 0.2))});
+    const RigidPose pose = {Eigen::Vector3d(0.01, 0.0, 0.298),
+                            ExpSo3(Eigen::Vector3d(0.01, -0.02, 0.2))};
+    hand.AddRigid(box, pose,
+                  {pose.p - hand.dt * Eigen::Vector3d(0.2, 0.05, -0.1),
+                   ExpSo3(Eigen::Vector3d(0, 0, -0.02)) * pose.R},
+                  {pose.p + Eigen::Vector3d(0.001, 0, -0.001), pose.R});
 
     SoftActorDesc d = SoftCube(0.1, 2, Eigen::Vector3d(0, 0, 0.1));
     d.contact.penaltyCoefficient = 1e5;
@@ -81,43 +72,20 @@ struct SoftStageFixture {
     SoftBodyModel m;
     SoftBodyState s;
     REQUIRE(BuildSoftBody(d, "", &m, &s, &e));
-    soft.push_back(m);
-    numDofs = 6 + 3 * m.numFree;
-
-    targets.dt = 0.01;
-    for (const RigidPose& p : poses) {
-      RigidStageStart st;
-      st.p = p.p - targets.dt * Eigen::Vector3d(0.2, 0.05, -0.1);
-      st.R = ExpSo3(Eigen::Vector3d(0, 0, -0.02)) * p.R;
-      if (&p == &poses[0]) {
-        st.p = p.p;
-        st.R = p.R;
-      }
-      st.Rinv = st.R.inverse();
-      st.last = {st.p, st.R};
-      targets.start.push_back(st);
-      targets.pHat.push_back(p.p + Eigen::Vector3d(0.001, 0, -0.001));
-      targets.RHat.push_back(p.R);
-    }
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> u(-1e-3, 1e-3);
     Eigen::VectorXd xc = s.x;
     for (Eigen::Index i = 0; i < xc.size(); ++i) xc[i] += u(rng);
     for (int a = 0; a < m.NumNodes(); ++a) xc[3 * a + 2] -= 0.002;
-    x = {xc};
     SoftStageTarget t;
     t.x0 = xc;
     for (int a = 0; a < m.NumNodes(); ++a)
-      t.x0.segment<3>(3 * a) -= targets.dt * Eigen::Vector3d(0.15, -0.05, -0.1);
+      t.x0.segment<3>(3 * a) -= hand.dt * Eigen::Vector3d(0.15, -0.05, -0.1);
     t.xLast = t.x0;
     t.xHat = xc + Eigen::VectorXd::Constant(xc.size(), 2e-4);
-    PrepareSoftDamping(m, &t);
-    softStage.models = &soft;
-    softStage.dofOffset = {6};
-    softStage.targets = {t};
-    softStage.x0 = {t.x0};
-    softStage.xLast = {t.xLast};
-    pipeline.Configure(&models, nullptr, &soft, {0, 1}, {2});
+    hand.AddSoft(m, t, xc);
+    hand.Finish();
+    REQUIRE(hand.numDofs == 6 + 3 * m.numFree);
   }
 };
 
@@ -165,12 +133,11 @@ TEST_CASE("soft stage: gradient, Hessian and residual Jacobian with soft contact
       StageDissipation diss;
       diss.enabled = true;
       diss.mode = mode;
-      std::vector<RigidPose> poses = f.poses;
-      std::vector<Eigen::VectorXd> x = f.x;
-      SceneStageProblem problem(f.models, f.dofOffset, f.numDofs, f.targets,
-                                Eigen::Vector3d(0, 0, -9.81), &f.pipeline, &poses, diss,
-                                &f.softStage, &x);
-      const Eigen::VectorXd r = CheckStageDerivatives(problem, f.numDofs);
+      std::vector<Eigen::VectorXd> x = f.hand.x;
+      SceneStageProblem problem(f.hand.numDofs, f.hand.dt, f.hand.gravity, &f.hand.pipeline,
+                                f.hand.stage, &x, diss);
+      const int numDofs = f.hand.numDofs;
+      const Eigen::VectorXd r = CheckStageDerivatives(problem, numDofs);
       if (mode == DissipationMode::ExplicitNormals) {
         Eigen::VectorXd g;
         Eigen::SparseMatrix<double> H;
@@ -179,7 +146,7 @@ TEST_CASE("soft stage: gradient, Hessian and residual Jacobian with soft contact
         // The soft block of the Hessian is symmetric (the rigid rotation blocks carry the
         // non-symmetric trivialization only in the residual Jacobian).
         const Eigen::MatrixXd Hd(H);
-        const Eigen::MatrixXd Hs = Hd.bottomRightCorner(f.numDofs - 6, f.numDofs - 6);
+        const Eigen::MatrixXd Hs = Hd.bottomRightCorner(numDofs - 6, numDofs - 6);
         CHECK((Hs - Hs.transpose()).norm() < 1e-10 * Hs.norm());
         // Projected: positive semi-definite.
         problem.Evaluate(&g, &H, PsdProjection::Clamp);
@@ -481,41 +448,25 @@ namespace {
 // A soft cube B with an Sdf collider (experimental role); a rigid box pressed 2 mm into its top
 // and a soft cube A pressed 2 mm into its +x side; everything moving. Stiffness damping off.
 struct SoftColliderFixture {
-  std::vector<RigidBodyModel> models;
-  std::vector<SoftBodyModel> soft;
-  std::vector<RigidPose> poses;
-  std::vector<int> dofOffset = {0};
-  StageTargets targets;
-  SoftStage softStage;
-  std::vector<Eigen::VectorXd> x;
-  ContactPipeline pipeline;
-  int numDofs = 6;
+  test::HandStage hand;
 
   SoftColliderFixture() {
     Error e;
+    hand.gravity.setZero();
     RigidActorDesc box = test::Cube(1e5, 0.4, 0.5);
     box.contact.viscousFrictionCoefficient = 0.2;
-    RigidBodyModel bm;
-    RigidBodyState bs;
-    REQUIRE(BuildRigidBody(box, "", &bm, &bs, &e));
-    models.push_back(bm);
-    poses.push_back({Eigen::Vector3d(0.013, 0.004, 0.198), ExpSo3(Eigen::Vector3d(0.01, -0.02, 0.2))});
-    targets.dt = 0.01;
-    RigidStageStart st;
-    st.p = poses[0].p - targets.dt * Eigen::Vector3d(0.2, 0.05, -0.1);
-    st.R = ExpSo3(Eigen::Vector3d(0, 0, -0.02)) * poses[0].R;
-    st.Rinv = st.R.inverse();
-    st.last = {st.p, st.R};
-    targets.start.push_back(st);
-    targets.pHat.push_back(poses[0].p);
-    targets.RHat.push_back(poses[0].R);
+    const RigidPose pose = {Eigen::Vector3d(0.013, 0.004, 0.198),
+                            ExpSo3(Eigen::Vector3d(0.01, -0.02, 0.2))};
+    hand.AddRigid(box, pose,
+                  {pose.p - hand.dt * Eigen::Vector3d(0.2, 0.05, -0.1),
+                   ExpSo3(Eigen::Vector3d(0, 0, -0.02)) * pose.R},
+                  pose);
 
     std::mt19937 rng(11);
     std::uniform_real_distribution<double> u(-1e-3, 1e-3);
     const Eigen::Vector3d centers[2] = {Eigen::Vector3d::Zero(), Eigen::Vector3d(0.198, 0.03, 0.01)};
     const Eigen::Vector3d velocity[2] = {Eigen::Vector3d(0.05, 0.0, 0.02),
                                          Eigen::Vector3d(-0.1, 0.1, 0.05)};
-    softStage.models = &soft;
     for (int k = 0; k < 2; ++k) {
       SoftActorDesc d = SoftCube(0.1, 2, centers[k]);
       d.contact.penaltyCoefficient = 1e5;
@@ -530,18 +481,12 @@ struct SoftColliderFixture {
       for (Eigen::Index i = 0; i < xc.size(); ++i) xc[i] += u(rng);
       SoftStageTarget t;
       t.x0 = xc;
-      for (int a = 0; a < m.NumNodes(); ++a) t.x0.segment<3>(3 * a) -= targets.dt * velocity[k];
+      for (int a = 0; a < m.NumNodes(); ++a) t.x0.segment<3>(3 * a) -= hand.dt * velocity[k];
       t.xLast = t.x0;
       t.xHat = xc;
-      softStage.dofOffset.push_back(numDofs);
-      numDofs += 3 * m.numFree;
-      soft.push_back(m);
-      x.push_back(xc);
-      softStage.targets.push_back(t);
-      softStage.x0.push_back(t.x0);
-      softStage.xLast.push_back(t.xLast);
+      hand.AddSoft(m, t, xc);
     }
-    pipeline.Configure(&models, nullptr, &soft, {0}, {1, 2});
+    hand.Finish();
   }
 };
 
@@ -556,11 +501,10 @@ TEST_CASE("soft collider: gradient, Hessian and residual Jacobian of rigid and s
       StageDissipation diss;
       diss.enabled = true;
       diss.mode = mode;
-      std::vector<RigidPose> poses = f.poses;
-      std::vector<Eigen::VectorXd> x = f.x;
-      SceneStageProblem problem(f.models, f.dofOffset, f.numDofs, f.targets, Eigen::Vector3d::Zero(),
-                                &f.pipeline, &poses, diss, &f.softStage, &x);
-      const Eigen::VectorXd r = CheckStageDerivatives(problem, f.numDofs);
+      std::vector<Eigen::VectorXd> x = f.hand.x;
+      SceneStageProblem problem(f.hand.numDofs, f.hand.dt, f.hand.gravity, &f.hand.pipeline,
+                                f.hand.stage, &x, diss);
+      const Eigen::VectorXd r = CheckStageDerivatives(problem, f.hand.numDofs);
       // Balanced: the contact forces sum to zero over all actors (no gravity, no inertia offset:
       // x̂ = x for the soft actors; the rigid box's inertia is removed by p̂ = p, R̂ = R).
       Eigen::Vector3d net = r.head<3>();

@@ -8,6 +8,7 @@
 #include "core/model/rigid_math.h"
 #include "core/scene.h"
 #include "core/dynamics/warm_start.h"
+#include "core/model/rigid_kind.h"
 #include "scene_builders.h"
 
 using namespace superdex;
@@ -73,45 +74,47 @@ Run RunScene(Scene& scene, double dt, int steps) {
 
 }  // namespace
 
-TEST_CASE("PredictPoses continues the last step's acceleration exactly", "[warm_start]") {
-  std::vector<RigidBodyModel> models(2);
-  models[1].dynamic = false;
+TEST_CASE("PredictRigidPose continues the last step's acceleration exactly", "[warm_start]") {
   const Eigen::Matrix3d R = ExpSo3(Eigen::Vector3d(0.3, -0.2, 0.5));
   const Eigen::Vector3d a(0.5, -1.0, -9.81), alpha(0.2, 0.1, -0.4);
   const Eigen::Vector3d v(1.0, 2.0, -0.5), omega(0.7, -0.1, 0.3);
   const double hPrev = 0.02, tau = 0.03;
-  const std::vector<RigidBodyState> current = {StateWith({1, 2, 3}, R, v, omega),
-                                               StateWith({0, 0, 0}, R, v, omega)};
-  const std::vector<RigidBodyState> previous = {
-      StateWith({0, 0, 0}, R, v - hPrev * a, omega - hPrev * alpha), current[1]};
-  const std::vector<RigidPose> pred = PredictPoses(models, current, &previous, hPrev, tau);
-  const Eigen::Vector3d pExact = current[0].p + tau * v + 0.5 * tau * tau * a;
-  CHECK((pred[0].p - pExact).norm() < 1e-14);
-  CHECK((pred[0].R - ExpSo3(tau * omega + 0.5 * tau * tau * alpha) * R).norm() < 1e-14);
-  // A static body keeps its pose; without history the prediction is the constant velocity one.
-  CHECK(pred[1].p == current[1].p);
-  CHECK(pred[1].R == current[1].R);
-  const std::vector<RigidPose> flat = PredictPoses(models, current, nullptr, 0.0, tau);
-  CHECK((flat[0].p - (current[0].p + tau * v)).norm() < 1e-14);
-  CHECK((flat[0].R - ExpSo3(tau * omega) * R).norm() < 1e-14);
+  const RigidBodyState current = StateWith({1, 2, 3}, R, v, omega);
+  const RigidBodyState previous = StateWith({0, 0, 0}, R, v - hPrev * a, omega - hPrev * alpha);
+  const RigidPose pred = PredictRigidPose(current, &previous, hPrev, tau, nullptr, 0.0);
+  const Eigen::Vector3d pExact = current.p + tau * v + 0.5 * tau * tau * a;
+  CHECK((pred.p - pExact).norm() < 1e-14);
+  CHECK((pred.R - ExpSo3(tau * omega + 0.5 * tau * tau * alpha) * R).norm() < 1e-14);
+  // Without history the prediction is the constant velocity one.
+  const RigidPose flat = PredictRigidPose(current, nullptr, 0.0, tau, nullptr, 0.0);
+  CHECK((flat.p - (current.p + tau * v)).norm() < 1e-14);
+  CHECK((flat.R - ExpSo3(tau * omega) * R).norm() < 1e-14);
+  // A static rigid actor's predicted stage keeps its pose.
+  RigidBodyModel ground;
+  ground.dynamic = false;
+  const RigidKind kind(ground, current);
+  Eigen::VectorXd q;
+  kind.PredictStage(RigidKind::Pack(current), nullptr, 0.0, tau, RigidKind::Pack(current).x, tau,
+                    &q);
+  CHECK(q == RigidKind::Pack(current).x);
 }
 
-TEST_CASE("TangentStep moves one set of poses onto another", "[warm_start]") {
-  std::vector<RigidPose> from(3), to(3);
+TEST_CASE("RigidKind::TangentBetween moves one pose onto another", "[warm_start]") {
+  RigidBodyModel body;
+  const RigidKind kind(body, RigidBodyState());
   for (int i = 0; i < 3; ++i) {
-    from[i].p = Eigen::Vector3d(i, -i, 0.5 * i);
-    from[i].R = ExpSo3(Eigen::Vector3d(0.1 * i, 0.4, -0.3));
-    to[i].p = from[i].p + Eigen::Vector3d(0.01, 0.02 * i, -0.03);
-    to[i].R = ExpSo3(Eigen::Vector3d(-0.2, 0.1 * i, 0.6)) * from[i].R;
-  }
-  const std::vector<int> offset = {0, -1, 6};  // actor 1 is static
-  const Eigen::VectorXd d = TangentStep(offset, 15, from, to);
-  REQUIRE(d.size() == 15);
-  CHECK(d.tail<3>().isZero());  // entries beyond the rigid blocks (e.g. soft nodes) stay zero
-  for (int i : {0, 2}) {
-    const int o = offset[i];
-    CHECK((from[i].p + d.segment<3>(o) - to[i].p).norm() < 1e-14);
-    CHECK((ExpSo3(d.segment<3>(o + 3)) * from[i].R - to[i].R).norm() < 1e-12);
+    RigidBodyState from, to;
+    from.p = Eigen::Vector3d(i, -i, 0.5 * i);
+    from.R = ExpSo3(Eigen::Vector3d(0.1 * i, 0.4, -0.3));
+    to.p = from.p + Eigen::Vector3d(0.01, 0.02 * i, -0.03);
+    to.R = ExpSo3(Eigen::Vector3d(-0.2, 0.1 * i, 0.6)) * from.R;
+    Eigen::VectorXd d, moved;
+    kind.TangentBetween(RigidKind::Pack(from).x, RigidKind::Pack(to).x, &d);
+    REQUIRE(d.size() == 6);
+    CHECK((from.p + d.head<3>() - to.p).norm() < 1e-14);
+    CHECK((ExpSo3(d.tail<3>()) * from.R - to.R).norm() < 1e-12);
+    kind.Retract(RigidKind::Pack(from).x, d, &moved);  // and Retract undoes it
+    CHECK((moved - RigidKind::Pack(to).x).norm() < 1e-12);
   }
 }
 
@@ -128,13 +131,28 @@ TEST_CASE("WarmStart takes the predicted step shortened by the step limit", "[wa
   CHECK(rest.x.isZero());
 }
 
-TEST_CASE("SteadyMotion tells steady motion from a change of the forces", "[warm_start]") {
+TEST_CASE("RigidForceChange tells steady motion from a change of the forces", "[warm_start]") {
   RigidBodyModel body;
   body.mass = 2.0;
   body.secondMoment = Eigen::Vector3d(0.03, 0.02, 0.01).asDiagonal();  // asymmetric [kg·m²]
   RigidBodyModel ground;
   ground.dynamic = false;
   const std::vector<RigidBodyModel> models = {body, body, body, body, body, ground};
+  // Each body steady when its force change is within SteadyBound (RigidKind::ForceChange, as
+  // the stage driver asks it).
+  auto steadyOf = [&](const std::vector<RigidBodyState>& current,
+                      const std::vector<RigidBodyState>& previous, double hPrevious,
+                      const std::vector<RigidBodyState>& before, double hBefore,
+                      const Eigen::Vector3d& g) {
+    std::vector<char> out;
+    for (size_t i = 0; i < models.size(); ++i) {
+      const RigidKind kind(models[i], current[i]);
+      out.push_back(kind.ForceChange(RigidKind::Pack(current[i]), RigidKind::Pack(previous[i]),
+                                     hPrevious, RigidKind::Pack(before[i]), hBefore) <=
+                    SteadyBound(g));
+    }
+    return out;
+  };
   const Eigen::Vector3d g(0, 0, -9.81);
   const double h0 = 0.02, h1 = 0.01;  // unequal steps
   const double rho = RmsRadius(body);
@@ -177,8 +195,7 @@ TEST_CASE("SteadyMotion tells steady motion from a change of the forces", "[warm
   before.push_back(rest);
   previous.push_back(rest);
   current.push_back(rest);
-  std::vector<char> steady;
-  SteadyMotion(models, current, &previous, h1, &before, h0, g, &steady);
+  const std::vector<char> steady = steadyOf(current, previous, h1, before, h0, g);
   REQUIRE(steady.size() == 6);
   CHECK(steady[0]);
   CHECK(steady[1]);
@@ -186,9 +203,6 @@ TEST_CASE("SteadyMotion tells steady motion from a change of the forces", "[warm
   CHECK(steady[3]);
   CHECK_FALSE(steady[4]);
   CHECK(steady[5]);  // static
-  // Without two steps of history every body counts as steady.
-  SteadyMotion(models, current, &previous, h1, nullptr, 0.0, g, &steady);
-  CHECK(std::count(steady.begin(), steady.end(), 1) == 6);
 }
 
 namespace {
@@ -218,8 +232,11 @@ class BodiesToy : public Toy {
 TEST_CASE("WarmStart bounds the predictions that extrapolate a change of the forces",
           "[warm_start]") {
   BodiesToy toy(4, 1.0, 0.5);
-  const std::vector<int> offset = {0, -1, 6, 12, 18};  // actor 1 static
-  std::vector<char> steady = {1, 1, 0, 1, 1};
+  // Units of six dofs (unit 1 static: no stage dofs).
+  const std::vector<std::vector<int>> units = {
+      {0, 1, 2, 3, 4, 5}, {-1, -1, -1}, {6, 7, 8, 9, 10, 11}, {12, 13, 14, 15, 16, 17},
+      {18, 19, 20, 21, 22, 23}};
+  std::vector<char> steady = {1, 0, 0, 1, 1};  // a static unit's flag changes nothing
   Eigen::VectorXd d = Eigen::VectorXd::Zero(24), scratch;
   d.segment<6>(0).setConstant(0.4);   // steady, within the limit: taken whole (norm 0.98 > 0.5)
   d.segment<6>(6).setConstant(0.4);   // its forces changed (an impact): bounded to norm 0.5
@@ -230,7 +247,7 @@ TEST_CASE("WarmStart bounds the predictions that extrapolate a change of the for
   Eigen::VectorXd expected = d;
   expected.segment<6>(6) *= 0.5 / d.segment<6>(6).norm();
   expected[12] = 1.5;
-  REQUIRE(WarmStart(toy, offset, steady, &d, &scratch, 0.0));
+  REQUIRE(WarmStart(toy, &d, &scratch, 0.0, units, steady));
   CHECK((toy.x - expected).norm() < 1e-15);
   CHECK((d - expected).norm() < 1e-15);
   CHECK(toy.evaluations == 0);
@@ -238,7 +255,7 @@ TEST_CASE("WarmStart bounds the predictions that extrapolate a change of the for
   BodiesToy flight(4, 10.0, 0.5);
   std::vector<char> allSteady(5, 1);
   Eigen::VectorXd e = Eigen::VectorXd::Constant(24, 0.4);
-  REQUIRE(WarmStart(flight, offset, allSteady, &e, &scratch, 0.0));
+  REQUIRE(WarmStart(flight, &e, &scratch, 0.0, units, allSteady));
   CHECK((flight.x - Eigen::VectorXd::Constant(24, 0.4)).norm() == 0.0);
 }
 
@@ -296,36 +313,33 @@ TEST_CASE("Warm-started stages reach the cold start's solutions in fewer Newton 
   }
 }
 
-TEST_CASE("PredictStagePoses gives the stage's own solution under constant acceleration",
+TEST_CASE("PredictRigidPose through the stage's slope gives the stage's own solution under "
+          "constant acceleration",
           "[warm_start]") {
   // Backward Euler from rest (v_{n-1} = v_n − h a): the stage solves p = p_n + h v_{n+1} with
-  // v_{n+1} = v_n + h a; PredictPoses' continuous-time extrapolation p_n + h v_n + ½ h² a is
-  // ½ h² a short of it.
-  std::vector<RigidBodyModel> models(1);
+  // v_{n+1} = v_n + h a; the continuous-time extrapolation p_n + h v_n + ½ h² a is ½ h² a short
+  // of it.
   const Eigen::Matrix3d R = ExpSo3(Eigen::Vector3d(0.3, -0.2, 0.5));
   const Eigen::Vector3d a(0.5, -1.0, -9.81), v(1.0, 2.0, -0.5), omega(0.7, -0.1, 0.3);
   const double h = 0.02;
-  const std::vector<RigidBodyState> current = {StateWith({1, 2, 3}, R, v, omega)};
-  const std::vector<RigidBodyState> previous = {StateWith({0, 0, 0}, R, v - h * a, omega)};
-  const Eigen::Vector3d stageSolution = current[0].p + h * (v + h * a);
-  const std::vector<RigidPose> stage =
-      PredictStagePoses(models, current, &previous, h, h, current, h);
-  CHECK((stage[0].p - stageSolution).norm() < 1e-14);
-  const std::vector<RigidPose> plain = PredictPoses(models, current, &previous, h, h);
-  CHECK((plain[0].p - stageSolution).norm() == Approx(0.5 * h * h * a.norm()).epsilon(1e-9));
-  CHECK((stage[0].R - plain[0].R).norm() == 0.0);  // the rotation is PredictPoses'
+  const RigidBodyState current = StateWith({1, 2, 3}, R, v, omega);
+  const RigidBodyState previous = StateWith({0, 0, 0}, R, v - h * a, omega);
+  const Eigen::Vector3d stageSolution = current.p + h * (v + h * a);
+  const RigidPose stage = PredictRigidPose(current, &previous, h, h, &current.p, h);
+  CHECK((stage.p - stageSolution).norm() < 1e-14);
+  const RigidPose plain = PredictRigidPose(current, &previous, h, h, nullptr, 0.0);
+  CHECK((plain.p - stageSolution).norm() == Approx(0.5 * h * h * a.norm()).epsilon(1e-9));
+  CHECK((stage.R - plain.R).norm() == 0.0);  // the rotation is the same
   // A DIRK stage with start p⁰ (the step start plus earlier slopes), step Δt_i at time τ.
-  std::vector<RigidBodyState> start = current;
-  start[0].p += Eigen::Vector3d(0.01, -0.02, 0.03);
+  const Eigen::Vector3d start = current.p + Eigen::Vector3d(0.01, -0.02, 0.03);
   const double dtStage = 0.29 * h, tau = 0.71 * h;
-  const std::vector<RigidPose> dirk =
-      PredictStagePoses(models, current, &previous, h, tau, start, dtStage);
-  CHECK((dirk[0].p - (start[0].p + dtStage * (v + tau * a))).norm() < 1e-14);
+  const RigidPose dirk = PredictRigidPose(current, &previous, h, tau, &start, dtStage);
+  CHECK((dirk.p - (start + dtStage * (v + tau * a))).norm() < 1e-14);
 }
 
 TEST_CASE("In free flight every warm-started stage takes one Newton iteration", "[warm_start]") {
   // A falling box far from anything: the predicted position is the stage's solution
-  // (PredictStagePoses), so each stage's first Newton direction already passes the convergence
+  // (PredictRigidPose), so each stage's first Newton direction already passes the convergence
   // tests. Before the stage-consistent prediction the DIRK methods took two per stage.
   for (IntegrationMethod method :
        {IntegrationMethod::BackwardEuler, IntegrationMethod::BDF2, IntegrationMethod::DIRK22,
