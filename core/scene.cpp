@@ -290,11 +290,9 @@ void Scene::Prepare() {
     softDofOffset_[s] = numDofs_;
     numDofs_ += 3 * softModels_[s].numFree;
   }
-  std::vector<int> rigidActor, softActor, kindActor;
-  for (int i = 0; i < NumActors(); ++i)
-    (actors_[i].kind ? kindActor : actors_[i].soft ? softActor : rigidActor).push_back(i);
-  pipeline_.Configure(&models_, &filter_, &softModels_, rigidActor, softActor, &kindPtrs_,
-                      kindActor);
+  std::vector<int> softActor, kindActor;
+  for (int i = 0; i < NumActors(); ++i) (actors_[i].kind ? kindActor : softActor).push_back(i);
+  pipeline_.Configure(&filter_, &softModels_, softActor, &kindPtrs_, kindActor);
   hasDissipation_ = HasDissipation();  // actors' contact parameters are fixed once added
   prepared_ = true;
 }
@@ -449,9 +447,8 @@ ContactStats Scene::ContactState() {
   view.x = &x;
   view.dofOffset = &softDofOffset_;
   const KindView kinds = CurrentKindView(x);
-  CurrentPoses(&buffers_.reportPoses);
-  pipeline_.Evaluate(buffers_.reportPoses, dofOffset_, 0, PsdProjection::None, nullptr, nullptr,
-                     nullptr, &st, nullptr, nullptr, nullptr, &view, &kinds);
+  pipeline_.Evaluate(0, PsdProjection::None, nullptr, nullptr, nullptr, &st, nullptr, nullptr,
+                     &view, &kinds);
   return st;
 }
 
@@ -474,7 +471,7 @@ std::vector<ContactSampleRecord> Scene::ContactSamples() {
   KindView kinds = CurrentKindView(x);
   const ReportStage& r = buffers_.reportStage;
   if (!r.valid) {
-    pipeline_.CollectSamples(CurrentPoses(), &out, &view, &kinds);
+    pipeline_.CollectSamples(&out, &view, &kinds);
     return out;
   }
   // The last stage's dissipation at the state it produced.
@@ -486,7 +483,7 @@ std::vector<ContactSampleRecord> Scene::ContactSamples() {
   context.dt = r.dt;
   context.mode = r.mode;
   context.fadeFriction = r.fadeFriction;
-  pipeline_.CollectSamples(CurrentPoses(), &out, &view, &kinds, &context);
+  pipeline_.CollectSamples(&out, &view, &kinds, &context);
   return out;
 }
 

@@ -91,7 +91,7 @@ struct HandStage {
     for (size_t k = 0; k < kinds.size(); ++k) kindActor.push_back(static_cast<int>(k));
     for (size_t s = 0; s < soft.size(); ++s)
       softActor.push_back(static_cast<int>(kinds.size() + s));
-    pipeline.Configure(&noModels_, nullptr, &soft, {}, softActor, &kindPtrs_, kindActor);
+    pipeline.Configure(nullptr, &soft, softActor, &kindPtrs_, kindActor);
   }
   /// Rigid actor k's pose in an iterate.
   RigidPose Pose(const std::vector<Eigen::VectorXd>& at, size_t k) const {
@@ -100,7 +100,6 @@ struct HandStage {
   }
 
  private:
-  std::vector<RigidBodyModel> noModels_;
   std::vector<const ActorKind*> kindPtrs_;
   std::vector<Eigen::VectorXd> kindQ_;
 };

@@ -1,6 +1,7 @@
-// The contact pipeline over rigid actors (spec: "Contact Pipeline"): broad phase over actor
-// bounding boxes, narrow phase of colliding samples against collider fields, response into the
-// stage's gradient and Hessian.
+// The contact pipeline (spec: "Contact Pipeline") over the generic layer's actors (rigid actors
+// among them) and the soft actors: broad phase over actor bounding boxes, narrow phase of colliding
+// samples against collider fields, response into the stage's gradient and Hessian through the one
+// assembler of core/contact/kind_contact.h (pairs on a soft collider's field: soft_collider.h).
 #pragma once
 
 #include <Eigen/Core>
@@ -33,8 +34,8 @@ struct ContactStats {
   double maxCoulombRatio = 0.0;///< max ‖T_C‖/(μ λ̂_n) over samples (<= 1)
 };
 
-/// The stage data dissipation needs (spec: "Stage-Discrete Dissipation"); the stage-start poses
-/// are Evaluate's `stageStart`.
+/// The stage data dissipation needs (spec: "Stage-Discrete Dissipation"); the stage starts x⁰ and
+/// last configurations x_n are the views' (SoftView, KindView).
 struct DissipationContext {
   double dt = 0.0;                                      ///< Δt_i [s]
   DissipationMode mode = DissipationMode::ReconstructedLoad;
@@ -45,20 +46,12 @@ struct DissipationContext {
   bool recordSlips = false;
 };
 
-/// Ordered pair (A colliding, B collider) with its combined parameters.
-struct ContactPair {
-  int colliding = -1;
-  int collider = -1;
-  PairContactParams params;
-};
-
-/// Ordered pair (A colliding: rigid, soft, or one body of a kind's samples; B: a soft actor with
-/// an Sdf collider).
+/// Ordered pair (A colliding: a soft actor, or one sample body of a kind; B: a soft actor with an
+/// Sdf collider).
 struct SoftColliderPair {
-  bool collidingSoft = false;
-  bool collidingKind = false;  ///< A is sample body `body` of kind `colliding`
+  bool collidingSoft = false;  ///< else A is sample body `body` of kind `colliding`
   int body = 0;
-  int colliding = -1;  ///< rigid model index, soft model index, or kind index
+  int colliding = -1;  ///< soft model index, or kind index
   int collider = -1;   ///< soft model index
   PairContactParams params;
 };
@@ -84,90 +77,72 @@ struct KindView {
   const std::vector<std::vector<int>>* stageDof = nullptr;
 };
 
-/// Ordered pair on a field carried by a frame (A colliding: a rigid body, a soft actor's faces or a
-/// kind's actor; B collider: a rigid body or a kind's actor; not two rigid bodies, which are
-/// ContactPairs), evaluated by the one assembler of core/contact/kind_contact.h.
+/// Ordered pair on a field carried by a kind's frame (A colliding: a kind's actor or a soft actor's
+/// faces; B collider: a kind's actor), evaluated by the one assembler of
+/// core/contact/kind_contact.h.
 struct KindPair {
-  bool aKind = false, bKind = false;
   bool aSoft = false;  ///< A is a soft actor (its face samples)
-  int a = -1, b = -1;  ///< index into the rigid models, the soft models or the kinds' actors
+  int a = -1, b = -1;  ///< A: index into the kinds' actors or the soft models; B: a kind's
   PairContactParams params;
 };
 
 class ContactPipeline {
  public:
-  /// Precomputes per-actor data. `models` must outlive the pipeline's use.
-  /// `filter` (may be null: everything eligible) is read at every evaluation.
-  /// `softModels` (may be null) are colliding soft actors. The filter sees actor indices:
-  /// rigidActor[i] for rigid model i and softActor[s] for soft model s (empty: rigid model i is
-  /// actor i, as in a scene of rigid actors only).
-  /// `kinds` (may be null): the generic layer's actors, seen by the filter as kindActor[k].
-  void Configure(const std::vector<RigidBodyModel>* models, const ContactFilter* filter = nullptr,
-                 const std::vector<SoftBodyModel>* softModels = nullptr,
-                 std::vector<int> rigidActor = {}, std::vector<int> softActor = {},
-                 const std::vector<const ActorKind*>* kinds = nullptr,
-                 std::vector<int> kindActor = {});
+  /// Precomputes per-actor data. `filter` (may be null: everything eligible) is read at every
+  /// evaluation. `softModels` (may be null) are the soft actors, seen by the filter as
+  /// softActor[s]; `kinds` (may be null) the generic layer's actors, seen as kindActor[k]. Both
+  /// must outlive the pipeline's use.
+  void Configure(const ContactFilter* filter, const std::vector<SoftBodyModel>* softModels,
+                 std::vector<int> softActor, const std::vector<const ActorKind*>* kinds,
+                 std::vector<int> kindActor);
 
-  /// Π = Σ over eligible ordered pairs of the penalty energy at the given poses, plus Δt_i Σ w R
-  /// when `dissipation` is not null (it then needs `stageStart`, x⁰ and x_n per actor). With
-  /// `stageStart`, the alignment rejection of the penalty is decided at x_n (see
-  /// core/contact/kind_contact.h); without, at the given poses. order 0: value; 1: also adds the penalty gradient into
-  /// *gradient and the dissipative residual into *dissipationResidual (may alias *gradient;
-  /// dofs at dofOffset[i], −1 for static actors); 2: also appends Jacobian entries: each rigid
-  /// pair's penalty Hessian plus, in ExplicitNormals mode, its dissipation Hessian, projected per
-  /// `projection`; in the residual modes the dissipation Jacobian (not symmetric) is appended
-  /// unprojected. Rigid pairs append 6 × 6 blocks to *blocks (as if their triplets stood in
-  /// *triplets where it ended on entry: TripletAssembly's blockPosition), soft pairs triplets. Pairs are evaluated in parallel; results are reduced in a fixed order, so the
-  /// output does not depend on the number of threads.
-  double Evaluate(const std::vector<RigidPose>& poses, const std::vector<int>& dofOffset,
-                  int order, PsdProjection projection, Eigen::VectorXd* gradient,
+  /// Π = Σ over eligible ordered pairs of the penalty energy at the views' configurations, plus
+  /// Δt_i Σ w R when `dissipation` is not null (it then needs the views' x⁰ and x_n). With x_n,
+  /// the alignment rejection of the penalty is decided there (core/contact/kind_contact.h);
+  /// without, at the current configuration. order 0: value; 1: also adds the penalty gradient
+  /// into *gradient and the dissipative residual into *dissipationResidual (may alias
+  /// *gradient; at the views' stage dofs); 2: also appends Jacobian entries: each pair's penalty
+  /// Hessian plus, in ExplicitNormals mode, its dissipation Hessian, projected per `projection`;
+  /// in the residual modes the dissipation Jacobian (not symmetric) is appended unprojected.
+  /// Stencils of six-dof groups (rigid actors') append 6 × 6 blocks to *blocks (as if their
+  /// triplets stood in *triplets where it ended on entry: TripletAssembly's blockPosition), the
+  /// others triplets. Pairs are evaluated in parallel; results are reduced in a fixed order, so
+  /// the output does not depend on the number of threads.
+  double Evaluate(int order, PsdProjection projection, Eigen::VectorXd* gradient,
                   std::vector<Eigen::Triplet<double>>* triplets,
                   std::vector<DenseBlock6>* blocks, ContactStats* stats,
                   const DissipationContext* dissipation = nullptr,
-                  Eigen::VectorXd* dissipationResidual = nullptr,
-                  const std::vector<RigidStageStart>* stageStart = nullptr,
-                  const SoftView* soft = nullptr, const KindView* kinds = nullptr);
+                  Eigen::VectorXd* dissipationResidual = nullptr, const SoftView* soft = nullptr,
+                  const KindView* kinds = nullptr);
 
-  /// Step limits of Newton's global phase: (*alpha)[i] <= 1 the largest fraction of rigid body
-  /// i's move from `poses` to `trial` that RigidPairStepLimit allows for every pair it is part
-  /// of, both moving by the same fraction (1 for bodies without such a pair). Pairs with soft
-  /// actors impose no limit. Pairs are found at `trial`; evaluated in parallel, reduced by min.
-  /// With the kinds' views at both configurations (`now`, `next`; may be null), each kind's
-  /// fraction for its pairs of the generic layer (StepLimitSink) into (*kindAlpha)[k].
-  void StepLimits(const std::vector<RigidPose>& poses, const std::vector<RigidPose>& trial,
-                  std::vector<double>* alpha, const KindView* now = nullptr,
-                  const KindView* next = nullptr, std::vector<double>* kindAlpha = nullptr);
+  /// Step limits of Newton's global phase: (*kindAlpha)[k] <= 1 the largest fraction of kind k's
+  /// move from `now` to `next` that the pairs it is part of allow (StepLimitSink: no sample's
+  /// depth more than doubles, or reaches ε/2), both sides moving by the same fraction (1 for
+  /// kinds without such a pair). Pairs with soft actors impose no limit. Pairs are found at
+  /// `next`; evaluated in parallel, reduced by min.
+  void StepLimits(const KindView& now, const KindView& next, std::vector<double>* kindAlpha);
 
-  /// Every active contact sample at the given poses (serial; for reporting). Records carry actor
-  /// indices (see Configure) and, for soft colliding actors, the boundary face. With a stage's
-  /// `dissipation` and `stageStart` (and the views' x⁰, x_n), as Evaluate takes them, each record
+  /// Every active contact sample at the views' configurations (serial; for reporting). Records
+  /// carry actor indices (see Configure) and, for soft colliding actors, the boundary face. With
+  /// a stage's `dissipation` (and the views' x⁰, x_n), as Evaluate takes them, each record
   /// carries its dissipation traction too; pairs on a soft collider's field report their normal
   /// traction only.
-  void CollectSamples(const std::vector<RigidPose>& poses,
-                      std::vector<ContactSampleRecord>* records, const SoftView* soft = nullptr,
+  void CollectSamples(std::vector<ContactSampleRecord>* records, const SoftView* soft = nullptr,
                       const KindView* kinds = nullptr,
-                      const DissipationContext* dissipation = nullptr,
-                      const std::vector<RigidStageStart>* stageStart = nullptr);
+                      const DissipationContext* dissipation = nullptr);
 
-  /// The last Evaluate's rigid pairs by body (StageProblem::LastSplit): each pair's penalty and
-  /// dissipation values, as Evaluate summed them, added to (*share)[i] of its first dynamic actor
-  /// i (dofOffset[i] >= 0), and each pair of two dynamic actors with an active sample (penalty or
-  /// dissipation) appended to *joins as (colliding, collider). False, with nothing added, if that
-  /// evaluation had pairs with soft actors (not split) or the pairs changed since (StepLimits).
-  /// Pairs of the generic layer count too: actor indices run over the rigid models, then the
-  /// kinds (models.size() + k; a kind is dynamic when some tangent dof is not prescribed), and
-  /// *share has an entry for each.
-  bool SplitLastEvaluation(const std::vector<int>& dofOffset, std::vector<double>* share,
+  /// The last Evaluate's pairs by kind (StageProblem::LastSplit): each pair's penalty and
+  /// dissipation values, as Evaluate summed them, added to (*share)[k] of its first dynamic kind
+  /// k (some tangent dof not prescribed), and each pair of two dynamic kinds with an active
+  /// sample (penalty or dissipation) appended to *joins as (colliding, collider). False, with
+  /// nothing added, if that evaluation had pairs with soft actors (not split) or the pairs
+  /// changed since (StepLimits).
+  bool SplitLastEvaluation(std::vector<double>* share,
                            std::vector<std::pair<int, int>>* joins) const;
-
-  /// The ordered pairs found by the last evaluation.
-  const std::vector<ContactPair>& Pairs() const { return pairs_; }
 
  private:
   /// One Evaluate call's arguments, as its pair kinds' evaluations read them.
   struct Request {
-    const std::vector<RigidPose>* poses = nullptr;
-    const std::vector<int>* dofOffset = nullptr;
     int order = 0;
     PsdProjection projection = PsdProjection::None;
     Eigen::VectorXd* gradient = nullptr;
@@ -175,7 +150,6 @@ class ContactPipeline {
     std::vector<DenseBlock6>* blocks = nullptr;
     const DissipationContext* dissipation = nullptr;
     Eigen::VectorXd* dissipationResidual = nullptr;
-    const std::vector<RigidStageStart>* stageStart = nullptr;
     const SoftView* soft = nullptr;
     const KindView* kinds = nullptr;
     bool potential = true;   ///< no dissipation, or ExplicitNormals
@@ -183,71 +157,56 @@ class ContactPipeline {
   };
   /// Each pair kind of Evaluate: its pairs in parallel, then reduced in pair order into *energy
   /// and *st and scattered into the request's outputs.
-  void EvaluateRigidPairs(const Request& q, double* energy, ContactStats* st);
   void EvaluateOnSoftPairs(const Request& q, double* energy, ContactStats* st);
   void EvaluateKindPairs(const Request& q, double* energy, ContactStats* st);
-  void FindPairs(const std::vector<RigidPose>& poses, const DissipationContext* dissipation,
-                 const std::vector<RigidStageStart>* stageStart, const SoftView* soft,
-                 const KindView* kinds = nullptr);
+  void FindPairs(const SoftView* soft, const KindView* kinds);
   // The generic layer's ordered pair (a, b) when the roles, the filter and the motion allow it.
-  void ConsiderKindPair(bool aKind, int a, bool bKind, int b);
-  // Soft actor s colliding on the field of rigid body b (bKind false) or kind b, when the roles
-  // and the filter allow it.
-  void ConsiderSoftPair(int s, bool bKind, int b);
+  void ConsiderKindPair(int a, int b);
+  // Soft actor s colliding on the field of kind b, when the roles and the filter allow it.
+  void ConsiderSoftPair(int s, int b);
   // Kind k's sample bodies colliding on soft actor b's Sdf field (one pair per body), when the
   // roles and the filter allow it. A kind's own samples (ActorKind::Sample) do not collide with
   // soft colliders yet.
   void ConsiderKindOnSoft(int k, int b);
-  // A kind pair's collider side at the request's configuration (a kind's from kindSides_, a rigid
-  // body's formed in *rigid), and the colliding side's samples that can contribute on it.
-  const FrameSide& KindPairCollider(const Request& q, const KindPair& kp, FrameSide* rigid) const;
+  // The colliding side's samples of a kind pair that can contribute on its collider side B.
   // kindSides_ and kindBodies_ at the request's configurations, for the kinds of kindPairs_.
   void FormKindSides(const Request& q);
   // Soft actor s's side of a pair at the view's positions (dofOffset 0 without the view's).
   SoftPairInput SoftInputOf(const SoftView& soft, int s) const;
   void GatherKindPairSamples(const Request& q, const KindPair& kp, const FrameSide& B,
                              const DissipationSetup* setup, SampleSink* sink) const;
-  int RigidActor(int i) const { return rigidActor_.empty() ? i : rigidActor_[i]; }
-  /// Samples of the colliding actors over pairs_: whether a sweep pays for parallel workers.
-  size_t RigidPairWork() const;
-  // The kind pairs' tested samples (the colliding sides' counts), as RigidPairWork.
+  // The kind pairs' tested samples (the colliding sides' counts): whether a sweep pays for
+  // parallel workers.
   size_t KindPairWork() const;
   /// `isotropicFriction`: DissipationSetup::isotropicFrictionHessian.
   DissipationSetup MakeSetup(const PairContactParams& params,
                              const DissipationContext& dissipation,
                              bool isotropicFriction) const;
   /// A stencil pair's reduction: its counts and energies into *st and *energy, and its stencils
-  /// (A colliding: soft face nodes or a rigid body's dofs; B: a soft collider's tet nodes or a
-  /// rigid collider's dofs when dynamic) scattered into the request's outputs (ScatterStencil).
-  /// Stencils that carry their own blocks (ContactStencil::blocks > 0: the generic layer's) are
-  /// scattered by those.
-  /// `aOffs` (may be null): a rigid A's [δp, δθ] offsets in place of dofOffset[a] (a kind's
-  /// sample body).
+  /// scattered into the request's outputs. Stencils that carry their own blocks
+  /// (ContactStencil::blocks > 0: the kind pairs') are scattered by those; a pair on a soft
+  /// collider b's field by A's face nodes (aSoft: soft actor a) or the sample body's [δp, δθ]
+  /// offsets `aOffs`, and b's tet nodes.
   template <typename Stencils>
-  void ReducePair(const Request& q, const Stencils& r, bool aSoft, int a, bool bSoft, int b,
-                  double* energy, ContactStats* st, const int* aOffs = nullptr) const;
+  void ReducePair(const Request& q, const Stencils& r, bool aSoft, int a, int b, double* energy,
+                  ContactStats* st, const int* aOffs = nullptr) const;
   // The two sides of a pair on a soft collider (the locators must be built); a kind's sample
   // body's pose and stage start are formed in *pose and *start (from the kinds' view; its x⁰
   // where `kindStart`, as with dissipation), which must outlive *a.
-  void SoftColliderInputs(const SoftColliderPair& pair, const std::vector<RigidPose>& poses,
-                          const std::vector<RigidStageStart>* stageStart, const SoftView& soft,
+  void SoftColliderInputs(const SoftColliderPair& pair, const SoftView& soft,
                           const KindView* kinds, bool kindStart, RigidPose* pose,
                           RigidStageStart* start, CollidingInput* a,
                           SoftColliderInput* b) const;
   // The stage offsets of kind k's sample body `body`'s [δp, δθ] (−1: prescribed).
   void SampleBodyOffsets(const KindView& kinds, int k, int body, int offs[2]) const;
 
-  const std::vector<RigidBodyModel>* models_ = nullptr;
   const ContactFilter* filter_ = nullptr;
-  std::vector<double> inflation_;  // per actor: its collider reach padding [m]
   std::vector<Aabb> boxes_;
   std::vector<std::pair<int, int>> overlaps_;
   OverlapCache overlapCache_;  // the broad phase's candidates, kept while the boxes stay inside
-  std::vector<ContactPair> pairs_;
-  std::vector<RigidPairStencils> results_;          // per rigid pair
-  std::vector<double> pairLimits_, kindPairLimits_;
+  std::vector<double> kindPairLimits_;
   const std::vector<SoftBodyModel>* softModels_ = nullptr;
-  std::vector<int> rigidActor_, softActor_;
+  std::vector<int> softActor_;
   std::vector<SoftColliderPair> softColliderPairs_;
   std::vector<PairStencils> softColliderResults_;
   std::vector<TetLocator> locators_, locatorsLast_;  // per soft actor
@@ -286,7 +245,7 @@ class ContactPipeline {
     std::vector<PairSlipUse> use;
     std::vector<PairSlips> record;
   };
-  SlipLists slipLists_[3];
+  SlipLists slipLists_[3];  // indexed by SlipPairKind (Rigid: unused)
   /// Sets slipLists_[kind].use for n pairs named by id(k) = (colliding, collider): buffers to
   /// record into or the records to read; left empty without slips in the context (plain
   /// simulation pays no per-pair work for them).

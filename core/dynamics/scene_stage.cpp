@@ -6,12 +6,6 @@
 
 namespace superdex {
 
-namespace {
-// The contact pipeline's built-in rigid arrays: empty (rigid actors are kinds).
-const std::vector<RigidPose> kNoPoses;
-const std::vector<int> kNoDofs;
-}  // namespace
-
 SceneStageProblem::SceneStageProblem(int numDofs, double dt, const Eigen::Vector3d& gravity,
                                      ContactPipeline* contact, const SoftStage& soft,
                                      std::vector<Eigen::VectorXd>* softX,
@@ -142,9 +136,9 @@ double SceneStageProblem::EvaluateAt(const std::vector<Eigen::VectorXd>& softX, 
   view.dofOffset = &soft_->dofOffset;
   ws_->blockPosition = triplets_.size();
   const KindView kinds = KindViewOf(*soft_, softX);
-  value += contact_->Evaluate(kNoPoses, kNoDofs, order, projection, gPot, &triplets_, &ws_->blocks,
-                              stats, dissipation_.enabled ? &context_ : nullptr, rDiss, nullptr,
-                              &view, kinds.q ? &kinds : nullptr);
+  value += contact_->Evaluate(order, projection, gPot, &triplets_, &ws_->blocks, stats,
+                              dissipation_.enabled ? &context_ : nullptr, rDiss, &view,
+                              kinds.q ? &kinds : nullptr);
   return value;
 }
 
@@ -349,7 +343,7 @@ bool SceneStageProblem::LastSplit(StageSplit* split) {
   std::vector<double>& value = ws_->splitValue;
   value = ws_->kindValue;
   split->joins.clear();
-  if (contact_ && !contact_->SplitLastEvaluation(kNoDofs, &value, &split->joins)) return false;
+  if (contact_ && !contact_->SplitLastEvaluation(&value, &split->joins)) return false;
   split->share.assign(value.begin(), value.end());
   return true;
 }
@@ -373,7 +367,7 @@ bool SceneStageProblem::LimitStep(Eigen::VectorXd* d) {
   std::vector<double>& kindLimits = ws_->kindLimits;
   Retract(*d, &softTrial_);
   const KindView now = KindViewOf(*soft_, *softX_), next = KindViewOf(*soft_, softTrial_);
-  contact_->StepLimits(kNoPoses, kNoPoses, &ws_->limits, &now, &next, &kindLimits);
+  contact_->StepLimits(now, next, &kindLimits);
   bool changed = false;
   for (size_t k = 0; k < soft_->kinds.Size(); ++k) {
     if (kindLimits[k] >= 1.0) continue;

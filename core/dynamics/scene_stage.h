@@ -67,7 +67,6 @@ DissipationContext ContextOf(const StageDissipation& dissipation, double dt);
 /// problem's begins), as the stage solves are.
 struct StageWorkspace {
   std::vector<Eigen::VectorXd> softTrial;  ///< the configuration s ⊕ d under evaluation
-  std::vector<double> limits;              ///< LimitStep's fractions (rigid; unused)
   std::vector<double> kindLimits;          ///< LimitStep's fractions per kind
   std::vector<double> kindValue;           ///< the last evaluation's stage energy per kind
   std::vector<double> splitValue;          ///< LastSplit's per-kind shares

@@ -11,10 +11,6 @@
 namespace superdex {
 namespace {
 
-// The contact pipeline's built-in rigid arrays: empty (rigid actors are kinds).
-const std::vector<RigidPose> kNoPoses;
-const std::vector<int> kNoDofs;
-
 // Whether a stage's contact statistics show an active sample (penalty or dissipation).
 bool InContact(const ContactStats& c) { return c.activeSamples > 0 || c.dissipativeSamples > 0; }
 
@@ -235,9 +231,9 @@ bool StageDriver::FreeStage(const StageScene& scene, const StageDissipation& dis
   const DissipationContext context = ContextOf(dissipation, dt);
   const KindView view = KindViewOf(soft, freeSoft_);
   ContactStats found;
-  scene.pipeline->Evaluate(kNoPoses, kNoDofs, 0, PsdProjection::None, nullptr, nullptr, nullptr,
-                           &found, dissipation.enabled ? &context : nullptr, nullptr, nullptr,
-                           nullptr, view.q ? &view : nullptr);
+  scene.pipeline->Evaluate(0, PsdProjection::None, nullptr, nullptr, nullptr, &found,
+                           dissipation.enabled ? &context : nullptr, nullptr, nullptr,
+                           view.q ? &view : nullptr);
   if (InContact(found)) return false;
   softX->swap(freeSoft_);
   *contact = found;

@@ -422,10 +422,9 @@ TEST_CASE("the slips of a rigid kind's pairs are recorded and evaluated about th
   std::unique_ptr<RigidKind> cube = RigidKind::Build(test::Cube(1e8, 0.4, 10.0), &error);
   REQUIRE(ground);
   REQUIRE(cube);
-  const std::vector<RigidBodyModel> models;
   const std::vector<const ActorKind*> kinds = {ground.get(), cube.get()};
   ContactPipeline pipeline;
-  pipeline.Configure(&models, nullptr, nullptr, {}, {}, &kinds, {0, 1});
+  pipeline.Configure(nullptr, nullptr, {}, &kinds, {0, 1});
   std::vector<Eigen::VectorXd> q = {ground->InitialState().x, cube->InitialState().x};
   q[1].head<3>() = Eigen::Vector3d(0, 0, 0.1 - 1e-4);
   std::vector<Eigen::VectorXd> qLast = q;
@@ -442,12 +441,10 @@ TEST_CASE("the slips of a rigid kind's pairs are recorded and evaluated about th
   context.dt = 1e-2;
   context.slips = &slips;
   context.recordSlips = true;
-  const std::vector<RigidPose> poses;
-  const std::vector<int> dofOffset;
   Eigen::VectorXd g = Eigen::VectorXd::Zero(6), recorded = Eigen::VectorXd::Zero(6);
   ContactStats stats;
-  pipeline.Evaluate(poses, dofOffset, 1, PsdProjection::None, &g, nullptr, nullptr, &stats,
-                    &context, &recorded, nullptr, nullptr, &view);
+  pipeline.Evaluate(1, PsdProjection::None, &g, nullptr, nullptr, &stats, &context, &recorded,
+                    nullptr, &view);
   slips.Seal();
   REQUIRE(stats.dissipativeSamples > 0);
   const PairSlips* pair = slips.Find(SlipPairKind::Kind, 1, 0);  // the cube on the ground
@@ -456,8 +453,8 @@ TEST_CASE("the slips of a rigid kind's pairs are recorded and evaluated about th
   context.recordSlips = false;
   Eigen::VectorXd about = Eigen::VectorXd::Zero(6);
   g.setZero();
-  pipeline.Evaluate(poses, dofOffset, 1, PsdProjection::None, &g, nullptr, nullptr, &stats,
-                    &context, &about, nullptr, nullptr, &view);
+  pipeline.Evaluate(1, PsdProjection::None, &g, nullptr, nullptr, &stats, &context, &about,
+                    nullptr, &view);
   INFO("recorded " << recorded.transpose() << ", about the record " << about.transpose());
   CHECK(recorded[0] > 0.1);  // friction against the +x slip (the residual is −force) [N]
   CHECK((about - recorded).norm() <= 1e-12 * recorded.norm());
