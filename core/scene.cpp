@@ -151,14 +151,12 @@ Eigen::Vector3d NodeMassMean(const SoftBodyModel& m, const Eigen::VectorXd& u) {
 Eigen::Vector3d Scene::CenterOfMass(ActorHandle a) const {
   const ActorRef& r = actors_[a.index];
   if (r.kind) return kinds_[r.local]->CenterOfMass(KindStateOf(a));
-  if (!r.soft) return step_.states[r.local].p;
   return NodeMassMean(softModels_[r.local], step_.softStates[r.local].x);
 }
 
 Eigen::Vector3d Scene::CenterOfMassVelocity(ActorHandle a) const {
   const ActorRef& r = actors_[a.index];
   if (r.kind) return kinds_[r.local]->CenterOfMassVelocity(KindStateOf(a));
-  if (!r.soft) return step_.states[r.local].v;
   return NodeMassMean(softModels_[r.local], step_.softStates[r.local].v);
 }
 
@@ -268,13 +266,7 @@ bool Scene::SetState(ActorHandle a, const RigidBodyState& state, Error* error) {
 
 void Scene::Prepare() {
   if (prepared_) return;
-  dofOffset_.assign(models_.size(), -1);
   numDofs_ = 0;
-  for (size_t i = 0; i < models_.size(); ++i)
-    if (models_[i].dynamic) {
-      dofOffset_[i] = numDofs_;
-      numDofs_ += 6;
-    }
   // The kinds' free dofs (rigid actors among them), then the soft free nodes, last and in one
   // range (the stage's step norm and block layout rely on this order).
   kindPtrs_.clear();
@@ -352,17 +344,6 @@ double Scene::MinDetF() const {
     minDet = std::min(minDet, md);
   }
   return minDet;
-}
-
-std::vector<RigidPose> Scene::CurrentPoses() const {
-  std::vector<RigidPose> poses;
-  CurrentPoses(&poses);
-  return poses;
-}
-
-void Scene::CurrentPoses(std::vector<RigidPose>* poses) const {
-  poses->resize(step_.states.size());
-  for (size_t i = 0; i < step_.states.size(); ++i) (*poses)[i] = {step_.states[i].p, step_.states[i].R};
 }
 
 void Scene::SolveStage(double dt, const SoftStage& soft, std::vector<Eigen::VectorXd>* softX,
@@ -501,11 +482,6 @@ bool Scene::SoftFaceTractions(ActorHandle a, std::vector<Eigen::Vector3d>* tract
 
 EnergyReport Scene::Energies() {
   EnergyReport e;
-  for (size_t i = 0; i < models_.size(); ++i) {
-    if (!models_[i].dynamic) continue;
-    e.kinetic += KineticEnergy(models_[i], step_.states[i]);
-    e.gravity += -models_[i].mass * settings_.gravity.dot(step_.states[i].p);
-  }
   for (size_t s = 0; s < softModels_.size(); ++s) {
     const SoftBodyModel& m = softModels_[s];
     e.kinetic += KineticEnergy(m, step_.softStates[s]);
@@ -525,18 +501,14 @@ EnergyReport Scene::Energies() {
 
 namespace {
 
-// Σ over dynamic rigid bodies of rigid(model, state) plus Σ over soft nodes of m_a node(x_a, v_a)
-// plus Σ over the kinds of kind(actor, state).
-template <typename Rigid, typename Node, typename Kind>
-Eigen::Vector3d SumOverBodies(const std::vector<RigidBodyModel>& models,
-                              const std::vector<RigidBodyState>& states,
-                              const std::vector<SoftBodyModel>& softModels,
+// Σ over soft nodes of m_a node(x_a, v_a) plus Σ over the kinds (rigid actors among them) of
+// kind(actor, state).
+template <typename Node, typename Kind>
+Eigen::Vector3d SumOverBodies(const std::vector<SoftBodyModel>& softModels,
                               const std::vector<SoftBodyState>& softStates,
-                              const std::vector<std::shared_ptr<ActorKind>>& kinds, Rigid rigid,
-                              Node node, Kind kind) {
+                              const std::vector<std::shared_ptr<ActorKind>>& kinds, Node node,
+                              Kind kind) {
   Eigen::Vector3d L = Eigen::Vector3d::Zero();
-  for (size_t i = 0; i < models.size(); ++i)
-    if (models[i].dynamic) L += rigid(models[i], states[i]);
   for (size_t s = 0; s < softModels.size(); ++s)
     for (int a = 0; a < softModels[s].NumNodes(); ++a)
       L += softModels[s].nodeMass[a] *
@@ -549,16 +521,14 @@ Eigen::Vector3d SumOverBodies(const std::vector<RigidBodyModel>& models,
 
 Eigen::Vector3d Scene::TotalLinearMomentum() const {
   return SumOverBodies(
-      models_, step_.states, softModels_, step_.softStates, kinds_,
-      [](const RigidBodyModel& m, const RigidBodyState& st) { return LinearMomentum(m, st); },
+      softModels_, step_.softStates, kinds_,
       [](const Eigen::Vector3d&, const Eigen::Vector3d& v) -> Eigen::Vector3d { return v; },
       [](const ActorKind& k, const KindState& st) { return k.LinearMomentum(st); });
 }
 
 Eigen::Vector3d Scene::TotalAngularMomentum() const {
   return SumOverBodies(
-      models_, step_.states, softModels_, step_.softStates, kinds_,
-      [](const RigidBodyModel& m, const RigidBodyState& st) { return AngularMomentum(m, st); },
+      softModels_, step_.softStates, kinds_,
       [](const Eigen::Vector3d& x, const Eigen::Vector3d& v) -> Eigen::Vector3d {
         return x.cross(v);
       },

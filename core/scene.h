@@ -226,8 +226,6 @@ class Scene : private StageHost {
   // Enters an actor at `local` of its kind's arrays into the actor list and the filter.
   ActorHandle Register(bool soft, int local, const std::string& layer, ActorHandle parent, bool kind = false);
   void Prepare();
-  std::vector<RigidPose> CurrentPoses() const;
-  void CurrentPoses(std::vector<RigidPose>* poses) const;
   void CurrentSoftPositions(std::vector<Eigen::VectorXd>* x) const;  // into kept storage
   // The vector-state actors' stage data (soft, then the kinds' at stage time t [s]): targets from
   // the stage start, geometry from the last configuration.
@@ -246,10 +244,9 @@ class Scene : private StageHost {
 
   SceneSettings settings_;
   std::string settingsError_;  ///< Validate(settings_), kept with every change of settings_
-  std::vector<RigidBodyModel> models_;
   std::vector<RigidActorDesc> rigidDescs_;  // per model: as given to AddRigidActor
   std::vector<SoftActorDesc> softDescs_;    // per soft model: as given to AddSoftActor
-  /// SamplesHash → indices into models_ of the distinct sample sets so far (ShareSamples).
+  /// SamplesHash → indices into kinds_ of the rigid actors' distinct sample sets (ShareSamples).
   std::unordered_multimap<std::size_t, int> sampleSets_;
   std::vector<SoftBodyModel> softModels_;
   // The generic layer's actors (copies of a scene share them; a changed one is copied first).
@@ -265,7 +262,6 @@ class Scene : private StageHost {
   // The pipeline is configured for these actors (it points at them; a copy configures its own).
   ResetOnCopy prepared_;
   bool hasDissipation_ = false;  // HasDissipation(), cached by Prepare
-  std::vector<int> dofOffset_;
   int numDofs_ = 0;
   ContactPipeline pipeline_;
   ContactFilter filter_;

@@ -11,25 +11,9 @@
 namespace superdex {
 namespace {
 
-constexpr int kRigidBlock = 24;  // p, R (column-major), v, Ṙ
-
 bool ValidHandle(const Scene& scene, ActorHandle a, Error* error) {
   if (a.index >= 0 && a.index < scene.NumActors()) return true;
   return Fail(error, "actor: invalid handle " + std::to_string(a.index));
-}
-
-void PackRigid(const RigidBodyState& s, double* out) {
-  Eigen::Map<Eigen::Vector3d>{out} = s.p;
-  Eigen::Map<Eigen::Matrix3d>{out + 3} = s.R;
-  Eigen::Map<Eigen::Vector3d>{out + 12} = s.v;
-  Eigen::Map<Eigen::Matrix3d>{out + 15} = s.Rdot;
-}
-
-void UnpackRigid(const double* in, RigidBodyState* s) {
-  s->p = Eigen::Map<const Eigen::Vector3d>(in);
-  s->R = Eigen::Map<const Eigen::Matrix3d>(in + 3);
-  s->v = Eigen::Map<const Eigen::Vector3d>(in + 12);
-  s->Rdot = Eigen::Map<const Eigen::Matrix3d>(in + 15);
 }
 
 }  // namespace
@@ -210,7 +194,6 @@ bool Scene::SetSoftMaterial(ActorHandle a, double youngsModulus, double density,
 
 double Scene::MinFrictionFalloffVel() const {
   double v = INFINITY;
-  for (const RigidBodyModel& m : models_) v = std::min(v, m.contact.frictionFalloffVel);
   for (const SoftBodyModel& m : softModels_) v = std::min(v, m.contact.frictionFalloffVel);
   for (const auto& k : kinds_) v = std::min(v, k->contact.frictionFalloffVel);
   return v;
@@ -225,7 +208,7 @@ ActorHandle Scene::FindActor(const std::string& name) const {
 const std::string& Scene::ActorName(ActorHandle a) const {
   const ActorRef& r = actors_[a.index];
   if (r.kind) return kinds_[r.local]->name;
-  return r.soft ? softModels_[r.local].name : models_[r.local].name;
+  return softModels_[r.local].name;
 }
 
 int Scene::HistoryBlocks() const {
@@ -238,7 +221,7 @@ int Scene::VectorIndex(const ActorRef& r) const {
 
 int Scene::BlockSize(const ActorRef& r) const {
   if (r.kind) return 2 * kinds_[r.local]->NumDofs();
-  return r.soft ? 6 * softModels_[r.local].NumNodes() : kRigidBlock;
+  return 6 * softModels_[r.local].NumNodes();
 }
 
 template <typename Visit>
@@ -276,15 +259,11 @@ int Scene::FilledStateBlocks() const {
 Eigen::VectorXd Scene::PackState() {
   Eigen::VectorXd s = Eigen::VectorXd::Zero(StateSize());
   VisitStateLayout(FilledStateBlocks(), [&](int b, int o, const ActorRef& r, int) {
-    if (r.soft || r.kind) {
-      const int v = VectorIndex(r);
-      const SoftBodyState& st = b == 0 ? step_.softStates[v] : step_.softHistory[b - 1][v];
-      const int n = static_cast<int>(st.x.size());
-      s.segment(o, n) = st.x;
-      s.segment(o + n, n) = st.v;
-    } else {
-      PackRigid(b == 0 ? step_.states[r.local] : step_.history[b - 1][r.local], s.data() + o);
-    }
+    const int v = VectorIndex(r);
+    const SoftBodyState& st = b == 0 ? step_.softStates[v] : step_.softHistory[b - 1][v];
+    const int n = static_cast<int>(st.x.size());
+    s.segment(o, n) = st.x;
+    s.segment(o + n, n) = st.v;
   });
   return s;
 }
@@ -292,27 +271,19 @@ Eigen::VectorXd Scene::PackState() {
 Eigen::VectorXd Scene::PackedVelocityMask() {
   Eigen::VectorXd mask = Eigen::VectorXd::Zero(StateSize());
   VisitStateLayout(1 + HistoryBlocks(), [&](int, int o, const ActorRef& r, int) {
-    if (r.soft || r.kind) {
-      const int n = BlockSize(r) / 2;
-      mask.segment(o + n, n).setOnes();
-    } else {
-      mask.segment(o + 12, 12).setOnes();
-    }
+    const int n = BlockSize(r) / 2;
+    mask.segment(o + n, n).setOnes();
   });
   return mask;
 }
 
 void Scene::UnpackState(const Eigen::VectorXd& s) {
   VisitStateLayout(FilledStateBlocks(), [&](int b, int o, const ActorRef& r, int) {
-    if (r.soft || r.kind) {
-      const int v = VectorIndex(r);
-      SoftBodyState& st = b == 0 ? step_.softStates[v] : step_.softHistory[b - 1][v];
-      const int n = static_cast<int>(st.x.size());
-      st.x = s.segment(o, n);
-      st.v = s.segment(o + n, n);
-    } else {
-      UnpackRigid(s.data() + o, b == 0 ? &step_.states[r.local] : &step_.history[b - 1][r.local]);
-    }
+    const int v = VectorIndex(r);
+    SoftBodyState& st = b == 0 ? step_.softStates[v] : step_.softHistory[b - 1][v];
+    const int n = static_cast<int>(st.x.size());
+    st.x = s.segment(o, n);
+    st.v = s.segment(o + n, n);
   });
 }
 
@@ -400,7 +371,7 @@ int Scene::StageDofOffset(ActorHandle a) const {
       if (d >= 0) return d;
     return -1;
   }
-  return r.soft ? softDofOffset_[r.local] : dofOffset_[r.local];
+  return softDofOffset_[r.local];
 }
 
 }  // namespace superdex

@@ -49,7 +49,6 @@ struct ReportStage {
 /// Storage of a scene's steps kept from step to step, so that a rigid step does not allocate once
 /// it has run (scratch: every use overwrites it first).
 struct StepBuffers {
-  std::vector<RigidPose> reportPoses;  ///< the contact pipeline's built-in rigid poses (empty)
   std::vector<double> bdfTimes, bdfWeights;
   std::vector<std::vector<KindSlope>> vectorSlopes;  ///< a DIRK step's slopes per vector state
   std::vector<double> stageWeights;                  ///< a DIRK step's h b_i
