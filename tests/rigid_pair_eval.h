@@ -1,12 +1,14 @@
 // One rigid pair (a colliding body A on a rigid collider B) evaluated by the contact assembler
-// (core/contact/kind_contact.h) as the contact pipeline evaluates it: A's samples gathered and
-// culled on B's frame, then EvaluateSamplesOnFrame. The penalty and the dissipation parts are
-// returned separately, on the stencil [δp_A, δθ_A] (B static) or [δp_A, δθ_A, δp_B, δθ_B].
+// (core/contact/kind_contact.h) as the contact pipeline evaluates it: both bodies as RigidKinds,
+// A's samples gathered and culled on B's frame (GatherKindSamples, KindFrameSide), then
+// EvaluateSamplesOnFrame. The penalty and the dissipation parts are returned separately, on the
+// stencil [δp_A, δθ_A] (B static) or [δp_A, δθ_A, δp_B, δθ_B].
 #pragma once
 
 #include <vector>
 
 #include "core/contact/kind_contact.h"
+#include "core/model/rigid_kind.h"
 
 namespace superdex::test {
 
@@ -26,8 +28,36 @@ struct RigidPairDissipation {
   double maxCoulombRatio = 0.0;
 };
 
-/// The pair's stencils at the poses (aRef, bRef: x_n, the alignment test's reference; null: the
-/// current poses) with `setup` (null: penalty only; then aStart/bStart may be null).
+/// A rigid configuration q = [p, R column-major] (RigidKind::Pack).
+inline Eigen::VectorXd PoseQ(const RigidPose& pose) {
+  return RigidKind::Pack(RigidBodyState{pose.p, pose.R}).x;
+}
+
+/// A body's side of a pair as its RigidKind sees it: q, x_n (qLast) and x⁰ (q0) from its pose
+/// and stage start (null start: neither), and its stage dofs from `first` (−1: none).
+struct RigidSide {
+  RigidKind kind;
+  Eigen::VectorXd q, qLast, q0;
+  bool hasStart = false;
+  std::vector<int> stageDof;
+  RigidSide(const RigidBodyModel& m, const RigidPose& pose, const RigidStageStart* start,
+            int first)
+      : kind(m, RigidBodyState()), q(PoseQ(pose)), hasStart(start != nullptr),
+        stageDof(6, -1) {
+    if (start) {
+      qLast = PoseQ(start->last);
+      q0 = PoseQ({start->p, start->R});
+    }
+    if (first >= 0)
+      for (int i = 0; i < 6; ++i) stageDof[i] = first + i;
+  }
+  const Eigen::VectorXd* Last() const { return hasStart ? &qLast : nullptr; }
+  const Eigen::VectorXd* Start() const { return hasStart ? &q0 : nullptr; }
+};
+
+/// The pair's stencils at the poses (aStart, bStart: x⁰ and x_n, x_n the alignment test's
+/// reference; null: the current poses) with `setup` (null: penalty only; then aStart/bStart may
+/// be null).
 inline PairStencils EvaluateRigidPair(const RigidBodyModel& A, const RigidPose& a,
                                       const RigidStageStart* aStart, const RigidBodyModel& B,
                                       const RigidPose& b, const RigidStageStart* bStart,
@@ -35,12 +65,33 @@ inline PairStencils EvaluateRigidPair(const RigidBodyModel& A, const RigidPose& 
                                       double maxAlignment, const DissipationSetup* setup,
                                       int order,
                                       std::vector<ContactSampleRecord>* records = nullptr) {
-  const FrameSide side = RigidFrameSide(B, b, bStart, bDynamic ? 6 : -1);
+  const RigidSide sa(A, a, aStart, 0), sb(B, b, bStart, bDynamic ? 6 : -1);
+  const FrameSide side =
+      KindFrameSide(sb.kind, sb.q, sb.Last(), setup ? sb.Start() : nullptr, sb.stageDof);
   std::vector<PairSample> samples;
-  GatherRigidSamples(A, a, aStart, 0, side, penalty.delta, setup, &samples);
+  SampleList list(&samples);
+  GatherKindSamples(sa.kind, sa.q, sa.Last(), setup ? sa.Start() : nullptr, sa.stageDof, side,
+                    penalty.delta, setup, &list);
   PairStencils out;
   EvaluateSamplesOnFrame(samples, side, penalty, maxAlignment, setup, order, &out, records);
   return out;
+}
+
+/// StepLimitSink's α for rigid body A's move a0 → a1 on rigid body B's field, B moving b0 → b1,
+/// as the contact pipeline's StepLimits forms it (each side at the trial configuration with the
+/// current one as its x_n).
+inline double RigidPairStepLimit(const RigidBodyModel& A, const RigidPose& a0, const RigidPose& a1,
+                                 const RigidBodyModel& B, const RigidPose& b0, const RigidPose& b1,
+                                 const PenaltyParams& params) {
+  RigidStageStart aNow, bNow;
+  aNow.last = a0;
+  bNow.last = b0;
+  const RigidSide sa(A, a1, &aNow, -1), sb(B, b1, &bNow, -1);
+  const FrameSide side = KindFrameSide(sb.kind, sb.q, sb.Last(), nullptr, sb.stageDof);
+  StepLimitSink sink(side, params);
+  GatherKindSamples(sa.kind, sa.q, sa.Last(), nullptr, sa.stageDof, side,
+                    params.delta - 0.5 * params.eps, nullptr, &sink);
+  return sink.Alpha();
 }
 
 inline RigidStageStart StartAt(const RigidPose& now, const RigidPose& last) {

@@ -477,18 +477,6 @@ void StepLimitSink::AddRigidSamples(const SurfaceSample* samples, int begin, int
   for (int k = begin; k < end; ++k) Limit(A_.t + A_.R * samples[k].X, A_.tn + A_.Rn * samples[k].X);
 }
 
-double RigidPairStepLimit(const RigidBodyModel& A, const RigidPose& a0, const RigidPose& a1,
-                          const RigidBodyModel& B, const RigidPose& b0, const RigidPose& b1,
-                          const PenaltyParams& params) {
-  RigidStageStart aNow, bNow;  // the current poses as x_n (no stage start: no dissipation)
-  aNow.last = a0;
-  bNow.last = b0;
-  const FrameSide side = RigidFrameSide(B, b1, &bNow, -1);
-  StepLimitSink sink(side, params);
-  GatherRigidSamples(A, a1, &aNow, -1, side, params.delta - 0.5 * params.eps, nullptr, &sink);
-  return sink.Alpha();
-}
-
 namespace {
 
 // Appends the samples of rigid body A at pose a ([δp] at stage offset offP, [δθ] at offTheta; −1:
@@ -561,21 +549,6 @@ BodyInFrame ComposeInFrame(const RigidPose& a, const RigidPose& an, const FrameS
   f.tn = RnBt * (an.p - B.last.p);
   f.turn = (f.Rn - f.R).norm();
   return f;
-}
-
-void GatherRigidSamples(const RigidBodyModel& A, const RigidPose& a, const RigidStageStart* start,
-                        int aOffset, const FrameSide& B, double delta,
-                        const DissipationSetup* dissipation, SampleSink* sink) {
-  AppendRigidSamples(A, a, start, aOffset, aOffset < 0 ? -1 : aOffset + 3, 0, B, delta,
-                     dissipation, sink);
-}
-
-void GatherRigidSamples(const RigidBodyModel& A, const RigidPose& a, const RigidStageStart* start,
-                        int aOffset, const FrameSide& B, double delta,
-                        const DissipationSetup* dissipation, std::vector<PairSample>* out) {
-  out->clear();
-  SampleList list(out);
-  GatherRigidSamples(A, a, start, aOffset, B, delta, dissipation, &list);
 }
 
 void SampleBodyPoses::Form(const ActorKind& A, const Eigen::VectorXd& q,
@@ -683,25 +656,6 @@ FrameSide KindFrameSide(const ActorKind& B, const Eigen::VectorXd& q, const Eige
   side.blocks = f.blocks;
   side.Fp.leftCols(3 * f.blocks) = f.F.topLeftCorner(3, 3 * f.blocks);
   for (int b = 0; b < f.blocks; ++b) side.offs[b] = stageDof[f.dof[b]];
-  return side;
-}
-
-FrameSide RigidFrameSide(const RigidBodyModel& B, const RigidPose& b, const RigidStageStart* start,
-                         int offset) {
-  FrameSide side;
-  side.field = &B.collider;
-  side.pose = b;
-  side.last = start ? start->last : b;
-  if (start) {
-    side.start = *start;
-    side.hasStart = true;
-    side.hasLast = true;
-  }
-  if (B.dynamic && offset >= 0) {
-    side.motion = FrameSide::Motion::Rigid;
-    side.offs[0] = offset;
-    side.offs[1] = offset + 3;
-  }
   return side;
 }
 

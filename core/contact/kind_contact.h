@@ -353,22 +353,6 @@ class StepLimitSink final : public SampleSink {
   BodyInFrame A_;
 };
 
-/// StepLimitSink's α for rigid body A's move a0 → a1 on rigid body B's field, B moving b0 → b1.
-double RigidPairStepLimit(const RigidBodyModel& A, const RigidPose& a0, const RigidPose& a1,
-                          const RigidBodyModel& B, const RigidPose& b0, const RigidPose& b1,
-                          const PenaltyParams& params);
-
-/// The samples of a rigid colliding body A (dofs at aOffset, −1 when static) that can contribute
-/// on B's field: its sample tree culled by B's Lipschitz bound at the current pose and, with
-/// dissipation, at x_n (the modes' load geometry). `start` (may be null): A's x⁰ and x_n.
-void GatherRigidSamples(const RigidBodyModel& A, const RigidPose& a, const RigidStageStart* start,
-                        int aOffset, const FrameSide& B, double delta,
-                        const DissipationSetup* dissipation, SampleSink* sink);
-/// The same into a list (cleared first).
-void GatherRigidSamples(const RigidBodyModel& A, const RigidPose& a, const RigidStageStart* start,
-                        int aOffset, const FrameSide& B, double delta,
-                        const DissipationSetup* dissipation, std::vector<PairSample>* out);
-
 /// A kind's sample bodies at one configuration (SampleBodyAt for each), formed once for all the
 /// pairs it takes part in.
 struct SampleBodyPoses {
@@ -383,8 +367,9 @@ struct SampleBodyPoses {
 
 /// The samples of a kind's actor at q (x_n: qLast, x⁰: q0, either may be null), with the stage
 /// offsets of its local dofs (`stageDof`, −1 for prescribed ones), that can contribute on B's
-/// field: the kind's bounding balls (ActorKind::ForEachSampleNear) culled as GatherRigidSamples
-/// culls a rigid body's tree. `bodies` (may be null): A's sample bodies formed at the same
+/// field: a sample body's tree (a rigid body's) culled by B's Lipschitz bound at the current pose
+/// and, with dissipation, at x_n (the modes' load geometry); the kind's own samples by their
+/// bounding balls (ActorKind::ForEachSampleNear) the same way. `bodies` (may be null): A's sample bodies formed at the same
 /// configurations (SampleBodyPoses::Form), read instead of forming them again.
 void GatherKindSamples(const ActorKind& A, const Eigen::VectorXd& q, const Eigen::VectorXd* qLast,
                        const Eigen::VectorXd* q0, const std::vector<int>& stageDof,
@@ -406,8 +391,5 @@ void GatherKindSampleRange(const ActorKind& A, const Eigen::VectorXd& q,
 /// (qLast; null: q) and x⁰ (q0; null: no stage start).
 FrameSide KindFrameSide(const ActorKind& B, const Eigen::VectorXd& q, const Eigen::VectorXd* qLast,
                         const Eigen::VectorXd* q0, const std::vector<int>& stageDof);
-/// A rigid body's pose as a FrameSide (dofs at offset, −1 or !dynamic: static).
-FrameSide RigidFrameSide(const RigidBodyModel& B, const RigidPose& b, const RigidStageStart* start,
-                         int offset);
 
 }  // namespace superdex

@@ -10,6 +10,7 @@
 using namespace superdex;
 using test::EvaluateRigidPairDissipation;
 using test::EvaluateRigidPairPenalty;
+using test::RigidPairStepLimit;
 using test::RigidPairDissipation;
 using test::RigidPairPenalty;
 
