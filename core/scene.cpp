@@ -132,10 +132,10 @@ ActorHandle Scene::AddActor(std::unique_ptr<ActorKind> actor, Error* error,
   return Register(false, local, contactLayer, parent, true);
 }
 
-std::vector<ActorHandle> Scene::RigidActors() const {
+std::vector<ActorHandle> Scene::ActorsWhere(bool ActorRef::*flag) const {
   std::vector<ActorHandle> out;
   for (int i = 0; i < NumActors(); ++i)
-    if (actors_[i].rigid) out.push_back({i});
+    if (actors_[i].*flag) out.push_back({i});
   return out;
 }
 
@@ -158,13 +158,6 @@ Eigen::Vector3d Scene::CenterOfMassVelocity(ActorHandle a) const {
   const ActorRef& r = actors_[a.index];
   if (r.kind) return kinds_[r.local]->CenterOfMassVelocity(KindStateOf(a));
   return NodeMassMean(softModels_[r.local], step_.softStates[r.local].v);
-}
-
-std::vector<ActorHandle> Scene::SoftActors() const {
-  std::vector<ActorHandle> out;
-  for (int i = 0; i < NumActors(); ++i)
-    if (actors_[i].soft) out.push_back({i});
-  return out;
 }
 
 namespace {

@@ -107,11 +107,11 @@ class Scene : private StageHost {
   const SoftBodyModel& SoftModel(ActorHandle a) const;
   const SoftBodyState& SoftState(ActorHandle a) const;
   /// The rigid actors' handles, in creation order.
-  std::vector<ActorHandle> RigidActors() const;
+  std::vector<ActorHandle> RigidActors() const { return ActorsWhere(&ActorRef::rigid); }
   /// Centre of mass [m] and its velocity [m/s] of any actor (soft: of the lumped node masses).
   Eigen::Vector3d CenterOfMass(ActorHandle a) const;
   Eigen::Vector3d CenterOfMassVelocity(ActorHandle a) const;
-  std::vector<ActorHandle> SoftActors() const;
+  std::vector<ActorHandle> SoftActors() const { return ActorsWhere(&ActorRef::soft); }
   /// Per boundary face of soft actor a, the contact traction on it averaged over the face's
   /// reference area, Σ_q w_q t_q / A_f [Pa] (world frame; zero for faces out of contact), from
   /// ContactSamples: normal, and the last step's friction and damping.
@@ -194,6 +194,7 @@ class Scene : private StageHost {
     int desc = -1;       ///< a rigid actor's index into rigidDescs_
   };
   const RigidKind& RigidOf(ActorHandle a) const;
+  std::vector<ActorHandle> ActorsWhere(bool ActorRef::*flag) const;  // in creation order
   // Solves one stage with the stage policy (StageDriver::Solve) and the step's recorder, and
   // accounts it in *rep.
   void SolveStage(double dt, const SoftStage& soft, std::vector<Eigen::VectorXd>* softX,

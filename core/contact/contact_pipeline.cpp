@@ -55,6 +55,12 @@ double ColliderReach(const ContactParams& c) {
          c.distanceErrorBound;
 }
 
+/// Whether a soft colliding actor takes the threshold padding (spec,
+/// penaltyThresholdExtraPadding): its own collider is None or PointCloud, not a grid Sdf.
+bool PadsThreshold(const SoftBodyModel& A) {
+  return A.collider == ColliderType::None || A.collider == ColliderType::PointCloud;
+}
+
 /// The penalty part of a pair's combined parameters.
 PenaltyParams PenaltyOf(const PairContactParams& p) {
   PenaltyParams pp;
@@ -131,11 +137,9 @@ void ContactPipeline::FindPairs(const SoftView* soft, const KindView* kinds) {
     p.collidingSoft = true;
     p.colliding = a;
     p.collider = b;
-    // Both actors are dynamic; A's own collider type decides the threshold padding.
+    // Both actors are dynamic.
     const SoftBodyModel& A = (*softModels_)[a];
-    p.params = CombineContactParams(A.contact, B.contact, false,
-                                    A.collider == ColliderType::None ||
-                                        A.collider == ColliderType::PointCloud);
+    p.params = CombineContactParams(A.contact, B.contact, false, PadsThreshold(A));
     softColliderPairs_.push_back(p);
   };
   const int firstKind = static_cast<int>(ns);
@@ -182,13 +186,9 @@ void ContactPipeline::ConsiderSoftPair(int s, int b) {
   p.aSoft = true;
   p.a = s;
   p.b = b;
-  // The threshold padding applies when A's own collider is None or PointCloud (spec,
-  // penaltyThresholdExtraPadding), not when it is a grid Sdf. A kinematic collider moves: its
-  // parameters combine as a dynamic one's.
+  // A kinematic collider moves: its parameters combine as a dynamic one's.
   const SoftBodyModel& A = (*softModels_)[s];
-  p.params = CombineContactParams(
-      A.contact, kind.contact, kindStatic_[b],
-      A.collider == ColliderType::None || A.collider == ColliderType::PointCloud);
+  p.params = CombineContactParams(A.contact, kind.contact, kindStatic_[b], PadsThreshold(A));
   kindPairs_.push_back(p);
 }
 
