@@ -6,13 +6,14 @@
 // Expectations:
 //   - its stage energy's gradient and Hessian in the tangent step δ = [δp, δθ] equal central
 //     differences of Φ(q ⊕ δ);
-//   - scenes of rigid kinds follow the same scenes of the built-in rigid actors (an independent
-//     implementation: per-body arrays, the regrouped closed-form pair sums of
-//     core/contact/rigid_contact.h and rigid_dissipation.h, the contact step limit) to within the
-//     stage solver's tolerance. Both scenes solve every stage by Newton from the same start (no
-//     warm start, no closed-form free stages), and converge to a gradient of at most 1e-10 of the
-//     first one; the difference of two converged solutions is then of order that residual over the
-//     stage stiffness, far below the tolerances stated per test;
+//   - scenes of rigid kinds added by AddActor(RigidKind::Build(desc)) follow the same scenes of
+//     rigid actors added by AddRigidActor(desc) (which builds a RigidKind too, with the scene's
+//     own bookkeeping: the description, shared sample sets, held static bodies, the snapshot
+//     layout) to within the stage solver's tolerance. Both scenes solve every stage by Newton
+//     from the same start (no warm start, no closed-form free stages), and converge to a gradient
+//     of at most 1e-10 of the first one. (These twins were written against the former built-in
+//     rigid implementation, per-body arrays and regrouped closed-form pair sums; the recordings of
+//     tests/regression, made with it, carry that comparison now);
 //   - with the stage policy's shortcuts on (the motion's warm start with its trust bound and
 //     contact step limit, the closed-form free stage), through the kind's hooks (PredictStage,
 //     TangentBetween, ForceChange, FreeStageMinimizer, the assembler's step limit), a rigid kind
