@@ -620,6 +620,10 @@ void GatherKindSampleRange(const ActorKind& A, const Eigen::VectorXd& q,
       s.yLast = ks.y;
     }
     s.y0 = q0 ? A.Sample(k, *q0).y : ks.y;
+    s.faceNormal = ks.faceNormal;
+    s.face = ks.face;
+    if (ks.faceNormal)
+      for (int c = 0; c < 3; ++c) s.faceNodes[c] = ks.faceNodes[c];
     s.weight = ks.weight;
     s.map = ks.map;
     s.key = k;

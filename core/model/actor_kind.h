@@ -65,6 +65,12 @@ struct KindSample {
   int dof[4] = {0, 0, 0, 0};                    ///< first local tangent dof of each block
   bool hasNormal = false;
   Eigen::Vector3d n = Eigen::Vector3d::Zero();  ///< colliding normal (world), when hasNormal
+  /// The normal is the unit normal of the triangle of the Nodes map's three nodes, which moves
+  /// with them (a deforming surface's sample; the assembler differentiates it): their current
+  /// positions, and the face's index for reports. Otherwise n is data of the configuration.
+  bool faceNormal = false;
+  Eigen::Vector3d faceNodes[3];
+  int face = -1;
   /// The number of 3-dof blocks the map reads.
   int Blocks() const { return map.kind == SamplePointMap::Kind::Rigid ? 2 : map.nodes; }
 };

@@ -1,0 +1,143 @@
+#include "core/model/soft_kind.h"
+
+#include <algorithm>
+
+namespace superdex {
+namespace {
+
+Eigen::Vector3d Node(const Eigen::VectorXd& x, int i) { return x.segment<3>(3 * i); }
+
+// The centroid of face F at positions x and its largest distance to a corner [m].
+double FaceBall(const Eigen::VectorXd& x, const Eigen::Vector3i& F, Eigen::Vector3d* c) {
+  const Eigen::Vector3d a = Node(x, F[0]), b = Node(x, F[1]), d = Node(x, F[2]);
+  *c = (a + b + d) / 3.0;
+  return std::max({(a - *c).norm(), (b - *c).norm(), (d - *c).norm()});
+}
+
+}  // namespace
+
+SoftKind::SoftKind(SoftBodyModel model, const SoftBodyState& initial)
+    : model_(std::move(model)), initial_(initial) {
+  contact = model_.contact;
+  name = model_.name;
+  freeNode_.assign(model_.numFree, 0);
+  for (int a = 0; a < model_.NumNodes(); ++a)
+    if (model_.freeIndex[a] >= 0) freeNode_[model_.freeIndex[a]] = a;
+}
+
+std::unique_ptr<SoftKind> SoftKind::Build(const SoftActorDesc& desc, Error* error) {
+  if (desc.colliderType != ColliderType::None) {
+    Fail(error, "colliderType: a soft kind is colliding only (its Sdf collider role is not "
+                "carried by the generic layer yet)");
+    return nullptr;
+  }
+  SoftBodyModel model;
+  SoftBodyState state;
+  if (!BuildSoftBody(desc, "", &model, &state, error)) return nullptr;
+  return std::make_unique<SoftKind>(std::move(model), state);
+}
+
+std::unique_ptr<ActorKind> SoftKind::Clone() const { return std::make_unique<SoftKind>(*this); }
+
+const SoftStageTarget& SoftKind::TargetOf(const KindStageData& stage) const {
+  if (targetDt_ != stage.dt || target_.xHat.size() != stage.qHat.size() ||
+      target_.xHat != stage.qHat || target_.x0 != stage.q0) {
+    target_.xHat = stage.qHat;
+    target_.x0 = stage.q0;
+    target_.xLast = stage.qLast;
+    targetDt_ = stage.dt;
+    PrepareSoftDamping(model_, &target_);
+  }
+  return target_;
+}
+
+double SoftKind::StageEnergy(const KindStageData& stage, const Eigen::VectorXd& q, int order,
+                             PsdProjection projection, Eigen::VectorXd* g,
+                             std::vector<Eigen::Triplet<double>>* H) const {
+  // The soft terms on the free nodes (dofs 3 freeIndex[a]), then scattered to the local dofs.
+  if (order >= 1) freeGradient_.setZero(3 * model_.numFree);
+  freeHessian_.clear();
+  const double value = EvaluateSoftStageTerms(
+      model_, TargetOf(stage), stage.dt, stage.gravity, q, order, projection, 0,
+      order >= 1 ? &freeGradient_ : nullptr, order >= 2 ? &freeHessian_ : nullptr, &scratch_);
+  if (order < 1) return value;
+  auto local = [&](int i) { return 3 * freeNode_[i / 3] + i % 3; };
+  for (int i = 0; i < freeGradient_.size(); ++i) (*g)[local(i)] += freeGradient_[i];
+  if (order < 2) return value;
+  for (const Eigen::Triplet<double>& t : freeHessian_)
+    H->emplace_back(local(t.row()), local(t.col()), t.value());
+  return value;
+}
+
+void SoftKind::Prescribe(double t, Eigen::VectorXd* q) const {
+  ApplyNodeConstraints(model_, initial_.x, t, q);
+}
+
+double SoftKind::KineticEnergy(const KindState& s) const { return superdex::KineticEnergy(model_, s); }
+
+double SoftKind::GravityEnergy(const KindState& s, const Eigen::Vector3d& gravity) const {
+  double e = 0.0;
+  for (int a = 0; a < model_.NumNodes(); ++a) e += -model_.nodeMass[a] * gravity.dot(Node(s.x, a));
+  return e;
+}
+
+double SoftKind::InternalEnergy(const KindState& s) const {
+  return ElasticEnergy(model_, s.x, nullptr);
+}
+
+Eigen::Vector3d SoftKind::LinearMomentum(const KindState& s) const {
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+  for (int a = 0; a < model_.NumNodes(); ++a) p += model_.nodeMass[a] * Node(s.v, a);
+  return p;
+}
+
+Eigen::Vector3d SoftKind::AngularMomentum(const KindState& s) const {
+  Eigen::Vector3d L = Eigen::Vector3d::Zero();
+  for (int a = 0; a < model_.NumNodes(); ++a)
+    L += model_.nodeMass[a] * Node(s.x, a).cross(Node(s.v, a));
+  return L;
+}
+
+Eigen::Vector3d SoftKind::CenterOfMass(const KindState& s) const {
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (int a = 0; a < model_.NumNodes(); ++a) c += model_.nodeMass[a] * Node(s.x, a);
+  return c / model_.mass;
+}
+
+Eigen::Vector3d SoftKind::CenterOfMassVelocity(const KindState& s) const {
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (int a = 0; a < model_.NumNodes(); ++a) c += model_.nodeMass[a] * Node(s.v, a);
+  return c / model_.mass;
+}
+
+KindSample SoftKind::Sample(int k, const Eigen::VectorXd& q) const {
+  const SoftSurfaceSample& ss = model_.samples[k];
+  const Eigen::Vector3i& F = model_.faces[ss.face];
+  KindSample s;
+  s.map = SamplePointMap::Face(ss.bary);
+  s.y.setZero();
+  for (int a = 0; a < 3; ++a) {
+    s.faceNodes[a] = Node(q, F[a]);
+    s.y += ss.bary[a] * s.faceNodes[a];
+    s.dof[a] = 3 * F[a];
+  }
+  s.weight = ss.weight;
+  s.hasNormal = true;
+  s.faceNormal = true;
+  s.face = ss.face;
+  s.n = SoftFaceNormal(model_, q, ss.face);
+  return s;
+}
+
+void SoftKind::ForEachSampleNear(
+    const Eigen::VectorXd& q, const Eigen::VectorXd& qLast,
+    const std::function<bool(const Eigen::Vector3d&, const Eigen::Vector3d&, double)>& keep,
+    const std::function<void(int, int)>& visit) const {
+  for (size_t f = 0; f < model_.faces.size(); ++f) {
+    Eigen::Vector3d c, cLast;
+    const double r = std::max(FaceBall(q, model_.faces[f], &c), FaceBall(qLast, model_.faces[f], &cLast));
+    if (keep(c, cLast, r)) visit(model_.faceSampleBegin[f], model_.faceSampleBegin[f + 1]);
+  }
+}
+
+}  // namespace superdex

@@ -1,0 +1,78 @@
+// A soft (tet FEM) actor carried by the generic actor layer (core/model/actor_kind.h): q = the
+// node positions x (3 per node, [m]), v their velocities, a vector kind (q ⊕ δ = q + δ). Its stage
+// energy is the soft stage terms of core/model/soft_terms.h on its free nodes:
+//   Φ(x) = Σ_a m_a/(2Δt_i²) |x_a − x̂_a|² − Σ_a m_a g·x_a + Σ_t V_t Ψ(F_t)
+//          + β/(2Δt_i) Σ_t (x_t − x⁰_t)ᵀ K_t (x_t − x⁰_t)                               [J]
+// (K_t frozen at the stage's predictor x̂). Prescribed nodes (pinned or driven) are prescribed
+// tangent dofs, placed by Prescribe. Its colliding role is its boundary faces' quadrature samples:
+// y = Σ_a b_a x_a (a Nodes map on the face's three nodes), the colliding normal the deformed unit
+// face normal, which moves with the nodes (KindSample::faceNormal). A soft actor's Sdf collider
+// role (the reference grid SDF pulled back through the deformed tets, core/contact/
+// soft_collider.h) is not carried by this kind yet: Build refuses it.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "core/model/actor_kind.h"
+#include "core/model/soft_terms.h"
+
+namespace superdex {
+
+class SoftKind : public ActorKind {
+ public:
+  /// A body built by BuildSoftBody (the same model and initial state as Scene::AddSoftActor).
+  SoftKind(SoftBodyModel model, const SoftBodyState& initial);
+  /// Builds the model from a description; null with *error filled on bad input (also an Sdf
+  /// collider, not carried yet).
+  static std::unique_ptr<SoftKind> Build(const SoftActorDesc& desc, Error* error);
+
+  const SoftBodyModel& Model() const { return model_; }
+
+  std::string KindName() const override { return "soft"; }
+  std::unique_ptr<ActorKind> Clone() const override;
+  int NumDofs() const override { return 3 * model_.NumNodes(); }
+  KindState InitialState() const override { return initial_; }
+  double StageEnergy(const KindStageData& stage, const Eigen::VectorXd& q, int order,
+                     PsdProjection projection, Eigen::VectorXd* g,
+                     std::vector<Eigen::Triplet<double>>* H) const override;
+  bool IsPrescribed(int dof) const override { return model_.freeIndex[dof / 3] < 0; }
+  /// ApplyNodeConstraints from the initial positions.
+  void Prescribe(double t, Eigen::VectorXd* q) const override;
+
+  double KineticEnergy(const KindState& s) const override;
+  double GravityEnergy(const KindState& s, const Eigen::Vector3d& gravity) const override;
+  /// Σ_t V_t Ψ(F_t) [J].
+  double InternalEnergy(const KindState& s) const override;
+  Eigen::Vector3d LinearMomentum(const KindState& s) const override;
+  Eigen::Vector3d AngularMomentum(const KindState& s) const override;
+  Eigen::Vector3d CenterOfMass(const KindState& s) const override;
+  Eigen::Vector3d CenterOfMassVelocity(const KindState& s) const override;
+  Aabb Bounds(const Eigen::VectorXd& q) const override { return SoftBounds(q); }
+
+  int NumSamples() const override { return static_cast<int>(model_.samples.size()); }
+  KindSample Sample(int k, const Eigen::VectorXd& q) const override;
+  /// Face by face (samples are grouped by face): a face's samples lie in the ball about its
+  /// centroid through its farthest node, now and at qLast; the face is visited when keep accepts
+  /// the larger of the two radii.
+  void ForEachSampleNear(
+      const Eigen::VectorXd& q, const Eigen::VectorXd& qLast,
+      const std::function<bool(const Eigen::Vector3d&, const Eigen::Vector3d&, double)>& keep,
+      const std::function<void(int, int)>& visit) const override;
+
+ private:
+  // The stage's target (x̂, x⁰, x_n, K_t at x̂) for `stage`, formed again when x̂ or Δt_i change.
+  const SoftStageTarget& TargetOf(const KindStageData& stage) const;
+
+  SoftBodyModel model_;
+  SoftBodyState initial_;
+  std::vector<int> freeNode_;  // per free node: its node index
+  // Scratch of StageEnergy (a kind's stage terms are evaluated one kind after the other).
+  mutable SoftStageTarget target_;
+  mutable double targetDt_ = -1.0;
+  mutable SoftTermScratch scratch_;
+  mutable Eigen::VectorXd freeGradient_;
+  mutable std::vector<Eigen::Triplet<double>> freeHessian_;
+};
+
+}  // namespace superdex
