@@ -534,14 +534,18 @@ std::vector<std::string> Scene::Notices() const {
     if (!Model(a).notice.empty()) out.push_back(Model(a).notice);
   for (const auto& m : softModels_)
     if (!m.notice.empty()) out.push_back(m.notice);
-  // Kinds' own samples (not on sample bodies) do not collide on soft fields.
-  bool kindColliding = false, softCollider = false;
-  for (const auto& k : kinds_) kindColliding = kindColliding || k->NumSamples() > 0;
+  // Kinds' own samples without a rigid or deforming face's normal do not collide on soft
+  // fields (CollidesOnSoftField).
+  bool softCollider = false;
   for (const auto& m : softModels_) softCollider = softCollider || m.collider == ColliderType::Sdf;
-  if (kindColliding && softCollider)
-    out.push_back("actors of the generic layer (" + kinds_.front()->KindName() +
-                  ", ...) do not collide on a soft actor's field: that pair is not supported yet "
-                  "(soft actors do collide on theirs)");
+  for (const auto& k : kinds_) {
+    if (!softCollider || k->NumSamples() == 0) continue;
+    if (CollidesOnSoftField(k->Sample(0, k->InitialState().x))) continue;
+    out.push_back("actors of the generic layer (" + k->KindName() +
+                  ") whose samples have no colliding normal do not collide on a soft actor's "
+                  "field: that pair is not supported yet (soft actors do collide on theirs)");
+    break;
+  }
   ZeroByCombinationNotices(&out);
   return out;
 }

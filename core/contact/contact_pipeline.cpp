@@ -195,7 +195,7 @@ void ContactPipeline::ConsiderSoftPair(int s, int b) {
 void ContactPipeline::ConsiderKindOnSoft(int k, int b) {
   const SoftBodyModel& B = (*softModels_)[b];
   const ActorKind& A = *(*kinds_)[k];
-  if (B.collider != ColliderType::Sdf || A.NumSampleBodies() == 0) return;
+  if (B.collider != ColliderType::Sdf || !kindColliding_[k]) return;
   if (filter_ && !filter_->Allowed(kindActor_[k], softActor_[b])) return;
   SoftColliderPair p;
   p.colliding = k;
@@ -203,6 +203,8 @@ void ContactPipeline::ConsiderKindOnSoft(int k, int b) {
   // Both move; A's own collider type decides the threshold padding.
   p.params = CombineContactParams(A.contact, B.contact, false, A.Collider() == nullptr);
   for (p.body = 0; p.body < A.NumSampleBodies(); ++p.body) softColliderPairs_.push_back(p);
+  p.body = -1;  // the kind's own samples
+  if (A.NumSamples() > 0) softColliderPairs_.push_back(p);
 }
 
 void ContactPipeline::SampleBodyOffsets(const KindView& kinds, int k, int body,
@@ -223,6 +225,12 @@ void ContactPipeline::SoftColliderInputs(const SoftColliderPair& sp, const SoftV
     a->x = &(*soft.x)[sp.colliding];
     a->xLast = soft.xLast ? &(*soft.xLast)[sp.colliding] : nullptr;
     a->x0 = soft.x0 ? &(*soft.x0)[sp.colliding] : nullptr;
+  } else if (sp.body < 0) {  // a kind's own samples
+    a->kind = (*kinds_)[sp.colliding];
+    a->stageDof = &(*kinds->stageDof)[sp.colliding];
+    a->x = &(*kinds->q)[kinds->first + sp.colliding];
+    a->xLast = EntryOf(kinds->qLast, sp.colliding);
+    a->x0 = kindStart ? EntryOf(kinds->q0, sp.colliding) : nullptr;
   } else {  // a kind's sample body
     const ActorKind& A = *(*kinds_)[sp.colliding];
     const bool hasStart =
@@ -240,6 +248,7 @@ void ContactPipeline::SoftColliderInputs(const SoftColliderPair& sp, const SoftV
   b->x0 = soft.x0 ? &(*soft.x0)[sp.collider] : nullptr;
   b->locator = &locators_[sp.collider];
   b->locatorLast = soft.xLast ? &locatorsLast_[sp.collider] : &locators_[sp.collider];
+  b->dofOffset = soft.dofOffset ? (*soft.dofOffset)[sp.collider] : 0;
 }
 
 template <typename Id>
@@ -435,11 +444,12 @@ double ContactPipeline::Evaluate(int order, PsdProjection projection, Eigen::Vec
 void ContactPipeline::EvaluateOnSoftPairs(const Request& q, double* energy, ContactStats* st) {
   const SoftView* soft = q.soft;
   const DissipationContext* dissipation = q.dissipation;
-  // Colliding ids: soft actors (−1 − s), kinds' sample bodies (k + nk b).
+  // Colliding ids: soft actors (−1 − s), kinds' own samples (k), their sample bodies
+  // (k + nk (b + 1)).
   const int nk = static_cast<int>(kinds_ ? kinds_->size() : 0);
   const auto onSoftId = [&](size_t k) {
     const SoftColliderPair& p = softColliderPairs_[k];
-    return std::make_pair(p.collidingSoft ? -1 - p.colliding : p.colliding + nk * p.body,
+    return std::make_pair(p.collidingSoft ? -1 - p.colliding : p.colliding + nk * (p.body + 1),
                           p.collider);
   };
   // Samples of soft actors and kinds' bodies on soft colliders, one stencil per sample.
@@ -478,7 +488,8 @@ void ContactPipeline::EvaluateOnSoftPairs(const Request& q, double* energy, Cont
   for (size_t k = 0; k < softColliderPairs_.size(); ++k) {
     const SoftColliderPair& sp = softColliderPairs_[k];
     int aOffs[2] = {-1, -1};
-    if (!sp.collidingSoft) SampleBodyOffsets(*q.kinds, sp.colliding, sp.body, aOffs);
+    if (!sp.collidingSoft && sp.body >= 0)
+      SampleBodyOffsets(*q.kinds, sp.colliding, sp.body, aOffs);
     ReducePair(q, softColliderResults_[k], sp.collidingSoft, sp.colliding, sp.collider, energy,
                st, aOffs);
   }

@@ -46,10 +46,10 @@ struct DissipationContext {
   bool recordSlips = false;
 };
 
-/// Ordered pair (A colliding: a soft actor, or one sample body of a kind; B: a soft actor with an
-/// Sdf collider).
+/// Ordered pair (A colliding: a soft actor, one sample body of a kind or a kind's own samples; B:
+/// a soft actor with an Sdf collider).
 struct SoftColliderPair {
-  bool collidingSoft = false;  ///< else A is sample body `body` of kind `colliding`
+  bool collidingSoft = false;  ///< else A is sample body `body` of kind `colliding` (−1: its own)
   int body = 0;
   int colliding = -1;  ///< soft model index, or kind index
   int collider = -1;   ///< soft model index

@@ -152,6 +152,11 @@ struct SamplePoint {
   double weight = 0.0;
   Eigen::Vector3d y, yn, y0;  // current, last, stage start [m]
   Eigen::Vector3d n, nn;      // A's outward normal now and at x_n (unit)
+  // A kind's sample: its face's nodes (a deforming face's normal) and its stage dof blocks
+  // (blocks 0: a rigid body's or a soft actor's sample, whose stencils the pipeline places).
+  Eigen::Vector3d faceNodes[3];
+  int blocks = 0;
+  int offs[4] = {-1, -1, -1, -1};
 };
 
 /// One pair's evaluation on a soft collider: the setup shared by its samples, and per sample the
@@ -178,10 +183,19 @@ struct OnSoftCollider {
   static bool inside(const Aabb& b, const Eigen::Vector3d& p) {
     return (p.array() >= b.min.array()).all() && (p.array() <= b.max.array()).all();
   }
-  /// A kept stencil for one sample's term (penalty, or dissipation).
-  ContactStencil& newEntry(int face, int tet, bool dissipation) {
-    ContactStencil& e = out->Slot(face, tet, n, order);
+  /// A kept stencil for one sample's term (penalty, or dissipation); a kind's sample's carries
+  /// its blocks: A's, then the tet's four nodes.
+  ContactStencil& newEntry(const SamplePoint& sp, int tet, bool dissipation) {
+    ContactStencil& e = out->Slot(sp.face, tet, n, order);
     (dissipation ? e.dissipationActive : e.penaltyActive) = true;
+    e.blocks = 0;
+    if (sp.blocks > 0) {
+      for (int b = 0; b < sp.blocks; ++b) e.offs[e.blocks++] = sp.offs[b];
+      for (int c = 0; c < 4; ++c) {
+        const int free = B.freeIndex[B.rest.tets[tet][c]];
+        e.offs[e.blocks++] = free < 0 ? -1 : Bin.dofOffset + 3 * free;
+      }
+    }
     out->Keep();
     return e;
   }
@@ -233,7 +247,7 @@ struct OnSoftCollider {
           Eigen::Matrix3d HX;
           PenaltyInPullback(W, field, &gX, order >= 2 ? &HX : nullptr);
           TetPullbackStencil(pb, gX, order >= 2 ? &HX : nullptr, &point);
-          ContactStencil& e = newEntry(sp.face, pb.tet, false);
+          ContactStencil& e = newEntry(sp, pb.tet, false);
           ChainToActor(sp.kin, point, w, &e.penaltyGradient,
                        order >= 2 ? &e.penaltyHessian : nullptr);
         }
@@ -273,7 +287,7 @@ struct OnSoftCollider {
       if (order == 0) return;
       const Eigen::Matrix3d HX = D.hessian / ds.dt;
       TetPullbackStencil(pbc, D.gradient, order >= 2 ? &HX : nullptr, &point);
-      ContactStencil& e = newEntry(sp.face, tn, true);
+      ContactStencil& e = newEntry(sp, tn, true);
       ChainToActor(sp.kin, point, w, &e.dissipationResidual,
                    order >= 2 ? &e.dissipationJacobian : nullptr);
       return;
@@ -299,7 +313,7 @@ struct OnSoftCollider {
     out->AddDissipative(w, ds.dt, D, ds.coefficients.mu, lambdaHat);
     if (order == 0) return;
     TetPullbackStencil(pb, D.gradient, nullptr, &point);
-    ContactStencil& e = newEntry(sp.face, pb.tet, true);
+    ContactStencil& e = newEntry(sp, pb.tet, true);
     ChainToActor(sp.kin, point, w, &e.dissipationResidual, nullptr);
     if (order < 2) return;
     CurrentModeSample cs;
@@ -320,6 +334,16 @@ struct OnSoftCollider {
       cs.XA = A.pose->R.transpose() * sp.kin.r;
       cs.nBody = A.pose->R.transpose() * sp.n;
       AddResidualJacobian<18>(cs, w, &e.dissipationJacobian);
+    } else if (A.kind && sp.kin.kind == SamplePointMap::Kind::Rigid) {
+      // In world terms: R = I + [δθ]× moves r and n alike.
+      cs.pA = sp.kin.origin;
+      cs.RA.setIdentity();
+      cs.XA = sp.kin.r;
+      cs.nBody = sp.n;
+      AddResidualJacobian<18>(cs, w, &e.dissipationJacobian);
+    } else if (A.kind) {
+      for (int a = 0; a < 3; ++a) cs.xs[a] = sp.faceNodes[a];
+      AddResidualJacobian<21>(cs, w, &e.dissipationJacobian);
     } else {
       const Eigen::Vector3i& F = A.soft->faces[sp.face];
       for (int a = 0; a < 3; ++a) cs.xs[a] = A.x->segment<3>(3 * F[a]);
@@ -360,7 +384,30 @@ void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput
   const Aabb& boxLast = eval.boxLast;
   auto inside = OnSoftCollider::inside;
   SamplePoint sp;
-  if (A.rigid) {
+  if (A.kind) {
+    const ActorKind& K = *A.kind;
+    const Eigen::VectorXd& q = *A.x;
+    for (int k = 0; k < K.NumSamples(); ++k) {
+      const KindSample ks = K.Sample(k, q);
+      if (!CollidesOnSoftField(ks)) continue;
+      const KindSample last = A.xLast ? K.Sample(k, *A.xLast) : ks;
+      if (!inside(box, ks.y) && !(explicitNormals && inside(boxLast, last.y))) continue;
+      sp.key = k;
+      sp.kin = ks.map;
+      sp.y = ks.y;
+      sp.yn = last.y;
+      sp.y0 = A.x0 ? K.Sample(k, *A.x0).y : ks.y;
+      sp.n = ks.n;
+      sp.nn = last.n;
+      sp.weight = ks.weight;
+      sp.face = ks.face;
+      for (int a = 0; a < 3; ++a) sp.faceNodes[a] = ks.faceNodes[a];
+      sp.blocks = ks.Blocks();
+      for (int b = 0; b < sp.blocks; ++b) sp.offs[b] = (*A.stageDof)[ks.dof[b]];
+      eval.n = ks.map.Dofs() + 12;
+      eval.Process(sp);
+    }
+  } else if (A.rigid) {
     const RigidBodyModel& M = *A.rigid;
     const RigidPose& a = *A.pose;
     const RigidPose& an = A.start ? A.start->last : a;

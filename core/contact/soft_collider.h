@@ -29,6 +29,7 @@
 #include "core/contact/contact_stencil.h"
 #include "core/contact/rigid_contact.h"
 #include "core/contact/rigid_dissipation.h"
+#include "core/model/actor_kind.h"
 #include "core/model/soft_body.h"
 #include "geometry/tet_locator.h"
 
@@ -43,23 +44,35 @@ struct SoftColliderInput {
   const Eigen::VectorXd* x0 = nullptr;     ///< null: no dissipation
   const TetLocator* locator = nullptr;     ///< over x
   const TetLocator* locatorLast = nullptr; ///< over xLast (explicit normals)
+  int dofOffset = 0;  ///< B's first stage dof (node a: dofOffset + 3 freeIndex[a]; kind A only)
 };
 
-/// The colliding actor A: a rigid body (pose, stage start) or a soft actor (positions).
+/// The colliding actor A: a rigid body (pose, stage start), a soft actor (positions x), or a
+/// kind's own samples (ActorKind::Sample at q = x, x_n = xLast, x⁰ = x0; their local dofs at the
+/// stage dofs `stageDof`). A kind's sample takes part only with a colliding normal that is a rigid
+/// map's or a deforming face's (KindSample::faceNormal); others are skipped.
 struct CollidingInput {
   const RigidBodyModel* rigid = nullptr;
   const RigidPose* pose = nullptr;
   const RigidStageStart* start = nullptr;  ///< rigid A's x⁰ and x_n (null: the pose)
   const SoftBodyModel* soft = nullptr;
+  const ActorKind* kind = nullptr;
+  const std::vector<int>* stageDof = nullptr;  ///< kind A
   const Eigen::VectorXd* x = nullptr;
   const Eigen::VectorXd* xLast = nullptr;
   const Eigen::VectorXd* x0 = nullptr;
 };
 
+/// Whether a kind's sample can collide on a soft collider's field (see CollidingInput).
+inline bool CollidesOnSoftField(const KindSample& s) {
+  return s.hasNormal && (s.map.kind == SamplePointMap::Kind::Rigid || s.faceNormal);
+}
+
 /// Penalty (and, with `dissipation`, the stage-discrete dissipation) of A's samples against the
 /// soft collider B. order 0/1/2 as elsewhere. One stencil per active sample and term (penalty or
-/// dissipation) on [A's dofs (6 rigid | 9 soft face), B's tet (12)], unprojected. `records`
-/// (order 0) collects active penalty samples.
+/// dissipation) on [A's dofs (6 rigid | 9 soft face | a kind's sample map's), B's tet (12)],
+/// unprojected; a kind A's stencils carry their blocks (ContactStencil::blocks, offs: A's, then
+/// B's four nodes). `records` (order 0) collects active penalty samples.
 void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput& B,
                                 const PenaltyParams& penalty, double maxAlignment,
                                 const DissipationSetup* dissipation, int order,
