@@ -83,12 +83,15 @@ void ContactPipeline::Configure(const ContactFilter* filter,
   kindHasDofs_.clear();
   kindColliding_.clear();
   kindCollider_.clear();
+  kindTetCollider_.clear();
   kindStatic_.clear();
   kindSamples_.clear();
   if (kinds_)
     for (const ActorKind* k : *kinds_) {
-      kindInflation_.push_back(k->Collider() ? ColliderReach(k->contact) : 0.0);
+      const bool tet = k->TetCollider() && k->TetCollider()->collider == ColliderType::Sdf;
+      kindInflation_.push_back(k->Collider() || tet ? ColliderReach(k->contact) : 0.0);
       kindCollider_.push_back(k->Collider() != nullptr);
+      kindTetCollider_.push_back(tet);
       kindHasDofs_.push_back(k->HasFreeDof());
       kindColliding_.push_back(k->IsColliding());
       kindStatic_.push_back(k->IsStatic());
@@ -163,6 +166,7 @@ void ContactPipeline::FindPairs(const SoftView* soft, const KindView* kinds) {
 
 void ContactPipeline::ConsiderKindPair(int a, int b) {
   if (a == b) return;  // self-contact of a kind: not in this layer yet
+  if (kindTetCollider_[b]) return ConsiderKindOnSoft(a, b, true);
   const ActorKind& A = *(*kinds_)[a];
   const ActorKind& B = *(*kinds_)[b];
   if (!kindColliding_[a] || !kindCollider_[b]) return;
@@ -174,12 +178,26 @@ void ContactPipeline::ConsiderKindPair(int a, int b) {
   p.b = b;
   // A kinematic collider moves: its parameters combine as a dynamic one's (spec: "taken from the
   // colliding actor when the collider is static").
-  p.params = CombineContactParams(A.contact, B.contact, kindStatic_[b], !kindCollider_[a]);
+  // The threshold padding applies when A has no collider of its own (spec: None or PointCloud).
+  p.params = CombineContactParams(A.contact, B.contact, kindStatic_[b],
+                                  !kindCollider_[a] && !kindTetCollider_[a]);
   kindPairs_.push_back(p);
 }
 
 void ContactPipeline::ConsiderSoftPair(int s, int b) {
   const ActorKind& kind = *(*kinds_)[b];
+  if (kindTetCollider_[b]) {  // on the kind's tet field, as on a soft actor's
+    if (filter_ && !filter_->Allowed(softActor_[s], kindActor_[b])) return;
+    SoftColliderPair p;
+    p.collidingSoft = true;
+    p.colliding = s;
+    p.colliderKind = true;
+    p.collider = b;
+    const SoftBodyModel& A = (*softModels_)[s];
+    p.params = CombineContactParams(A.contact, kind.contact, false, PadsThreshold(A));
+    softColliderPairs_.push_back(p);
+    return;
+  }
   if (!kindCollider_[b]) return;
   if (filter_ && !filter_->Allowed(softActor_[s], kindActor_[b])) return;
   KindPair p;
@@ -192,19 +210,47 @@ void ContactPipeline::ConsiderSoftPair(int s, int b) {
   kindPairs_.push_back(p);
 }
 
-void ContactPipeline::ConsiderKindOnSoft(int k, int b) {
-  const SoftBodyModel& B = (*softModels_)[b];
+void ContactPipeline::ConsiderKindOnSoft(int k, int b, bool bKind) {
   const ActorKind& A = *(*kinds_)[k];
-  if (B.collider != ColliderType::Sdf || !kindColliding_[k]) return;
-  if (filter_ && !filter_->Allowed(kindActor_[k], softActor_[b])) return;
+  if (bKind ? !kindTetCollider_[b] : (*softModels_)[b].collider != ColliderType::Sdf) return;
+  if (!kindColliding_[k]) return;
+  if (filter_ && !filter_->Allowed(kindActor_[k], bKind ? kindActor_[b] : softActor_[b])) return;
   SoftColliderPair p;
   p.colliding = k;
+  p.colliderKind = bKind;
   p.collider = b;
   // Both move; A's own collider type decides the threshold padding.
-  p.params = CombineContactParams(A.contact, B.contact, false, A.Collider() == nullptr);
+  const ContactParams& bContact = bKind ? (*kinds_)[b]->contact : (*softModels_)[b].contact;
+  p.params = CombineContactParams(A.contact, bContact, false,
+                                  A.Collider() == nullptr && !kindTetCollider_[k]);
   for (p.body = 0; p.body < A.NumSampleBodies(); ++p.body) softColliderPairs_.push_back(p);
   p.body = -1;  // the kind's own samples
   if (A.NumSamples() > 0) softColliderPairs_.push_back(p);
+}
+
+void ContactPipeline::BuildLocators(const SoftView* soft, const KindView* kinds, bool last) {
+  if (softColliderPairs_.empty()) return;
+  const size_t ns = softModels_ ? softModels_->size() : 0;
+  const size_t nk = kinds_ ? kinds_->size() : 0;
+  locators_.resize(ns);
+  locatorsLast_.resize(ns);
+  kindLocators_.resize(nk);
+  kindLocatorsLast_.resize(nk);
+  std::vector<char> built(ns + nk, 0);
+  for (const SoftColliderPair& p : softColliderPairs_)
+    built[p.colliderKind ? ns + p.collider : p.collider] = 1;
+  for (size_t b = 0; b < ns; ++b) {
+    if (!built[b]) continue;
+    const std::vector<Eigen::Vector4i>& tets = (*softModels_)[b].rest.tets;
+    locators_[b].Build((*soft->x)[b], tets);
+    if (last && soft->xLast) locatorsLast_[b].Build((*soft->xLast)[b], tets);
+  }
+  for (size_t k = 0; k < nk; ++k) {
+    if (!built[ns + k]) continue;
+    const std::vector<Eigen::Vector4i>& tets = (*kinds_)[k]->TetCollider()->rest.tets;
+    kindLocators_[k].Build((*kinds->q)[kinds->first + k], tets);
+    if (last && kinds->qLast) kindLocatorsLast_[k].Build((*kinds->qLast)[k], tets);
+  }
 }
 
 void ContactPipeline::SampleBodyOffsets(const KindView& kinds, int k, int body,
@@ -225,6 +271,7 @@ void ContactPipeline::SoftColliderInputs(const SoftColliderPair& sp, const SoftV
     a->x = &(*soft.x)[sp.colliding];
     a->xLast = soft.xLast ? &(*soft.xLast)[sp.colliding] : nullptr;
     a->x0 = soft.x0 ? &(*soft.x0)[sp.colliding] : nullptr;
+    a->dofOffset = soft.dofOffset ? (*soft.dofOffset)[sp.colliding] : 0;
   } else if (sp.body < 0) {  // a kind's own samples
     a->kind = (*kinds_)[sp.colliding];
     a->stageDof = &(*kinds->stageDof)[sp.colliding];
@@ -240,8 +287,20 @@ void ContactPipeline::SoftColliderInputs(const SoftColliderPair& sp, const SoftV
     a->rigid = A.SampleBody(sp.body);
     a->pose = pose;
     a->start = hasStart ? start : nullptr;
+    SampleBodyOffsets(*kinds, sp.colliding, sp.body, a->bodyOffs);
   }
   *b = SoftColliderInput();
+  if (sp.colliderKind) {  // a kind's tet field
+    const int k = sp.collider;
+    b->model = (*kinds_)[k]->TetCollider();
+    b->x = &(*kinds->q)[kinds->first + k];
+    b->xLast = EntryOf(kinds->qLast, k);
+    b->x0 = kindStart ? EntryOf(kinds->q0, k) : nullptr;
+    b->locator = &kindLocators_[k];
+    b->locatorLast = kinds->qLast ? &kindLocatorsLast_[k] : &kindLocators_[k];
+    b->nodeDof = &(*kinds->stageDof)[k];
+    return;
+  }
   b->model = &(*softModels_)[sp.collider];
   b->x = &(*soft.x)[sp.collider];
   b->xLast = soft.xLast ? &(*soft.xLast)[sp.collider] : nullptr;
@@ -447,24 +506,14 @@ void ContactPipeline::EvaluateOnSoftPairs(const Request& q, double* energy, Cont
   // Colliding ids: soft actors (−1 − s), kinds' own samples (k), their sample bodies
   // (k + nk (b + 1)).
   const int nk = static_cast<int>(kinds_ ? kinds_->size() : 0);
+  // Collider ids: soft actors (s), kinds' tet fields (−1 − k).
   const auto onSoftId = [&](size_t k) {
     const SoftColliderPair& p = softColliderPairs_[k];
     return std::make_pair(p.collidingSoft ? -1 - p.colliding : p.colliding + nk * (p.body + 1),
-                          p.collider);
+                          p.colliderKind ? -1 - p.collider : p.collider);
   };
-  // Samples of soft actors and kinds' bodies on soft colliders, one stencil per sample.
-  if (!softColliderPairs_.empty()) {
-    const size_t ns = softModels_->size();
-    locators_.resize(ns);
-    locatorsLast_.resize(ns);
-    std::vector<char> built(ns, 0);
-    for (const SoftColliderPair& p : softColliderPairs_) built[p.collider] = 1;
-    for (size_t b = 0; b < ns; ++b) {
-      if (!built[b]) continue;
-      locators_[b].Build((*soft->x)[b], (*softModels_)[b].rest.tets);
-      if (soft->xLast) locatorsLast_[b].Build((*soft->xLast)[b], (*softModels_)[b].rest.tets);
-    }
-  }
+  // Samples of soft actors and kinds on soft colliders' fields, one stencil per sample.
+  BuildLocators(soft, q.kinds, true);
   softColliderResults_.resize(softColliderPairs_.size());
   auto evaluateOnSoft = [&](size_t k) {
     const SoftColliderPair& sp = softColliderPairs_[k];
@@ -473,7 +522,7 @@ void ContactPipeline::EvaluateOnSoftPairs(const Request& q, double* energy, Cont
     SoftColliderInput b;
     RigidPose pose;
     RigidStageStart start;
-    SoftColliderInputs(sp, *soft, q.kinds, dissipation != nullptr, &pose, &start, &a, &b);
+    SoftColliderInputs(sp, soft ? *soft : SoftView(), q.kinds, dissipation != nullptr, &pose, &start, &a, &b);
     DissipationSetup setup;
     if (dissipation) setup = MakeSetup(sp.params, *dissipation, q.isotropic);
     setup.slips = SlipUse(SlipPairKind::OnSoft, k);
@@ -590,11 +639,7 @@ void ContactPipeline::CollectSamples(std::vector<ContactSampleRecord>* records,
   auto setupOf = [&](const PairContactParams& params) {
     return dissipation ? MakeSetup(params, *dissipation, false) : DissipationSetup();
   };
-  if (!softColliderPairs_.empty()) {
-    locators_.resize(softModels_->size());
-    for (const SoftColliderPair& p : softColliderPairs_)
-      locators_[p.collider].Build((*soft->x)[p.collider], (*softModels_)[p.collider].rest.tets);
-  }
+  BuildLocators(soft, kinds, false);
   PairStencils scratchOnSoft;
   for (const SoftColliderPair& sp : softColliderPairs_) {
     const PenaltyParams pp = PenaltyOf(sp.params);
@@ -602,14 +647,15 @@ void ContactPipeline::CollectSamples(std::vector<ContactSampleRecord>* records,
     SoftColliderInput b;
     RigidPose pose;
     RigidStageStart start;
-    SoftColliderInputs(sp, *soft, kinds, false, &pose, &start, &a, &b);
+    SoftColliderInputs(sp, soft ? *soft : SoftView(), kinds, false, &pose, &start, &a, &b);
     const size_t first = records->size();
     EvaluatePairOnSoftCollider(a, b, pp, sp.params.maxAlignmentNormals, nullptr, 0, &scratchOnSoft,
                                records);
     for (size_t k = first; k < records->size(); ++k) {
       (*records)[k].colliding =
           sp.collidingSoft ? softActor_[sp.colliding] : kindActor_[sp.colliding];
-      (*records)[k].collider = softActor_[sp.collider];
+      (*records)[k].collider =
+          sp.colliderKind ? kindActor_[sp.collider] : softActor_[sp.collider];
     }
   }
   Request q;

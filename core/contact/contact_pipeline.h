@@ -50,9 +50,10 @@ struct DissipationContext {
 /// a soft actor with an Sdf collider).
 struct SoftColliderPair {
   bool collidingSoft = false;  ///< else A is sample body `body` of kind `colliding` (−1: its own)
+  bool colliderKind = false;   ///< B is a kind's tet field (ActorKind::TetCollider)
   int body = 0;
   int colliding = -1;  ///< soft model index, or kind index
-  int collider = -1;   ///< soft model index
+  int collider = -1;   ///< soft model index, or kind index
   PairContactParams params;
 };
 
@@ -164,10 +165,9 @@ class ContactPipeline {
   void ConsiderKindPair(int a, int b);
   // Soft actor s colliding on the field of kind b, when the roles and the filter allow it.
   void ConsiderSoftPair(int s, int b);
-  // Kind k's sample bodies colliding on soft actor b's Sdf field (one pair per body), when the
-  // roles and the filter allow it. A kind's own samples (ActorKind::Sample) do not collide with
-  // soft colliders yet.
-  void ConsiderKindOnSoft(int k, int b);
+  // Kind k's sample bodies (one pair per body) and own samples (one pair) colliding on soft
+  // actor b's Sdf field, or on kind b's tet field (bKind), when the roles and the filter allow it.
+  void ConsiderKindOnSoft(int k, int b, bool bKind = false);
   // The colliding side's samples of a kind pair that can contribute on its collider side B.
   // kindSides_ and kindBodies_ at the request's configurations, for the kinds of kindPairs_.
   void FormKindSides(const Request& q);
@@ -210,6 +210,10 @@ class ContactPipeline {
   std::vector<SoftColliderPair> softColliderPairs_;
   std::vector<PairStencils> softColliderResults_;
   std::vector<TetLocator> locators_, locatorsLast_;  // per soft actor
+  std::vector<TetLocator> kindLocators_, kindLocatorsLast_;  // per kind with a tet field
+  // The point locators of the soft colliders' fields in softColliderPairs_ (x_n's too with
+  // `last`), soft actors' and kinds'.
+  void BuildLocators(const SoftView* soft, const KindView* kinds, bool last);
   std::vector<double> softInflation_;
   std::vector<int> dofs_;  // scratch: a face stencil's global dofs
   const std::vector<const ActorKind*>* kinds_ = nullptr;
@@ -218,6 +222,7 @@ class ContactPipeline {
   std::vector<char> kindHasDofs_;  // per kind: some tangent dof is not prescribed
   // Per kind: IsColliding(), Collider() != null, IsStatic().
   std::vector<char> kindColliding_, kindCollider_, kindStatic_;
+  std::vector<char> kindTetCollider_;  // per kind: a tet field with an Sdf grid (TetCollider)
   std::vector<size_t> kindSamples_;  // per kind: its samples and its sample bodies'
 
   std::vector<KindPair> kindPairs_;

@@ -192,8 +192,11 @@ struct OnSoftCollider {
     if (sp.blocks > 0) {
       for (int b = 0; b < sp.blocks; ++b) e.offs[e.blocks++] = sp.offs[b];
       for (int c = 0; c < 4; ++c) {
-        const int free = B.freeIndex[B.rest.tets[tet][c]];
-        e.offs[e.blocks++] = free < 0 ? -1 : Bin.dofOffset + 3 * free;
+        const int node = B.rest.tets[tet][c];
+        const int free = B.freeIndex[node];
+        e.offs[e.blocks++] = Bin.nodeDof ? (*Bin.nodeDof)[3 * node]
+                             : free < 0  ? -1
+                                         : Bin.dofOffset + 3 * free;
       }
     }
     out->Keep();
@@ -420,6 +423,11 @@ void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput
       // Cheap rejection: a sample outside both boxes carries nothing.
       if (!inside(box, sp.y) && !(explicitNormals && inside(boxLast, sp.yn))) continue;
       sp.y0 = A.start ? Eigen::Vector3d(A.start->p + A.start->R * s.X) : sp.y;
+      if (Bin.nodeDof) {  // a kind B: the stencil carries the body's [δp, δθ]
+        sp.blocks = 2;
+        sp.offs[0] = A.bodyOffs[0];
+        sp.offs[1] = A.bodyOffs[1];
+      }
       sp.n = a.R * s.normal;
       sp.nn = an.R * s.normal;
       sp.weight = s.weight;
@@ -441,6 +449,13 @@ void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput
       sp.n = SoftFaceNormal(M, x, static_cast<int>(f));
       sp.nn = SoftFaceNormal(M, xn, static_cast<int>(f));
       sp.face = static_cast<int>(f);
+      if (Bin.nodeDof) {  // a kind B: the stencil carries the face's three nodes
+        sp.blocks = 3;
+        for (int k = 0; k < 3; ++k) {
+          const int free = M.freeIndex[F[k]];
+          sp.offs[k] = free < 0 ? -1 : A.dofOffset + 3 * free;
+        }
+      }
       for (int q = M.faceSampleBegin[f]; q < M.faceSampleBegin[f + 1]; ++q) {
         const SoftSurfaceSample& s = M.samples[q];
         sp.key = q;

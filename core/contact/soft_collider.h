@@ -44,7 +44,10 @@ struct SoftColliderInput {
   const Eigen::VectorXd* x0 = nullptr;     ///< null: no dissipation
   const TetLocator* locator = nullptr;     ///< over x
   const TetLocator* locatorLast = nullptr; ///< over xLast (explicit normals)
-  int dofOffset = 0;  ///< B's first stage dof (node a: dofOffset + 3 freeIndex[a]; kind A only)
+  int dofOffset = 0;  ///< a soft actor B's first stage dof (node a: dofOffset + 3 freeIndex[a])
+  /// A kind B (ActorKind::TetCollider): the stage dof of each of its local dofs (node a: 3a);
+  /// its stencils then carry their blocks. Null: a soft actor B.
+  const std::vector<int>* nodeDof = nullptr;
 };
 
 /// The colliding actor A: a rigid body (pose, stage start), a soft actor (positions x), or a
@@ -58,6 +61,10 @@ struct CollidingInput {
   const SoftBodyModel* soft = nullptr;
   const ActorKind* kind = nullptr;
   const std::vector<int>* stageDof = nullptr;  ///< kind A
+  /// Where the stencils carry their blocks (a kind B): a rigid A's [δp, δθ] stage offsets, a soft
+  /// A's first stage dof (node a: dofOffset + 3 freeIndex[a]).
+  int bodyOffs[2] = {-1, -1};
+  int dofOffset = 0;
   const Eigen::VectorXd* x = nullptr;
   const Eigen::VectorXd* xLast = nullptr;
   const Eigen::VectorXd* x0 = nullptr;
@@ -71,8 +78,8 @@ inline bool CollidesOnSoftField(const KindSample& s) {
 /// Penalty (and, with `dissipation`, the stage-discrete dissipation) of A's samples against the
 /// soft collider B. order 0/1/2 as elsewhere. One stencil per active sample and term (penalty or
 /// dissipation) on [A's dofs (6 rigid | 9 soft face | a kind's sample map's), B's tet (12)],
-/// unprojected; a kind A's stencils carry their blocks (ContactStencil::blocks, offs: A's, then
-/// B's four nodes). `records` (order 0) collects active penalty samples.
+/// unprojected; a kind A's or a kind B's stencils carry their blocks (ContactStencil::blocks,
+/// offs: A's, then B's four nodes). `records` (order 0) collects active penalty samples.
 void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput& B,
                                 const PenaltyParams& penalty, double maxAlignment,
                                 const DissipationSetup* dissipation, int order,

@@ -33,6 +33,7 @@
 #include "core/model/enums.h"
 #include "core/model/rigid_body.h"
 #include "core/model/sample_map.h"
+#include "core/model/soft_body.h"
 #include "core/model/vector_state.h"
 #include "energies/psd_projection.h"
 #include "optim/stage_problem.h"
@@ -305,6 +306,11 @@ class ActorKind {
   // --- Collider role (null: not a collider). The field is in the frame's coordinates.
   virtual const RigidCollider* Collider() const { return nullptr; }
   virtual KindFrame ColliderFrame(const Eigen::VectorXd& /*q*/) const { return {}; }
+  /// Or a collider role carried by a tet deformation (a soft body's Sdf collider: the grid SDF
+  /// over its reference configuration pulled back through its deformed tets, core/contact/
+  /// soft_collider.h): the model holding the rest tets, their reference data and the grid; node
+  /// a's position is q's entries 3a .. 3a+2, its tangent dofs the same. Null: none.
+  virtual const SoftBodyModel* TetCollider() const { return nullptr; }
 
   // --- Sensitivities (core/sensitivity/; defaults: a vector kind whose q are lengths).
   /// The groups of coordinates the step linearization moves together at state s. Default: one

@@ -26,11 +26,6 @@ SoftKind::SoftKind(SoftBodyModel model, const SoftBodyState& initial)
 }
 
 std::unique_ptr<SoftKind> SoftKind::Build(const SoftActorDesc& desc, Error* error) {
-  if (desc.colliderType != ColliderType::None) {
-    Fail(error, "colliderType: a soft kind is colliding only (its Sdf collider role is not "
-                "carried by the generic layer yet)");
-    return nullptr;
-  }
   SoftBodyModel model;
   SoftBodyState state;
   if (!BuildSoftBody(desc, "", &model, &state, error)) return nullptr;

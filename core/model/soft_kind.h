@@ -6,9 +6,9 @@
 // (K_t frozen at the stage's predictor x̂). Prescribed nodes (pinned or driven) are prescribed
 // tangent dofs, placed by Prescribe. Its colliding role is its boundary faces' quadrature samples:
 // y = Σ_a b_a x_a (a Nodes map on the face's three nodes), the colliding normal the deformed unit
-// face normal, which moves with the nodes (KindSample::faceNormal). A soft actor's Sdf collider
-// role (the reference grid SDF pulled back through the deformed tets, core/contact/
-// soft_collider.h) is not carried by this kind yet: Build refuses it.
+// face normal, which moves with the nodes (KindSample::faceNormal). With colliderType Sdf it is
+// a collider too: its reference grid SDF pulled back through the deformed tets (TetCollider,
+// core/contact/soft_collider.h).
 #pragma once
 
 #include <memory>
@@ -23,8 +23,7 @@ class SoftKind : public ActorKind {
  public:
   /// A body built by BuildSoftBody (the same model and initial state as Scene::AddSoftActor).
   SoftKind(SoftBodyModel model, const SoftBodyState& initial);
-  /// Builds the model from a description; null with *error filled on bad input (also an Sdf
-  /// collider, not carried yet).
+  /// Builds the model from a description; null with *error filled on bad input.
   static std::unique_ptr<SoftKind> Build(const SoftActorDesc& desc, Error* error);
 
   const SoftBodyModel& Model() const { return model_; }
@@ -49,6 +48,9 @@ class SoftKind : public ActorKind {
   Eigen::Vector3d CenterOfMass(const KindState& s) const override;
   Eigen::Vector3d CenterOfMassVelocity(const KindState& s) const override;
   Aabb Bounds(const Eigen::VectorXd& q) const override { return SoftBounds(q); }
+  const SoftBodyModel* TetCollider() const override {
+    return model_.collider == ColliderType::Sdf ? &model_ : nullptr;
+  }
 
   int NumSamples() const override { return static_cast<int>(model_.samples.size()); }
   KindSample Sample(int k, const Eigen::VectorXd& q) const override;

@@ -1,6 +1,7 @@
 // The soft kind (core/model/soft_kind.h): a tet FEM actor carried by the generic actor layer, its
 // stage terms those of core/model/soft_terms.h on its free nodes, its face samples handed to the
-// one contact assembler as Nodes maps with a face normal that moves with the nodes.
+// one contact assembler as Nodes maps with a face normal that moves with the nodes; with an Sdf
+// collider its reference grid SDF pulled back through its deformed tets.
 //
 // Expectations:
 //   - its stage energy's gradient and Hessian on the free nodes equal central differences of Φ;
@@ -90,12 +91,22 @@ TEST_CASE("the soft kind's stage energy: gradient and Hessian on the free nodes 
   CHECK(c.hessianError < 1e-5);
 }
 
-TEST_CASE("a soft kind refuses the Sdf collider role it does not carry yet", "[core][kind][soft]") {
+TEST_CASE("a soft kind is a collider with an Sdf grid only, and refuses other colliders",
+          "[core][kind][soft]") {
   SoftActorDesc d = Cube(0.1, 1, Eigen::Vector3d::Zero());
-  d.colliderType = ColliderType::Sdf;
   Error error;
+  std::unique_ptr<SoftKind> plain = SoftKind::Build(d, &error);
+  REQUIRE(plain);
+  CHECK(plain->TetCollider() == nullptr);
+  CHECK(plain->Collider() == nullptr);
+  d.colliderType = ColliderType::Sdf;
+  std::unique_ptr<SoftKind> field = SoftKind::Build(d, &error);
+  REQUIRE(field);
+  REQUIRE(field->TetCollider() != nullptr);
+  CHECK(field->TetCollider()->colliderGrid != nullptr);
+  d.colliderType = ColliderType::Sphere;  // as AddSoftActor: the Sphere collider is for rigid actors
   CHECK_FALSE(SoftKind::Build(d, &error));
-  CHECK_THAT(error.message, Catch::Contains("colliderType"));
+  CHECK_THAT(error.message, Catch::Contains("collider_type"));
 }
 
 TEST_CASE("a soft cube as a soft kind lands on a box as the soft actor does",
@@ -279,5 +290,83 @@ TEST_CASE("a soft kind collides on a soft actor's Sdf field as a soft actor does
     CHECK(dx < 1e-8);
     CHECK(dv < 1e-6);
     CHECK((kind.TotalLinearMomentum() - p0).norm() < 1e-8 * p0.norm());
+  }
+}
+
+TEST_CASE("a soft kind's Sdf collider field acts as the soft actor's", "[core][kind][soft][contact]") {
+  // Gravity off: a soft cube with an Sdf collider hit by a thrown soft cube and by a thrown rigid
+  // box. The target (and the thrown soft cube) as soft actors, then as SoftKinds: the target's
+  // field pulled back through its deformed tets (ActorKind::TetCollider) on the kind's stage dofs.
+  // Every configuration follows the all-soft-actor scene to the stage solver's tolerance.
+  struct Combo {
+    const char* name;
+    bool targetKind, thrownKind;
+  };
+  for (const Combo c : {Combo{"target kind", true, false}, Combo{"both kinds", true, true}}) {
+    for (int mode : {0, 1, 2}) {
+      INFO(c.name << ", " << test::kModeNames[mode]);
+      SceneSettings s;
+      s.gravity.setZero();
+      s.integrator = IntegrationMethod::BDF2;
+      s.eval = test::EvalParamsForMode(mode);
+      s.warmStart = false;
+      s.closedFormFreeStages = false;
+      SoftActorDesc target = Cube(0.1, 3, Eigen::Vector3d::Zero());
+      target.name = "target";
+      target.colliderType = ColliderType::Sdf;
+      target.contact.penaltyCoefficient = 1e5;
+      target.contact.coulombFrictionCoefficient = 0.3;
+      SoftActorDesc thrown = Cube(0.1, 2, Eigen::Vector3d(-0.21, 0.05, 0.03));
+      thrown.name = "thrown";
+      thrown.contact.penaltyCoefficient = 1e5;
+      thrown.contact.coulombFrictionCoefficient = 0.3;
+      thrown.linearVelocity = Eigen::Vector3d(1.0, 0.0, 0.0);
+      RigidActorDesc box = test::Cube(1e5, 0.3, 1.0);
+      box.shape.halfExtents = Eigen::Vector3d::Constant(0.03);
+      box.position = Eigen::Vector3d(0.02, -0.03, 0.135);
+      box.linearVelocity = Eigen::Vector3d(0, 0, -0.5);
+      Scene actor(s), kind(s);
+      Error error;
+      auto addSoft = [&](Scene& scene, const SoftActorDesc& d, bool asKind) {
+        if (!asKind) return scene.AddSoftActor(d, &error);
+        std::unique_ptr<SoftKind> k = SoftKind::Build(d, &error);
+        REQUIRE(k);
+        return scene.AddActor(std::move(k), &error);
+      };
+      const ActorHandle t[2] = {addSoft(actor, target, false), addSoft(kind, target, c.targetKind)};
+      const ActorHandle h[2] = {addSoft(actor, thrown, false), addSoft(kind, thrown, c.thrownKind)};
+      const ActorHandle b[2] = {actor.AddRigidActor(box, &error), kind.AddRigidActor(box, &error)};
+      for (int k = 0; k < 2; ++k) {
+        REQUIRE(t[k].IsValid());
+        REQUIRE(h[k].IsValid());
+        REQUIRE(b[k].IsValid());
+      }
+      auto x = [](const Scene& scene, ActorHandle a) -> const VectorState& {
+        return scene.IsSoft(a) ? scene.SoftState(a) : scene.KindStateOf(a);
+      };
+      const Eigen::Vector3d p0 = kind.TotalLinearMomentum();
+      double dx = 0.0, dv = 0.0, dp = 0.0;
+      int active = 0;
+      for (int step = 0; step < 60; ++step) {
+        StepReport ra, rk;
+        REQUIRE(actor.Step(2e-3, &ra, &error));
+        REQUIRE(kind.Step(2e-3, &rk, &error));
+        REQUIRE(ra.status == StageStatus::Converged);
+        REQUIRE(rk.status == StageStatus::Converged);
+        active = std::max(active, rk.contact.activeSamples);
+        for (const ActorHandle* a : {t, h}) {
+          dx = std::max(dx, (x(actor, a[0]).x - x(kind, a[1]).x).lpNorm<Eigen::Infinity>());
+          dv = std::max(dv, (x(actor, a[0]).v - x(kind, a[1]).v).lpNorm<Eigen::Infinity>());
+        }
+        dp = std::max(dp, (actor.State(b[0]).p - kind.State(b[1]).p).norm());
+      }
+      INFO("nodes differ by " << dx << " m, " << dv << " m/s, the box by " << dp
+                              << " m; at most " << active << " active samples");
+      CHECK(active > 10);
+      CHECK(dx < 1e-8);
+      CHECK(dv < 1e-6);
+      CHECK(dp < 1e-8);
+      CHECK((kind.TotalLinearMomentum() - p0).norm() < 1e-8 * p0.norm());
+    }
   }
 }
