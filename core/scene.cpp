@@ -64,10 +64,12 @@ bool Scene::ValidParent(ActorHandle parent, Error* error) const {
          Fail(error, "parent: invalid actor handle " + std::to_string(parent.index));
 }
 
-ActorHandle Scene::Register(bool soft, int local, const std::string& layer, ActorHandle parent,
-                            bool kind) {
+ActorHandle Scene::Register(std::shared_ptr<ActorKind> kind, const std::string& layer,
+                            ActorHandle parent) {
+  step_.softStates.push_back(kind->InitialState());
+  kinds_.push_back(std::move(kind));
   filter_.AddActor(layer, parent.index);
-  actors_.push_back({soft, local, kind});
+  actors_.emplace_back();
   prepared_ = false;
   ClearHistory();
   return {NumActors() - 1};
@@ -92,32 +94,32 @@ ActorHandle Scene::AddRigidActor(const RigidActorDesc& desc, Error* error, Actor
     if (!shared) sampleSets_.emplace(hash, static_cast<int>(kinds_.size()));
   }
   // A rigid actor is the generic layer's RigidKind.
-  const int local = static_cast<int>(kinds_.size());
-  step_.softStates.push_back(RigidKind::Pack(state));
-  kinds_.push_back(std::make_shared<RigidKind>(std::move(model), state));
   rigidDescs_.push_back(desc);
-  const ActorHandle h = Register(false, local, desc.contactLayer, parent, true);
+  const ActorHandle h =
+      Register(std::make_shared<RigidKind>(std::move(model), state), desc.contactLayer, parent);
   actors_[h.index].rigid = true;
   actors_[h.index].desc = static_cast<int>(rigidDescs_.size()) - 1;
   return h;
 }
 
 const RigidKind& Scene::RigidOf(ActorHandle a) const {
-  return static_cast<const RigidKind&>(*kinds_[actors_[a.index].local]);
+  return static_cast<const RigidKind&>(*kinds_[a.index]);
+}
+
+const SoftKind& Scene::SoftOf(ActorHandle a) const {
+  return static_cast<const SoftKind&>(*kinds_[a.index]);
 }
 
 ActorHandle Scene::AddSoftActor(const SoftActorDesc& desc, Error* error, ActorHandle parent) {
   if (!ValidParent(parent, error) || !UniqueName(desc.name, error)) return {};
-  SoftBodyModel model;
-  SoftBodyState state;
-  if (!BuildSoftBody(desc, "", &model, &state, error)) return {};
-  const int local = static_cast<int>(softModels_.size());
-  softModels_.push_back(std::move(model));
+  // A soft actor is the generic layer's SoftKind.
+  std::shared_ptr<SoftKind> kind = SoftKind::Build(desc, error);
+  if (!kind) return {};
   softDescs_.push_back(desc);
-  softInitial_.push_back(state.x);
-  // Soft states lead the vector states, the kinds' follow.
-  step_.softStates.insert(step_.softStates.begin() + local, std::move(state));
-  return Register(true, local, desc.contactLayer, parent);
+  const ActorHandle h = Register(std::move(kind), desc.contactLayer, parent);
+  actors_[h.index].soft = true;
+  actors_[h.index].desc = static_cast<int>(softDescs_.size()) - 1;
+  return h;
 }
 
 ActorHandle Scene::AddActor(std::unique_ptr<ActorKind> actor, Error* error,
@@ -126,10 +128,7 @@ ActorHandle Scene::AddActor(std::unique_ptr<ActorKind> actor, Error* error,
   if (!actor) return Fail(error, "actor: null"), ActorHandle();
   if (!UniqueName(actor->name, error)) return {};
   if (std::string m = ValidateKind(*actor); !m.empty()) return Fail(error, m), ActorHandle();
-  const int local = static_cast<int>(kinds_.size());
-  step_.softStates.push_back(actor->InitialState());
-  kinds_.push_back(std::move(actor));
-  return Register(false, local, contactLayer, parent, true);
+  return Register(std::move(actor), contactLayer, parent);
 }
 
 std::vector<ActorHandle> Scene::ActorsWhere(bool ActorRef::*flag) const {
@@ -139,25 +138,12 @@ std::vector<ActorHandle> Scene::ActorsWhere(bool ActorRef::*flag) const {
   return out;
 }
 
-namespace {
-// Σ_i m_i u_i / Σ_i m_i over a soft actor's nodes (u: their positions or velocities).
-Eigen::Vector3d NodeMassMean(const SoftBodyModel& m, const Eigen::VectorXd& u) {
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (int i = 0; i < m.NumNodes(); ++i) c += m.nodeMass[i] * u.segment<3>(3 * i);
-  return c / m.mass;
-}
-}  // namespace
-
 Eigen::Vector3d Scene::CenterOfMass(ActorHandle a) const {
-  const ActorRef& r = actors_[a.index];
-  if (r.kind) return kinds_[r.local]->CenterOfMass(KindStateOf(a));
-  return NodeMassMean(softModels_[r.local], step_.softStates[r.local].x);
+  return Kind(a).CenterOfMass(KindStateOf(a));
 }
 
 Eigen::Vector3d Scene::CenterOfMassVelocity(ActorHandle a) const {
-  const ActorRef& r = actors_[a.index];
-  if (r.kind) return kinds_[r.local]->CenterOfMassVelocity(KindStateOf(a));
-  return NodeMassMean(softModels_[r.local], step_.softStates[r.local].v);
+  return Kind(a).CenterOfMassVelocity(KindStateOf(a));
 }
 
 namespace {
@@ -171,12 +157,9 @@ bool Scene::SetContactLayer(ActorHandle actor, const std::string& layer, Error* 
   if (!ValidHandle(actor, NumActors(), "actor", error)) return false;
   filter_.SetLayer(actor.index, layer);
   const ActorRef& r = actors_[actor.index];
-  if (r.rigid) {  // the filter holds a kind's layer
-    rigidDescs_[r.desc].contactLayer = layer;
-  } else if (r.soft) {
-    softModels_[r.local].contactLayer = layer;
-    softDescs_[r.local].contactLayer = layer;
-  }
+  // The filter holds the layer; the descriptions keep it for the writer.
+  if (r.rigid) rigidDescs_[r.desc].contactLayer = layer;
+  if (r.soft) softDescs_[r.desc].contactLayer = layer;
   return true;
 }
 
@@ -251,8 +234,8 @@ bool Scene::SetState(ActorHandle a, const RigidBodyState& state, Error* error) {
   if ((state.R.transpose() * state.R - Eigen::Matrix3d::Identity()).norm() > 1e-9 ||
       state.R.determinant() <= 0)
     return Fail(error, "state.R: must be a rotation matrix");
-  HoldStatic(actors_[a.index], state);
-  step_.softStates[VectorIndex(actors_[a.index])] = RigidKind::Pack(state);
+  HoldStatic(a.index, state);
+  step_.softStates[a.index] = RigidKind::Pack(state);
   ClearHistory();
   return true;
 }
@@ -260,8 +243,7 @@ bool Scene::SetState(ActorHandle a, const RigidBodyState& state, Error* error) {
 void Scene::Prepare() {
   if (prepared_) return;
   numDofs_ = 0;
-  // The kinds' free dofs (rigid actors among them), then the soft free nodes, last and in one
-  // range (the stage's step norm and block layout rely on this order).
+  // Every actor's free tangent dofs, in creation order.
   kindPtrs_.clear();
   kindStageDof_.resize(kinds_.size());
   for (size_t k = 0; k < kinds_.size(); ++k) {
@@ -270,15 +252,12 @@ void Scene::Prepare() {
     for (int i = 0; i < kinds_[k]->NumTangentDofs(); ++i)
       kindStageDof_[k][i] = kinds_[k]->IsPrescribed(i) ? -1 : numDofs_++;
   }
-  softDofOffset_.assign(softModels_.size(), 0);
-  for (size_t s = 0; s < softModels_.size(); ++s) {
-    softDofOffset_[s] = numDofs_;
-    numDofs_ += 3 * softModels_[s].numFree;
-  }
-  std::vector<int> softActor, kindActor;
-  for (int i = 0; i < NumActors(); ++i) (actors_[i].kind ? kindActor : softActor).push_back(i);
-  pipeline_.Configure(&filter_, &softModels_, softActor, &kindPtrs_, kindActor);
+  std::vector<int> kindActor(kinds_.size());
+  for (int i = 0; i < NumActors(); ++i) kindActor[i] = i;
+  pipeline_.Configure(&filter_, nullptr, {}, &kindPtrs_, kindActor);
   hasDissipation_ = HasDissipation();  // actors' contact parameters are fixed once added
+  coldStages_ = false;
+  for (const auto& k : kinds_) coldStages_ = coldStages_ || !k->Shortcuts().warmStart;
   prepared_ = true;
 }
 
@@ -290,19 +269,6 @@ void Scene::CurrentSoftPositions(std::vector<Eigen::VectorXd>* x) const {
 void Scene::MakeSoftStage(double dt, double t, const std::vector<SoftBodyState>& start,
                           const std::vector<Eigen::VectorXd>& last, SoftStage* out) const {
   SoftStage& st = *out;
-  st.models = &softModels_;
-  st.dofOffset = softDofOffset_;
-  st.targets.resize(softModels_.size());
-  for (size_t s = 0; s < softModels_.size(); ++s) {
-    SoftStageTarget& t = st.targets[s];
-    t.xHat = start[s].x + dt * start[s].v;
-    t.x0 = start[s].x;
-    t.xLast = last[s];
-    PrepareSoftDamping(softModels_[s], &t);
-  }
-  st.x0.resize(softModels_.size());
-  st.xLast = last;
-  for (size_t s = 0; s < softModels_.size(); ++s) st.x0[s] = start[s].x;
   KindStage& ks = st.kinds;
   ks.kinds = &kindPtrs_;
   ks.stageDof = kindStageDof_;
@@ -310,30 +276,28 @@ void Scene::MakeSoftStage(double dt, double t, const std::vector<SoftBodyState>&
   ks.q0.resize(kinds_.size());
   ks.qLast.resize(kinds_.size());
   for (size_t k = 0; k < kinds_.size(); ++k) {
-    const size_t v = softModels_.size() + k;
     KindStageData& d = ks.data[k];
     d.dt = dt;
     d.time = t;
     d.gravity = settings_.gravity;
-    d.qHat = start[v].x + dt * start[v].v;
-    d.q0 = start[v].x;
-    d.qLast = last[v];
+    d.qHat = start[k].x + dt * start[k].v;
+    d.q0 = start[k].x;
+    d.qLast = last[k];
+    kinds_[k]->PrepareStage(&d);
     ks.q0[k] = d.q0;
     ks.qLast[k] = d.qLast;
   }
 }
 
 void Scene::ApplyConstraints(double t, std::vector<Eigen::VectorXd>* x) const {
-  for (size_t s = 0; s < softModels_.size(); ++s)
-    ApplyNodeConstraints(softModels_[s], softInitial_[s], t, &(*x)[s]);
-  for (size_t k = 0; k < kinds_.size(); ++k) kinds_[k]->Prescribe(t, &(*x)[softModels_.size() + k]);
+  for (size_t k = 0; k < kinds_.size(); ++k) kinds_[k]->Prescribe(t, &(*x)[k]);
 }
 
 double Scene::MinDetF() const {
   double minDet = INFINITY;
-  for (size_t s = 0; s < softModels_.size(); ++s) {
+  for (ActorHandle a : SoftActors()) {
     double md = INFINITY;
-    ElasticEnergy(softModels_[s], step_.softStates[s].x, &md);
+    ElasticEnergy(SoftOf(a).Model(), step_.softStates[a.index].x, &md);
     minDet = std::min(minDet, md);
   }
   return minDet;
@@ -344,7 +308,7 @@ void Scene::SolveStage(double dt, const SoftStage& soft, std::vector<Eigen::Vect
   StageScene scene;
   scene.numDofs = numDofs_;
   scene.pipeline = &pipeline_;
-  scene.hasSoftActors = !softModels_.empty();
+  scene.coldStages = coldStages_;
   scene.hasDissipation = hasDissipation_;
   scene.vectorStates = &step_.softStates;
   scene.vectorHistory = &step_.softHistory;
@@ -361,9 +325,7 @@ void Scene::SolveStage(double dt, const SoftStage& soft, std::vector<Eigen::Vect
   r.dt = dt;
   r.mode = st.fallback ? DissipationMode::ExplicitNormals : ModeOf(settings_.eval);
   r.fadeFriction = settings_.eval.fadeFriction;
-  r.x0 = soft.x0;  // copies into the kept storage
-  r.xLast = soft.xLast;
-  r.q0 = soft.kinds.q0;
+  r.q0 = soft.kinds.q0;  // copies into the kept storage
   r.qLast = soft.kinds.qLast;
 }
 
@@ -404,7 +366,7 @@ bool Scene::Step(double h, StepReport* report, Error* error, StageRecorder* reco
     if (report) *report = rep;
     return true;
   }
-  if (!softModels_.empty()) rep.minDetF = MinDetF();
+  if (!softDescs_.empty()) rep.minDetF = MinDetF();
   rep.contact = ContactState();
   rep.wallSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -417,19 +379,15 @@ ContactStats Scene::ContactState() {
   ContactStats st;
   std::vector<Eigen::VectorXd>& x = buffers_.softX;  // scratch between steps
   CurrentSoftPositions(&x);
-  SoftView view;
-  view.x = &x;
-  view.dofOffset = &softDofOffset_;
   const KindView kinds = CurrentKindView(x);
   pipeline_.Evaluate(0, PsdProjection::None, nullptr, nullptr, nullptr, &st, nullptr, nullptr,
-                     &view, &kinds);
+                     nullptr, &kinds);
   return st;
 }
 
 KindView Scene::CurrentKindView(const std::vector<Eigen::VectorXd>& x) const {
   KindView kinds;
   kinds.q = &x;
-  kinds.first = static_cast<int>(softModels_.size());
   kinds.stageDof = &kindStageDof_;
   return kinds;
 }
@@ -439,25 +397,20 @@ std::vector<ContactSampleRecord> Scene::ContactSamples() {
   std::vector<ContactSampleRecord> out;
   std::vector<Eigen::VectorXd>& x = buffers_.softX;  // scratch between steps
   CurrentSoftPositions(&x);
-  SoftView view;
-  view.x = &x;
-  view.dofOffset = &softDofOffset_;
   KindView kinds = CurrentKindView(x);
   const ReportStage& r = buffers_.reportStage;
   if (!r.valid) {
-    pipeline_.CollectSamples(&out, &view, &kinds);
+    pipeline_.CollectSamples(&out, nullptr, &kinds);
     return out;
   }
   // The last stage's dissipation at the state it produced.
-  view.x0 = r.x0.empty() ? nullptr : &r.x0;
-  view.xLast = r.xLast.empty() ? nullptr : &r.xLast;
   kinds.q0 = r.q0.empty() ? nullptr : &r.q0;
   kinds.qLast = r.qLast.empty() ? nullptr : &r.qLast;
   DissipationContext context;
   context.dt = r.dt;
   context.mode = r.mode;
   context.fadeFriction = r.fadeFriction;
-  pipeline_.CollectSamples(&out, &view, &kinds, &context);
+  pipeline_.CollectSamples(&out, nullptr, &kinds, &context);
   return out;
 }
 
@@ -465,7 +418,7 @@ bool Scene::SoftFaceTractions(ActorHandle a, std::vector<Eigen::Vector3d>* tract
                               Error* error) {
   if (a.index < 0 || a.index >= NumActors() || !actors_[a.index].soft)
     return Fail(error, "actor: not a soft actor handle");
-  const SoftBodyModel& m = softModels_[actors_[a.index].local];
+  const SoftBodyModel& m = SoftOf(a).Model();
   tractions->assign(m.faces.size(), Eigen::Vector3d::Zero());
   for (const ContactSampleRecord& r : ContactSamples())
     if (r.colliding == a.index && r.face >= 0)
@@ -475,15 +428,8 @@ bool Scene::SoftFaceTractions(ActorHandle a, std::vector<Eigen::Vector3d>* tract
 
 EnergyReport Scene::Energies() {
   EnergyReport e;
-  for (size_t s = 0; s < softModels_.size(); ++s) {
-    const SoftBodyModel& m = softModels_[s];
-    e.kinetic += KineticEnergy(m, step_.softStates[s]);
-    for (int i = 0; i < m.NumNodes(); ++i)
-      e.gravity += -m.nodeMass[i] * settings_.gravity.dot(step_.softStates[s].x.segment<3>(3 * i));
-    e.elastic += ElasticEnergy(m, step_.softStates[s].x, nullptr);
-  }
   for (size_t k = 0; k < kinds_.size(); ++k) {
-    const KindState& st = step_.softStates[softModels_.size() + k];
+    const KindState& st = step_.softStates[k];
     e.kinetic += kinds_[k]->KineticEnergy(st);
     e.gravity += kinds_[k]->GravityEnergy(st, settings_.gravity);
     e.elastic += kinds_[k]->InternalEnergy(st);
@@ -492,52 +438,28 @@ EnergyReport Scene::Energies() {
   return e;
 }
 
-namespace {
-
-// Σ over soft nodes of m_a node(x_a, v_a) plus Σ over the kinds (rigid actors among them) of
-// kind(actor, state).
-template <typename Node, typename Kind>
-Eigen::Vector3d SumOverBodies(const std::vector<SoftBodyModel>& softModels,
-                              const std::vector<SoftBodyState>& softStates,
-                              const std::vector<std::shared_ptr<ActorKind>>& kinds, Node node,
-                              Kind kind) {
+Eigen::Vector3d Scene::TotalLinearMomentum() const {
   Eigen::Vector3d L = Eigen::Vector3d::Zero();
-  for (size_t s = 0; s < softModels.size(); ++s)
-    for (int a = 0; a < softModels[s].NumNodes(); ++a)
-      L += softModels[s].nodeMass[a] *
-           node(softStates[s].x.segment<3>(3 * a), softStates[s].v.segment<3>(3 * a));
-  for (size_t k = 0; k < kinds.size(); ++k) L += kind(*kinds[k], softStates[softModels.size() + k]);
+  for (size_t k = 0; k < kinds_.size(); ++k) L += kinds_[k]->LinearMomentum(step_.softStates[k]);
   return L;
 }
 
-}  // namespace
-
-Eigen::Vector3d Scene::TotalLinearMomentum() const {
-  return SumOverBodies(
-      softModels_, step_.softStates, kinds_,
-      [](const Eigen::Vector3d&, const Eigen::Vector3d& v) -> Eigen::Vector3d { return v; },
-      [](const ActorKind& k, const KindState& st) { return k.LinearMomentum(st); });
-}
-
 Eigen::Vector3d Scene::TotalAngularMomentum() const {
-  return SumOverBodies(
-      softModels_, step_.softStates, kinds_,
-      [](const Eigen::Vector3d& x, const Eigen::Vector3d& v) -> Eigen::Vector3d {
-        return x.cross(v);
-      },
-      [](const ActorKind& k, const KindState& st) { return k.AngularMomentum(st); });
+  Eigen::Vector3d L = Eigen::Vector3d::Zero();
+  for (size_t k = 0; k < kinds_.size(); ++k) L += kinds_[k]->AngularMomentum(step_.softStates[k]);
+  return L;
 }
 
 std::vector<std::string> Scene::Notices() const {
   std::vector<std::string> out;
   for (ActorHandle a : RigidActors())
     if (!Model(a).notice.empty()) out.push_back(Model(a).notice);
-  for (const auto& m : softModels_)
-    if (!m.notice.empty()) out.push_back(m.notice);
+  for (ActorHandle a : SoftActors())
+    if (!SoftOf(a).Model().notice.empty()) out.push_back(SoftOf(a).Model().notice);
   // Kinds' own samples without a rigid or deforming face's normal do not collide on soft
   // fields (CollidesOnSoftField).
   bool softCollider = false;
-  for (const auto& m : softModels_) softCollider = softCollider || m.collider == ColliderType::Sdf;
+  for (const auto& k : kinds_) softCollider = softCollider || k->TetCollider();
   for (const auto& k : kinds_) {
     if (!softCollider || k->NumSamples() == 0) continue;
     if (CollidesOnSoftField(k->Sample(0, k->InitialState().x))) continue;
@@ -597,11 +519,6 @@ bool Scene::HasDissipation() const {
   // dynamic, that both have a nonzero coefficient of the same kind.
   auto twoWith = [&](auto coefficient) {
     int count = 0, dynamic = 0;
-    for (const auto& m : softModels_)  // soft actors are always dynamic
-      if (coefficient(m.contact) > 0) {
-        ++count;
-        ++dynamic;
-      }
     for (const auto& k : kinds_)  // a kind's actor is, where a dof is free
       if (coefficient(k->contact) > 0) {
         ++count;

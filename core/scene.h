@@ -25,6 +25,7 @@
 #include "core/model/rigid_body.h"
 #include "core/model/rigid_kind.h"
 #include "core/model/soft_body.h"
+#include "core/model/soft_kind.h"
 
 namespace superdex {
 
@@ -82,12 +83,12 @@ class Scene : private StageHost {
   /// Every actor, rigid and soft; handles index this range in the order of creation.
   int NumActors() const { return static_cast<int>(actors_.size()); }
   bool IsSoft(ActorHandle a) const { return actors_[a.index].soft; }
-  /// Whether a was added by AddActor (a kind of the generic layer that is not a rigid actor).
-  bool IsKind(ActorHandle a) const { return actors_[a.index].kind && !actors_[a.index].rigid; }
-  /// Whether a is carried by the generic layer: every actor but a soft one (rigid actors are
-  /// RigidKinds). Its kind, and its state (x: its q).
-  bool HasKind(ActorHandle a) const { return actors_[a.index].kind; }
-  const ActorKind& Kind(ActorHandle a) const { return *kinds_[actors_[a.index].local]; }
+  /// Whether a was added by AddActor (a kind of the generic layer that is neither a rigid nor a
+  /// soft actor).
+  bool IsKind(ActorHandle a) const { return !actors_[a.index].rigid && !actors_[a.index].soft; }
+  /// Every actor is carried by the generic layer (rigid actors are RigidKinds, soft ones
+  /// SoftKinds): its kind, and its state (x: its q).
+  const ActorKind& Kind(ActorHandle a) const { return *kinds_[a.index]; }
   const KindState& KindStateOf(ActorHandle a) const;
   /// Replaces a kind's state (its NumDofs entries in x and v, finite); clears BDF history.
   bool SetKindState(ActorHandle a, const KindState& state, Error* error);
@@ -146,9 +147,9 @@ class Scene : private StageHost {
   const std::string& ActorName(ActorHandle a) const;
 
   // --- The dynamic state as one vector (core/sensitivity/sensitivity.h differentiates the step map on it).
-  // Per dynamic rigid actor p, R (column-major), v, Ṙ (24 entries), per soft actor x then v
-  // (6 per node), per kind's actor its x then v, in creation order; then, for the multistep methods, the same blocks for each
-  // state of the history a step reads (zeros where the history is not filled yet).
+  // Per dynamic actor, in creation order, its kind's x then v (a rigid actor: p, R column-major,
+  // v, Ṙ, 24 entries; a soft actor: 6 per node); then, for the multistep methods, the same
+  // blocks for each state of the history a step reads (zeros where the history is not filled yet).
   int StateSize();
   /// First entry of actor a's block in the current state (−1 for a static actor).
   int StateOffset(ActorHandle a);
@@ -176,47 +177,45 @@ class Scene : private StageHost {
   Snapshot Save() const;
   void Restore(const Snapshot& s);
 
-  // --- The stage's unknowns (valid once the scene has stepped): the kinds' free dofs in creation
-  // order (6 per dynamic rigid actor, [δp, δθ]), then 3 per free soft node.
+  // --- The stage's unknowns (valid once the scene has stepped): the actors' free tangent dofs in
+  // creation order (6 per dynamic rigid actor, [δp, δθ]; 3 per free soft node).
   int StageDofs() const { return numDofs_; }
-  /// First stage dof of actor a (−1 for a static rigid actor).
+  /// First stage dof of actor a (−1 for an actor without free dofs).
   int StageDofOffset(ActorHandle a) const;
   const std::vector<int>& KindStageDofs(ActorHandle a) const;  ///< per tangent dof; −1: prescribed
   /// The history blocks of PackState's layout (multistep methods: 0 to 2).
   int HistoryBlocks() const;
 
  private:
+  // Per actor (the index of kinds_ and step_.softStates): its role among the kinds.
   struct ActorRef {
-    bool soft = false;
-    int local = 0;  ///< index into softModels_, step_.softStates; kinds_
-    bool kind = false;
-    bool rigid = false;  ///< a rigid actor (a RigidKind in kinds_)
-    int desc = -1;       ///< a rigid actor's index into rigidDescs_
+    bool rigid = false;  ///< a rigid actor (a RigidKind)
+    bool soft = false;   ///< a soft actor (a SoftKind)
+    int desc = -1;       ///< a rigid (soft) actor's index into rigidDescs_ (softDescs_)
   };
   const RigidKind& RigidOf(ActorHandle a) const;
+  const SoftKind& SoftOf(ActorHandle a) const;
   std::vector<ActorHandle> ActorsWhere(bool ActorRef::*flag) const;  // in creation order
   // Solves one stage with the stage policy (StageDriver::Solve) and the step's recorder, and
   // accounts it in *rep.
   void SolveStage(double dt, const SoftStage& soft, std::vector<Eigen::VectorXd>* softX,
                   double predictTime, StepReport* rep) override;
-  // The packed-state layout: calls visit(block, offset, actor ref, actor index) for every dynamic
+  // The packed-state layout: calls visit(block, offset, actor index) for every dynamic
   // actor in each of the first `blocks` blocks (0: the current state, b >= 1: step_.history[b−1]).
   template <typename Visit>
   void VisitStateLayout(int blocks, Visit&& visit) const;
-  // A vector-state actor's index in step_.softStates, and an actor's entries in PackState.
-  int VectorIndex(const ActorRef& r) const;
-  // Changes actor r's kind by change(kind) on a copy (scenes copied from this one share the kind
+  // Changes actor a's kind by change(kind) on a copy (scenes copied from this one share the kind
   // and keep theirs); the scene prepares again.
   template <typename Change>
-  void ChangeKind(const ActorRef& r, Change&& change);
-  // A static rigid actor r is held at `state` from now on (its kind copied first if it changes).
-  void HoldStatic(const ActorRef& r, const RigidBodyState& state);
+  void ChangeKind(int a, Change&& change);
+  // A static rigid actor a is held at `state` from now on (its kind copied first if it changes).
+  void HoldStatic(int a, const RigidBodyState& state);
   // A snapshot's layout (Save) from the vector states and back.
   void SplitRigid(const std::vector<SoftBodyState>& vector, std::vector<RigidBodyState>* rigid,
                   std::vector<SoftBodyState>* rest) const;
   void JoinRigid(const std::vector<RigidBodyState>& rigid, const std::vector<SoftBodyState>& rest,
                  std::vector<SoftBodyState>* vector) const;
-  int BlockSize(const ActorRef& r) const;
+  int BlockSize(int a) const { return 2 * kinds_[a]->NumDofs(); }  // its entries in PackState
   // 1 + the history blocks that hold a state.
   int FilledStateBlocks() const;
 
@@ -224,21 +223,20 @@ class Scene : private StageHost {
   bool ValidParent(ActorHandle parent, Error* error) const;  // no parent, or an existing actor
   bool UniqueName(const std::string& name, Error* error) const;  // empty, or no actor's yet
   void ZeroByCombinationNotices(std::vector<std::string>* out) const;  // for Notices
-  // Enters an actor at `local` of its kind's arrays into the actor list and the filter.
-  ActorHandle Register(bool soft, int local, const std::string& layer, ActorHandle parent, bool kind = false);
+  // Enters an actor into the kinds, the actor list and the filter.
+  ActorHandle Register(std::shared_ptr<ActorKind> kind, const std::string& layer,
+                       ActorHandle parent);
   void Prepare();
   void CurrentSoftPositions(std::vector<Eigen::VectorXd>* x) const;  // into kept storage
-  // The vector-state actors' stage data (soft, then the kinds' at stage time t [s]): targets from
-  // the stage start, geometry from the last configuration.
+  // The actors' stage data at stage time t [s]: targets from the stage start, geometry from the
+  // last configuration.
   void MakeSoftStage(double dt, double t, const std::vector<SoftBodyState>& start,
                      const std::vector<Eigen::VectorXd>& last, SoftStage* out) const override;
-  const ActorKind* VectorKind(size_t s) const override {
-    return s < softModels_.size() ? nullptr : kinds_[s - softModels_.size()].get();
-  }
-  // Prescribed node positions (and kinds' prescribed dofs) at time t written into x.
+  const ActorKind* VectorKind(size_t s) const override { return kinds_[s].get(); }
+  // The kinds' prescribed dofs at time t written into x.
   void ApplyConstraints(double t, std::vector<Eigen::VectorXd>* x) const override;
   double MinDetF() const;
-  // The kinds' part of a contact evaluation at the vector states x (soft, then the kinds').
+  // The kinds' part of a contact evaluation at the vector states x.
   KindView CurrentKindView(const std::vector<Eigen::VectorXd>& x) const;
   // Empty, or why the kind's actor cannot be added.
   std::string ValidateKind(const ActorKind& kind) const;
@@ -246,23 +244,21 @@ class Scene : private StageHost {
   SceneSettings settings_;
   std::string settingsError_;  ///< Validate(settings_), kept with every change of settings_
   std::vector<RigidActorDesc> rigidDescs_;  // per model: as given to AddRigidActor
-  std::vector<SoftActorDesc> softDescs_;    // per soft model: as given to AddSoftActor
+  std::vector<SoftActorDesc> softDescs_;    // per soft actor: as given to AddSoftActor
   /// SamplesHash → indices into kinds_ of the rigid actors' distinct sample sets (ShareSamples).
   std::unordered_multimap<std::size_t, int> sampleSets_;
-  std::vector<SoftBodyModel> softModels_;
-  // The generic layer's actors (copies of a scene share them; a changed one is copied first).
-  // Their states follow the soft actors' in step_.softStates.
+  // The actors' kinds (copies of a scene share them; a changed one is copied first), in creation
+  // order; their states are step_.softStates.
   std::vector<std::shared_ptr<ActorKind>> kinds_;
   std::vector<const ActorKind*> kindPtrs_;           // for the pipeline and the stage
   std::vector<std::vector<int>> kindStageDof_;       // per kind: stage dof of each local dof
-  std::vector<Eigen::VectorXd> softInitial_;  // positions at creation (node constraints)
   std::vector<ActorRef> actors_;
-  std::vector<int> softDofOffset_;
-  StepState step_;  // what a step advances (softStates: the soft actors', then the kinds')
+  StepState step_;  // what a step advances (softStates: the actors' vector states)
   StepBuffers buffers_;  // Step's storage kept from step to step (core/dynamics/step_state.h)
   // The pipeline is configured for these actors (it points at them; a copy configures its own).
   ResetOnCopy prepared_;
   bool hasDissipation_ = false;  // HasDissipation(), cached by Prepare
+  bool coldStages_ = false;      // a kind refuses the warm start (ActorKind::Shortcuts); Prepare
   int numDofs_ = 0;
   ContactPipeline pipeline_;
   ContactFilter filter_;

@@ -6,7 +6,6 @@
 
 #include "core/dynamics/integrators.h"
 #include "core/scene.h"
-#include "energies/stable_neo_hookean.h"
 
 namespace superdex {
 namespace {
@@ -20,17 +19,11 @@ bool ValidHandle(const Scene& scene, ActorHandle a, Error* error) {
 
 RigidBodyState Scene::State(ActorHandle a) const { return RigidKind::Unpack(KindStateOf(a)); }
 
-const SoftBodyModel& Scene::SoftModel(ActorHandle a) const {
-  return softModels_[actors_[a.index].local];
-}
+const SoftBodyModel& Scene::SoftModel(ActorHandle a) const { return SoftOf(a).Model(); }
 
-const SoftBodyState& Scene::SoftState(ActorHandle a) const {
-  return step_.softStates[actors_[a.index].local];
-}
+const SoftBodyState& Scene::SoftState(ActorHandle a) const { return step_.softStates[a.index]; }
 
-const KindState& Scene::KindStateOf(ActorHandle a) const {
-  return step_.softStates[softModels_.size() + actors_[a.index].local];
-}
+const KindState& Scene::KindStateOf(ActorHandle a) const { return step_.softStates[a.index]; }
 
 bool Scene::SetSoftState(ActorHandle a, const SoftBodyState& state, Error* error) {
   if (!ValidHandle(*this, a, error)) return false;
@@ -40,7 +33,7 @@ bool Scene::SetSoftState(ActorHandle a, const SoftBodyState& state, Error* error
     return Fail(error, "state: x and v need " + std::to_string(n) + " entries (3 per node)");
   if (!state.x.allFinite() || !state.v.allFinite())
     return Fail(error, "state: x and v must be finite");
-  step_.softStates[actors_[a.index].local] = state;
+  step_.softStates[a.index] = state;
   ClearHistory();
   return true;
 }
@@ -112,23 +105,21 @@ std::string Scene::ValidateKind(const ActorKind& kind) const {
 
 bool Scene::SetKindState(ActorHandle a, const KindState& state, Error* error) {
   if (!ValidHandle(*this, a, error)) return false;
-  if (!actors_[a.index].kind)
-    return Fail(error, "actor: " + ActorName(a) + " is not an actor of the generic layer");
   const int n = Kind(a).NumDofs();
   if (state.x.size() != n || state.v.size() != n)
     return Fail(error, "state: x and v need " + std::to_string(n) + " entries");
   if (!state.x.allFinite() || !state.v.allFinite())
     return Fail(error, "state: x and v must be finite");
-  step_.softStates[softModels_.size() + actors_[a.index].local] = state;
+  step_.softStates[a.index] = state;
   ClearHistory();
   return true;
 }
 
 template <typename Change>
-void Scene::ChangeKind(const ActorRef& r, Change&& change) {
-  std::shared_ptr<ActorKind> changed = kinds_[r.local]->Clone();
+void Scene::ChangeKind(int a, Change&& change) {
+  std::shared_ptr<ActorKind> changed = kinds_[a]->Clone();
   change(*changed);
-  kinds_[r.local] = std::move(changed);
+  kinds_[a] = std::move(changed);
   prepared_ = false;
 }
 
@@ -136,28 +127,19 @@ bool Scene::SetContactParams(ActorHandle a, const ContactParams& params, Error* 
   if (!ValidHandle(*this, a, error)) return false;
   if (std::string m = Validate(params, "contact."); !m.empty()) return Fail(error, m);
   const ActorRef& r = actors_[a.index];
-  if (r.kind) {
-    ChangeKind(r, [&](ActorKind& k) {
-      k.contact = params;
-      if (r.rigid) static_cast<RigidKind&>(k).SetContactParams(params);
-    });
-    if (r.rigid) rigidDescs_[r.desc].contact = params;
-    return true;
-  }
-  softModels_[r.local].contact = params;
-  softDescs_[r.local].contact = params;
-  prepared_ = false;  // pair padding and the dissipation flag follow the parameters
+  ChangeKind(a.index, [&](ActorKind& k) {
+    k.contact = params;
+    if (r.rigid) static_cast<RigidKind&>(k).SetContactParams(params);
+  });
+  if (r.rigid) rigidDescs_[r.desc].contact = params;
+  if (r.soft) softDescs_[r.desc].contact = params;
   return true;
 }
 
-const ContactParams& Scene::GetContactParams(ActorHandle a) const {
-  const ActorRef& r = actors_[a.index];
-  if (r.kind) return kinds_[r.local]->contact;
-  return softModels_[r.local].contact;
-}
+const ContactParams& Scene::GetContactParams(ActorHandle a) const { return Kind(a).contact; }
 
 const SoftActorDesc& Scene::SoftDesc(ActorHandle a) const {
-  return softDescs_[actors_[a.index].local];
+  return softDescs_[actors_[a.index].desc];
 }
 
 bool Scene::SetRigidMass(ActorHandle a, double mass, Error* error) {
@@ -170,31 +152,26 @@ bool Scene::SetRigidMass(ActorHandle a, double mass, Error* error) {
   RigidActorDesc& d = rigidDescs_[r.desc];
   if (d.inertia) *d.inertia *= mass / Model(a).mass;
   d.mass = mass;
-  ChangeKind(r, [&](ActorKind& k) { static_cast<RigidKind&>(k).SetMass(mass); });
+  ChangeKind(a.index, [&](ActorKind& k) { static_cast<RigidKind&>(k).SetMass(mass); });
   return true;
 }
 
 bool Scene::SetSoftMaterial(ActorHandle a, double youngsModulus, double density, Error* error) {
   if (!ValidHandle(*this, a, error)) return false;
   if (!actors_[a.index].soft) return Fail(error, "actor: " + ActorName(a) + " is not soft");
-  SoftBodyModel& m = softModels_[actors_[a.index].local];
-  SoftMaterial changed = m.material;
+  SoftMaterial changed = SoftModel(a).material;
   changed.youngsModulus = youngsModulus;
   changed.density = density;
   if (std::string msg = Validate(changed, "material."); !msg.empty()) return Fail(error, msg);
-  const double scale = density / m.material.density;
-  m.material.youngsModulus = youngsModulus;
-  m.material.density = density;
-  m.lame = LameFromYoungPoisson(youngsModulus, m.material.poissonRatio);
-  m.nodeMass *= scale;
-  m.mass *= scale;
-  softDescs_[actors_[a.index].local].material = m.material;
+  ChangeKind(a.index, [&](ActorKind& k) {
+    static_cast<SoftKind&>(k).SetMaterial(youngsModulus, density);
+  });
+  softDescs_[actors_[a.index].desc].material = SoftModel(a).material;
   return true;
 }
 
 double Scene::MinFrictionFalloffVel() const {
   double v = INFINITY;
-  for (const SoftBodyModel& m : softModels_) v = std::min(v, m.contact.frictionFalloffVel);
   for (const auto& k : kinds_) v = std::min(v, k->contact.frictionFalloffVel);
   return v;
 }
@@ -205,23 +182,10 @@ ActorHandle Scene::FindActor(const std::string& name) const {
   return {};
 }
 
-const std::string& Scene::ActorName(ActorHandle a) const {
-  const ActorRef& r = actors_[a.index];
-  if (r.kind) return kinds_[r.local]->name;
-  return softModels_[r.local].name;
-}
+const std::string& Scene::ActorName(ActorHandle a) const { return Kind(a).name; }
 
 int Scene::HistoryBlocks() const {
   return IsMultistep(settings_.integrator) ? BdfSteps(settings_.integrator) - 1 : 0;
-}
-
-int Scene::VectorIndex(const ActorRef& r) const {
-  return r.kind ? static_cast<int>(softModels_.size()) + r.local : r.local;
-}
-
-int Scene::BlockSize(const ActorRef& r) const {
-  if (r.kind) return 2 * kinds_[r.local]->NumDofs();
-  return 6 * softModels_[r.local].NumNodes();
 }
 
 template <typename Visit>
@@ -229,16 +193,15 @@ void Scene::VisitStateLayout(int blocks, Visit&& visit) const {
   int offset = 0;
   for (int b = 0; b < blocks; ++b)
     for (int i = 0; i < NumActors(); ++i) {
-      const ActorRef& r = actors_[i];
-      if (r.rigid && !RigidOf({i}).Model().dynamic) continue;
-      visit(b, offset, r, i);
-      offset += BlockSize(r);
+      if (actors_[i].rigid && !RigidOf({i}).Model().dynamic) continue;
+      visit(b, offset, i);
+      offset += BlockSize(i);
     }
 }
 
 int Scene::StateOffset(ActorHandle a) {
   int found = -1;
-  VisitStateLayout(1, [&](int, int offset, const ActorRef&, int i) {
+  VisitStateLayout(1, [&](int, int offset, int i) {
     if (i == a.index) found = offset;
   });
   return found;
@@ -246,8 +209,8 @@ int Scene::StateOffset(ActorHandle a) {
 
 int Scene::StateSize() {
   int size = 0;
-  VisitStateLayout(1 + HistoryBlocks(), [&](int, int offset, const ActorRef& r, int) {
-    size = offset + BlockSize(r);
+  VisitStateLayout(1 + HistoryBlocks(), [&](int, int offset, int i) {
+    size = offset + BlockSize(i);
   });
   return size;
 }
@@ -258,8 +221,7 @@ int Scene::FilledStateBlocks() const {
 
 Eigen::VectorXd Scene::PackState() {
   Eigen::VectorXd s = Eigen::VectorXd::Zero(StateSize());
-  VisitStateLayout(FilledStateBlocks(), [&](int b, int o, const ActorRef& r, int) {
-    const int v = VectorIndex(r);
+  VisitStateLayout(FilledStateBlocks(), [&](int b, int o, int v) {
     const SoftBodyState& st = b == 0 ? step_.softStates[v] : step_.softHistory[b - 1][v];
     const int n = static_cast<int>(st.x.size());
     s.segment(o, n) = st.x;
@@ -270,16 +232,15 @@ Eigen::VectorXd Scene::PackState() {
 
 Eigen::VectorXd Scene::PackedVelocityMask() {
   Eigen::VectorXd mask = Eigen::VectorXd::Zero(StateSize());
-  VisitStateLayout(1 + HistoryBlocks(), [&](int, int o, const ActorRef& r, int) {
-    const int n = BlockSize(r) / 2;
+  VisitStateLayout(1 + HistoryBlocks(), [&](int, int o, int i) {
+    const int n = BlockSize(i) / 2;
     mask.segment(o + n, n).setOnes();
   });
   return mask;
 }
 
 void Scene::UnpackState(const Eigen::VectorXd& s) {
-  VisitStateLayout(FilledStateBlocks(), [&](int b, int o, const ActorRef& r, int) {
-    const int v = VectorIndex(r);
+  VisitStateLayout(FilledStateBlocks(), [&](int b, int o, int v) {
     SoftBodyState& st = b == 0 ? step_.softStates[v] : step_.softHistory[b - 1][v];
     const int n = static_cast<int>(st.x.size());
     st.x = s.segment(o, n);
@@ -288,29 +249,29 @@ void Scene::UnpackState(const Eigen::VectorXd& s) {
 }
 
 // A snapshot's layout is the one of checkpoint files and of Python's SceneState: the rigid
-// actors' states in their order of creation under `states` (p, R, v, Ṙ), the other vector-state
-// actors (soft, then the other kinds) under `softStates`. Inside the scene a rigid actor's state
-// is its RigidKind's vector state among the kinds' (RigidKind::Pack, exact both ways).
+// actors' states in their order of creation under `states` (p, R, v, Ṙ), the other actors' (soft
+// actors and other kinds, in their order of creation) under `softStates`. Inside the scene a
+// rigid actor's state is its RigidKind's vector state (RigidKind::Pack, exact both ways).
 void Scene::SplitRigid(const std::vector<SoftBodyState>& vector, std::vector<RigidBodyState>* rigid,
                        std::vector<SoftBodyState>* rest) const {
   std::vector<char> isRigid(vector.size(), 0);
   rigid->assign(rigidDescs_.size(), RigidBodyState());
-  for (const ActorRef& r : actors_)
-    if (r.rigid) {
-      isRigid[VectorIndex(r)] = 1;
-      (*rigid)[r.desc] = RigidKind::Unpack(vector[VectorIndex(r)]);
+  for (size_t i = 0; i < actors_.size(); ++i)
+    if (actors_[i].rigid) {
+      isRigid[i] = 1;
+      (*rigid)[actors_[i].desc] = RigidKind::Unpack(vector[i]);
     }
   rest->clear();
   for (size_t v = 0; v < vector.size(); ++v)
     if (!isRigid[v]) rest->push_back(vector[v]);
 }
 
-void Scene::HoldStatic(const ActorRef& r, const RigidBodyState& state) {
-  const RigidKind& kind = static_cast<const RigidKind&>(*kinds_[r.local]);
+void Scene::HoldStatic(int a, const RigidBodyState& state) {
+  const RigidKind& kind = RigidOf({a});
   if (kind.Model().dynamic) return;
   const RigidBodyState& held = kind.Held();
   if (held.p == state.p && held.R == state.R && held.v == state.v && held.Rdot == state.Rdot) return;
-  ChangeKind(r, [&](ActorKind& k) { static_cast<RigidKind&>(k).Hold(state); });
+  ChangeKind(a, [&](ActorKind& k) { static_cast<RigidKind&>(k).Hold(state); });
 }
 
 void Scene::JoinRigid(const std::vector<RigidBodyState>& rigid,
@@ -318,10 +279,10 @@ void Scene::JoinRigid(const std::vector<RigidBodyState>& rigid,
                       std::vector<SoftBodyState>* vector) const {
   vector->assign(rigid.size() + rest.size(), SoftBodyState());
   std::vector<char> isRigid(vector->size(), 0);
-  for (const ActorRef& r : actors_)
-    if (r.rigid) {
-      isRigid[VectorIndex(r)] = 1;
-      (*vector)[VectorIndex(r)] = RigidKind::Pack(rigid[r.desc]);
+  for (size_t i = 0; i < actors_.size(); ++i)
+    if (actors_[i].rigid) {
+      isRigid[i] = 1;
+      (*vector)[i] = RigidKind::Pack(rigid[actors_[i].desc]);
     }
   size_t next = 0;
   for (size_t v = 0; v < vector->size(); ++v)
@@ -344,8 +305,8 @@ void Scene::Restore(const Snapshot& s) {
   step_.time = s.step.time;
   step_.historyTimes = s.step.historyTimes;
   JoinRigid(s.step.states, s.step.softStates, &step_.softStates);
-  for (const ActorRef& r : actors_)
-    if (r.rigid) HoldStatic(r, s.step.states[r.desc]);
+  for (size_t i = 0; i < actors_.size(); ++i)
+    if (actors_[i].rigid) HoldStatic(static_cast<int>(i), s.step.states[actors_[i].desc]);
   step_.softHistory.resize(s.step.softHistory.size());
   for (size_t h = 0; h < s.step.softHistory.size(); ++h)
     JoinRigid(s.step.history[h], s.step.softHistory[h], &step_.softHistory[h]);
@@ -361,17 +322,13 @@ void Scene::ClearHistory() {
 }
 
 const std::vector<int>& Scene::KindStageDofs(ActorHandle a) const {
-  return kindStageDof_[actors_[a.index].local];
+  return kindStageDof_[a.index];
 }
 
 int Scene::StageDofOffset(ActorHandle a) const {
-  const ActorRef& r = actors_[a.index];
-  if (r.kind) {
-    for (int d : kindStageDof_[r.local])
-      if (d >= 0) return d;
-    return -1;
-  }
-  return softDofOffset_[r.local];
+  for (int d : kindStageDof_[a.index])
+    if (d >= 0) return d;
+  return -1;
 }
 
 }  // namespace superdex

@@ -86,6 +86,8 @@ void ContactPipeline::Configure(const ContactFilter* filter,
   kindTetCollider_.clear();
   kindStatic_.clear();
   kindSamples_.clear();
+  kindStepLimit_.clear();
+  kindFaceSamples_.clear();
   if (kinds_)
     for (const ActorKind* k : *kinds_) {
       const bool tet = k->TetCollider() && k->TetCollider()->collider == ColliderType::Sdf;
@@ -98,6 +100,9 @@ void ContactPipeline::Configure(const ContactFilter* filter,
       size_t samples = static_cast<size_t>(k->NumSamples());
       for (int b = 0; b < k->NumSampleBodies(); ++b) samples += k->SampleBody(b)->samples.size();
       kindSamples_.push_back(samples);
+      kindStepLimit_.push_back(k->Shortcuts().stepLimit);
+      kindFaceSamples_.push_back(k->NumSamples() > 0 &&
+                                 k->Sample(0, k->InitialState().x).faceNormal);
     }
   filter_ = filter;
   softModels_ = softModels && !softModels->empty() ? softModels : nullptr;
@@ -369,7 +374,8 @@ DissipationSetup ContactPipeline::MakeSetup(const PairContactParams& params,
 size_t ContactPipeline::KindPairWork() const {
   size_t work = 0;
   for (const KindPair& kp : kindPairs_) {
-    if (kp.aSoft) return kParallelSampleWork;  // a soft surface's samples: always in parallel
+    // A soft surface's samples: always in parallel.
+    if (kp.aSoft || kindFaceSamples_[kp.a]) return kParallelSampleWork;
     work += kindSamples_[kp.a];
   }
   return work;
@@ -408,7 +414,8 @@ void ContactPipeline::StepLimits(const KindView& now, const KindView& next,
   auto evaluateKind = [&](size_t k) {
     const KindPair& kp = kindPairs_[k];
     kindPairLimits_[k] = 1.0;
-    if (kp.aSoft) return;  // soft nodes take no step limit (SceneStageProblem::LimitStep)
+    // Soft nodes take no step limit (SceneStageProblem::LimitStep), nor kinds that refuse it.
+    if (kp.aSoft || !kindStepLimit_[kp.a] || !kindStepLimit_[kp.b]) return;
     const PenaltyParams penalty = PenaltyOf(kp.params);
     const FrameSide B = KindFrameSide(*(*kinds_)[kp.b], q(next, kp.b), &q(now, kp.b), nullptr,
                                       (*next.stageDof)[kp.b]);
@@ -421,7 +428,7 @@ void ContactPipeline::StepLimits(const KindView& now, const KindView& next,
   ForEachPair(kindPairs_.size(), KindPairWork() >= kParallelSampleWork, evaluateKind);
   for (size_t k = 0; k < kindPairs_.size(); ++k) {
     const KindPair& kp = kindPairs_[k];
-    if (kp.aSoft) continue;
+    if (kp.aSoft || kindPairLimits_[k] >= 1.0) continue;
     double& a = (*kindAlpha)[kp.a];
     a = std::min(a, kindPairLimits_[k]);
     double& b = (*kindAlpha)[kp.b];

@@ -224,6 +224,9 @@ class ContactPipeline {
   std::vector<char> kindColliding_, kindCollider_, kindStatic_;
   std::vector<char> kindTetCollider_;  // per kind: a tet field with an Sdf grid (TetCollider)
   std::vector<size_t> kindSamples_;  // per kind: its samples and its sample bodies'
+  std::vector<char> kindStepLimit_;  // per kind: Shortcuts().stepLimit
+  // Per kind: its samples lie on a deforming surface (face normals, 3-node stencils).
+  std::vector<char> kindFaceSamples_;
 
   std::vector<KindPair> kindPairs_;
   // Per kind pair, its stencils: compact (12 dofs each, as rigid pairs') when all of them fit,

@@ -330,6 +330,8 @@ bool SceneStageProblem::LastSplit(StageSplit* split) {
   if (soft_ && !soft_->targets.empty()) return false;  // soft actors: not split
   const KindStage* kinds = soft_ && soft_->kinds.Size() > 0 ? &soft_->kinds : nullptr;
   const size_t nk = kinds ? kinds->Size() : 0;
+  for (size_t k = 0; k < nk; ++k)  // a kind that refuses it keeps the stage whole
+    if (!(*kinds->kinds)[k]->Shortcuts().splitParts) return false;
   const int units = static_cast<int>(nk);
   if (static_cast<int>(split->unitOfDof.size()) != numDofs_ || split->units != units) {
     split->unitOfDof.assign(numDofs_, 0);

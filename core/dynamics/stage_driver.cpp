@@ -64,20 +64,18 @@ SolverStats StageDriver::Solve(const SceneSettings& settings, const StageScene& 
   // persists, and the check (a value-only contact evaluation) made a sliding box's run 16 %
   // longer for nothing. A stage that leaves contact is solved by Newton, the next one tried again.
   if (settings.closedFormFreeStages && settings.stageSolver == StageSolverKind::Newton &&
-      !scene.hasSoftActors && !recording && !state_.lastStageInContact &&
+      !scene.coldStages && !recording && !state_.lastStageInContact &&
       FreeStage(scene, dissipation, dt, soft, softX, &st, contact)) {
     state_.lastPotentialIterations = 0;  // a local stage: the next warm start may try the exact Hessian
     return st;
   }
   SceneStageProblem problem = inputs.Problem(dissipation, softX);
   // The warm start (Newton only: Ipopt and Ceres check the cold stage). Kept cold: (1) scenes with
-  // soft actors: soft nodes are not predicted, and a soft collider's stages are only piecewise
-  // smooth (its deformed grid SDF's gradient jumps across tet and cell faces), so that at
-  // tolerances near round-off Newton ends in the iteration cap from some starts, cold or warm
-  // alike. (2) Recorded steps (sensitivities, adjoint): their derivatives are evaluated at the
+  // a kind that refuses it (ActorKind::Shortcuts: a soft body's, for its collider's piecewise
+  // smooth stages). (2) Recorded steps (sensitivities, adjoint): their derivatives are evaluated at the
   // recorded solution, which a start reaches only to the solver's tolerance (docs/solver.md).
   const bool warm = settings.stageSolver == StageSolverKind::Newton && predictTime > 0.0 &&
-                    settings.warmStart && !scene.hasSoftActors && !recording;
+                    settings.warmStart && !scene.coldStages && !recording;
   if (warm) WarmStartStage(settings, scene, dt, soft, *softX, predictTime, &problem);
   switch (settings.stageSolver) {
     case StageSolverKind::Newton:
@@ -192,7 +190,6 @@ void StageDriver::WarmStartStage(const SceneSettings& settings, const StageScene
   const double hBefore = two ? historyTimes[0] - historyTimes[1] : 0.0;
   warmStep_.setZero(scene.numDofs);
   const KindStage& kinds = soft.kinds;
-  // The kinds' states follow the soft actors' (none here: the warm start is off with them).
   const size_t ns = soft.targets.size();
   const std::vector<VectorState>& states = *scene.vectorStates;
   const std::vector<std::vector<VectorState>>& history = *scene.vectorHistory;

@@ -25,7 +25,8 @@ namespace superdex {
 struct StageScene {
   int numDofs = 0;
   ContactPipeline* pipeline = nullptr;
-  bool hasSoftActors = false;  ///< soft actors: no closed-form stage, no warm start
+  /// A kind refuses the warm start (ActorKind::Shortcuts): no warm start, no closed-form stage.
+  bool coldStages = false;
   bool hasDissipation = false;
   const std::vector<VectorState>* vectorStates = nullptr;             ///< x_n, v_n
   const std::vector<std::vector<VectorState>>* vectorHistory = nullptr;

@@ -44,6 +44,37 @@ namespace superdex {
 /// A kind's state: x is its configuration q, v = q̇.
 using KindState = VectorState;
 
+/// A kind's working memory for one actor's stages: what it derives from a stage's data once
+/// (ActorKind::PrepareStage; a soft body's damping stiffness at the predictor) and its element
+/// scratch. Kinds are shared by copies of a scene, which may evaluate them concurrently (the
+/// sensitivities' replays), so a kind keeps no mutable state of its own: this lives in the stage
+/// data, which each copy owns.
+struct KindScratch {
+  virtual ~KindScratch() = default;
+};
+
+/// The stage data's slot for a KindScratch of the kind's type T, made on first use. A copy of the
+/// slot starts empty (it never shares the memory of another stage's).
+class KindScratchSlot {
+ public:
+  KindScratchSlot() = default;
+  KindScratchSlot(const KindScratchSlot&) {}
+  KindScratchSlot& operator=(const KindScratchSlot&) {
+    scratch_.reset();
+    return *this;
+  }
+  KindScratchSlot(KindScratchSlot&&) = default;
+  KindScratchSlot& operator=(KindScratchSlot&&) = default;
+  template <typename T>
+  T& Get() const {
+    if (!scratch_ || !dynamic_cast<T*>(scratch_.get())) scratch_ = std::make_unique<T>();
+    return static_cast<T&>(*scratch_);
+  }
+
+ private:
+  mutable std::unique_ptr<KindScratch> scratch_;
+};
+
 /// The integrator's data for one stage of one actor.
 struct KindStageData {
   double dt = 0.0;                  ///< Δt_i [s]
@@ -52,6 +83,7 @@ struct KindStageData {
   Eigen::VectorXd qHat;             ///< inertial target q⁰ + Δt_i v⁰
   Eigen::VectorXd q0;               ///< stage start q⁰ (an affine combination of states)
   Eigen::VectorXd qLast;            ///< last actual configuration (q_n, then Q_{i−1})
+  KindScratchSlot scratch;          ///< the kind's (PrepareStage, StageEnergy)
 };
 
 /// One colliding sample at a configuration: its world point, weight and point map. A Nodes map
@@ -144,6 +176,9 @@ class ActorKind {
   /// Empty when valid; else a message naming the field and the rule (checked when added).
   virtual std::string Validate() const { return {}; }
 
+  /// Called once per stage after the stage data is filled (and again whenever it changes):
+  /// derives what StageEnergy reads at every evaluation into stage->scratch. Default: nothing.
+  virtual void PrepareStage(KindStageData* /*stage*/) const {}
   /// Φ_a(q) of the stage [J]. order >= 1: adds ∂Φ_a(q ⊕ δ)/∂δ at δ = 0 (size m, local tangent
   /// dofs) into *g; order 2: appends the second derivative in local (row, col) to *H, projected
   /// to PSD per `projection` where it is not PSD already.
@@ -260,6 +295,20 @@ class ActorKind {
   virtual bool FreeStageMinimizer(const KindStageData& /*stage*/, Eigen::VectorXd* /*q*/) const {
     return false;
   }
+  /// The stage policy's shortcuts in stages that hold the kind (all allowed by default):
+  ///   warmStart:  predict each stage's solution (PredictStage) and try the closed-form free
+  ///               stage (core/dynamics/stage_driver.h); one kind that refuses keeps every stage
+  ///               of its scene cold;
+  ///   stepLimit:  its contact pairs bound Newton steps (ContactPipeline::StepLimits); a pair
+  ///               with a kind that refuses bounds neither actor;
+  ///   splitParts: the line search may take the stage by independent parts (StageProblem::
+  ///               LastSplit); one kind that refuses keeps its scene's stages whole.
+  struct StageShortcuts {
+    bool warmStart = true;
+    bool stepLimit = true;
+    bool splitParts = true;
+  };
+  virtual StageShortcuts Shortcuts() const { return {}; }
 
   /// Reporting: kinetic, gravity and internal (elastic, joint) energy [J], linear momentum
   /// [kg·m/s], angular momentum about the world origin [kg·m²/s], centre of mass [m] and its

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "energies/stable_neo_hookean.h"
+
 namespace superdex {
 namespace {
 
@@ -32,34 +34,59 @@ std::unique_ptr<SoftKind> SoftKind::Build(const SoftActorDesc& desc, Error* erro
   return std::make_unique<SoftKind>(std::move(model), state);
 }
 
+void SoftKind::SetMaterial(double youngsModulus, double density) {
+  const double scale = density / model_.material.density;
+  model_.material.youngsModulus = youngsModulus;
+  model_.material.density = density;
+  model_.lame = LameFromYoungPoisson(youngsModulus, model_.material.poissonRatio);
+  model_.nodeMass *= scale;
+  model_.mass *= scale;
+}
+
 std::unique_ptr<ActorKind> SoftKind::Clone() const { return std::make_unique<SoftKind>(*this); }
 
-const SoftStageTarget& SoftKind::TargetOf(const KindStageData& stage) const {
-  if (targetDt_ != stage.dt || target_.xHat.size() != stage.qHat.size() ||
-      target_.xHat != stage.qHat || target_.x0 != stage.q0) {
-    target_.xHat = stage.qHat;
-    target_.x0 = stage.q0;
-    target_.xLast = stage.qLast;
-    targetDt_ = stage.dt;
-    PrepareSoftDamping(model_, &target_);
-  }
-  return target_;
+namespace {
+
+// A soft body's working memory for one actor's stages (KindStageData::scratch).
+struct SoftStageScratch : KindScratch {
+  SoftStageTarget target;
+  bool prepared = false;
+  SoftTermScratch terms;
+  Eigen::VectorXd freeGradient;
+  std::vector<Eigen::Triplet<double>> freeHessian;
+};
+
+// The stage's target from its data.
+void Prepare(const SoftBodyModel& model, const KindStageData& stage, SoftStageScratch* s) {
+  s->target.xHat = stage.qHat;
+  s->target.x0 = stage.q0;
+  s->target.xLast = stage.qLast;
+  PrepareSoftDamping(model, &s->target);
+  s->prepared = true;
+}
+
+}  // namespace
+
+void SoftKind::PrepareStage(KindStageData* stage) const {
+  Prepare(model_, *stage, &stage->scratch.Get<SoftStageScratch>());
 }
 
 double SoftKind::StageEnergy(const KindStageData& stage, const Eigen::VectorXd& q, int order,
                              PsdProjection projection, Eigen::VectorXd* g,
                              std::vector<Eigen::Triplet<double>>* H) const {
+  SoftStageScratch& s = stage.scratch.Get<SoftStageScratch>();
+  if (!s.prepared) Prepare(model_, stage, &s);  // stage data built by hand
   // The soft terms on the free nodes (dofs 3 freeIndex[a]), then scattered to the local dofs.
-  if (order >= 1) freeGradient_.setZero(3 * model_.numFree);
-  freeHessian_.clear();
+  if (order >= 1) s.freeGradient.setZero(3 * model_.numFree);
+  s.freeHessian.clear();
   const double value = EvaluateSoftStageTerms(
-      model_, TargetOf(stage), stage.dt, stage.gravity, q, order, projection, 0,
-      order >= 1 ? &freeGradient_ : nullptr, order >= 2 ? &freeHessian_ : nullptr, &scratch_);
+      model_, s.target, stage.dt, stage.gravity, q, order, projection, 0,
+      order >= 1 ? &s.freeGradient : nullptr, order >= 2 ? &s.freeHessian : nullptr, &s.terms);
   if (order < 1) return value;
   auto local = [&](int i) { return 3 * freeNode_[i / 3] + i % 3; };
-  for (int i = 0; i < freeGradient_.size(); ++i) (*g)[local(i)] += freeGradient_[i];
+  for (int i = 0; i < s.freeGradient.size(); ++i) (*g)[local(i)] += s.freeGradient[i];
   if (order < 2) return value;
-  for (const Eigen::Triplet<double>& t : freeHessian_)
+  for (const Eigen::Triplet<double>& t : s.freeHessian)
     H->emplace_back(local(t.row()), local(t.col()), t.value());
   return value;
 }

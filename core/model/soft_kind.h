@@ -27,17 +27,31 @@ class SoftKind : public ActorKind {
   static std::unique_ptr<SoftKind> Build(const SoftActorDesc& desc, Error* error);
 
   const SoftBodyModel& Model() const { return model_; }
+  /// Replaces Young's modulus E [Pa] and density ρ [kg/m³] (validated by the caller): the Lamé
+  /// parameters and the lumped masses follow; Poisson's ratio and stiffness damping are kept.
+  void SetMaterial(double youngsModulus, double density);
 
   std::string KindName() const override { return "soft"; }
   std::unique_ptr<ActorKind> Clone() const override;
   int NumDofs() const override { return 3 * model_.NumNodes(); }
   KindState InitialState() const override { return initial_; }
+  /// The stage's target: x̂, x⁰, x_n and K_t at x̂ (stiffness damping).
+  void PrepareStage(KindStageData* stage) const override;
   double StageEnergy(const KindStageData& stage, const Eigen::VectorXd& q, int order,
                      PsdProjection projection, Eigen::VectorXd* g,
                      std::vector<Eigen::Triplet<double>>* H) const override;
   bool IsPrescribed(int dof) const override { return model_.freeIndex[dof / 3] < 0; }
   /// ApplyNodeConstraints from the initial positions.
   void Prescribe(double t, Eigen::VectorXd* q) const override;
+  /// Every stage of a scene with a soft body is solved cold, whole and without step limits:
+  ///   warm start: its Sdf collider's stages are only piecewise smooth (the deformed grid SDF's
+  ///     gradient jumps across tet and cell faces), and at tolerances near round-off Newton ends
+  ///     in the iteration cap from some starts, predicted or not;
+  ///   step limit: the limit scales the whole actor's step (it was made for rigid bodies); it
+  ///     would hold every node back for the one sample that approaches fastest, so the nodes'
+  ///     steps are bounded by the line search alone;
+  ///   split parts: the by-parts line search has not been measured on deforming bodies.
+  StageShortcuts Shortcuts() const override { return {false, false, false}; }
 
   double KineticEnergy(const KindState& s) const override;
   double GravityEnergy(const KindState& s, const Eigen::Vector3d& gravity) const override;
@@ -63,18 +77,9 @@ class SoftKind : public ActorKind {
       const std::function<void(int, int)>& visit) const override;
 
  private:
-  // The stage's target (x̂, x⁰, x_n, K_t at x̂) for `stage`, formed again when x̂ or Δt_i change.
-  const SoftStageTarget& TargetOf(const KindStageData& stage) const;
-
   SoftBodyModel model_;
   SoftBodyState initial_;
   std::vector<int> freeNode_;  // per free node: its node index
-  // Scratch of StageEnergy (a kind's stage terms are evaluated one kind after the other).
-  mutable SoftStageTarget target_;
-  mutable double targetDt_ = -1.0;
-  mutable SoftTermScratch scratch_;
-  mutable Eigen::VectorXd freeGradient_;
-  mutable std::vector<Eigen::Triplet<double>> freeHessian_;
 };
 
 }  // namespace superdex

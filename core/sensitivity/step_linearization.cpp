@@ -87,7 +87,7 @@ std::vector<int> AddKindMovers(Scene& scene, const Eigen::VectorXd& S0, const St
   const int s = z.s, nd = z.nd, ns = z.ns, blockSize = ns / blocks;
   std::vector<int> moverOfKind(scene.NumActors(), -1);
   for (int a = 0; a < scene.NumActors(); ++a) {
-    if (!scene.HasKind({a})) continue;
+    if (scene.IsSoft({a})) continue;  // its nodes are movers of their own (below)
     const ActorKind& kind = scene.Kind({a});
     const int n = kind.NumDofs(), o = scene.StateOffset({a});
     const std::vector<int>& stageDof = scene.KindStageDofs({a});
