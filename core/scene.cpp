@@ -66,7 +66,7 @@ bool Scene::ValidParent(ActorHandle parent, Error* error) const {
 
 ActorHandle Scene::Register(std::shared_ptr<ActorKind> kind, const std::string& layer,
                             ActorHandle parent) {
-  step_.softStates.push_back(kind->InitialState());
+  step_.vectorStates.push_back(kind->InitialState());
   kinds_.push_back(std::move(kind));
   filter_.AddActor(layer, parent.index);
   actors_.emplace_back();
@@ -235,7 +235,7 @@ bool Scene::SetState(ActorHandle a, const RigidBodyState& state, Error* error) {
       state.R.determinant() <= 0)
     return Fail(error, "state.R: must be a rotation matrix");
   HoldStatic(a.index, state);
-  step_.softStates[a.index] = RigidKind::Pack(state);
+  step_.vectorStates[a.index] = RigidKind::Pack(state);
   ClearHistory();
   return true;
 }
@@ -254,22 +254,21 @@ void Scene::Prepare() {
   }
   std::vector<int> kindActor(kinds_.size());
   for (int i = 0; i < NumActors(); ++i) kindActor[i] = i;
-  pipeline_.Configure(&filter_, nullptr, {}, &kindPtrs_, kindActor);
+  pipeline_.Configure(&filter_, &kindPtrs_, kindActor);
   hasDissipation_ = HasDissipation();  // actors' contact parameters are fixed once added
   coldStages_ = false;
   for (const auto& k : kinds_) coldStages_ = coldStages_ || !k->Shortcuts().warmStart;
   prepared_ = true;
 }
 
-void Scene::CurrentSoftPositions(std::vector<Eigen::VectorXd>* x) const {
-  x->resize(step_.softStates.size());
-  for (size_t s = 0; s < step_.softStates.size(); ++s) (*x)[s] = step_.softStates[s].x;
+void Scene::CurrentPositions(std::vector<Eigen::VectorXd>* x) const {
+  x->resize(step_.vectorStates.size());
+  for (size_t s = 0; s < step_.vectorStates.size(); ++s) (*x)[s] = step_.vectorStates[s].x;
 }
 
-void Scene::MakeSoftStage(double dt, double t, const std::vector<SoftBodyState>& start,
-                          const std::vector<Eigen::VectorXd>& last, SoftStage* out) const {
-  SoftStage& st = *out;
-  KindStage& ks = st.kinds;
+void Scene::MakeStage(double dt, double t, const std::vector<VectorState>& start,
+                      const std::vector<Eigen::VectorXd>& last, KindStage* out) const {
+  KindStage& ks = *out;
   ks.kinds = &kindPtrs_;
   ks.stageDof = kindStageDof_;
   ks.data.resize(kinds_.size());
@@ -297,26 +296,26 @@ double Scene::MinDetF() const {
   double minDet = INFINITY;
   for (ActorHandle a : SoftActors()) {
     double md = INFINITY;
-    ElasticEnergy(SoftOf(a).Model(), step_.softStates[a.index].x, &md);
+    ElasticEnergy(SoftOf(a).Model(), step_.vectorStates[a.index].x, &md);
     minDet = std::min(minDet, md);
   }
   return minDet;
 }
 
-void Scene::SolveStage(double dt, const SoftStage& soft, std::vector<Eigen::VectorXd>* softX,
+void Scene::SolveStage(double dt, const KindStage& stage, std::vector<Eigen::VectorXd>* x,
                        double predictTime, StepReport* rep) {
   StageScene scene;
   scene.numDofs = numDofs_;
   scene.pipeline = &pipeline_;
   scene.coldStages = coldStages_;
   scene.hasDissipation = hasDissipation_;
-  scene.vectorStates = &step_.softStates;
-  scene.vectorHistory = &step_.softHistory;
+  scene.vectorStates = &step_.vectorStates;
+  scene.vectorHistory = &step_.vectorHistory;
   scene.historyTimes = &step_.historyTimes;
   scene.time = step_.time;
   ContactStats contact;
   const SolverStats st =
-      driver_.Solve(settings_, scene, dt, &contact, soft, softX, predictTime, recorder_);
+      driver_.Solve(settings_, scene, dt, &contact, stage, x, predictTime, recorder_);
   AccountStage(st, contact, rep);
   // What ContactSamples needs to report this stage's dissipation at the state it produced.
   ReportStage& r = buffers_.reportStage;
@@ -325,8 +324,8 @@ void Scene::SolveStage(double dt, const SoftStage& soft, std::vector<Eigen::Vect
   r.dt = dt;
   r.mode = st.fallback ? DissipationMode::ExplicitNormals : ModeOf(settings_.eval);
   r.fadeFriction = settings_.eval.fadeFriction;
-  r.q0 = soft.kinds.q0;  // copies into the kept storage
-  r.qLast = soft.kinds.qLast;
+  r.q0 = stage.q0;  // copies into the kept storage
+  r.qLast = stage.qLast;
 }
 
 bool Scene::Step(double h, StepReport* report, Error* error, StageRecorder* recorder) {
@@ -342,10 +341,10 @@ bool Scene::Step(double h, StepReport* report, Error* error, StageRecorder* reco
   Prepare();
   recorder_ = recorder;
   if (recorder_) recorder_->BeginStep();
-  CurrentSoftPositions(&buffers_.softX);
-  buffers_.softStepStart = buffers_.softX;
-  buffers_.softNext = step_.softStates;
-  StepWork w{buffers_.softX, buffers_.softStepStart, buffers_.softNext, StepReport()};
+  CurrentPositions(&buffers_.x);
+  buffers_.stepStart = buffers_.x;
+  buffers_.next = step_.vectorStates;
+  StepWork w{buffers_.x, buffers_.stepStart, buffers_.next, StepReport()};
   StepReport& rep = w.report;
   rep.dt = h;
   const IntegrationMethod method = settings_.integrator;
@@ -353,7 +352,7 @@ bool Scene::Step(double h, StepReport* report, Error* error, StageRecorder* reco
   // BDF3 starts with DIRK33 steps while its history fills: a Backward Euler start (local error
   // O(h²)) would cap its global order at 2. BDF2 starts with one BDF1 (Backward Euler) step, whose
   // O(h²) local error is within BDF2's own global order (core/dynamics/time_stepper.h).
-  const bool bdf3Startup = method == IntegrationMethod::BDF3 && step_.softHistory.size() < 2;
+  const bool bdf3Startup = method == IntegrationMethod::BDF3 && step_.vectorHistory.size() < 2;
   if (IsMultistep(method) && !bdf3Startup)
     StepBdf(step_, h, method, *this, &buffers_, &w);
   else
@@ -377,11 +376,11 @@ bool Scene::Step(double h, StepReport* report, Error* error, StageRecorder* reco
 ContactStats Scene::ContactState() {
   Prepare();
   ContactStats st;
-  std::vector<Eigen::VectorXd>& x = buffers_.softX;  // scratch between steps
-  CurrentSoftPositions(&x);
+  std::vector<Eigen::VectorXd>& x = buffers_.x;  // scratch between steps
+  CurrentPositions(&x);
   const KindView kinds = CurrentKindView(x);
   pipeline_.Evaluate(0, PsdProjection::None, nullptr, nullptr, nullptr, &st, nullptr, nullptr,
-                     nullptr, &kinds);
+                     &kinds);
   return st;
 }
 
@@ -395,12 +394,12 @@ KindView Scene::CurrentKindView(const std::vector<Eigen::VectorXd>& x) const {
 std::vector<ContactSampleRecord> Scene::ContactSamples() {
   Prepare();
   std::vector<ContactSampleRecord> out;
-  std::vector<Eigen::VectorXd>& x = buffers_.softX;  // scratch between steps
-  CurrentSoftPositions(&x);
+  std::vector<Eigen::VectorXd>& x = buffers_.x;  // scratch between steps
+  CurrentPositions(&x);
   KindView kinds = CurrentKindView(x);
   const ReportStage& r = buffers_.reportStage;
   if (!r.valid) {
-    pipeline_.CollectSamples(&out, nullptr, &kinds);
+    pipeline_.CollectSamples(&out, &kinds);
     return out;
   }
   // The last stage's dissipation at the state it produced.
@@ -410,7 +409,7 @@ std::vector<ContactSampleRecord> Scene::ContactSamples() {
   context.dt = r.dt;
   context.mode = r.mode;
   context.fadeFriction = r.fadeFriction;
-  pipeline_.CollectSamples(&out, nullptr, &kinds, &context);
+  pipeline_.CollectSamples(&out, &kinds, &context);
   return out;
 }
 
@@ -429,7 +428,7 @@ bool Scene::SoftFaceTractions(ActorHandle a, std::vector<Eigen::Vector3d>* tract
 EnergyReport Scene::Energies() {
   EnergyReport e;
   for (size_t k = 0; k < kinds_.size(); ++k) {
-    const KindState& st = step_.softStates[k];
+    const KindState& st = step_.vectorStates[k];
     e.kinetic += kinds_[k]->KineticEnergy(st);
     e.gravity += kinds_[k]->GravityEnergy(st, settings_.gravity);
     e.elastic += kinds_[k]->InternalEnergy(st);
@@ -440,13 +439,13 @@ EnergyReport Scene::Energies() {
 
 Eigen::Vector3d Scene::TotalLinearMomentum() const {
   Eigen::Vector3d L = Eigen::Vector3d::Zero();
-  for (size_t k = 0; k < kinds_.size(); ++k) L += kinds_[k]->LinearMomentum(step_.softStates[k]);
+  for (size_t k = 0; k < kinds_.size(); ++k) L += kinds_[k]->LinearMomentum(step_.vectorStates[k]);
   return L;
 }
 
 Eigen::Vector3d Scene::TotalAngularMomentum() const {
   Eigen::Vector3d L = Eigen::Vector3d::Zero();
-  for (size_t k = 0; k < kinds_.size(); ++k) L += kinds_[k]->AngularMomentum(step_.softStates[k]);
+  for (size_t k = 0; k < kinds_.size(); ++k) L += kinds_[k]->AngularMomentum(step_.vectorStates[k]);
   return L;
 }
 

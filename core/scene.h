@@ -187,7 +187,7 @@ class Scene : private StageHost {
   int HistoryBlocks() const;
 
  private:
-  // Per actor (the index of kinds_ and step_.softStates): its role among the kinds.
+  // Per actor (the index of kinds_ and step_.vectorStates): its role among the kinds.
   struct ActorRef {
     bool rigid = false;  ///< a rigid actor (a RigidKind)
     bool soft = false;   ///< a soft actor (a SoftKind)
@@ -198,7 +198,7 @@ class Scene : private StageHost {
   std::vector<ActorHandle> ActorsWhere(bool ActorRef::*flag) const;  // in creation order
   // Solves one stage with the stage policy (StageDriver::Solve) and the step's recorder, and
   // accounts it in *rep.
-  void SolveStage(double dt, const SoftStage& soft, std::vector<Eigen::VectorXd>* softX,
+  void SolveStage(double dt, const KindStage& stage, std::vector<Eigen::VectorXd>* x,
                   double predictTime, StepReport* rep) override;
   // The packed-state layout: calls visit(block, offset, actor index) for every dynamic
   // actor in each of the first `blocks` blocks (0: the current state, b >= 1: step_.history[b−1]).
@@ -211,10 +211,10 @@ class Scene : private StageHost {
   // A static rigid actor a is held at `state` from now on (its kind copied first if it changes).
   void HoldStatic(int a, const RigidBodyState& state);
   // A snapshot's layout (Save) from the vector states and back.
-  void SplitRigid(const std::vector<SoftBodyState>& vector, std::vector<RigidBodyState>* rigid,
-                  std::vector<SoftBodyState>* rest) const;
-  void JoinRigid(const std::vector<RigidBodyState>& rigid, const std::vector<SoftBodyState>& rest,
-                 std::vector<SoftBodyState>* vector) const;
+  void SplitRigid(const std::vector<VectorState>& vector, std::vector<RigidBodyState>* rigid,
+                  std::vector<VectorState>* rest) const;
+  void JoinRigid(const std::vector<RigidBodyState>& rigid, const std::vector<VectorState>& rest,
+                 std::vector<VectorState>* vector) const;
   int BlockSize(int a) const { return 2 * kinds_[a]->NumDofs(); }  // its entries in PackState
   // 1 + the history blocks that hold a state.
   int FilledStateBlocks() const;
@@ -227,12 +227,12 @@ class Scene : private StageHost {
   ActorHandle Register(std::shared_ptr<ActorKind> kind, const std::string& layer,
                        ActorHandle parent);
   void Prepare();
-  void CurrentSoftPositions(std::vector<Eigen::VectorXd>* x) const;  // into kept storage
+  void CurrentPositions(std::vector<Eigen::VectorXd>* x) const;  // into kept storage
   // The actors' stage data at stage time t [s]: targets from the stage start, geometry from the
   // last configuration.
-  void MakeSoftStage(double dt, double t, const std::vector<SoftBodyState>& start,
-                     const std::vector<Eigen::VectorXd>& last, SoftStage* out) const override;
-  const ActorKind* VectorKind(size_t s) const override { return kinds_[s].get(); }
+  void MakeStage(double dt, double t, const std::vector<VectorState>& start,
+                 const std::vector<Eigen::VectorXd>& last, KindStage* out) const override;
+  const ActorKind& KindOf(size_t a) const override { return *kinds_[a]; }
   // The kinds' prescribed dofs at time t written into x.
   void ApplyConstraints(double t, std::vector<Eigen::VectorXd>* x) const override;
   double MinDetF() const;
@@ -248,12 +248,12 @@ class Scene : private StageHost {
   /// SamplesHash → indices into kinds_ of the rigid actors' distinct sample sets (ShareSamples).
   std::unordered_multimap<std::size_t, int> sampleSets_;
   // The actors' kinds (copies of a scene share them; a changed one is copied first), in creation
-  // order; their states are step_.softStates.
+  // order; their states are step_.vectorStates.
   std::vector<std::shared_ptr<ActorKind>> kinds_;
   std::vector<const ActorKind*> kindPtrs_;           // for the pipeline and the stage
   std::vector<std::vector<int>> kindStageDof_;       // per kind: stage dof of each local dof
   std::vector<ActorRef> actors_;
-  StepState step_;  // what a step advances (softStates: the actors' vector states)
+  StepState step_;  // what a step advances (vectorStates: the actors' vector states)
   StepBuffers buffers_;  // Step's storage kept from step to step (core/dynamics/step_state.h)
   // The pipeline is configured for these actors (it points at them; a copy configures its own).
   ResetOnCopy prepared_;

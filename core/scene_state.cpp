@@ -21,9 +21,9 @@ RigidBodyState Scene::State(ActorHandle a) const { return RigidKind::Unpack(Kind
 
 const SoftBodyModel& Scene::SoftModel(ActorHandle a) const { return SoftOf(a).Model(); }
 
-const SoftBodyState& Scene::SoftState(ActorHandle a) const { return step_.softStates[a.index]; }
+const SoftBodyState& Scene::SoftState(ActorHandle a) const { return step_.vectorStates[a.index]; }
 
-const KindState& Scene::KindStateOf(ActorHandle a) const { return step_.softStates[a.index]; }
+const KindState& Scene::KindStateOf(ActorHandle a) const { return step_.vectorStates[a.index]; }
 
 bool Scene::SetSoftState(ActorHandle a, const SoftBodyState& state, Error* error) {
   if (!ValidHandle(*this, a, error)) return false;
@@ -33,7 +33,7 @@ bool Scene::SetSoftState(ActorHandle a, const SoftBodyState& state, Error* error
     return Fail(error, "state: x and v need " + std::to_string(n) + " entries (3 per node)");
   if (!state.x.allFinite() || !state.v.allFinite())
     return Fail(error, "state: x and v must be finite");
-  step_.softStates[a.index] = state;
+  step_.vectorStates[a.index] = state;
   ClearHistory();
   return true;
 }
@@ -110,7 +110,7 @@ bool Scene::SetKindState(ActorHandle a, const KindState& state, Error* error) {
     return Fail(error, "state: x and v need " + std::to_string(n) + " entries");
   if (!state.x.allFinite() || !state.v.allFinite())
     return Fail(error, "state: x and v must be finite");
-  step_.softStates[a.index] = state;
+  step_.vectorStates[a.index] = state;
   ClearHistory();
   return true;
 }
@@ -216,13 +216,13 @@ int Scene::StateSize() {
 }
 
 int Scene::FilledStateBlocks() const {
-  return 1 + std::min(HistoryBlocks(), static_cast<int>(step_.softHistory.size()));
+  return 1 + std::min(HistoryBlocks(), static_cast<int>(step_.vectorHistory.size()));
 }
 
 Eigen::VectorXd Scene::PackState() {
   Eigen::VectorXd s = Eigen::VectorXd::Zero(StateSize());
   VisitStateLayout(FilledStateBlocks(), [&](int b, int o, int v) {
-    const SoftBodyState& st = b == 0 ? step_.softStates[v] : step_.softHistory[b - 1][v];
+    const SoftBodyState& st = b == 0 ? step_.vectorStates[v] : step_.vectorHistory[b - 1][v];
     const int n = static_cast<int>(st.x.size());
     s.segment(o, n) = st.x;
     s.segment(o + n, n) = st.v;
@@ -241,7 +241,7 @@ Eigen::VectorXd Scene::PackedVelocityMask() {
 
 void Scene::UnpackState(const Eigen::VectorXd& s) {
   VisitStateLayout(FilledStateBlocks(), [&](int b, int o, int v) {
-    SoftBodyState& st = b == 0 ? step_.softStates[v] : step_.softHistory[b - 1][v];
+    SoftBodyState& st = b == 0 ? step_.vectorStates[v] : step_.vectorHistory[b - 1][v];
     const int n = static_cast<int>(st.x.size());
     st.x = s.segment(o, n);
     st.v = s.segment(o + n, n);
@@ -250,10 +250,10 @@ void Scene::UnpackState(const Eigen::VectorXd& s) {
 
 // A snapshot's layout is the one of checkpoint files and of Python's SceneState: the rigid
 // actors' states in their order of creation under `states` (p, R, v, Ṙ), the other actors' (soft
-// actors and other kinds, in their order of creation) under `softStates`. Inside the scene a
+// actors and other kinds, in their order of creation) under `vectorStates`. Inside the scene a
 // rigid actor's state is its RigidKind's vector state (RigidKind::Pack, exact both ways).
-void Scene::SplitRigid(const std::vector<SoftBodyState>& vector, std::vector<RigidBodyState>* rigid,
-                       std::vector<SoftBodyState>* rest) const {
+void Scene::SplitRigid(const std::vector<VectorState>& vector, std::vector<RigidBodyState>* rigid,
+                       std::vector<VectorState>* rest) const {
   std::vector<char> isRigid(vector.size(), 0);
   rigid->assign(rigidDescs_.size(), RigidBodyState());
   for (size_t i = 0; i < actors_.size(); ++i)
@@ -275,8 +275,8 @@ void Scene::HoldStatic(int a, const RigidBodyState& state) {
 }
 
 void Scene::JoinRigid(const std::vector<RigidBodyState>& rigid,
-                      const std::vector<SoftBodyState>& rest,
-                      std::vector<SoftBodyState>* vector) const {
+                      const std::vector<VectorState>& rest,
+                      std::vector<VectorState>* vector) const {
   vector->assign(rigid.size() + rest.size(), SoftBodyState());
   std::vector<char> isRigid(vector->size(), 0);
   for (size_t i = 0; i < actors_.size(); ++i)
@@ -293,30 +293,30 @@ Scene::Snapshot Scene::Save() const {
   Snapshot s{StepState(), driver_.GetState()};
   s.step.time = step_.time;
   s.step.historyTimes = step_.historyTimes;
-  SplitRigid(step_.softStates, &s.step.states, &s.step.softStates);
-  s.step.history.resize(step_.softHistory.size());
-  s.step.softHistory.resize(step_.softHistory.size());
-  for (size_t h = 0; h < step_.softHistory.size(); ++h)
-    SplitRigid(step_.softHistory[h], &s.step.history[h], &s.step.softHistory[h]);
+  SplitRigid(step_.vectorStates, &s.step.rigidStates, &s.step.vectorStates);
+  s.step.rigidHistory.resize(step_.vectorHistory.size());
+  s.step.vectorHistory.resize(step_.vectorHistory.size());
+  for (size_t h = 0; h < step_.vectorHistory.size(); ++h)
+    SplitRigid(step_.vectorHistory[h], &s.step.rigidHistory[h], &s.step.vectorHistory[h]);
   return s;
 }
 
 void Scene::Restore(const Snapshot& s) {
   step_.time = s.step.time;
   step_.historyTimes = s.step.historyTimes;
-  JoinRigid(s.step.states, s.step.softStates, &step_.softStates);
+  JoinRigid(s.step.rigidStates, s.step.vectorStates, &step_.vectorStates);
   for (size_t i = 0; i < actors_.size(); ++i)
-    if (actors_[i].rigid) HoldStatic(static_cast<int>(i), s.step.states[actors_[i].desc]);
-  step_.softHistory.resize(s.step.softHistory.size());
-  for (size_t h = 0; h < s.step.softHistory.size(); ++h)
-    JoinRigid(s.step.history[h], s.step.softHistory[h], &step_.softHistory[h]);
+    if (actors_[i].rigid) HoldStatic(static_cast<int>(i), s.step.rigidStates[actors_[i].desc]);
+  step_.vectorHistory.resize(s.step.vectorHistory.size());
+  for (size_t h = 0; h < s.step.vectorHistory.size(); ++h)
+    JoinRigid(s.step.rigidHistory[h], s.step.vectorHistory[h], &step_.vectorHistory[h]);
   driver_.SetState(s.driver);
   buffers_.reportStage.valid = false;  // the state is not the last stage's any more
 }
 
 void Scene::ClearHistory() {
-  step_.history.clear();
-  step_.softHistory.clear();
+  step_.rigidHistory.clear();
+  step_.vectorHistory.clear();
   step_.historyTimes.clear();
   buffers_.reportStage.valid = false;
 }

@@ -73,13 +73,13 @@ void SnapshotToJson(const Scene::Snapshot& snapshot, json* out) {
                  {"last_stage_in_contact", d.lastStageInContact}};
   const StepState& s = snapshot.step;
   j["time"] = Hex(s.time);
-  j["rigid"] = RigidJson(s.states);
-  j["vector"] = VectorJson(s.softStates);
+  j["rigid"] = RigidJson(s.rigidStates);
+  j["vector"] = VectorJson(s.vectorStates);
   json history = json::array();
-  for (size_t h = 0; h < s.history.size(); ++h)
+  for (size_t h = 0; h < s.rigidHistory.size(); ++h)
     history.push_back({{"time", Hex(h < s.historyTimes.size() ? s.historyTimes[h] : 0.0)},
-                       {"rigid", RigidJson(s.history[h])},
-                       {"vector", VectorJson(h < s.softHistory.size() ? s.softHistory[h]
+                       {"rigid", RigidJson(s.rigidHistory[h])},
+                       {"vector", VectorJson(h < s.vectorHistory.size() ? s.vectorHistory[h]
                                                                        : std::vector<SoftBodyState>())}});
   j["history"] = history;
 }
@@ -232,15 +232,15 @@ void SnapshotFromJson(const json& j, Scene::Snapshot* snapshot) {
   StepState& s = snapshot->step;
   s = StepState();
   s.time = HexAt(j, "", "time");
-  s.states = ReadRigid(j, "");
-  s.softStates = ReadVector(j, "");
+  s.rigidStates = ReadRigid(j, "");
+  s.vectorStates = ReadVector(j, "");
   const json& history = ArrayAt(j, "", "history");
   if (history.size() > 2) Throw("history", "holds at most 2 states, got " + std::to_string(history.size()));
   for (size_t h = 0; h < history.size(); ++h) {
     const std::string path = "history[" + std::to_string(h) + "]";
     s.historyTimes.push_back(HexAt(history[h], path, "time"));
-    s.history.push_back(ReadRigid(history[h], path));
-    s.softHistory.push_back(ReadVector(history[h], path));
+    s.rigidHistory.push_back(ReadRigid(history[h], path));
+    s.vectorHistory.push_back(ReadVector(history[h], path));
   }
 }
 
@@ -272,18 +272,18 @@ void FromJson(const json& j, Checkpoint* c) {
 std::string SameShapes(const std::vector<RigidBodyState>& rigid,
                        const std::vector<SoftBodyState>& vector, const StepState& reference,
                        const std::string& path) {
-  if (rigid.size() != reference.states.size())
+  if (rigid.size() != reference.rigidStates.size())
     return Field(path, "rigid") + ": " + std::to_string(rigid.size()) +
-           " rigid actors, the scene has " + std::to_string(reference.states.size());
-  if (vector.size() != reference.softStates.size())
+           " rigid actors, the scene has " + std::to_string(reference.rigidStates.size());
+  if (vector.size() != reference.vectorStates.size())
     return Field(path, "vector") + ": " + std::to_string(vector.size()) +
            " soft (and generic) actors, the scene has " +
-           std::to_string(reference.softStates.size());
+           std::to_string(reference.vectorStates.size());
   for (size_t i = 0; i < vector.size(); ++i)
-    if (vector[i].x.size() != reference.softStates[i].x.size())
+    if (vector[i].x.size() != reference.vectorStates[i].x.size())
       return Field(path, "vector") + "[" + std::to_string(i) + "].x: " +
              std::to_string(vector[i].x.size()) + " values, the scene's actor has " +
-             std::to_string(reference.softStates[i].x.size());
+             std::to_string(reference.vectorStates[i].x.size());
   return {};
 }
 
@@ -291,9 +291,9 @@ std::string SameShapes(const std::vector<RigidBodyState>& rigid,
 std::string SnapshotShapes(const Scene::Snapshot& snapshot, const Scene& scene) {
   const StepState reference = scene.Save().step;
   const StepState& s = snapshot.step;
-  if (std::string m = SameShapes(s.states, s.softStates, reference, ""); !m.empty()) return m;
-  for (size_t h = 0; h < s.history.size(); ++h)
-    if (std::string m = SameShapes(s.history[h], s.softHistory[h], reference,
+  if (std::string m = SameShapes(s.rigidStates, s.vectorStates, reference, ""); !m.empty()) return m;
+  for (size_t h = 0; h < s.rigidHistory.size(); ++h)
+    if (std::string m = SameShapes(s.rigidHistory[h], s.vectorHistory[h], reference,
                                    "history[" + std::to_string(h) + "]");
         !m.empty())
       return m;

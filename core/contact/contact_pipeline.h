@@ -1,7 +1,7 @@
-// The contact pipeline (spec: "Contact Pipeline") over the generic layer's actors (rigid actors
-// among them) and the soft actors: broad phase over actor bounding boxes, narrow phase of colliding
-// samples against collider fields, response into the stage's gradient and Hessian through the one
-// assembler of core/contact/kind_contact.h (pairs on a soft collider's field: soft_collider.h).
+// The contact pipeline (spec: "Contact Pipeline") over the generic layer's actors (rigid and soft
+// ones among them): broad phase over actor bounding boxes, narrow phase of colliding samples
+// against collider fields, response into the stage's gradient and Hessian through the one
+// assembler of core/contact/kind_contact.h (pairs on a kind's tet field: soft_collider.h).
 #pragma once
 
 #include <Eigen/Core>
@@ -16,7 +16,6 @@
 #include "core/contact/rigid_contact.h"
 #include "core/contact/rigid_dissipation.h"
 #include "core/contact/soft_collider.h"
-#include "core/contact/soft_samples.h"
 #include "optim/stage_problem.h"
 #include "optim/triplet_assembly.h"
 
@@ -35,7 +34,7 @@ struct ContactStats {
 };
 
 /// The stage data dissipation needs (spec: "Stage-Discrete Dissipation"); the stage starts x⁰ and
-/// last configurations x_n are the views' (SoftView, KindView).
+/// last configurations x_n are the view's (KindView).
 struct DissipationContext {
   double dt = 0.0;                                      ///< Δt_i [s]
   DissipationMode mode = DissipationMode::ReconstructedLoad;
@@ -46,63 +45,46 @@ struct DissipationContext {
   bool recordSlips = false;
 };
 
-/// Ordered pair (A colliding: a soft actor, one sample body of a kind or a kind's own samples; B:
-/// a soft actor with an Sdf collider).
+/// Ordered pair (A colliding: sample body `body` of kind `colliding`, or its own samples with
+/// body −1; B: kind `collider`'s tet field, ActorKind::TetCollider).
 struct SoftColliderPair {
-  bool collidingSoft = false;  ///< else A is sample body `body` of kind `colliding` (−1: its own)
-  bool colliderKind = false;   ///< B is a kind's tet field (ActorKind::TetCollider)
   int body = 0;
-  int colliding = -1;  ///< soft model index, or kind index
-  int collider = -1;   ///< soft model index, or kind index
+  int colliding = -1;
+  int collider = -1;
   PairContactParams params;
 };
 
-/// The soft actors' positions for one evaluation. Node i of soft actor s owns the dofs
-/// dofOffset[s] + 3 freeIndex[i] (none when freeIndex is −1: a prescribed node).
-struct SoftView {
-  const std::vector<Eigen::VectorXd>* x = nullptr;      ///< current positions
-  const std::vector<Eigen::VectorXd>* xLast = nullptr;  ///< last actual positions x_n (or null)
-  const std::vector<Eigen::VectorXd>* x0 = nullptr;     ///< stage start (dissipation; or null)
-  const std::vector<int>* dofOffset = nullptr;          ///< per soft actor
-};
-
 /// The actors of the generic layer for one evaluation (core/model/actor_kind.h): per actor k its
-/// q (at (*q)[first + k]: the stage keeps them after the soft actors' positions), its x_n (or
-/// null), its stage start x⁰ (dissipation; or null) and the stage offsets of its local dofs (−1
-/// for a prescribed dof).
+/// q, its x_n (or null), its stage start x⁰ (dissipation; or null) and the stage offsets of its
+/// local dofs (−1 for a prescribed dof).
 struct KindView {
   const std::vector<Eigen::VectorXd>* q = nullptr;
-  int first = 0;
   const std::vector<Eigen::VectorXd>* qLast = nullptr;
   const std::vector<Eigen::VectorXd>* q0 = nullptr;
   const std::vector<std::vector<int>>* stageDof = nullptr;
 };
 
-/// Ordered pair on a field carried by a kind's frame (A colliding: a kind's actor or a soft actor's
-/// faces; B collider: a kind's actor), evaluated by the one assembler of
-/// core/contact/kind_contact.h.
+/// Ordered pair on a field carried by a kind's frame (A colliding, B collider: indices into the
+/// kinds), evaluated by the one assembler of core/contact/kind_contact.h.
 struct KindPair {
-  bool aSoft = false;  ///< A is a soft actor (its face samples)
-  int a = -1, b = -1;  ///< A: index into the kinds' actors or the soft models; B: a kind's
+  int a = -1, b = -1;
   PairContactParams params;
 };
 
 class ContactPipeline {
  public:
   /// Precomputes per-actor data. `filter` (may be null: everything eligible) is read at every
-  /// evaluation. `softModels` (may be null) are the soft actors, seen by the filter as
-  /// softActor[s]; `kinds` (may be null) the generic layer's actors, seen as kindActor[k]. Both
+  /// evaluation. `kinds` (may be null) are the actors, seen by the filter as kindActor[k]; they
   /// must outlive the pipeline's use.
-  void Configure(const ContactFilter* filter, const std::vector<SoftBodyModel>* softModels,
-                 std::vector<int> softActor, const std::vector<const ActorKind*>* kinds,
+  void Configure(const ContactFilter* filter, const std::vector<const ActorKind*>* kinds,
                  std::vector<int> kindActor);
 
-  /// Π = Σ over eligible ordered pairs of the penalty energy at the views' configurations, plus
-  /// Δt_i Σ w R when `dissipation` is not null (it then needs the views' x⁰ and x_n). With x_n,
+  /// Π = Σ over eligible ordered pairs of the penalty energy at the view's configurations, plus
+  /// Δt_i Σ w R when `dissipation` is not null (it then needs the view's x⁰ and x_n). With x_n,
   /// the alignment rejection of the penalty is decided there (core/contact/kind_contact.h);
   /// without, at the current configuration. order 0: value; 1: also adds the penalty gradient
   /// into *gradient and the dissipative residual into *dissipationResidual (may alias
-  /// *gradient; at the views' stage dofs); 2: also appends Jacobian entries: each pair's penalty
+  /// *gradient; at the view's stage dofs); 2: also appends Jacobian entries: each pair's penalty
   /// Hessian plus, in ExplicitNormals mode, its dissipation Hessian, projected per `projection`;
   /// in the residual modes the dissipation Jacobian (not symmetric) is appended unprojected.
   /// Stencils of six-dof groups (rigid actors') append 6 × 6 blocks to *blocks (as if their
@@ -113,30 +95,29 @@ class ContactPipeline {
                   std::vector<Eigen::Triplet<double>>* triplets,
                   std::vector<DenseBlock6>* blocks, ContactStats* stats,
                   const DissipationContext* dissipation = nullptr,
-                  Eigen::VectorXd* dissipationResidual = nullptr, const SoftView* soft = nullptr,
+                  Eigen::VectorXd* dissipationResidual = nullptr,
                   const KindView* kinds = nullptr);
 
   /// Step limits of Newton's global phase: (*kindAlpha)[k] <= 1 the largest fraction of kind k's
   /// move from `now` to `next` that the pairs it is part of allow (StepLimitSink: no sample's
   /// depth more than doubles, or reaches ε/2), both sides moving by the same fraction (1 for
-  /// kinds without such a pair). Pairs with soft actors impose no limit. Pairs are found at
+  /// kinds without such a pair). Pairs with a kind that refuses step limits (ActorKind::
+  /// Shortcuts) and pairs on a tet field impose none. Pairs are found at
   /// `next`; evaluated in parallel, reduced by min.
   void StepLimits(const KindView& now, const KindView& next, std::vector<double>* kindAlpha);
 
-  /// Every active contact sample at the views' configurations (serial; for reporting). Records
-  /// carry actor indices (see Configure) and, for soft colliding actors, the boundary face. With
-  /// a stage's `dissipation` (and the views' x⁰, x_n), as Evaluate takes them, each record
-  /// carries its dissipation traction too; pairs on a soft collider's field report their normal
-  /// traction only.
-  void CollectSamples(std::vector<ContactSampleRecord>* records, const SoftView* soft = nullptr,
-                      const KindView* kinds = nullptr,
+  /// Every active contact sample at the view's configurations (serial; for reporting). Records
+  /// carry actor indices (see Configure) and, for samples on a face, the face. With a stage's
+  /// `dissipation` (and the view's x⁰, x_n), as Evaluate takes them, each record carries its
+  /// dissipation traction too; pairs on a tet field report their normal traction only.
+  void CollectSamples(std::vector<ContactSampleRecord>* records, const KindView* kinds = nullptr,
                       const DissipationContext* dissipation = nullptr);
 
   /// The last Evaluate's pairs by kind (StageProblem::LastSplit): each pair's penalty and
   /// dissipation values, as Evaluate summed them, added to (*share)[k] of its first dynamic kind
   /// k (some tangent dof not prescribed), and each pair of two dynamic kinds with an active
   /// sample (penalty or dissipation) appended to *joins as (colliding, collider). False, with
-  /// nothing added, if that evaluation had pairs with soft actors (not split) or the pairs
+  /// nothing added, if that evaluation had pairs on a tet field (not split) or the pairs
   /// changed since (StepLimits).
   bool SplitLastEvaluation(std::vector<double>* share,
                            std::vector<std::pair<int, int>>* joins) const;
@@ -151,7 +132,6 @@ class ContactPipeline {
     std::vector<DenseBlock6>* blocks = nullptr;
     const DissipationContext* dissipation = nullptr;
     Eigen::VectorXd* dissipationResidual = nullptr;
-    const SoftView* soft = nullptr;
     const KindView* kinds = nullptr;
     bool potential = true;   ///< no dissipation, or ExplicitNormals
     bool isotropic = false;  ///< DissipationSetup::isotropicFrictionHessian
@@ -160,19 +140,15 @@ class ContactPipeline {
   /// and *st and scattered into the request's outputs.
   void EvaluateOnSoftPairs(const Request& q, double* energy, ContactStats* st);
   void EvaluateKindPairs(const Request& q, double* energy, ContactStats* st);
-  void FindPairs(const SoftView* soft, const KindView* kinds);
+  void FindPairs(const KindView* kinds);
   // The generic layer's ordered pair (a, b) when the roles, the filter and the motion allow it.
   void ConsiderKindPair(int a, int b);
-  // Soft actor s colliding on the field of kind b, when the roles and the filter allow it.
-  void ConsiderSoftPair(int s, int b);
-  // Kind k's sample bodies (one pair per body) and own samples (one pair) colliding on soft
-  // actor b's Sdf field, or on kind b's tet field (bKind), when the roles and the filter allow it.
-  void ConsiderKindOnSoft(int k, int b, bool bKind = false);
+  // Kind k's sample bodies (one pair per body) and own samples (one pair) colliding on kind b's
+  // tet field, when the roles and the filter allow it.
+  void ConsiderKindOnTetField(int k, int b);
   // The colliding side's samples of a kind pair that can contribute on its collider side B.
   // kindSides_ and kindBodies_ at the request's configurations, for the kinds of kindPairs_.
   void FormKindSides(const Request& q);
-  // Soft actor s's side of a pair at the view's positions (dofOffset 0 without the view's).
-  SoftPairInput SoftInputOf(const SoftView& soft, int s) const;
   void GatherKindPairSamples(const Request& q, const KindPair& kp, const FrameSide& B,
                              const DissipationSetup* setup, SampleSink* sink) const;
   // The kind pairs' tested samples (the colliding sides' counts): whether a sweep pays for
@@ -183,18 +159,14 @@ class ContactPipeline {
                              const DissipationContext& dissipation,
                              bool isotropicFriction) const;
   /// A stencil pair's reduction: its counts and energies into *st and *energy, and its stencils
-  /// scattered into the request's outputs. Stencils that carry their own blocks
-  /// (ContactStencil::blocks > 0: the kind pairs') are scattered by those; a pair on a soft
-  /// collider b's field by A's face nodes (aSoft: soft actor a) or the sample body's [δp, δθ]
-  /// offsets `aOffs`, and b's tet nodes.
+  /// scattered into the request's outputs by the blocks they carry (ContactStencil::blocks).
   template <typename Stencils>
-  void ReducePair(const Request& q, const Stencils& r, bool aSoft, int a, int b, double* energy,
-                  ContactStats* st, const int* aOffs = nullptr) const;
-  // The two sides of a pair on a soft collider (the locators must be built); a kind's sample
-  // body's pose and stage start are formed in *pose and *start (from the kinds' view; its x⁰
-  // where `kindStart`, as with dissipation), which must outlive *a.
-  void SoftColliderInputs(const SoftColliderPair& pair, const SoftView& soft,
-                          const KindView* kinds, bool kindStart, RigidPose* pose,
+  void ReducePair(const Request& q, const Stencils& r, double* energy, ContactStats* st) const;
+  // The two sides of a pair on a tet field (the locators must be built); a kind's sample body's
+  // pose and stage start are formed in *pose and *start (from the kinds' view; its x⁰ where
+  // `kindStart`, as with dissipation), which must outlive *a.
+  void SoftColliderInputs(const SoftColliderPair& pair, const KindView& kinds, bool kindStart,
+                          RigidPose* pose,
                           RigidStageStart* start, CollidingInput* a,
                           SoftColliderInput* b) const;
   // The stage offsets of kind k's sample body `body`'s [δp, δθ] (−1: prescribed).
@@ -205,17 +177,12 @@ class ContactPipeline {
   std::vector<std::pair<int, int>> overlaps_;
   OverlapCache overlapCache_;  // the broad phase's candidates, kept while the boxes stay inside
   std::vector<double> kindPairLimits_;
-  const std::vector<SoftBodyModel>* softModels_ = nullptr;
-  std::vector<int> softActor_;
   std::vector<SoftColliderPair> softColliderPairs_;
   std::vector<PairStencils> softColliderResults_;
-  std::vector<TetLocator> locators_, locatorsLast_;  // per soft actor
   std::vector<TetLocator> kindLocators_, kindLocatorsLast_;  // per kind with a tet field
-  // The point locators of the soft colliders' fields in softColliderPairs_ (x_n's too with
-  // `last`), soft actors' and kinds'.
-  void BuildLocators(const SoftView* soft, const KindView* kinds, bool last);
-  std::vector<double> softInflation_;
-  std::vector<int> dofs_;  // scratch: a face stencil's global dofs
+  std::vector<char> locatorBuilt_;                           // per kind: scratch of BuildLocators
+  // The point locators of the tet fields in softColliderPairs_ (x_n's too with `last`).
+  void BuildLocators(const KindView& kinds, bool last);
   const std::vector<const ActorKind*>* kinds_ = nullptr;
   std::vector<int> kindActor_;
   std::vector<double> kindInflation_;
@@ -253,7 +220,7 @@ class ContactPipeline {
     std::vector<PairSlipUse> use;
     std::vector<PairSlips> record;
   };
-  SlipLists slipLists_[3];  // indexed by SlipPairKind (Rigid: unused)
+  SlipLists slipLists_[2];  // indexed by SlipPairKind
   /// Sets slipLists_[kind].use for n pairs named by id(k) = (colliding, collider): buffers to
   /// record into or the records to read; left empty without slips in the context (plain
   /// simulation pays no per-pair work for them).

@@ -37,11 +37,10 @@ struct PairSlipUse {
   bool record = false;
 };
 
-/// The pair kinds of the contact pipeline.
-/// Rigid: two rigid bodies (model indices). OnSoft: on a soft collider's field. Kind: a pair on a
-/// frame's field, named by actor indices that run over the rigid models, then the kinds
-/// (models + k), then the soft actors (models + kinds + s).
-enum class SlipPairKind { Rigid = 0, OnSoft = 1, Kind = 2 };
+/// The pair kinds of the contact pipeline, named by the pipeline's kind indices. Kind: a pair on
+/// a frame's field (colliding a, collider b). OnSoft: on a tet field (colliding: the kind's own
+/// samples k, or its sample body b as k + K (b + 1) for K kinds; collider: the field's kind).
+enum class SlipPairKind { OnSoft = 0, Kind = 1 };
 
 /// One stage's record, pairs sorted by (kind, colliding, collider).
 class StageSlips {

@@ -79,7 +79,7 @@ Eigen::Vector3d Normalized(const Eigen::Vector3d& v) {
 /// the residual [A's part, −λ_a F⁻ᵀ g per tet node].
 struct CurrentModeSample {
   SamplePointMap kin;
-  // A: rigid (p, R, body point and normal) or soft (face nodes, barycentrics)
+  // A: rigid (p, R, body point and normal) or a face (its nodes, barycentrics)
   Eigen::Vector3d pA, XA, nBody;
   Eigen::Matrix3d RA;
   Eigen::Vector3d xs[3];
@@ -152,8 +152,7 @@ struct SamplePoint {
   double weight = 0.0;
   Eigen::Vector3d y, yn, y0;  // current, last, stage start [m]
   Eigen::Vector3d n, nn;      // A's outward normal now and at x_n (unit)
-  // A kind's sample: its face's nodes (a deforming face's normal) and its stage dof blocks
-  // (blocks 0: a rigid body's or a soft actor's sample, whose stencils the pipeline places).
+  // A deforming face's nodes (its normal moves with them), and the stage dof blocks of A.
   Eigen::Vector3d faceNodes[3];
   int blocks = 0;
   int offs[4] = {-1, -1, -1, -1};
@@ -183,22 +182,14 @@ struct OnSoftCollider {
   static bool inside(const Aabb& b, const Eigen::Vector3d& p) {
     return (p.array() >= b.min.array()).all() && (p.array() <= b.max.array()).all();
   }
-  /// A kept stencil for one sample's term (penalty, or dissipation); a kind's sample's carries
-  /// its blocks: A's, then the tet's four nodes.
+  /// A kept stencil for one sample's term (penalty, or dissipation), carrying its blocks: A's,
+  /// then the tet's four nodes.
   ContactStencil& newEntry(const SamplePoint& sp, int tet, bool dissipation) {
     ContactStencil& e = out->Slot(sp.face, tet, n, order);
     (dissipation ? e.dissipationActive : e.penaltyActive) = true;
     e.blocks = 0;
-    if (sp.blocks > 0) {
-      for (int b = 0; b < sp.blocks; ++b) e.offs[e.blocks++] = sp.offs[b];
-      for (int c = 0; c < 4; ++c) {
-        const int node = B.rest.tets[tet][c];
-        const int free = B.freeIndex[node];
-        e.offs[e.blocks++] = Bin.nodeDof ? (*Bin.nodeDof)[3 * node]
-                             : free < 0  ? -1
-                                         : Bin.dofOffset + 3 * free;
-      }
-    }
+    for (int b = 0; b < sp.blocks; ++b) e.offs[e.blocks++] = sp.offs[b];
+    for (int c = 0; c < 4; ++c) e.offs[e.blocks++] = (*Bin.nodeDof)[3 * B.rest.tets[tet][c]];
     out->Keep();
     return e;
   }
@@ -344,12 +335,8 @@ struct OnSoftCollider {
       cs.XA = sp.kin.r;
       cs.nBody = sp.n;
       AddResidualJacobian<18>(cs, w, &e.dissipationJacobian);
-    } else if (A.kind) {
-      for (int a = 0; a < 3; ++a) cs.xs[a] = sp.faceNodes[a];
-      AddResidualJacobian<21>(cs, w, &e.dissipationJacobian);
     } else {
-      const Eigen::Vector3i& F = A.soft->faces[sp.face];
-      for (int a = 0; a < 3; ++a) cs.xs[a] = A.x->segment<3>(3 * F[a]);
+      for (int a = 0; a < 3; ++a) cs.xs[a] = sp.faceNodes[a];
       AddResidualJacobian<21>(cs, w, &e.dissipationJacobian);
     }
   }
@@ -390,88 +377,59 @@ void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput
   if (A.kind) {
     const ActorKind& K = *A.kind;
     const Eigen::VectorXd& q = *A.x;
-    for (int k = 0; k < K.NumSamples(); ++k) {
-      const KindSample ks = K.Sample(k, q);
-      if (!CollidesOnSoftField(ks)) continue;
-      const KindSample last = A.xLast ? K.Sample(k, *A.xLast) : ks;
-      if (!inside(box, ks.y) && !(explicitNormals && inside(boxLast, last.y))) continue;
-      sp.key = k;
-      sp.kin = ks.map;
-      sp.y = ks.y;
-      sp.yn = last.y;
-      sp.y0 = A.x0 ? K.Sample(k, *A.x0).y : ks.y;
-      sp.n = ks.n;
-      sp.nn = last.n;
-      sp.weight = ks.weight;
-      sp.face = ks.face;
-      for (int a = 0; a < 3; ++a) sp.faceNodes[a] = ks.faceNodes[a];
-      sp.blocks = ks.Blocks();
-      for (int b = 0; b < sp.blocks; ++b) sp.offs[b] = (*A.stageDof)[ks.dof[b]];
-      eval.n = ks.map.Dofs() + 12;
-      eval.Process(sp);
-    }
-  } else if (A.rigid) {
-    const RigidBodyModel& M = *A.rigid;
-    const RigidPose& a = *A.pose;
-    const RigidPose& an = A.start ? A.start->last : a;
-    for (size_t k = 0; k < M.samples.size(); ++k) {
-      const SurfaceSample& s = M.samples[k];
-      sp.key = static_cast<int>(k);
-      sp.kin = SamplePointMap::Rigid(a.R * s.X);
-      sp.y = a.p + sp.kin.r;
-      sp.yn = an.p + an.R * s.X;
-      // Cheap rejection: a sample outside both boxes carries nothing.
-      if (!inside(box, sp.y) && !(explicitNormals && inside(boxLast, sp.yn))) continue;
-      sp.y0 = A.start ? Eigen::Vector3d(A.start->p + A.start->R * s.X) : sp.y;
-      if (Bin.nodeDof) {  // a kind B: the stencil carries the body's [δp, δθ]
-        sp.blocks = 2;
-        sp.offs[0] = A.bodyOffs[0];
-        sp.offs[1] = A.bodyOffs[1];
-      }
-      sp.n = a.R * s.normal;
-      sp.nn = an.R * s.normal;
-      sp.weight = s.weight;
-      sp.face = -1;
-      eval.Process(sp);
-    }
-  } else {
-    const SoftBodyModel& M = *A.soft;
-    const Eigen::VectorXd& x = *A.x;
-    const Eigen::VectorXd& xn = A.xLast ? *A.xLast : x;
-    for (size_t f = 0; f < M.faces.size(); ++f) {
-      const Eigen::Vector3i& F = M.faces[f];
-      Aabb fb;
-      for (int k = 0; k < 3; ++k) {
-        fb.Extend(Eigen::Vector3d(x.segment<3>(3 * F[k])));
-        fb.Extend(Eigen::Vector3d(xn.segment<3>(3 * F[k])));
-      }
-      if (!fb.Overlaps(box) && !fb.Overlaps(boxLast)) continue;
-      sp.n = SoftFaceNormal(M, x, static_cast<int>(f));
-      sp.nn = SoftFaceNormal(M, xn, static_cast<int>(f));
-      sp.face = static_cast<int>(f);
-      if (Bin.nodeDof) {  // a kind B: the stencil carries the face's three nodes
-        sp.blocks = 3;
-        for (int k = 0; k < 3; ++k) {
-          const int free = M.freeIndex[F[k]];
-          sp.offs[k] = free < 0 ? -1 : A.dofOffset + 3 * free;
-        }
-      }
-      for (int q = M.faceSampleBegin[f]; q < M.faceSampleBegin[f + 1]; ++q) {
-        const SoftSurfaceSample& s = M.samples[q];
-        sp.key = q;
-        sp.kin = SamplePointMap::Face(s.bary);
-        sp.y.setZero();
-        sp.yn.setZero();
-        sp.y0.setZero();
-        for (int k = 0; k < 3; ++k) {
-          sp.y += s.bary[k] * x.segment<3>(3 * F[k]);
-          sp.yn += s.bary[k] * xn.segment<3>(3 * F[k]);
-          sp.y0 += s.bary[k] * (A.x0 ? A.x0->segment<3>(3 * F[k]) : x.segment<3>(3 * F[k]));
-        }
-        sp.weight = s.weight;
+    const Eigen::VectorXd& qn = A.xLast ? *A.xLast : q;
+    // Culled by A's sample balls against B's boxes, then sample by sample; the box test on the
+    // current point comes before x_n's sample is formed.
+    auto near = [&](const Eigen::Vector3d& c, const Eigen::Vector3d& cLast, double r) {
+      return box.TouchesBall(c, r) || (explicitNormals && boxLast.TouchesBall(cLast, r));
+    };
+    K.ForEachSampleNear(q, qn, near, [&](int begin, int end) {
+      for (int k = begin; k < end; ++k) {
+        const KindSample ks = K.Sample(k, q);
+        if (!CollidesOnSoftField(ks)) continue;
+        const bool nowIn = inside(box, ks.y);
+        if (!nowIn && !explicitNormals) continue;
+        const KindSample last = A.xLast ? K.Sample(k, qn) : ks;
+        if (!nowIn && !inside(boxLast, last.y)) continue;
+        sp.key = k;
+        sp.kin = ks.map;
+        sp.y = ks.y;
+        sp.yn = last.y;
+        sp.y0 = A.x0 ? K.Sample(k, *A.x0).y : ks.y;
+        sp.n = ks.n;
+        sp.nn = last.n;
+        sp.weight = ks.weight;
+        sp.face = ks.face;
+        for (int a = 0; a < 3; ++a) sp.faceNodes[a] = ks.faceNodes[a];
+        sp.blocks = ks.Blocks();
+        for (int b = 0; b < sp.blocks; ++b) sp.offs[b] = (*A.stageDof)[ks.dof[b]];
+        eval.n = ks.map.Dofs() + 12;
         eval.Process(sp);
       }
-    }
+    });
+    return;
+  }
+  // A kind's sample body: the stencil carries the body's [δp, δθ].
+  const RigidBodyModel& M = *A.rigid;
+  const RigidPose& a = *A.pose;
+  const RigidPose& an = A.start ? A.start->last : a;
+  sp.blocks = 2;
+  sp.offs[0] = A.bodyOffs[0];
+  sp.offs[1] = A.bodyOffs[1];
+  sp.face = -1;
+  for (size_t k = 0; k < M.samples.size(); ++k) {
+    const SurfaceSample& s = M.samples[k];
+    sp.key = static_cast<int>(k);
+    sp.kin = SamplePointMap::Rigid(a.R * s.X);
+    sp.y = a.p + sp.kin.r;
+    sp.yn = an.p + an.R * s.X;
+    // Cheap rejection: a sample outside both boxes carries nothing.
+    if (!inside(box, sp.y) && !(explicitNormals && inside(boxLast, sp.yn))) continue;
+    sp.y0 = A.start ? Eigen::Vector3d(A.start->p + A.start->R * s.X) : sp.y;
+    sp.n = a.R * s.normal;
+    sp.nn = an.R * s.normal;
+    sp.weight = s.weight;
+    eval.Process(sp);
   }
 }
 

@@ -1,5 +1,5 @@
-// A soft actor as a collider (experimental, spec: "Contact Kinematics"): the grid SDF Φ_B of its
-// reference surface, mapped by the deformation. For a query point y the pullback X_B(y) is found
+// A soft body as a collider (experimental, spec: "Contact Kinematics"): the grid SDF Φ_B of its
+// reference surface, mapped by the deformation (a kind's tet field, ActorKind::TetCollider). For a query point y the pullback X_B(y) is found
 // in the deformed tet t that contains y and inverted through its affine map:
 //   β = Ds⁻¹ (y − x_0),  λ = (1 − Σβ, β),  X = X_0 + Dm β,   F = Ds Dm⁻¹,  F⁻¹ = Dm Ds⁻¹,
 // Ds, Dm the tet's deformed and reference edge matrices. Points in no tet are rejected. The
@@ -14,8 +14,8 @@
 // with L the 4 × 3 matrix of dλ/dr (rows of Ds⁻¹, row 0 minus their sum), r = dy − Σ λ_a dx_a.
 // The point y is then chained to the colliding actor A through its sample's SamplePointMap by
 // the one sample chain (core/contact/sample_chain.h, ChainToActor): a rigid sample y = p_A + R_A X_A
-// (6 dofs, with the rotation's curvature) or a soft face sample y = Σ b_a x_a (9 dofs). Each
-// active sample contributes one stencil [A's dofs, the 4 tet nodes of B].
+// (6 dofs, with the rotation's curvature) or a deforming face's sample y = Σ b_a x_a (9 dofs).
+// Each active sample contributes one stencil [A's dofs, the 4 tet nodes of B].
 //
 // Tet choice per term: the penalty uses the tet containing the current y (the pullback is
 // continuous across tets; its derivative jumps). Stage-start quantities (X⁰ for V_rel, X_n for
@@ -35,8 +35,9 @@
 
 namespace superdex {
 
-/// The collider B at one stage: positions now, at x_n and at the stage start, and point locators
-/// for the current and last configurations (built by the caller).
+/// The collider B at one stage, a kind's tet field (ActorKind::TetCollider): positions now, at
+/// x_n and at the stage start, point locators for the current and last configurations (built by
+/// the caller), and the stage dof of each of its local dofs (node a: 3a; −1 prescribed).
 struct SoftColliderInput {
   const SoftBodyModel* model = nullptr;
   const Eigen::VectorXd* x = nullptr;
@@ -44,27 +45,21 @@ struct SoftColliderInput {
   const Eigen::VectorXd* x0 = nullptr;     ///< null: no dissipation
   const TetLocator* locator = nullptr;     ///< over x
   const TetLocator* locatorLast = nullptr; ///< over xLast (explicit normals)
-  int dofOffset = 0;  ///< a soft actor B's first stage dof (node a: dofOffset + 3 freeIndex[a])
-  /// A kind B (ActorKind::TetCollider): the stage dof of each of its local dofs (node a: 3a);
-  /// its stencils then carry their blocks. Null: a soft actor B.
   const std::vector<int>* nodeDof = nullptr;
 };
 
-/// The colliding actor A: a rigid body (pose, stage start), a soft actor (positions x), or a
-/// kind's own samples (ActorKind::Sample at q = x, x_n = xLast, x⁰ = x0; their local dofs at the
-/// stage dofs `stageDof`). A kind's sample takes part only with a colliding normal that is a rigid
-/// map's or a deforming face's (KindSample::faceNormal); others are skipped.
+/// The colliding actor A: a kind's sample body (a rigid body's pose and stage start, its [δp, δθ]
+/// at the stage dofs bodyOffs), or a kind's own samples (ActorKind::Sample at q = x, x_n = xLast,
+/// x⁰ = x0; their local dofs at the stage dofs `stageDof`). A kind's sample takes part only with a
+/// colliding normal that is a rigid map's or a deforming face's (KindSample::faceNormal); others
+/// are skipped.
 struct CollidingInput {
   const RigidBodyModel* rigid = nullptr;
   const RigidPose* pose = nullptr;
   const RigidStageStart* start = nullptr;  ///< rigid A's x⁰ and x_n (null: the pose)
-  const SoftBodyModel* soft = nullptr;
+  int bodyOffs[2] = {-1, -1};
   const ActorKind* kind = nullptr;
   const std::vector<int>* stageDof = nullptr;  ///< kind A
-  /// Where the stencils carry their blocks (a kind B): a rigid A's [δp, δθ] stage offsets, a soft
-  /// A's first stage dof (node a: dofOffset + 3 freeIndex[a]).
-  int bodyOffs[2] = {-1, -1};
-  int dofOffset = 0;
   const Eigen::VectorXd* x = nullptr;
   const Eigen::VectorXd* xLast = nullptr;
   const Eigen::VectorXd* x0 = nullptr;
@@ -77,9 +72,9 @@ inline bool CollidesOnSoftField(const KindSample& s) {
 
 /// Penalty (and, with `dissipation`, the stage-discrete dissipation) of A's samples against the
 /// soft collider B. order 0/1/2 as elsewhere. One stencil per active sample and term (penalty or
-/// dissipation) on [A's dofs (6 rigid | 9 soft face | a kind's sample map's), B's tet (12)],
-/// unprojected; a kind A's or a kind B's stencils carry their blocks (ContactStencil::blocks,
-/// offs: A's, then B's four nodes). `records` (order 0) collects active penalty samples.
+/// dissipation) on [A's dofs (6 rigid | 9 face | a kind's sample map's), B's tet (12)],
+/// unprojected, carrying its blocks (ContactStencil::blocks, offs: A's, then B's four nodes).
+/// `records` (order 0) collects active penalty samples.
 void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput& B,
                                 const PenaltyParams& penalty, double maxAlignment,
                                 const DissipationSetup* dissipation, int order,

@@ -6,35 +6,26 @@
 
 namespace superdex {
 
-SceneStageProblem::SceneStageProblem(int numDofs, double dt, const Eigen::Vector3d& gravity,
-                                     ContactPipeline* contact, const SoftStage& soft,
-                                     std::vector<Eigen::VectorXd>* softX,
+SceneStageProblem::SceneStageProblem(int numDofs, double dt, ContactPipeline* contact,
+                                     const KindStage& stage, std::vector<Eigen::VectorXd>* x,
                                      const StageDissipation& dissipation,
                                      StageWorkspace* workspace)
     : numDofs_(numDofs),
       dt_(dt),
-      gravity_(gravity),
       contact_(contact),
       ownWorkspace_(workspace ? nullptr : std::make_unique<StageWorkspace>()),
       ws_(workspace ? workspace : ownWorkspace_.get()),
-      softTrial_(ws_->softTrial),
+      trial_(ws_->trial),
       scratch_(ws_->scratch),
       pendingStep_(ws_->pendingStep),
       triplets_(ws_->triplets),
       dissipation_(dissipation),
-      soft_(softX && !soft.Empty() ? &soft : nullptr),
-      softX_(soft_ ? softX : nullptr) {
-  if (soft_) {
-    softTrial_ = *softX_;
-    if (ws_->soft.size() < soft_->targets.size()) ws_->soft.resize(soft_->targets.size());
-    // The soft nodes' dofs: one range, the last dofs (Scene::Prepare).
-    softBegin_ = softEnd_ = numDofs_;
-    for (size_t s = 0; s < soft_->targets.size(); ++s)
-      if ((*soft_->models)[s].numFree > 0) softBegin_ = std::min(softBegin_, soft_->dofOffset[s]);
-  }
+      stage_(x && stage.Size() > 0 ? &stage : nullptr),
+      x_(stage_ ? x : nullptr) {
+  if (stage_) trial_ = *x_;
   context_ = ContextOf(dissipation_, dt_);
-  if (soft_) {  // the kinds' loads at the stage's time
-    const KindStage& ks = soft_->kinds;
+  if (stage_) {  // the kinds' loads at the stage's time
+    const KindStage& ks = *stage_;
     for (size_t k = 0; k < ks.Size(); ++k) {
       Eigen::VectorXd f;
       if (!(*ks.kinds)[k]->StageLoad(ks.data[k], &f) || !f.any()) continue;
@@ -51,14 +42,13 @@ SceneStageProblem::SceneStageProblem(int numDofs, double dt, const Eigen::Vector
   ws_->jacobianAssembly.SetKeepSuperset(keepSuperset);
 }
 
-KindView KindViewOf(const SoftStage& soft, const std::vector<Eigen::VectorXd>& x) {
+KindView KindViewOf(const KindStage& stage, const std::vector<Eigen::VectorXd>& x) {
   KindView kinds;
-  if (soft.kinds.Size() == 0) return kinds;
+  if (stage.Size() == 0) return kinds;
   kinds.q = &x;
-  kinds.first = static_cast<int>(soft.targets.size());
-  kinds.qLast = &soft.kinds.qLast;
-  kinds.q0 = &soft.kinds.q0;
-  kinds.stageDof = &soft.kinds.stageDof;
+  kinds.qLast = &stage.qLast;
+  kinds.q0 = &stage.q0;
+  kinds.stageDof = &stage.stageDof;
   return kinds;
 }
 
@@ -73,7 +63,7 @@ DissipationContext ContextOf(const StageDissipation& dissipation, double dt) {
 }
 
 const Eigen::VectorXd& SceneStageProblem::KindLocal(size_t k, const Eigen::VectorXd& d) const {
-  const std::vector<int>& dof = soft_->kinds.stageDof[k];
+  const std::vector<int>& dof = stage_->stageDof[k];
   Eigen::VectorXd& local = ws_->kindDelta;
   local.resize(static_cast<Eigen::Index>(dof.size()));
   for (size_t i = 0; i < dof.size(); ++i) local[i] = dof[i] >= 0 ? d[dof[i]] : 0.0;
@@ -87,24 +77,14 @@ bool SceneStageProblem::DissipationIsPotential() const {
 }
 
 void SceneStageProblem::Retract(const Eigen::VectorXd& d, std::vector<Eigen::VectorXd>* out) const {
-  if (!soft_) return;
-  for (size_t s = 0; s < soft_->targets.size(); ++s) {
-    const SoftBodyModel& m = (*soft_->models)[s];
-    Eigen::VectorXd& x = (*out)[s];
-    x = (*softX_)[s];
-    for (int a = 0; a < m.NumNodes(); ++a)
-      if (m.freeIndex[a] >= 0)
-        x.segment<3>(3 * a) += d.segment<3>(soft_->dofOffset[s] + 3 * m.freeIndex[a]);
-  }
-  const size_t ns = soft_->targets.size();
-  for (size_t k = 0; k < soft_->kinds.Size(); ++k)
-    (*soft_->kinds.kinds)[k]->Retract((*softX_)[ns + k], KindLocal(k, d), &(*out)[ns + k]);
+  if (!stage_) return;
+  for (size_t k = 0; k < stage_->Size(); ++k)
+    (*stage_->kinds)[k]->Retract((*x_)[k], KindLocal(k, d), &(*out)[k]);
 }
 
-double SceneStageProblem::EvaluateAt(const std::vector<Eigen::VectorXd>& softX, int order,
+double SceneStageProblem::EvaluateAt(const std::vector<Eigen::VectorXd>& x, int order,
                                      PsdProjection projection, Eigen::VectorXd* gPot,
-                                     Eigen::VectorXd* rDiss, ContactStats* stats,
-                                     double* minDetF) {
+                                     Eigen::VectorXd* rDiss, ContactStats* stats) {
   double value = 0.0;
   if (order >= 1) {
     gPot->setZero(numDofs_);
@@ -113,40 +93,23 @@ double SceneStageProblem::EvaluateAt(const std::vector<Eigen::VectorXd>& softX, 
   triplets_.clear();
   ws_->blocks.clear();
   ws_->kindValue.clear();
-  if (minDetF) *minDetF = INFINITY;
-  if (!soft_) {
+  if (!stage_) {
     ws_->blockPosition = 0;
     if (stats) *stats = ContactStats();
     return value;
   }
-  double minDet = INFINITY;
-  for (size_t s = 0; s < soft_->targets.size(); ++s) {
-    double md = INFINITY;
-    value += EvaluateSoftStageTerms((*soft_->models)[s], soft_->targets[s], dt_, gravity_,
-                                    softX[s], order, projection, soft_->dofOffset[s], gPot,
-                                    &triplets_, &ws_->soft[s], &md);
-    minDet = std::min(minDet, md);
-  }
-  if (minDetF) *minDetF = minDet;
-  value += EvaluateKindTerms(softX, order, projection, gPot, rDiss);
-  SoftView view;
-  view.x = &softX;
-  view.xLast = &soft_->xLast;
-  view.x0 = &soft_->x0;
-  view.dofOffset = &soft_->dofOffset;
+  value += EvaluateKindTerms(x, order, projection, gPot, rDiss);
   ws_->blockPosition = triplets_.size();
-  const KindView kinds = KindViewOf(*soft_, softX);
+  const KindView kinds = KindViewOf(*stage_, x);
   value += contact_->Evaluate(order, projection, gPot, &triplets_, &ws_->blocks, stats,
-                              dissipation_.enabled ? &context_ : nullptr, rDiss, &view,
-                              kinds.q ? &kinds : nullptr);
+                              dissipation_.enabled ? &context_ : nullptr, rDiss, &kinds);
   return value;
 }
 
-double SceneStageProblem::EvaluateKindTerms(const std::vector<Eigen::VectorXd>& softX, int order,
+double SceneStageProblem::EvaluateKindTerms(const std::vector<Eigen::VectorXd>& x, int order,
                                             PsdProjection projection, Eigen::VectorXd* gPot,
                                             Eigen::VectorXd* rDiss) {
-  const KindStage& ks = soft_->kinds;
-  const size_t ns = soft_->targets.size();
+  const KindStage& ks = *stage_;
   double value = 0.0;
   Eigen::VectorXd& g = ws_->kindGradient;
   std::vector<Eigen::Triplet<double>>& H = ws_->kindHessian;
@@ -157,13 +120,13 @@ double SceneStageProblem::EvaluateKindTerms(const std::vector<Eigen::VectorXd>& 
     const std::vector<int>& dof = ks.stageDof[k];
     if (order >= 1) g.setZero(kind.NumTangentDofs());
     H.clear();
-    kindValue[k] = kind.StageEnergy(ks.data[k], softX[ns + k], order, projection,
+    kindValue[k] = kind.StageEnergy(ks.data[k], x[k], order, projection,
                                     order >= 1 ? &g : nullptr, order >= 2 ? &H : nullptr);
     if (!kindLoad_.empty() && kindLoad_[k].size() > 0) {
       const Eigen::VectorXd& f = kindLoad_[k];
       kindValue[k] -= kindLoadWork_[k];
-      if (&softX != softX_) {  // at the current iterate the tangent step is zero exactly
-        kind.TangentBetween((*softX_)[ns + k], softX[ns + k], &ws_->kindDelta);
+      if (&x != x_) {  // at the current iterate the tangent step is zero exactly
+        kind.TangentBetween((*x_)[k], x[k], &ws_->kindDelta);
         kindValue[k] -= f.dot(ws_->kindDelta);
       }
       if (order >= 1)
@@ -184,21 +147,20 @@ double SceneStageProblem::EvaluateKindTerms(const std::vector<Eigen::VectorXd>& 
 }
 
 double SceneStageProblem::Value(const Eigen::VectorXd& d) {
-  Retract(d, &softTrial_);
-  return EvaluateAt(softTrial_, 0, PsdProjection::None, nullptr, nullptr);
+  Retract(d, &trial_);
+  return EvaluateAt(trial_, 0, PsdProjection::None, nullptr, nullptr);
 }
 
 double SceneStageProblem::Evaluate(Eigen::VectorXd* gradient,
                                    Eigen::SparseMatrix<double>* hessian,
                                    PsdProjection projection) {
-  return ValueAndDerivatives(SoftPositions(), gradient, hessian, projection, &lastStats_,
-                             &lastMinDetF_);
+  return ValueAndDerivatives(Positions(), gradient, hessian, projection, &lastStats_);
 }
 
 void SceneStageProblem::BeginTrial(const Eigen::VectorXd& d) {
-  // softTrial_ is what Commit(d) installs (the same Retract), so the sums evaluated there are
+  // trial_ is what Commit(d) installs (the same Retract), so the sums evaluated there are
   // those that Evaluate and EvaluateResidual form after it, bit for bit.
-  Retract(d, &softTrial_);
+  Retract(d, &trial_);
   pendingStep_ = d;
   hasPending_ = true;
 }
@@ -208,48 +170,45 @@ bool SceneStageProblem::EvaluateAtStep(const Eigen::VectorXd& d, double* value,
                                        Eigen::SparseMatrix<double>* hessian,
                                        PsdProjection projection) {
   BeginTrial(d);
-  *value = ValueAndDerivatives(softTrial_, gradient, hessian, projection, &pendingStats_,
-                               &pendingMinDetF_);
+  *value = ValueAndDerivatives(trial_, gradient, hessian, projection, &pendingStats_);
   return true;
 }
 
-double SceneStageProblem::ValueAndDerivatives(const std::vector<Eigen::VectorXd>& softX,
+double SceneStageProblem::ValueAndDerivatives(const std::vector<Eigen::VectorXd>& x,
                                               Eigen::VectorXd* gradient,
                                               Eigen::SparseMatrix<double>* hessian,
-                                              PsdProjection projection, ContactStats* stats,
-                                              double* minDetF) {
-  const double value =
-      EvaluateAt(softX, hessian ? 2 : 1, projection, gradient, gradient, stats, minDetF);
+                                              PsdProjection projection, ContactStats* stats) {
+  const double value = EvaluateAt(x, hessian ? 2 : 1, projection, gradient, gradient, stats);
   if (hessian)
     ws_->hessianAssembly.Assemble(triplets_, ws_->blocks, ws_->blockPosition, numDofs_, hessian);
   return value;
 }
 
 void SceneStageProblem::Residual(const Eigen::VectorXd& d, Eigen::VectorXd* r) {
-  Retract(d, &softTrial_);
-  EvaluateAt(softTrial_, 1, PsdProjection::None, r, r);
+  Retract(d, &trial_);
+  EvaluateAt(trial_, 1, PsdProjection::None, r, r);
 }
 
 void SceneStageProblem::EvaluateResidual(Eigen::VectorXd* r, Eigen::SparseMatrix<double>* J) {
-  ResidualAndJacobian(SoftPositions(), r, J, &lastStats_, &lastMinDetF_);
+  ResidualAndJacobian(Positions(), r, J, &lastStats_);
 }
 
 bool SceneStageProblem::EvaluateResidualAtStep(const Eigen::VectorXd& d, Eigen::VectorXd* r,
                                                Eigen::SparseMatrix<double>* J) {
   BeginTrial(d);
-  ResidualAndJacobian(softTrial_, r, J, &pendingStats_, &pendingMinDetF_);
+  ResidualAndJacobian(trial_, r, J, &pendingStats_);
   return true;
 }
 
-void SceneStageProblem::ResidualAndJacobian(const std::vector<Eigen::VectorXd>& softX,
+void SceneStageProblem::ResidualAndJacobian(const std::vector<Eigen::VectorXd>& x,
                                             Eigen::VectorXd* r, Eigen::SparseMatrix<double>* J,
-                                            ContactStats* stats, double* minDetF) {
-  EvaluateAt(softX, J ? 2 : 1, PsdProjection::None, r, &scratch_, stats, minDetF);
+                                            ContactStats* stats) {
+  EvaluateAt(x, J ? 2 : 1, PsdProjection::None, r, &scratch_, stats);
   if (J) {
     // A kind's rotation-like dofs see its potential's generalized force change along the
     // retraction (a rigid actor: (H − ½[τ]×) δθ, H assembled above); the dissipation Jacobian of
     // the residual modes is already that of the world torque.
-    if (soft_) AddKindJacobianCorrections(*r, DissipationIsPotential(), softX);
+    if (stage_) AddKindJacobianCorrections(*r, DissipationIsPotential(), x);
     ws_->jacobianAssembly.Assemble(triplets_, ws_->blocks, ws_->blockPosition, numDofs_, J);
   }
   *r += scratch_;
@@ -257,9 +216,8 @@ void SceneStageProblem::ResidualAndJacobian(const std::vector<Eigen::VectorXd>& 
 
 void SceneStageProblem::AddKindJacobianCorrections(const Eigen::VectorXd& r,
                                                    bool dissipationIsPotential,
-                                                   const std::vector<Eigen::VectorXd>& softX) {
-  const KindStage& ks = soft_->kinds;
-  const size_t ns = soft_->targets.size();
+                                                   const std::vector<Eigen::VectorXd>& x) {
+  const KindStage& ks = *stage_;
   std::vector<Eigen::Triplet<double>>& local = ws_->kindHessian;
   for (size_t k = 0; k < ks.Size(); ++k) {
     const std::vector<int>& dof = ks.stageDof[k];
@@ -271,7 +229,7 @@ void SceneStageProblem::AddKindJacobianCorrections(const Eigen::VectorXd& r,
     if (dissipationIsPotential && !kindLoad_.empty() && kindLoad_[k].size() > 0)
       residual += kindLoad_[k];
     local.clear();
-    (*ks.kinds)[k]->AddResidualJacobianCorrection(softX[ns + k], residual, &local);
+    (*ks.kinds)[k]->AddResidualJacobianCorrection(x[k], residual, &local);
     for (const Eigen::Triplet<double>& t : local) {
       const int row = dof[t.row()], col = dof[t.col()];
       if (row >= 0 && col >= 0) triplets_.emplace_back(row, col, t.value());
@@ -281,23 +239,23 @@ void SceneStageProblem::AddKindJacobianCorrections(const Eigen::VectorXd& r,
 
 void SceneStageProblem::SetChartOrigin() {
   std::fill(kindLoadWork_.begin(), kindLoadWork_.end(), 0.0);  // the chart's solvers read residuals alone
-  if (soft_) softOrigin_ = *softX_;
+  if (stage_) origin_ = *x_;
 }
 
 void SceneStageProblem::MoveInChart(const Eigen::VectorXd& d) {
-  if (!soft_) return;
+  if (!stage_) return;
   // Each vector state retracts from the chart's origin (soft nodes: the identity).
-  *softX_ = softOrigin_;
-  Retract(d, &softTrial_);
-  *softX_ = softTrial_;
+  *x_ = origin_;
+  Retract(d, &trial_);
+  *x_ = trial_;
 }
 
 Eigen::MatrixXd SceneStageProblem::ChartTangentMap(const Eigen::VectorXd& d) const {
   Eigen::MatrixXd T = Eigen::MatrixXd::Identity(numDofs_, numDofs_);
-  if (!soft_) return T;
-  for (size_t k = 0; k < soft_->kinds.Size(); ++k) {
-    const std::vector<int>& dof = soft_->kinds.stageDof[k];
-    const Eigen::MatrixXd Tk = (*soft_->kinds.kinds)[k]->ChartTangentMap(KindLocal(k, d));
+  if (!stage_) return T;
+  for (size_t k = 0; k < stage_->Size(); ++k) {
+    const std::vector<int>& dof = stage_->stageDof[k];
+    const Eigen::MatrixXd Tk = (*stage_->kinds)[k]->ChartTangentMap(KindLocal(k, d));
     for (size_t i = 0; i < dof.size(); ++i)
       for (size_t j = 0; j < dof.size(); ++j)
         if (dof[i] >= 0 && dof[j] >= 0) T(dof[i], dof[j]) = Tk(i, j);
@@ -306,29 +264,26 @@ Eigen::MatrixXd SceneStageProblem::ChartTangentMap(const Eigen::VectorXd& d) con
 }
 
 void SceneStageProblem::Commit(const Eigen::VectorXd& d) {
-  Retract(d, &softTrial_);
+  Retract(d, &trial_);
   // The loads' work along the committed iterates, as EvaluateKindTerms evaluates the trial's.
   if (!kindLoad_.empty()) {
-    const size_t ns = soft_->targets.size();
-    for (size_t k = 0; k < kindLoad_.size(); ++k) {
+      for (size_t k = 0; k < kindLoad_.size(); ++k) {
       if (kindLoad_[k].size() == 0) continue;
-      (*soft_->kinds.kinds)[k]->TangentBetween((*softX_)[ns + k], softTrial_[ns + k],
+      (*stage_->kinds)[k]->TangentBetween((*x_)[k], trial_[k],
                                                &ws_->kindDelta);
       kindLoadWork_[k] += kindLoad_[k].dot(ws_->kindDelta);
     }
   }
-  if (soft_) *softX_ = softTrial_;
+  if (stage_) *x_ = trial_;
   if (hasPending_ && pendingStep_ == d) {
     lastStats_ = pendingStats_;
-    lastMinDetF_ = pendingMinDetF_;
   }
   hasPending_ = false;
 }
 
 bool SceneStageProblem::LastSplit(StageSplit* split) {
   // Units: one per kind.
-  if (soft_ && !soft_->targets.empty()) return false;  // soft actors: not split
-  const KindStage* kinds = soft_ && soft_->kinds.Size() > 0 ? &soft_->kinds : nullptr;
+  const KindStage* kinds = stage_ && stage_->Size() > 0 ? stage_ : nullptr;
   const size_t nk = kinds ? kinds->Size() : 0;
   for (size_t k = 0; k < nk; ++k)  // a kind that refuses it keeps the stage whole
     if (!(*kinds->kinds)[k]->Shortcuts().splitParts) return false;
@@ -351,13 +306,12 @@ bool SceneStageProblem::LastSplit(StageSplit* split) {
 }
 
 bool SceneStageProblem::TrustStep(Eigen::VectorXd* d) {
-  if (!soft_) return false;
+  if (!stage_) return false;
   bool changed = false;
-  const size_t ns = soft_->targets.size();
-  for (size_t k = 0; k < soft_->kinds.Size(); ++k) {
-    const double f = (*soft_->kinds.kinds)[k]->TrustFraction((*softX_)[ns + k], KindLocal(k, *d));
+  for (size_t k = 0; k < stage_->Size(); ++k) {
+    const double f = (*stage_->kinds)[k]->TrustFraction((*x_)[k], KindLocal(k, *d));
     if (!(f < 1.0)) continue;
-    for (int i : soft_->kinds.stageDof[k])
+    for (int i : stage_->stageDof[k])
       if (i >= 0) (*d)[i] *= f;
     changed = true;
   }
@@ -365,15 +319,15 @@ bool SceneStageProblem::TrustStep(Eigen::VectorXd* d) {
 }
 
 bool SceneStageProblem::LimitStep(Eigen::VectorXd* d) {
-  if (!contact_ || !soft_ || soft_->kinds.Size() == 0) return false;
+  if (!contact_ || !stage_ || stage_->Size() == 0) return false;
   std::vector<double>& kindLimits = ws_->kindLimits;
-  Retract(*d, &softTrial_);
-  const KindView now = KindViewOf(*soft_, *softX_), next = KindViewOf(*soft_, softTrial_);
+  Retract(*d, &trial_);
+  const KindView now = KindViewOf(*stage_, *x_), next = KindViewOf(*stage_, trial_);
   contact_->StepLimits(now, next, &kindLimits);
   bool changed = false;
-  for (size_t k = 0; k < soft_->kinds.Size(); ++k) {
+  for (size_t k = 0; k < stage_->Size(); ++k) {
     if (kindLimits[k] >= 1.0) continue;
-    for (int i : soft_->kinds.stageDof[k])
+    for (int i : stage_->stageDof[k])
       if (i >= 0) (*d)[i] *= kindLimits[k];
     changed = true;
   }
@@ -381,33 +335,27 @@ bool SceneStageProblem::LimitStep(Eigen::VectorXd* d) {
 }
 
 void SceneStageProblem::BlockLayout(DofBlockLayout* layout) const {
-  // In dof order: each kind's free dofs in blocks of its DofBlockSize, then the free soft nodes
-  // (3 each).
+  // In dof order: each kind's free dofs in blocks of its DofBlockSize.
   std::vector<int>& sizes = layout->sizes;
   sizes.clear();
-  if (!soft_) return;
-  for (size_t k = 0; k < soft_->kinds.Size(); ++k) {
+  if (!stage_) return;
+  for (size_t k = 0; k < stage_->Size(); ++k) {
     int free = 0;
-    for (int i : soft_->kinds.stageDof[k]) free += i >= 0;
-    const int size = (*soft_->kinds.kinds)[k]->DofBlockSize();
+    for (int i : stage_->stageDof[k]) free += i >= 0;
+    const int size = (*stage_->kinds)[k]->DofBlockSize();
     if (free % size != 0) {  // blocks of 3 then; 1×1 if those do not fit
       sizes.clear();
       return;
     }
     sizes.insert(sizes.end(), free / size, size);
   }
-  for (size_t s = 0; s < soft_->targets.size(); ++s)
-    sizes.insert(sizes.end(), (*soft_->models)[s].numFree, 3);
 }
 
 double SceneStageProblem::StepNorm(const Eigen::VectorXd& d) const {
   double norm = 0.0;
-  if (!soft_) return norm;
-  // soft nodes [m]
-  norm = std::max(norm, d.segment(softBegin_, softEnd_ - softBegin_).lpNorm<Eigen::Infinity>());
-  const size_t ns = soft_->targets.size();
-  for (size_t k = 0; k < soft_->kinds.Size(); ++k)
-    norm = std::max(norm, (*soft_->kinds.kinds)[k]->StepLength((*softX_)[ns + k], KindLocal(k, d)));
+  if (!stage_) return norm;
+  for (size_t k = 0; k < stage_->Size(); ++k)
+    norm = std::max(norm, (*stage_->kinds)[k]->StepLength((*x_)[k], KindLocal(k, d)));
   return norm;
 }
 

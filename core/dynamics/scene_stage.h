@@ -1,9 +1,9 @@
-// One implicit stage over the scene's soft actors and the generic layer's kinds (rigid actors
+// One implicit stage over the scene's actors (the generic layer's kinds: rigid and soft actors
 // among them), as a StageProblem for the optim/ solvers:
-//   Φ_i(q) = Σ_k Φ_kind,k(q_k)  +  Σ_s Φ_soft,s(x_s)  +  Π_contact(q)  +  Δt_i Σ w R(V_rel,i)   [J]
-// (Φ_kind: ActorKind::StageEnergy, inertia, gravity, internal energy and applied forces;
-// Φ_soft: core/model/soft_terms.h). Dofs: each kind's free tangent dofs in creation order (6 per
-// dynamic rigid actor, [δp, δθ]), then 3 per free soft node.
+//   Φ_i(q) = Σ_k Φ_kind,k(q_k)  +  Π_contact(q)  +  Δt_i Σ w R(V_rel,i)   [J]
+// (Φ_kind: ActorKind::StageEnergy, inertia, gravity, internal energy and applied forces; a soft
+// actor's: core/model/soft_terms.h). Dofs: each kind's free tangent dofs in creation order (6 per
+// dynamic rigid actor, [δp, δθ]; 3 per free soft node).
 // The dissipation term is an exact potential only with ExplicitNormals; in the other dissipation
 // modes the stage is the residual r = ∇(Φ without R) + Σ w J_Yᵀ ∂R/∂V
 // (core/contact/rigid_dissipation.h). A kind's generalized load f (ActorKind::StageLoad; a rigid
@@ -17,7 +17,6 @@
 
 #include "core/contact/contact_pipeline.h"
 #include "core/model/actor_kind.h"
-#include "core/model/soft_terms.h"
 #include "optim/stage_problem.h"
 #include "optim/triplet_assembly.h"
 
@@ -32,9 +31,9 @@ struct StageDissipation {
   bool recordSlips = false;
 };
 
-/// The generic layer's actors of a stage (core/model/actor_kind.h): the kinds, and per actor the
-/// stage offsets of its local dofs (−1 for a prescribed dof), its stage data and copies of its x⁰
-/// and x_n (contact view).
+/// The actors of a stage (core/model/actor_kind.h): the kinds, and per actor the stage offsets of
+/// its local dofs (−1 for a prescribed dof), its stage data and copies of its x⁰ and x_n (contact
+/// view). The stage's iterate x holds each actor's configuration q, in the same order.
 struct KindStage {
   const std::vector<const ActorKind*>* kinds = nullptr;
   std::vector<std::vector<int>> stageDof;
@@ -43,21 +42,8 @@ struct KindStage {
   size_t Size() const { return data.size(); }
 };
 
-/// The vector-state actors of a stage: the soft actors (models, their first dof, and per actor the
-/// stage data), then the generic layer's actors. The stage's vector iterate (softX) holds the soft
-/// actors' positions, then the kinds' configurations.
-struct SoftStage {
-  const std::vector<SoftBodyModel>* models = nullptr;
-  std::vector<int> dofOffset;
-  std::vector<SoftStageTarget> targets;
-  std::vector<Eigen::VectorXd> x0, xLast;  ///< copies of the targets' x⁰ and x_n (contact view)
-  KindStage kinds;
-  bool Empty() const { return targets.empty() && kinds.Size() == 0; }
-};
-
-/// The kinds' part of a contact evaluation at the vector iterate x (soft actors' positions, then
-/// the kinds' configurations); empty (q null) without kinds.
-KindView KindViewOf(const SoftStage& soft, const std::vector<Eigen::VectorXd>& x);
+/// The contact view of a stage at the iterate x; empty (q null) without actors.
+KindView KindViewOf(const KindStage& stage, const std::vector<Eigen::VectorXd>& x);
 
 /// The pipeline's dissipation data for a stage of step dt [s] (ContactPipeline::Evaluate).
 DissipationContext ContextOf(const StageDissipation& dissipation, double dt);
@@ -66,7 +52,7 @@ DissipationContext ContextOf(const StageDissipation& dissipation, double dt);
 /// Problems that share it must be used one after the other (a solve ends before the next
 /// problem's begins), as the stage solves are.
 struct StageWorkspace {
-  std::vector<Eigen::VectorXd> softTrial;  ///< the configuration s ⊕ d under evaluation
+  std::vector<Eigen::VectorXd> trial;      ///< the configuration s ⊕ d under evaluation
   std::vector<double> kindLimits;          ///< LimitStep's fractions per kind
   std::vector<double> kindValue;           ///< the last evaluation's stage energy per kind
   std::vector<double> splitValue;          ///< LastSplit's per-kind shares
@@ -75,7 +61,6 @@ struct StageWorkspace {
   std::vector<Eigen::Triplet<double>> triplets;
   std::vector<DenseBlock6> blocks;         ///< rigid pairs' 6 × 6 blocks (ContactPipeline)
   size_t blockPosition = 0;                ///< where in `triplets` the blocks stand
-  std::vector<SoftTermScratch> soft;
   Eigen::VectorXd kindGradient;                    ///< a kind's local gradient
   Eigen::VectorXd kindDelta;                       ///< a kind's local step (or residual)
   std::vector<Eigen::Triplet<double>> kindHessian; ///< a kind's local Hessian entries
@@ -86,12 +71,11 @@ struct StageWorkspace {
 
 class SceneStageProblem : public StageProblem {
  public:
-  /// A stage of step dt [s] over the actors of `soft` (their stage dofs numbered below numDofs)
-  /// at the vector iterate *softX (soft actors' node positions, then the kinds' configurations;
-  /// prescribed entries already at their stage values), updated in place by Commit.
-  SceneStageProblem(int numDofs, double dt, const Eigen::Vector3d& gravity,
-                    ContactPipeline* contact, const SoftStage& soft,
-                    std::vector<Eigen::VectorXd>* softX,
+  /// A stage of step dt [s] over the actors of `stage` (their stage dofs numbered below numDofs)
+  /// at the iterate *x (each actor's configuration; prescribed entries already at their stage
+  /// values), updated in place by Commit.
+  SceneStageProblem(int numDofs, double dt, ContactPipeline* contact, const KindStage& stage,
+                    std::vector<Eigen::VectorXd>* x,
                     const StageDissipation& dissipation = StageDissipation(),
                     StageWorkspace* workspace = nullptr);
 
@@ -104,7 +88,7 @@ class SceneStageProblem : public StageProblem {
   /// StageLoad (a rigid actor's applied torque).
   bool IsPotential() const override;
   /// Units are the kinds (one each); shares their stage energies plus the contact pairs' values
-  /// (ContactPipeline::SplitLastEvaluation). False with soft actors.
+  /// (ContactPipeline::SplitLastEvaluation). False where a kind refuses it (ActorKind::Shortcuts).
   bool LastSplit(StageSplit* split) override;
   void Residual(const Eigen::VectorXd& d, Eigen::VectorXd* r) override;
   /// J = ∂r/∂δ: the (unprojected) Hessian of the potential terms with the kinds' trivialization
@@ -122,37 +106,33 @@ class SceneStageProblem : public StageProblem {
   /// Each kind's Retract from the chart's origin (a rigid actor: p = p₀ + δp, R = exp([δθ]×) R₀).
   void MoveInChart(const Eigen::VectorXd& d) override;
   /// Block diagonal: each kind's ActorKind::ChartTangentMap (a rigid actor: I for δp, the left
-  /// Jacobian J_l(δθ) of SO(3) for δθ), I for soft nodes.
+  /// Jacobian J_l(δθ) of SO(3) for δθ; I for a vector kind).
   Eigen::MatrixXd ChartTangentMap(const Eigen::VectorXd& d) const override;
 
   /// Contact statistics of the last evaluation at the current iterate (Evaluate or
   /// EvaluateResidual), including the dissipative samples and the largest ‖T_C‖/(μ λ̂_n).
   const ContactStats& LastContactStats() const { return lastStats_; }
-  /// Smallest det F over the soft tets at the last Evaluate / EvaluateResidual (+∞ without).
-  double LastMinDetF() const { return lastMinDetF_; }
   /// Scales each kind's stage dofs by its ContactPipeline::StepLimits fraction (the move's sample
-  /// depths may at most double, or reach ε/2; core/contact/rigid_contact.h). Soft dofs are left
-  /// as they are.
+  /// depths may at most double, or reach ε/2; core/contact/rigid_contact.h).
   bool LimitStep(Eigen::VectorXd* d) override;
   /// Scales each kind's stage dofs by its ActorKind::TrustFraction (a rigid actor: no point within
-  /// its radius ρ moves more than kCorrectionTrust ρ). Soft dofs are left as they are.
+  /// its radius ρ moves more than kCorrectionTrust ρ; a vector kind: 1).
   bool TrustStep(Eigen::VectorXd* d) override;
   /// max over kinds of ActorKind::StepLength (a rigid actor: ‖δp‖∞ and ‖δθ‖ times its RMS
-  /// radius √(tr J / m)), and over soft nodes of ‖δx‖∞ [m].
+  /// radius √(tr J / m); soft nodes: ‖δx‖∞) [m].
   double StepNorm(const Eigen::VectorXd& d) const override;
-  /// In dof order: each kind's free dofs in blocks of its DofBlockSize, then blocks of three for
-  /// the free soft nodes.
+  /// In dof order: each kind's free dofs in blocks of its DofBlockSize.
   void BlockLayout(DofBlockLayout* layout) const override;
 
  private:
   /// Whether the dissipation terms are a potential (off, or ExplicitNormals).
   bool DissipationIsPotential() const;
-  /// The kinds' stage energies at their configurations in softX (after the soft actors'); order
+  /// The kinds' stage energies at their configurations in x; order
   /// >= 1 adds their gradients into *gPot, order 2 their Hessians into triplets_. A kind's
   /// StageLoad f adds −(W + f·TangentBetween(q_c, q)) to the value (q_c the current iterate, W
   /// its work so far: a trial's value equals the one evaluated after committing it) and −f into
   /// *rDiss (a residual term).
-  double EvaluateKindTerms(const std::vector<Eigen::VectorXd>& softX, int order,
+  double EvaluateKindTerms(const std::vector<Eigen::VectorXd>& x, int order,
                            PsdProjection projection, Eigen::VectorXd* gPot,
                            Eigen::VectorXd* rDiss);
   /// Kind k's part of a stage vector d (its tangent dofs; 0 at prescribed ones), in a scratch
@@ -160,25 +140,25 @@ class SceneStageProblem : public StageProblem {
   const Eigen::VectorXd& KindLocal(size_t k, const Eigen::VectorXd& d) const;
   /// The kinds' trivialization terms of the residual Jacobian (ActorKind::
   /// AddResidualJacobianCorrection) from the potential residual (r, plus scratch_ when the
-  /// dissipation is a potential) at their configurations in softX, into triplets_.
+  /// dissipation is a potential) at their configurations in x, into triplets_.
   void AddKindJacobianCorrections(const Eigen::VectorXd& r, bool dissipationIsPotential,
-                                  const std::vector<Eigen::VectorXd>& softX);
-  /// Moves softTrial_ to s ⊕ d and marks d as the step whose statistics a Commit(d) adopts.
+                                  const std::vector<Eigen::VectorXd>& x);
+  /// Moves trial_ to s ⊕ d and marks d as the step whose statistics a Commit(d) adopts.
   void BeginTrial(const Eigen::VectorXd& d);
   /// Evaluate's work at the given configuration.
-  double ValueAndDerivatives(const std::vector<Eigen::VectorXd>& softX, Eigen::VectorXd* gradient,
+  double ValueAndDerivatives(const std::vector<Eigen::VectorXd>& x, Eigen::VectorXd* gradient,
                              Eigen::SparseMatrix<double>* hessian, PsdProjection projection,
-                             ContactStats* stats, double* minDetF);
+                             ContactStats* stats);
   /// EvaluateResidual's work at the given configuration.
-  void ResidualAndJacobian(const std::vector<Eigen::VectorXd>& softX, Eigen::VectorXd* r,
-                           Eigen::SparseMatrix<double>* J, ContactStats* stats, double* minDetF);
+  void ResidualAndJacobian(const std::vector<Eigen::VectorXd>& x, Eigen::VectorXd* r,
+                           Eigen::SparseMatrix<double>* J, ContactStats* stats);
   /// The vector states at s ⊕ d into *out.
   void Retract(const Eigen::VectorXd& d, std::vector<Eigen::VectorXd>* out) const;
-  /// All terms at the vector states softX: value; order >= 1: potential gradient into *gPot and
+  /// All terms at the vector states x: value; order >= 1: potential gradient into *gPot and
   /// dissipative residual into *rDiss (may alias); order 2: triplets_.
-  double EvaluateAt(const std::vector<Eigen::VectorXd>& softX, int order,
+  double EvaluateAt(const std::vector<Eigen::VectorXd>& x, int order,
                     PsdProjection projection, Eigen::VectorXd* gPot, Eigen::VectorXd* rDiss,
-                    ContactStats* stats = nullptr, double* minDetF = nullptr);
+                    ContactStats* stats = nullptr);
 
   int numDofs_;
   double dt_;
@@ -187,11 +167,10 @@ class SceneStageProblem : public StageProblem {
   /// (both empty when no kind has one).
   std::vector<Eigen::VectorXd> kindLoad_;
   std::vector<double> kindLoadWork_;
-  Eigen::Vector3d gravity_;
   ContactPipeline* contact_;
   std::unique_ptr<StageWorkspace> ownWorkspace_;  // only without the caller's
   StageWorkspace* ws_;  // the caller's, or *ownWorkspace_
-  std::vector<Eigen::VectorXd>& softTrial_;
+  std::vector<Eigen::VectorXd>& trial_;
   Eigen::VectorXd& scratch_;
   Eigen::VectorXd& pendingStep_;  // EvaluateResidualAtStep's or EvaluateAtStep's step
   std::vector<Eigen::Triplet<double>>& triplets_;
@@ -202,13 +181,10 @@ class SceneStageProblem : public StageProblem {
   // EvaluateAtStep's), adopted by a Commit of that step.
   bool hasPending_ = false;
   ContactStats pendingStats_;
-  double pendingMinDetF_ = INFINITY;
-  const std::vector<Eigen::VectorXd>& SoftPositions() const { return softX_ ? *softX_ : noSoft_; }
-  const SoftStage* soft_ = nullptr;  // null for a stage without actors
-  std::vector<Eigen::VectorXd>* softX_ = nullptr;
-  std::vector<Eigen::VectorXd> softOrigin_, noSoft_;
-  double lastMinDetF_ = INFINITY;
-  int softBegin_ = 0, softEnd_ = 0;  // the soft nodes' dofs [softBegin_, softEnd_)
+  const std::vector<Eigen::VectorXd>& Positions() const { return x_ ? *x_ : none_; }
+  const KindStage* stage_ = nullptr;  // null for a stage without actors
+  std::vector<Eigen::VectorXd>* x_ = nullptr;
+  std::vector<Eigen::VectorXd> origin_, none_;
 };
 
 /// The data of one stage, from which its problem can be built at any configuration (the stage
@@ -216,13 +192,12 @@ class SceneStageProblem : public StageProblem {
 struct StageInputs {
   int numDofs = 0;
   double dt = 0.0;  ///< Δt_i [s]
-  Eigen::Vector3d gravity = Eigen::Vector3d::Zero();
   ContactPipeline* pipeline = nullptr;
-  const SoftStage* soft = nullptr;
+  const KindStage* stage = nullptr;
   StageWorkspace* workspace = nullptr;
-  /// The stage's problem at *softX in the dissipation setting d; its Commit moves *softX.
-  SceneStageProblem Problem(const StageDissipation& d, std::vector<Eigen::VectorXd>* softX) const {
-    return SceneStageProblem(numDofs, dt, gravity, pipeline, *soft, softX, d, workspace);
+  /// The stage's problem at *x in the dissipation setting d; its Commit moves *x.
+  SceneStageProblem Problem(const StageDissipation& d, std::vector<Eigen::VectorXd>* x) const {
+    return SceneStageProblem(numDofs, dt, pipeline, *stage, x, d, workspace);
   }
 };
 

@@ -37,8 +37,8 @@ void CopySolverWork(const SolverStats& from, SolverStats* to) {
 }  // namespace
 
 SolverStats StageDriver::Solve(const SceneSettings& settings, const StageScene& scene, double dt,
-                               ContactStats* contact, const SoftStage& soft,
-                               std::vector<Eigen::VectorXd>* softX, double predictTime,
+                               ContactStats* contact, const KindStage& stage,
+                               std::vector<Eigen::VectorXd>* x, double predictTime,
                                StageRecorder* recorder) {
   StageDissipation dissipation;
   dissipation.enabled = scene.hasDissipation;
@@ -49,13 +49,12 @@ SolverStats StageDriver::Solve(const SceneSettings& settings, const StageScene& 
   StageInputs inputs;
   inputs.numDofs = scene.numDofs;
   inputs.dt = dt;
-  inputs.gravity = settings.gravity;
   inputs.pipeline = scene.pipeline;
-  inputs.soft = &soft;
+  inputs.stage = &stage;
   inputs.workspace = &workspace_;
   SolverStats st;
   if (recorder && recorder->Supplies()) {
-    recorder->Supply(inputs, dissipation, softX);
+    recorder->Supply(inputs, dissipation, x);
     st.status = StageStatus::Converged;
     return st;
   }
@@ -65,18 +64,18 @@ SolverStats StageDriver::Solve(const SceneSettings& settings, const StageScene& 
   // longer for nothing. A stage that leaves contact is solved by Newton, the next one tried again.
   if (settings.closedFormFreeStages && settings.stageSolver == StageSolverKind::Newton &&
       !scene.coldStages && !recording && !state_.lastStageInContact &&
-      FreeStage(scene, dissipation, dt, soft, softX, &st, contact)) {
+      FreeStage(scene, dissipation, dt, stage, x, &st, contact)) {
     state_.lastPotentialIterations = 0;  // a local stage: the next warm start may try the exact Hessian
     return st;
   }
-  SceneStageProblem problem = inputs.Problem(dissipation, softX);
+  SceneStageProblem problem = inputs.Problem(dissipation, x);
   // The warm start (Newton only: Ipopt and Ceres check the cold stage). Kept cold: (1) scenes with
   // a kind that refuses it (ActorKind::Shortcuts: a soft body's, for its collider's piecewise
   // smooth stages). (2) Recorded steps (sensitivities, adjoint): their derivatives are evaluated at the
   // recorded solution, which a start reaches only to the solver's tolerance (docs/solver.md).
   const bool warm = settings.stageSolver == StageSolverKind::Newton && predictTime > 0.0 &&
                     settings.warmStart && !scene.coldStages && !recording;
-  if (warm) WarmStartStage(settings, scene, dt, soft, *softX, predictTime, &problem);
+  if (warm) WarmStartStage(settings, scene, dt, stage, *x, predictTime, &problem);
   switch (settings.stageSolver) {
     case StageSolverKind::Newton:
       if (problem.IsPotential()) {
@@ -87,7 +86,7 @@ SolverStats StageDriver::Solve(const SceneSettings& settings, const StageScene& 
             warm && st.status == StageStatus::Converged ? st.iterations : kNoLocalStage;
         break;
       }
-      if (SolveResidual(settings, inputs, problem, dissipation, dt, softX, contact, recorder, &st))
+      if (SolveResidual(settings, inputs, problem, dissipation, dt, x, contact, recorder, &st))
         return st;
       break;
     case StageSolverKind::Ipopt:
@@ -99,13 +98,13 @@ SolverStats StageDriver::Solve(const SceneSettings& settings, const StageScene& 
   }
   *contact = problem.LastContactStats();
   state_.lastStageInContact = InContact(*contact);
-  if (recording) recorder->Record(inputs, dissipation, *softX);
+  if (recording) recorder->Record(inputs, dissipation, *x);
   return st;
 }
 
 bool StageDriver::SolveResidual(const SceneSettings& settings, const StageInputs& inputs,
                                 SceneStageProblem& problem, const StageDissipation& dissipation,
-                                double dt, std::vector<Eigen::VectorXd>* softX,
+                                double dt, std::vector<Eigen::VectorXd>* x,
                                 ContactStats* contact, StageRecorder* recorder,
                                 SolverStats* result) {
   // Residual modes: Newton on r has only the merit ½‖r‖² to globalize with, which is badly scaled
@@ -124,13 +123,13 @@ bool StageDriver::SolveResidual(const SceneSettings& settings, const StageInputs
   constexpr int kMaxExplicitFirstStages = 320;
   constexpr double kStartRelativeGradient = 1e-2;
   SolverStats& st = *result;
-  std::vector<Eigen::VectorXd>& softGuess = softGuess_;
-  softGuess = *softX;
+  std::vector<Eigen::VectorXd>& guess = guess_;
+  guess = *x;
   StageDissipation potential = dissipation;
   potential.mode = DissipationMode::ExplicitNormals;
   ContactStats explicitContact;
-  auto minimizeExplicit = [&](const NonlinearSolverParams& params) {  // from *softX
-    SceneStageProblem stage = inputs.Problem(potential, softX);
+  auto minimizeExplicit = [&](const NonlinearSolverParams& params) {  // from *x
+    SceneStageProblem stage = inputs.Problem(potential, x);
     const SolverStats out = MinimizeNewton(stage, params, dt, symmetric_.get(), &newton_);
     explicitContact = stage.LastContactStats();
     return out;
@@ -139,16 +138,16 @@ bool StageDriver::SolveResidual(const SceneSettings& settings, const StageInputs
   if (explicitFirst) --state_.explicitFirstStages;
   SolverStats first;  // the explicit-normals solve that gave the start (explicitFirst)
   bool haveExplicit = false;
-  std::vector<Eigen::VectorXd>& softExplicit = softExplicit_;
+  std::vector<Eigen::VectorXd>& explicitX = explicit_;
   if (explicitFirst) {
     NonlinearSolverParams start = settings.solver;
     start.relativeTolerance = std::max(start.relativeTolerance, kStartRelativeGradient);
     first = minimizeExplicit(start);
     haveExplicit = first.status == StageStatus::Converged;
     if (haveExplicit)
-      softExplicit = *softX;
+      explicitX = *x;
     else
-      *softX = softGuess;
+      *x = guess;
   }
   st = SolveResidualNewton(problem, settings.solver, dt, unsymmetric_.get(), &newton_);
   if (!explicitFirst) {
@@ -164,7 +163,7 @@ bool StageDriver::SolveResidual(const SceneSettings& settings, const StageInputs
   // Fallback: the explicit-normals minimizer to full accuracy (from the start it gave, or from the
   // stage's guess); the report carries its outcome and the work of every solve of the stage.
   SolverStats work = st;
-  *softX = haveExplicit ? softExplicit : softGuess;
+  *x = haveExplicit ? explicitX : guess;
   const SolverStats outcome = minimizeExplicit(settings.solver);
   AddSolverWork(outcome, &work);
   const std::string why = st.Message();
@@ -175,13 +174,13 @@ bool StageDriver::SolveResidual(const SceneSettings& settings, const StageInputs
   st.fallback = true;
   *contact = explicitContact;
   state_.lastStageInContact = InContact(*contact);
-  if (recorder && recorder->Records()) recorder->Record(inputs, potential, *softX);
+  if (recorder && recorder->Records()) recorder->Record(inputs, potential, *x);
   return true;
 }
 
 void StageDriver::WarmStartStage(const SceneSettings& settings, const StageScene& scene,
-                                 double dt, const SoftStage& soft,
-                                 const std::vector<Eigen::VectorXd>& softX, double predictTime,
+                                 double dt, const KindStage& stage,
+                                 const std::vector<Eigen::VectorXd>& x, double predictTime,
                                  SceneStageProblem* problem) {
   const std::vector<double>& historyTimes = *scene.historyTimes;
   const bool one = !historyTimes.empty();
@@ -189,24 +188,22 @@ void StageDriver::WarmStartStage(const SceneSettings& settings, const StageScene
   const double hPrevious = one ? scene.time - historyTimes[0] : 0.0;
   const double hBefore = two ? historyTimes[0] - historyTimes[1] : 0.0;
   warmStep_.setZero(scene.numDofs);
-  const KindStage& kinds = soft.kinds;
-  const size_t ns = soft.targets.size();
+  const KindStage& kinds = stage;
   const std::vector<VectorState>& states = *scene.vectorStates;
   const std::vector<std::vector<VectorState>>& history = *scene.vectorHistory;
   const double bound = SteadyBound(settings.gravity);
   kindSteady_.assign(kinds.Size(), 1);
   for (size_t k = 0; k < kinds.Size(); ++k) {
     const ActorKind& kind = *(*kinds.kinds)[k];
-    const size_t s = ns + k;
-    const VectorState* previous = one && history.size() >= 1 ? &history[0][s] : nullptr;
-    kind.PredictStage(states[s], previous, hPrevious, predictTime, kinds.q0[k], dt,
+    const VectorState* previous = one && history.size() >= 1 ? &history[0][k] : nullptr;
+    kind.PredictStage(states[k], previous, hPrevious, predictTime, kinds.q0[k], dt,
                       &kindPredicted_);
-    kind.TangentBetween(softX[s], kindPredicted_, &kindDelta_);
+    kind.TangentBetween(x[k], kindPredicted_, &kindDelta_);
     const std::vector<int>& dof = kinds.stageDof[k];
     for (size_t j = 0; j < dof.size(); ++j)
       if (dof[j] >= 0) warmStep_[dof[j]] = kindDelta_[j];
     if (two && history.size() >= 2)
-      kindSteady_[k] = kind.ForceChange(states[s], history[0][s], hPrevious, history[1][s],
+      kindSteady_[k] = kind.ForceChange(states[k], history[0][k], hPrevious, history[1][k],
                                         hBefore) <= bound;
   }
   WarmStart(*problem, &warmStep_, &warmScratch_, settings.solver.stepTolerance * dt,
@@ -214,25 +211,24 @@ void StageDriver::WarmStartStage(const SceneSettings& settings, const StageScene
 }
 
 bool StageDriver::FreeStage(const StageScene& scene, const StageDissipation& dissipation,
-                            double dt, const SoftStage& soft, std::vector<Eigen::VectorXd>* softX,
+                            double dt, const KindStage& stage, std::vector<Eigen::VectorXd>* x,
                             SolverStats* stats, ContactStats* contact) {
-  const KindStage& kinds = soft.kinds;
-  freeSoft_ = *softX;
-  const size_t ns = soft.targets.size();
+  const KindStage& kinds = stage;
+  freeX_ = *x;
   for (size_t k = 0; k < kinds.Size(); ++k) {
-    Eigen::VectorXd& q = freeSoft_[ns + k];
+    Eigen::VectorXd& q = freeX_[k];
     if (!(*kinds.kinds)[k]->FreeStageMinimizer(kinds.data[k], &q) || !q.allFinite()) return false;
   }
   // The contact terms as SceneStageProblem evaluates them there (value only): each pair adds its
   // value, gradient and residual only through samples it counts active.
   const DissipationContext context = ContextOf(dissipation, dt);
-  const KindView view = KindViewOf(soft, freeSoft_);
+  const KindView view = KindViewOf(stage, freeX_);
   ContactStats found;
   scene.pipeline->Evaluate(0, PsdProjection::None, nullptr, nullptr, nullptr, &found,
-                           dissipation.enabled ? &context : nullptr, nullptr, nullptr,
+                           dissipation.enabled ? &context : nullptr, nullptr,
                            view.q ? &view : nullptr);
   if (InContact(found)) return false;
-  softX->swap(freeSoft_);
+  x->swap(freeX_);
   *contact = found;
   *stats = SolverStats();
   stats->status = StageStatus::Converged;

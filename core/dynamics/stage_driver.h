@@ -20,8 +20,7 @@
 namespace superdex {
 
 /// What the stage policy reads of the scene: the stage's dof count, the contact pipeline, and the
-/// vector states (soft actors, then the generic layer's kinds) with their history (the warm
-/// start's prediction).
+/// actors' vector states with their history (the warm start's prediction).
 struct StageScene {
   int numDofs = 0;
   ContactPipeline* pipeline = nullptr;
@@ -61,13 +60,13 @@ class StageDriver {
     return *this;
   }
 
-  /// Solves one stage of step dt [s] over the actors of `soft` (their stage data: targets x̂,
-  /// x⁰ and the last configuration x_n), from the initial guess in *softX; on return it holds
+  /// Solves one stage of step dt [s] over the actors of `stage` (their stage data: targets x̂,
+  /// x⁰ and the last configuration x_n), from the initial guess in *x; on return it holds
   /// the stage's solution. `predictTime` > 0, the stage's time after t_n [s], allows the warm
   /// start.
   SolverStats Solve(const SceneSettings& settings, const StageScene& scene, double dt,
-                    ContactStats* contact, const SoftStage& soft,
-                    std::vector<Eigen::VectorXd>* softX, double predictTime,
+                    ContactStats* contact, const KindStage& stage,
+                    std::vector<Eigen::VectorXd>* x, double predictTime,
                     StageRecorder* recorder);
 
   const State& GetState() const { return state_; }
@@ -75,22 +74,22 @@ class StageDriver {
 
  private:
   // The closed-form stage of SceneSettings::closedFormFreeStages: true, with the kinds'
-  // configurations in *softX set to their FreeStageMinimizer, and *stats, *contact filled, when
+  // configurations in *x set to their FreeStageMinimizer, and *stats, *contact filled, when
   // every kind has it and no contact sample is active there (penalty or dissipation); false
   // (nothing changed) otherwise.
   bool FreeStage(const StageScene& scene, const StageDissipation& dissipation, double dt,
-                 const SoftStage& soft, std::vector<Eigen::VectorXd>* softX, SolverStats* stats,
+                 const KindStage& stage, std::vector<Eigen::VectorXd>* x, SolverStats* stats,
                  ContactStats* contact);
   // The warm start's tangent step to the kinds' predicted solution into warmStep_, with their
   // steady flags, and its application to `problem`.
   void WarmStartStage(const SceneSettings& settings, const StageScene& scene, double dt,
-                      const SoftStage& soft, const std::vector<Eigen::VectorXd>& softX,
+                      const KindStage& stage, const std::vector<Eigen::VectorXd>& x,
                       double predictTime, SceneStageProblem* problem);
   // The residual modes' Newton solve with its explicit-normals start and fallback. Returns true
   // when the fallback's outcome stands (its contact statistics then in *contact, recorded).
   bool SolveResidual(const SceneSettings& settings, const StageInputs& inputs,
                      SceneStageProblem& problem, const StageDissipation& dissipation, double dt,
-                     std::vector<Eigen::VectorXd>* softX, ContactStats* contact,
+                     std::vector<Eigen::VectorXd>* x, ContactStats* contact,
                      StageRecorder* recorder, SolverStats* st);
 
   State state_;
@@ -102,8 +101,8 @@ class StageDriver {
   // Scratch kept from stage to stage, so that a stage does not allocate once it has run.
   Eigen::VectorXd warmStep_, warmScratch_;
   std::vector<char> kindSteady_;  // per kind: moved steadily over the last two steps (ForceChange)
-  std::vector<Eigen::VectorXd> freeSoft_;       // the kinds' free-stage configurations
-  std::vector<Eigen::VectorXd> softGuess_, softExplicit_;  // SolveResidual's vector states
+  std::vector<Eigen::VectorXd> freeX_;       // the kinds' free-stage configurations
+  std::vector<Eigen::VectorXd> guess_, explicit_;  // SolveResidual's vector states
   Eigen::VectorXd kindPredicted_, kindDelta_;   // one kind's prediction and its tangent step
 };
 

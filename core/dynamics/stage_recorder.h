@@ -19,13 +19,13 @@ class StageRecorder {
   /// Whether the stages' solutions come from this policy (Supply) instead of a solve. Such a step
   /// updates the state only (no contact report).
   virtual bool Supplies() const = 0;
-  /// In place of a solve: sets the stage's solution (the vector states) in *softX. `inputs`
+  /// In place of a solve: sets the stage's solution (the vector states) in *x. `inputs`
   /// builds the stage's problem at any configuration.
   virtual void Supply(const StageInputs& inputs, const StageDissipation& dissipation,
-                      std::vector<Eigen::VectorXd>* softX) = 0;
+                      std::vector<Eigen::VectorXd>* x) = 0;
   /// After a stage was solved: its accepted solution, in the dissipation setting it was solved in.
   virtual void Record(const StageInputs& inputs, const StageDissipation& dissipation,
-                      const std::vector<Eigen::VectorXd>& softX) = 0;
+                      const std::vector<Eigen::VectorXd>& x) = 0;
   /// Whether stages are recorded (the driver then keeps them cold: no warm start, no closed form).
   virtual bool Records() const = 0;
 };

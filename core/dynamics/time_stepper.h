@@ -1,8 +1,8 @@
 // The time stepper: one step of h [s] by the scene's integrator (core/dynamics/integrators.h) as
 // a sequence of implicit stages — a variable-step BDF step, or the DIRK method's stages — over the
-// vector states (soft actors, then the generic layer's kinds, combined affinely; a kind on a
-// manifold, as a rigid body, through its DIRK hooks). The host (the Scene) solves each
-// stage with its stage policy and recorder, and builds the vector states' stage data.
+// actors' vector states (combined affinely; a kind on a manifold, as a rigid body, through its
+// DIRK hooks). The host (the Scene) solves each stage with its stage policy and recorder, and
+// builds the actors' stage data.
 #pragma once
 
 #include <Eigen/Core>
@@ -20,19 +20,18 @@ namespace superdex {
 class StageHost {
  public:
   virtual ~StageHost() = default;
-  /// The kind of vector state s (soft actors first, then the generic layer's actors; null for a
-  /// soft actor).
-  virtual const ActorKind* VectorKind(size_t s) const = 0;
-  /// Writes the prescribed node positions (and the kinds' prescribed dofs) at time t [s] into x.
+  /// The kind of actor a (the index of the vector states).
+  virtual const ActorKind& KindOf(size_t a) const = 0;
+  /// Writes the actors' prescribed dofs at time t [s] into x.
   virtual void ApplyConstraints(double t, std::vector<Eigen::VectorXd>* x) const = 0;
-  /// The vector-state actors' data for a stage of step dt [s] at time t [s]: targets from the
-  /// stage start, geometry from the last configuration; into *out (its storage reused).
-  virtual void MakeSoftStage(double dt, double t, const std::vector<SoftBodyState>& start,
-                             const std::vector<Eigen::VectorXd>& last, SoftStage* out) const = 0;
-  /// Solves one stage (its data in *soft, from MakeSoftStage) from *softX, which then holds its
+  /// The actors' data for a stage of step dt [s] at time t [s]: targets from the stage start,
+  /// geometry from the last configuration; into *out (its storage reused).
+  virtual void MakeStage(double dt, double t, const std::vector<VectorState>& start,
+                         const std::vector<Eigen::VectorXd>& last, KindStage* out) const = 0;
+  /// Solves one stage (its data in `stage`, from MakeStage) from *x, which then holds its
   /// solution; accounts it in *rep. `predictTime` > 0 (the stage's time after t_n [s]) allows
   /// the warm start.
-  virtual void SolveStage(double dt, const SoftStage& soft, std::vector<Eigen::VectorXd>* softX,
+  virtual void SolveStage(double dt, const KindStage& stage, std::vector<Eigen::VectorXd>* x,
                           double predictTime, StepReport* rep) = 0;
 };
 

@@ -18,7 +18,7 @@ void BindSceneState(py::module_& m) {
       .def_property_readonly("time", [](const Scene::Snapshot& s) { return s.step.time; },
                              "simulated time [s]")
       .def_property_readonly(
-          "history_states", [](const Scene::Snapshot& s) { return s.step.history.size(); },
+          "history_states", [](const Scene::Snapshot& s) { return s.step.rigidHistory.size(); },
           "how many earlier states the multistep integrator keeps (0 after a state change)")
       .def(py::pickle(
           [](const Scene::Snapshot& s) { return py::bytes(StateText(s)); },

@@ -425,7 +425,7 @@ TEST_CASE("the slips of a rigid kind's pairs are recorded and evaluated about th
   REQUIRE(cube);
   const std::vector<const ActorKind*> kinds = {ground.get(), cube.get()};
   ContactPipeline pipeline;
-  pipeline.Configure(nullptr, nullptr, {}, &kinds, {0, 1});
+  pipeline.Configure(nullptr, &kinds, {0, 1});
   std::vector<Eigen::VectorXd> q = {ground->InitialState().x, cube->InitialState().x};
   q[1].head<3>() = Eigen::Vector3d(0, 0, 0.1 - 1e-4);
   std::vector<Eigen::VectorXd> qLast = q;
@@ -445,7 +445,7 @@ TEST_CASE("the slips of a rigid kind's pairs are recorded and evaluated about th
   Eigen::VectorXd g = Eigen::VectorXd::Zero(6), recorded = Eigen::VectorXd::Zero(6);
   ContactStats stats;
   pipeline.Evaluate(1, PsdProjection::None, &g, nullptr, nullptr, &stats, &context, &recorded,
-                    nullptr, &view);
+                    &view);
   slips.Seal();
   REQUIRE(stats.dissipativeSamples > 0);
   const PairSlips* pair = slips.Find(SlipPairKind::Kind, 1, 0);  // the cube on the ground
@@ -455,7 +455,7 @@ TEST_CASE("the slips of a rigid kind's pairs are recorded and evaluated about th
   Eigen::VectorXd about = Eigen::VectorXd::Zero(6);
   g.setZero();
   pipeline.Evaluate(1, PsdProjection::None, &g, nullptr, nullptr, &stats, &context, &about,
-                    nullptr, &view);
+                    &view);
   INFO("recorded " << recorded.transpose() << ", about the record " << about.transpose());
   CHECK(recorded[0] > 0.1);  // friction against the +x slip (the residual is −force) [N]
   CHECK((about - recorded).norm() <= 1e-12 * recorded.norm());

@@ -61,7 +61,7 @@ struct Stage {
                  bool torques = false)
       : f(forces, torques),
         dissipation{enabled, mode, true},
-        problem(12, f.hand.dt, f.hand.gravity, &f.hand.pipeline, f.hand.stage, &x, dissipation) {}
+        problem(12, f.hand.dt, &f.hand.pipeline, f.hand.stage, &x, dissipation) {}
   RigidPose Pose(size_t k) const { return f.hand.Pose(x, k); }
 };
 
@@ -262,9 +262,9 @@ TEST_CASE("rigid stage: the dynamic bodies' six dofs are the Krylov precondition
   // A kind whose free dofs do not fill its blocks (one rotation dof held) claims none.
   Fixture f;
   std::vector<Eigen::VectorXd> x = f.hand.x;
-  SoftStage held = f.hand.stage;
-  held.kinds.stageDof[2] = {6, 7, 8, 9, 10, -1};
-  SceneStageProblem problem(11, f.hand.dt, f.hand.gravity, &f.hand.pipeline, held, &x);
+  KindStage held = f.hand.stage;
+  held.stageDof[2] = {6, 7, 8, 9, 10, -1};
+  SceneStageProblem problem(11, f.hand.dt, &f.hand.pipeline, held, &x);
   problem.BlockLayout(&layout);
   CHECK(layout.sizes.empty());
 }
@@ -272,7 +272,7 @@ TEST_CASE("rigid stage: the dynamic bodies' six dofs are the Krylov precondition
 TEST_CASE("rigid stage: the trust region bounds each body's Newton correction",
           "[core][stage]") {
   Stage s(DissipationMode::ExplicitNormals);
-  const RigidBodyModel& m = s.f.hand.kinds[1]->Model();  // both boxes: half extents 0.1 m
+  const RigidBodyModel& m = s.f.hand.Rigid(1).Model();  // both boxes: half extents 0.1 m
   const double rho = std::max(m.samplesRadius, RmsRadius(m));
   REQUIRE(rho >= 0.1);
   const double trust = kCorrectionTrust * rho;

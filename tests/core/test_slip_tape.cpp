@@ -26,11 +26,11 @@ TEST_CASE("Slip tape: pairs and samples are found by their names, missing ones a
   a.samples = {{7, SlipReference()}, {2, SlipReference()}, {5, SlipReference()}};
   a.samples[0].second.sliding = true;  // key 7
   b.samples = {{0, SlipReference()}};
-  stage.Add(SlipPairKind::OnSoft, -1, 3, b);  // a soft colliding actor 0 on soft collider 3
-  stage.Add(SlipPairKind::Rigid, 4, 1, a);
+  stage.Add(SlipPairKind::OnSoft, 0, 3, b);  // kind 0's samples on kind 3's tet field
+  stage.Add(SlipPairKind::Kind, 4, 1, a);
   stage.Seal();
   CHECK(stage.Samples() == 4);
-  PairSlips* found = stage.Find(SlipPairKind::Rigid, 4, 1);
+  PairSlips* found = stage.Find(SlipPairKind::Kind, 4, 1);
   REQUIRE(found);
   // Sorted by key on Add: 2, 5, 7.
   CHECK(found->samples[0].first == 2);
@@ -40,12 +40,12 @@ TEST_CASE("Slip tape: pairs and samples are found by their names, missing ones a
   CHECK_FALSE(found->Find(5)->sliding);
   CHECK(found->Find(3) == nullptr);
   CHECK(found->Find(8) == nullptr);
-  CHECK(stage.Find(SlipPairKind::Rigid, 1, 4) == nullptr);        // ordered pairs
+  CHECK(stage.Find(SlipPairKind::Kind, 1, 4) == nullptr);        // ordered pairs
   CHECK(stage.Find(SlipPairKind::OnSoft, 4, 1) == nullptr);  // another kind
-  REQUIRE(stage.Find(SlipPairKind::OnSoft, -1, 3));
+  REQUIRE(stage.Find(SlipPairKind::OnSoft, 0, 3));
   stage.Clear();
   CHECK(stage.Samples() == 0);
-  CHECK(stage.Find(SlipPairKind::Rigid, 4, 1) == nullptr);
+  CHECK(stage.Find(SlipPairKind::Kind, 4, 1) == nullptr);
 }
 
 TEST_CASE("Slip tape: a sample's force is recorded, then evaluated about the record",

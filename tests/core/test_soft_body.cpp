@@ -83,7 +83,7 @@ struct SoftStageFixture {
       t.x0.segment<3>(3 * a) -= hand.dt * Eigen::Vector3d(0.15, -0.05, -0.1);
     t.xLast = t.x0;
     t.xHat = xc + Eigen::VectorXd::Constant(xc.size(), 2e-4);
-    hand.AddSoft(m, t, xc);
+    hand.AddSoft(m, s, t, xc);
     hand.Finish();
     REQUIRE(hand.numDofs == 6 + 3 * m.numFree);
   }
@@ -134,7 +134,7 @@ TEST_CASE("soft stage: gradient, Hessian and residual Jacobian with soft contact
       diss.enabled = true;
       diss.mode = mode;
       std::vector<Eigen::VectorXd> x = f.hand.x;
-      SceneStageProblem problem(f.hand.numDofs, f.hand.dt, f.hand.gravity, &f.hand.pipeline,
+      SceneStageProblem problem(f.hand.numDofs, f.hand.dt, &f.hand.pipeline,
                                 f.hand.stage, &x, diss);
       const int numDofs = f.hand.numDofs;
       const Eigen::VectorXd r = CheckStageDerivatives(problem, numDofs);
@@ -484,7 +484,7 @@ struct SoftColliderFixture {
       for (int a = 0; a < m.NumNodes(); ++a) t.x0.segment<3>(3 * a) -= hand.dt * velocity[k];
       t.xLast = t.x0;
       t.xHat = xc;
-      hand.AddSoft(m, t, xc);
+      hand.AddSoft(m, s, t, xc);
     }
     hand.Finish();
   }
@@ -502,7 +502,7 @@ TEST_CASE("soft collider: gradient, Hessian and residual Jacobian of rigid and s
       diss.enabled = true;
       diss.mode = mode;
       std::vector<Eigen::VectorXd> x = f.hand.x;
-      SceneStageProblem problem(f.hand.numDofs, f.hand.dt, f.hand.gravity, &f.hand.pipeline,
+      SceneStageProblem problem(f.hand.numDofs, f.hand.dt, &f.hand.pipeline,
                                 f.hand.stage, &x, diss);
       const Eigen::VectorXd r = CheckStageDerivatives(problem, f.hand.numDofs);
       // Balanced: the contact forces sum to zero over all actors (no gravity, no inertia offset:

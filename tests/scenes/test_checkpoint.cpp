@@ -58,7 +58,7 @@ void Run(SceneFile* file, double dt, long long steps, const std::string& out,
 // Every double of the step state, compared with ==.
 void RequireSameState(const Scene::Snapshot& a, const Scene::Snapshot& b) {
   REQUIRE(a.step.time == b.step.time);
-  REQUIRE(a.step.states.size() == b.step.states.size());
+  REQUIRE(a.step.rigidStates.size() == b.step.rigidStates.size());
   auto same = [](const auto& x, const auto& y) { return (x.array() == y.array()).all(); };
   auto rigid = [&](const std::vector<RigidBodyState>& x, const std::vector<RigidBodyState>& y) {
     REQUIRE(x.size() == y.size());
@@ -77,13 +77,13 @@ void RequireSameState(const Scene::Snapshot& a, const Scene::Snapshot& b) {
       CHECK(same(x[i].v, y[i].v));
     }
   };
-  rigid(a.step.states, b.step.states);
-  vector(a.step.softStates, b.step.softStates);
-  REQUIRE(a.step.history.size() == b.step.history.size());
-  for (size_t h = 0; h < a.step.history.size(); ++h) {
+  rigid(a.step.rigidStates, b.step.rigidStates);
+  vector(a.step.vectorStates, b.step.vectorStates);
+  REQUIRE(a.step.rigidHistory.size() == b.step.rigidHistory.size());
+  for (size_t h = 0; h < a.step.rigidHistory.size(); ++h) {
     CHECK(a.step.historyTimes[h] == b.step.historyTimes[h]);
-    rigid(a.step.history[h], b.step.history[h]);
-    vector(a.step.softHistory[h], b.step.softHistory[h]);
+    rigid(a.step.rigidHistory[h], b.step.rigidHistory[h]);
+    vector(a.step.vectorHistory[h], b.step.vectorHistory[h]);
   }
   CHECK(a.driver.explicitFirstStages == b.driver.explicitFirstStages);
   CHECK(a.driver.explicitFirstRun == b.driver.explicitFirstRun);
@@ -160,7 +160,7 @@ TEST_CASE("checkpoint: exact doubles, atomic write", "[scenes][checkpoint]") {
   Error e;
   REQUIRE(ReadCheckpoint(kDir + "state.checkpoint", &c, &e));
   RequireSameState(c.snapshot, file.scene->Save());
-  CHECK(c.snapshot.step.history.size() == 2);  // BDF3's two past states
+  CHECK(c.snapshot.step.rigidHistory.size() == 2);  // BDF3's two past states
   CHECK(c.sceneHash == file.textHash);
   CHECK(c.run.integrator == "BDF3");
   Error w;
