@@ -132,6 +132,46 @@ Eigen::Vector3d SoftKind::CenterOfMassVelocity(const KindState& s) const {
   return c / model_.mass;
 }
 
+void SoftKind::DifferenceGroups(const KindState& s,
+                                std::vector<KindDifferenceGroup>* groups) const {
+  const int n = static_cast<int>(s.x.size());
+  groups->resize(model_.NumNodes());
+  for (int a = 0; a < model_.NumNodes(); ++a) {
+    KindDifferenceGroup& g = (*groups)[a];
+    g = KindDifferenceGroup();
+    for (int c = 0; c < 3; ++c) g.directions.push_back({{{3 * a + c, 1.0}}, false, 1.0});
+    for (int c = 0; c < 3; ++c) g.directions.push_back({{{n + 3 * a + c, 1.0}}, true, 1.0});
+    for (int c = 0; c < 3; ++c) g.entries.push_back(3 * a + c);
+    for (int c = 0; c < 3; ++c) g.entries.push_back(n + 3 * a + c);
+    if (model_.freeIndex[a] < 0) continue;
+    for (int c = 0; c < 3; ++c) {
+      g.tangentDofs.push_back(3 * a + c);
+      g.tangentLength.push_back(1.0);
+    }
+  }
+}
+
+bool SoftKind::MotionParameter(KindMotion motion, int component, const KindState& s,
+                               double* value, Eigen::VectorXd* direction) const {
+  if (motion == KindMotion::AngularVelocity || component < 0 || component > 2) return false;
+  const Eigen::Index n = s.x.size();
+  const bool position = motion == KindMotion::Position;
+  const Eigen::VectorXd& u = position ? s.x : s.v;
+  double sum = 0.0;
+  for (Eigen::Index i = component; i < n; i += 3) sum += u[i];
+  *value = sum / static_cast<double>(n / 3);
+  direction->setZero(2 * n);
+  for (Eigen::Index i = component; i < n; i += 3) (*direction)[(position ? 0 : n) + i] = 1.0;
+  return true;
+}
+
+Eigen::MatrixXd SoftKind::CenterOfMassJacobian(const KindState& s) const {
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(3, s.x.size());
+  for (int a = 0; a < model_.NumNodes(); ++a)
+    C.middleCols<3>(3 * a).diagonal().setConstant(model_.nodeMass[a] / model_.mass);
+  return C;
+}
+
 KindSample SoftKind::Sample(int k, const Eigen::VectorXd& q) const {
   const SoftSurfaceSample& ss = model_.samples[k];
   const Eigen::Vector3i& F = model_.faces[ss.face];

@@ -61,6 +61,13 @@ class SoftKind : public ActorKind {
   Eigen::Vector3d AngularMomentum(const KindState& s) const override;
   Eigen::Vector3d CenterOfMass(const KindState& s) const override;
   Eigen::Vector3d CenterOfMassVelocity(const KindState& s) const override;
+  /// Sensitivities: a group per node (its x and v, its free tangent dofs), so that nodes far
+  /// apart are differenced in one run; Position and Velocity are the nodes' unweighted mean,
+  /// moved by moving every node alike (no AngularVelocity); c = Σ m_a x_a / M exactly.
+  void DifferenceGroups(const KindState& s, std::vector<KindDifferenceGroup>* groups) const override;
+  bool MotionParameter(KindMotion motion, int component, const KindState& s, double* value,
+                       Eigen::VectorXd* direction) const override;
+  Eigen::MatrixXd CenterOfMassJacobian(const KindState& s) const override;
   Aabb Bounds(const Eigen::VectorXd& q) const override { return SoftBounds(q); }
   const SoftBodyModel* TetCollider() const override {
     return model_.collider == ColliderType::Sdf ? &model_ : nullptr;

@@ -58,6 +58,10 @@ KindMotion MotionOf(SceneParameterKind k) {
                                              : KindMotion::AngularVelocity;
 }
 
+// Whether actor a's initial-state parameters are its kind's (ActorKind::MotionParameter): every
+// actor but a rigid one, whose parameters are read in its state's own form (p, v, Ṙ = [ω]× R).
+bool ThroughKind(const Scene& scene, ActorHandle a) { return scene.IsKind(a) || scene.IsSoft(a); }
+
 // An initial-state parameter of a kind's actor: its value and direction over the actor's [q; v].
 bool KindMotionParameter(const Scene& scene, const SceneParameter& p, double* value,
                          Eigen::VectorXd* direction) {
@@ -107,7 +111,7 @@ bool ParseSceneParameter(const Scene& scene, const std::string& text, SceneParam
       return Fail(error, "parameter '" + text + "': actor '" + actor + "' is static");
     double value = 0.0;
     Eigen::VectorXd direction;
-    if (kind && !KindMotionParameter(scene, *p, &value, &direction))
+    if ((kind || soft) && !KindMotionParameter(scene, *p, &value, &direction))
       return Fail(error, "parameter '" + text + "': actor '" + actor + "' (" +
                              scene.Kind(p->actor).KindName() + ") has no " + name +
                              (scene.Kind(p->actor).IsStatic() ? " (it is static)" : ""));
@@ -154,18 +158,11 @@ double ParameterValue(const Scene& scene, const SceneParameter& p) {
     return scene.IsSoft(p.actor) ? scene.SoftModel(p.actor).material.density
                                  : scene.Model(p.actor).mass / scene.Model(p.actor).volume;
   if (p.kind == SceneParameterKind::Mass) return scene.Model(p.actor).mass;
-  if (scene.IsKind(p.actor)) {
+  if (ThroughKind(scene, p.actor)) {  // a soft actor's: the mean over its nodes
     double value = NAN;
     Eigen::VectorXd direction;
     KindMotionParameter(scene, p, &value, &direction);
     return value;
-  }
-  if (scene.IsSoft(p.actor)) {  // the mean over the nodes
-    const SoftBodyState& s = scene.SoftState(p.actor);
-    const Eigen::VectorXd& v = p.kind == SceneParameterKind::Position ? s.x : s.v;
-    double sum = 0.0;
-    for (int i = p.component; i < v.size(); i += 3) sum += v[i];
-    return sum / (v.size() / 3);
   }
   const RigidBodyState& s = scene.State(p.actor);
   if (p.kind == SceneParameterKind::Position) return s.p[p.component];
@@ -190,7 +187,7 @@ bool SetParameterValue(Scene* scene, const SceneParameter& p, double value, Erro
   }
   if (!std::isfinite(value))
     return Fail(error, ToString(*scene, p) + ": must be finite");
-  if (scene->IsKind(p.actor)) {  // the state moves along the parameter's direction
+  if (ThroughKind(*scene, p.actor)) {  // the state moves along the parameter's direction
     double current = 0.0;
     Eigen::VectorXd d;
     if (!KindMotionParameter(*scene, p, &current, &d))
@@ -202,12 +199,6 @@ bool SetParameterValue(Scene* scene, const SceneParameter& p, double value, Erro
     return scene->SetKindState(p.actor, s, error);
   }
   const double shift = value - ParameterValue(*scene, p);
-  if (scene->IsSoft(p.actor)) {
-    SoftBodyState s = scene->SoftState(p.actor);
-    Eigen::VectorXd& v = p.kind == SceneParameterKind::Position ? s.x : s.v;
-    for (int i = p.component; i < v.size(); i += 3) v[i] += shift;
-    return scene->SetSoftState(p.actor, s, error);
-  }
   RigidBodyState s = scene->State(p.actor);
   if (p.kind == SceneParameterKind::Position) s.p[p.component] += shift;
   if (p.kind == SceneParameterKind::Velocity) s.v[p.component] += shift;
@@ -274,15 +265,11 @@ Eigen::VectorXd InitialStateDirection(Scene& scene, const SceneParameter& p) {
   if (!p.IsInitialState()) return d;
   const int o = scene.StateOffset(p.actor);
   const int c = p.component;
-  if (scene.IsKind(p.actor)) {
+  if (ThroughKind(scene, p.actor)) {
     double value = 0.0;
     Eigen::VectorXd direction;
     if (KindMotionParameter(scene, p, &value, &direction))
       d.segment(o, direction.size()) = direction;
-  } else if (scene.IsSoft(p.actor)) {
-    const int n = 3 * scene.SoftModel(p.actor).NumNodes();
-    const int base = p.kind == SceneParameterKind::Position ? o : o + n;
-    for (int i = c; i < n; i += 3) d[base + i] = 1.0;
   } else if (p.kind == SceneParameterKind::Position) {
     d[o + c] = 1.0;
   } else if (p.kind == SceneParameterKind::Velocity) {
@@ -299,17 +286,13 @@ Eigen::SparseMatrix<double> CenterOfMassMap(Scene& scene, ActorHandle a) {
   const int o = scene.StateOffset(a);
   if (o < 0) return C;
   std::vector<Eigen::Triplet<double>> t;
-  if (scene.IsKind(a)) {
+  if (ThroughKind(scene, a)) {
     const Eigen::MatrixXd J = scene.Kind(a).CenterOfMassJacobian(scene.KindStateOf(a));
     for (int c = 0; c < 3; ++c)
       for (Eigen::Index i = 0; i < J.cols(); ++i)
         if (J(c, i) != 0.0) t.emplace_back(c, o + i, J(c, i));
-  } else if (!scene.IsSoft(a)) {
-    for (int c = 0; c < 3; ++c) t.emplace_back(c, o + c, 1.0);
   } else {
-    const SoftBodyModel& m = scene.SoftModel(a);
-    for (int i = 0; i < m.NumNodes(); ++i)
-      for (int c = 0; c < 3; ++c) t.emplace_back(c, o + 3 * i + c, m.nodeMass[i] / m.mass);
+    for (int c = 0; c < 3; ++c) t.emplace_back(c, o + c, 1.0);
   }
   C.setFromTriplets(t.begin(), t.end());
   return C;

@@ -20,12 +20,12 @@ struct Direction {
   double step = 0.0;
 };
 
-// A body or soft node as the differences see it: the directions of its local coordinates and of
+// A group of an actor's coordinates (a rigid body, a soft node) as the differences see it: the directions of its local coordinates and of
 // its own contact parameters, and the units (bodies and nodes) whose rows its moves reach.
 struct Mover {
   std::vector<Direction> directions, parameters;
   std::vector<int> reach;
-  bool alone = false;  // a prescribed soft node: no column in J_i, moved by itself
+  bool alone = false;  // no free tangent dof (a prescribed node): no column in J_i, moved by itself
 };
 
 // Greedy distance-2 colouring: two movers share a colour only if no unit is reached by both.
@@ -87,7 +87,6 @@ std::vector<int> AddKindMovers(Scene& scene, const Eigen::VectorXd& S0, const St
   const int s = z.s, nd = z.nd, ns = z.ns, blockSize = ns / blocks;
   std::vector<int> moverOfKind(scene.NumActors(), -1);
   for (int a = 0; a < scene.NumActors(); ++a) {
-    if (scene.IsSoft({a})) continue;  // its nodes are movers of their own (below)
     const ActorKind& kind = scene.Kind({a});
     const int n = kind.NumDofs(), o = scene.StateOffset({a});
     const std::vector<int>& stageDof = scene.KindStageDofs({a});
@@ -150,11 +149,10 @@ MoverLayout LayOutMovers(Scene& scene, const StepTape& tape,
                          const std::vector<SceneParameter>& model, const Eigen::VectorXd& S0,
                          double dt) {
   const StepSizes z = SizesOf(scene, tape, S0, model);
-  const int s = z.s, nd = z.nd, ns = z.ns, P = z.P, zSize = z.zSize, m = z.m;
+  const int s = z.s, nd = z.nd, P = z.P, zSize = z.zSize, m = z.m;
   MoverLayout out;
   // The movers, and the unit of each output row (ρ_i rows by dof, S_{n+1} rows by state entry).
   const int blocks = 1 + scene.HistoryBlocks();
-  const int blockSize = ns / blocks;
   // Half the forward replay's state step (core/sensitivity/sensitivity.cpp): a column moves one coordinate
   // of a body, the replay a whole sensitivity direction. Measured on the four-box stack under six
   // integrators and both modes (tests/core/test_adjoint.cpp), mean error against trajectory
@@ -162,40 +160,6 @@ MoverLayout LayOutMovers(Scene& scene, const StepTape& tape,
   const double h = 0.5 * DifferenceStateStep(scene, dt);
   std::vector<Mover> movers;
   std::vector<int> rowUnit(m, -1), dofUnit(nd, -1);
-  auto claimRows = [&](int unit, int stateEntry, int count) {
-    for (int b = 0; b < blocks; ++b)
-      for (int k = 0; k < count; ++k) rowUnit[s * nd + b * blockSize + stateEntry + k] = unit;
-  };
-  auto addColumns = [&](Mover* mv, int first, int count, double step) {
-    for (int k = 0; k < count; ++k) mv->directions.push_back({{{first + k, 1.0}}, {{first + k, 1.0}}, step});
-  };
-  const std::vector<ActorHandle> soft = scene.SoftActors();
-  for (size_t a = 0; a < soft.size(); ++a) {
-    const SoftBodyModel& body = scene.SoftModel(soft[a]);
-    const int N = body.NumNodes();
-    const int o = scene.StateOffset(soft[a]);
-    for (int k = 0; k < N; ++k) {
-      const int u = static_cast<int>(movers.size());
-      Mover mv;
-      for (int b = 0; b < blocks; ++b) {  // x, v
-        addColumns(&mv, b * blockSize + o + 3 * k, 3, h);
-        addColumns(&mv, b * blockSize + o + 3 * N + 3 * k, 3, h / dt);
-      }
-      claimRows(u, o + 3 * k, 3);
-      claimRows(u, o + 3 * N + 3 * k, 3);
-      const int free = body.freeIndex[k];
-      mv.alone = free < 0;
-      if (!mv.alone) {
-        const int dof = scene.StageDofOffset(soft[a]) + 3 * free;
-        for (int c = 0; c < 3; ++c) dofUnit[dof + c] = u;
-        for (int st = 0; st < s; ++st) {
-          addColumns(&mv, ns + st * nd + dof, 3, h);
-          for (int c = 0; c < 3; ++c) rowUnit[st * nd + dof + c] = u;
-        }
-      }
-      movers.push_back(std::move(mv));
-    }
-  }
   const std::vector<int> moverOfKind =
       AddKindMovers(scene, S0, z, blocks, h, dt, &movers, &rowUnit, &dofUnit);
   const int U = static_cast<int>(movers.size());
