@@ -44,6 +44,56 @@ void AccountStage(const SolverStats& st, const ContactStats& stageContact, StepR
   }
 }
 
+// The dissipation coefficients of ContactParams, each combined by the geometric mean of a pair's
+// two actors (HasDissipation, ZeroByCombinationNotices).
+struct DissipationCoefficient {
+  const char* name;
+  double ContactParams::*member;
+};
+constexpr DissipationCoefficient kDissipationCoefficients[] = {
+    {"coulomb_friction_coefficient", &ContactParams::coulombFrictionCoefficient},
+    {"viscous_friction_coefficient", &ContactParams::viscousFrictionCoefficient},
+    {"normal_viscous_damping_coefficient", &ContactParams::normalViscousDampingCoefficient}};
+
+// Notices for the dissipation coefficients that combine to 0 (Notices).
+void ZeroByCombinationNotices(const Scene& scene, std::vector<std::string>* out) {
+  // A pair's μ, c_t and c_n are geometric means (spec: "Contact Parameter Combination"): one
+  // actor's 0 makes its pairs' 0 whatever the other sets. Noted where an actor sets a nonzero
+  // value other than the default and another has 0 (a 0 against the default is the usual way to
+  // make a pair frictionless or undamped).
+  const ContactParams defaults;
+  auto notice = [&](const char* field, auto coefficient) {
+    std::vector<std::string> set, zero;
+    for (int i = 0; i < scene.NumActors(); ++i) {
+      const double c = coefficient(scene.GetContactParams({i}));
+      if (c > 0 && c != coefficient(defaults)) set.push_back("'" + scene.ActorName({i}) + "'");
+      if (c == 0) zero.push_back("'" + scene.ActorName({i}) + "'");
+    }
+    if (set.empty() || zero.empty()) return;
+    auto list = [](const std::vector<std::string>& names) {
+      std::string s = names.front();
+      if (names.size() > 1) s += " and " + std::to_string(names.size() - 1) + " more";
+      return s;
+    };
+    out->push_back(std::string("contact.") + field + ": set on " + list(set) + " but 0 on " +
+                   list(zero) + "; a pair combines it by the geometric mean of its two actors, "
+                   "so every pair with an actor at 0 has none (set it on both actors)");
+  };
+  for (const DissipationCoefficient& d : kDissipationCoefficients)
+    notice(d.name, [&](const ContactParams& c) { return c.*d.member; });
+}
+
+// The smallest det F over the soft actors' tets (+∞ without).
+double MinDetF(const Scene& scene) {
+  double minDet = INFINITY;
+  for (ActorHandle a : scene.SoftActors()) {
+    double md = INFINITY;
+    ElasticEnergy(scene.SoftModel(a), scene.SoftState(a).x, &md);
+    minDet = std::min(minDet, md);
+  }
+  return minDet;
+}
+
 }  // namespace
 
 Scene::Scene(const SceneSettings& settings)
@@ -64,10 +114,10 @@ bool Scene::ValidParent(ActorHandle parent, Error* error) const {
          Fail(error, "parent: invalid actor handle " + std::to_string(parent.index));
 }
 
-ActorHandle Scene::Register(std::shared_ptr<ActorKind> kind, const std::string& layer,
+ActorHandle Scene::Register(std::shared_ptr<ActorKind> k, const std::string& layer,
                             ActorHandle parent) {
-  step_.vectorStates.push_back(kind->InitialState());
-  kinds_.push_back(std::move(kind));
+  step_.vectorStates.push_back(k->InitialState());
+  kinds_.push_back(std::move(k));
   filter_.AddActor(layer, parent.index);
   actors_.emplace_back();
   prepared_ = false;
@@ -102,14 +152,6 @@ ActorHandle Scene::AddRigidActor(const RigidActorDesc& desc, Error* error, Actor
   return h;
 }
 
-const RigidKind& Scene::RigidOf(ActorHandle a) const {
-  return static_cast<const RigidKind&>(*kinds_[a.index]);
-}
-
-const SoftKind& Scene::SoftOf(ActorHandle a) const {
-  return static_cast<const SoftKind&>(*kinds_[a.index]);
-}
-
 ActorHandle Scene::AddSoftActor(const SoftActorDesc& desc, Error* error, ActorHandle parent) {
   if (!ValidParent(parent, error) || !UniqueName(desc.name, error)) return {};
   // A soft actor is the generic layer's SoftKind.
@@ -127,7 +169,7 @@ ActorHandle Scene::AddActor(std::unique_ptr<ActorKind> actor, Error* error,
   if (!ValidParent(parent, error)) return {};
   if (!actor) return Fail(error, "actor: null"), ActorHandle();
   if (!UniqueName(actor->name, error)) return {};
-  if (std::string m = ValidateKind(*actor); !m.empty()) return Fail(error, m), ActorHandle();
+  if (std::string m = ValidateKindLayout(*actor, settings_.gravity); !m.empty()) return Fail(error, m), ActorHandle();
   return Register(std::move(actor), contactLayer, parent);
 }
 
@@ -292,16 +334,6 @@ void Scene::ApplyConstraints(double t, std::vector<Eigen::VectorXd>* x) const {
   for (size_t k = 0; k < kinds_.size(); ++k) kinds_[k]->Prescribe(t, &(*x)[k]);
 }
 
-double Scene::MinDetF() const {
-  double minDet = INFINITY;
-  for (ActorHandle a : SoftActors()) {
-    double md = INFINITY;
-    ElasticEnergy(SoftOf(a).Model(), step_.vectorStates[a.index].x, &md);
-    minDet = std::min(minDet, md);
-  }
-  return minDet;
-}
-
 void Scene::SolveStage(double dt, const KindStage& stage, std::vector<Eigen::VectorXd>* x,
                        double predictTime, StepReport* rep) {
   StageScene scene;
@@ -365,7 +397,7 @@ bool Scene::Step(double h, StepReport* report, Error* error, StageRecorder* reco
     if (report) *report = rep;
     return true;
   }
-  if (!softDescs_.empty()) rep.minDetF = MinDetF();
+  if (!softDescs_.empty()) rep.minDetF = MinDetF(*this);
   rep.contact = ContactState();
   rep.wallSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -417,7 +449,7 @@ bool Scene::SoftFaceTractions(ActorHandle a, std::vector<Eigen::Vector3d>* tract
                               Error* error) {
   if (a.index < 0 || a.index >= NumActors() || !actors_[a.index].soft)
     return Fail(error, "actor: not a soft actor handle");
-  const SoftBodyModel& m = SoftOf(a).Model();
+  const SoftBodyModel& m = SoftModel(a);
   tractions->assign(m.faces.size(), Eigen::Vector3d::Zero());
   for (const ContactSampleRecord& r : ContactSamples())
     if (r.colliding == a.index && r.face >= 0)
@@ -454,7 +486,7 @@ std::vector<std::string> Scene::Notices() const {
   for (ActorHandle a : RigidActors())
     if (!Model(a).notice.empty()) out.push_back(Model(a).notice);
   for (ActorHandle a : SoftActors())
-    if (!SoftOf(a).Model().notice.empty()) out.push_back(SoftOf(a).Model().notice);
+    if (!SoftModel(a).notice.empty()) out.push_back(SoftModel(a).notice);
   // Kinds' own samples without a rigid or deforming face's normal do not collide on soft
   // fields (CollidesOnSoftField).
   bool softCollider = false;
@@ -467,50 +499,8 @@ std::vector<std::string> Scene::Notices() const {
                   "field: that pair is not supported yet (soft actors do collide on theirs)");
     break;
   }
-  ZeroByCombinationNotices(&out);
+  ZeroByCombinationNotices(*this, &out);
   return out;
-}
-
-namespace {
-
-// The dissipation coefficients of ContactParams, each combined by the geometric mean of a pair's
-// two actors (HasDissipation, ZeroByCombinationNotices).
-struct DissipationCoefficient {
-  const char* name;
-  double ContactParams::*member;
-};
-constexpr DissipationCoefficient kDissipationCoefficients[] = {
-    {"coulomb_friction_coefficient", &ContactParams::coulombFrictionCoefficient},
-    {"viscous_friction_coefficient", &ContactParams::viscousFrictionCoefficient},
-    {"normal_viscous_damping_coefficient", &ContactParams::normalViscousDampingCoefficient}};
-
-}  // namespace
-
-void Scene::ZeroByCombinationNotices(std::vector<std::string>* out) const {
-  // A pair's μ, c_t and c_n are geometric means (spec: "Contact Parameter Combination"): one
-  // actor's 0 makes its pairs' 0 whatever the other sets. Noted where an actor sets a nonzero
-  // value other than the default and another has 0 (a 0 against the default is the usual way to
-  // make a pair frictionless or undamped).
-  const ContactParams defaults;
-  auto notice = [&](const char* field, auto coefficient) {
-    std::vector<std::string> set, zero;
-    for (int i = 0; i < NumActors(); ++i) {
-      const double c = coefficient(GetContactParams({i}));
-      if (c > 0 && c != coefficient(defaults)) set.push_back("'" + ActorName({i}) + "'");
-      if (c == 0) zero.push_back("'" + ActorName({i}) + "'");
-    }
-    if (set.empty() || zero.empty()) return;
-    auto list = [](const std::vector<std::string>& names) {
-      std::string s = names.front();
-      if (names.size() > 1) s += " and " + std::to_string(names.size() - 1) + " more";
-      return s;
-    };
-    out->push_back(std::string("contact.") + field + ": set on " + list(set) + " but 0 on " +
-                   list(zero) + "; a pair combines it by the geometric mean of its two actors, "
-                   "so every pair with an actor at 0 has none (set it on both actors)");
-  };
-  for (const DissipationCoefficient& d : kDissipationCoefficients)
-    notice(d.name, [&](const ContactParams& c) { return c.*d.member; });
 }
 
 bool Scene::HasDissipation() const {

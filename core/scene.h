@@ -45,15 +45,13 @@ class Scene : private StageHost {
   /// Adds a soft (tet FEM) actor; returns an invalid handle and fills *error on bad input.
   ActorHandle AddSoftActor(const SoftActorDesc& desc, Error* error,
                            ActorHandle parent = ActorHandle());
-  /// Adds an actor of any kind written against the generic actor layer (core/model/actor_kind.h);
-  /// returns an invalid handle and fills *error on bad input (the kind's own Validate, its state
-  /// sizes, sample maps, collider frame and contact parameters).
+  /// Adds an actor of any kind of the generic actor layer (core/model/actor_kind.h); returns an
+  /// invalid handle and fills *error on bad input (ValidateKindLayout).
   ActorHandle AddActor(std::unique_ptr<ActorKind> actor, Error* error,
                        const std::string& contactLayer = "default",
                        ActorHandle parent = ActorHandle());
 
-  // --- Contact filtering (spec: "Contact Filtering"; core/contact/contact_filter.h). Each returns false
-  // and fills *error for an invalid handle.
+  // --- Contact filtering (spec: "Contact Filtering"): false, with *error, for a bad handle.
   /// Actor::SetContactLayer: an arbitrary string.
   bool SetContactLayer(ActorHandle actor, const std::string& layer, Error* error);
   const std::string& ContactLayer(ActorHandle actor) const;
@@ -83,20 +81,17 @@ class Scene : private StageHost {
   /// Every actor, rigid and soft; handles index this range in the order of creation.
   int NumActors() const { return static_cast<int>(actors_.size()); }
   bool IsSoft(ActorHandle a) const { return actors_[a.index].soft; }
-  /// Whether a was added by AddActor (a kind of the generic layer that is neither a rigid nor a
-  /// soft actor).
+  /// Whether a was added by AddActor (it is neither a rigid nor a soft actor).
   bool IsKind(ActorHandle a) const { return !actors_[a.index].rigid && !actors_[a.index].soft; }
-  /// Every actor is carried by the generic layer (rigid actors are RigidKinds, soft ones
-  /// SoftKinds): its kind, and its state (x: its q).
+  /// Every actor's kind (rigid actors are RigidKinds, soft ones SoftKinds) and state (x = q).
   const ActorKind& Kind(ActorHandle a) const { return *kinds_[a.index]; }
   const KindState& KindStateOf(ActorHandle a) const;
   /// Replaces a kind's state (its NumDofs entries in x and v, finite); clears BDF history.
   bool SetKindState(ActorHandle a, const KindState& state, Error* error);
   /// Rigid actors (a must be one).
   const RigidBodyModel& Model(ActorHandle a) const { return RigidOf(a).Model(); }
-  /// The description a rigid (soft) actor was created from, with the changes of the setters of
-  /// its parameters since (SetContactParams, SetContactLayer, SetRigidMass, SetSoftMaterial), not
-  /// of its state (the scene writer, scenes/scene_writer.h, reads both).
+  /// The description a rigid (soft) actor was created from, with its parameters' setters' changes
+  /// since (not its state's; the scene writer, scenes/scene_writer.h, reads both).
   const RigidActorDesc& RigidDesc(ActorHandle a) const { return rigidDescs_[actors_[a.index].desc]; }
   const SoftActorDesc& SoftDesc(ActorHandle a) const;
   /// The actor a is nested under (invalid handle: none).
@@ -193,15 +188,13 @@ class Scene : private StageHost {
     bool soft = false;   ///< a soft actor (a SoftKind)
     int desc = -1;       ///< a rigid (soft) actor's index into rigidDescs_ (softDescs_)
   };
-  const RigidKind& RigidOf(ActorHandle a) const;
-  const SoftKind& SoftOf(ActorHandle a) const;
+  const RigidKind& RigidOf(ActorHandle a) const { return static_cast<const RigidKind&>(Kind(a)); }
   std::vector<ActorHandle> ActorsWhere(bool ActorRef::*flag) const;  // in creation order
-  // Solves one stage with the stage policy (StageDriver::Solve) and the step's recorder, and
-  // accounts it in *rep.
+  // Solves one stage by the stage policy (StageDriver::Solve), accounted in *rep.
   void SolveStage(double dt, const KindStage& stage, std::vector<Eigen::VectorXd>* x,
                   double predictTime, StepReport* rep) override;
   // The packed-state layout: calls visit(block, offset, actor index) for every dynamic
-  // actor in each of the first `blocks` blocks (0: the current state, b >= 1: step_.history[b−1]).
+  // actor in each of the first `blocks` blocks (0: the current state, b >= 1: history b − 1).
   template <typename Visit>
   void VisitStateLayout(int blocks, Visit&& visit) const;
   // Changes actor a's kind by change(kind) on a copy (scenes copied from this one share the kind
@@ -210,22 +203,15 @@ class Scene : private StageHost {
   void ChangeKind(int a, Change&& change);
   // A static rigid actor a is held at `state` from now on (its kind copied first if it changes).
   void HoldStatic(int a, const RigidBodyState& state);
-  // A snapshot's layout (Save) from the vector states and back.
-  void SplitRigid(const std::vector<VectorState>& vector, std::vector<RigidBodyState>* rigid,
-                  std::vector<VectorState>* rest) const;
-  void JoinRigid(const std::vector<RigidBodyState>& rigid, const std::vector<VectorState>& rest,
-                 std::vector<VectorState>* vector) const;
+  std::vector<int> RigidDescs() const;  // per actor: its index into rigidDescs_, −1 if not rigid
   int BlockSize(int a) const { return 2 * kinds_[a]->NumDofs(); }  // its entries in PackState
-  // 1 + the history blocks that hold a state.
-  int FilledStateBlocks() const;
+  int FilledStateBlocks() const;  // 1 + the history blocks that hold a state
 
   void ClearHistory();
   bool ValidParent(ActorHandle parent, Error* error) const;  // no parent, or an existing actor
   bool UniqueName(const std::string& name, Error* error) const;  // empty, or no actor's yet
-  void ZeroByCombinationNotices(std::vector<std::string>* out) const;  // for Notices
   // Enters an actor into the kinds, the actor list and the filter.
-  ActorHandle Register(std::shared_ptr<ActorKind> kind, const std::string& layer,
-                       ActorHandle parent);
+  ActorHandle Register(std::shared_ptr<ActorKind> k, const std::string& layer, ActorHandle parent);
   void Prepare();
   void CurrentPositions(std::vector<Eigen::VectorXd>* x) const;  // into kept storage
   // The actors' stage data at stage time t [s]: targets from the stage start, geometry from the
@@ -233,13 +219,8 @@ class Scene : private StageHost {
   void MakeStage(double dt, double t, const std::vector<VectorState>& start,
                  const std::vector<Eigen::VectorXd>& last, KindStage* out) const override;
   const ActorKind& KindOf(size_t a) const override { return *kinds_[a]; }
-  // The kinds' prescribed dofs at time t written into x.
-  void ApplyConstraints(double t, std::vector<Eigen::VectorXd>* x) const override;
-  double MinDetF() const;
-  // The kinds' part of a contact evaluation at the vector states x.
-  KindView CurrentKindView(const std::vector<Eigen::VectorXd>& x) const;
-  // Empty, or why the kind's actor cannot be added.
-  std::string ValidateKind(const ActorKind& kind) const;
+  void ApplyConstraints(double t, std::vector<Eigen::VectorXd>* x) const override;  // Prescribe
+  KindView CurrentKindView(const std::vector<Eigen::VectorXd>& x) const;  // contact view at x
 
   SceneSettings settings_;
   std::string settingsError_;  ///< Validate(settings_), kept with every change of settings_
@@ -247,8 +228,7 @@ class Scene : private StageHost {
   std::vector<SoftActorDesc> softDescs_;    // per soft actor: as given to AddSoftActor
   /// SamplesHash → indices into kinds_ of the rigid actors' distinct sample sets (ShareSamples).
   std::unordered_multimap<std::size_t, int> sampleSets_;
-  // The actors' kinds (copies of a scene share them; a changed one is copied first), in creation
-  // order; their states are step_.vectorStates.
+  // The actors' kinds in creation order (copies of a scene share them; ChangeKind copies first).
   std::vector<std::shared_ptr<ActorKind>> kinds_;
   std::vector<const ActorKind*> kindPtrs_;           // for the pipeline and the stage
   std::vector<std::vector<int>> kindStageDof_;       // per kind: stage dof of each local dof

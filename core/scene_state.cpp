@@ -19,7 +19,9 @@ bool ValidHandle(const Scene& scene, ActorHandle a, Error* error) {
 
 RigidBodyState Scene::State(ActorHandle a) const { return RigidKind::Unpack(KindStateOf(a)); }
 
-const SoftBodyModel& Scene::SoftModel(ActorHandle a) const { return SoftOf(a).Model(); }
+const SoftBodyModel& Scene::SoftModel(ActorHandle a) const {
+  return static_cast<const SoftKind&>(Kind(a)).Model();
+}
 
 const SoftBodyState& Scene::SoftState(ActorHandle a) const { return step_.vectorStates[a.index]; }
 
@@ -36,71 +38,6 @@ bool Scene::SetSoftState(ActorHandle a, const SoftBodyState& state, Error* error
   step_.vectorStates[a.index] = state;
   ClearHistory();
   return true;
-}
-
-std::string Scene::ValidateKind(const ActorKind& kind) const {
-  const std::string name = "actor (" + kind.KindName() + ")";
-  if (std::string m = kind.Validate(); !m.empty()) return m;
-  if (std::string m = Validate(kind.contact, "contact."); !m.empty()) return m;
-  const int n = kind.NumDofs();
-  if (n <= 0) return name + ": NumDofs must be > 0";
-  const KindState s = kind.InitialState();
-  if (s.x.size() != n || s.v.size() != n)
-    return name + ": the initial state needs " + std::to_string(n) + " entries in x and v";
-  if (!s.x.allFinite() || !s.v.allFinite()) return name + ": the initial state must be finite";
-  const int m = kind.NumTangentDofs();
-  if (m <= 0 || m > n) return name + ": NumTangentDofs must be in [1, NumDofs]";
-  {  // A stage load at the first stage's time: m finite entries.
-    KindStageData stage;
-    stage.dt = 1.0;
-    stage.gravity = settings_.gravity;
-    stage.qHat = stage.q0 = stage.qLast = s.x;
-    Eigen::VectorXd f;
-    if (kind.StageLoad(stage, &f) && (f.size() != m || !f.allFinite()))
-      return name + ": StageLoad must give NumTangentDofs (" + std::to_string(m) +
-             ") finite entries, got " + std::to_string(f.size());
-  }
-  // Blocks read by the contact assembler: whole 3-dof blocks of δ, prescribed all or none.
-  auto badBlock = [&](int first) {
-    if (first < 0 || first + 3 > m) return true;
-    return kind.IsPrescribed(first) != kind.IsPrescribed(first + 1) ||
-           kind.IsPrescribed(first) != kind.IsPrescribed(first + 2);
-  };
-  for (int k = 0; k < kind.NumSamples(); ++k) {
-    const KindSample ks = kind.Sample(k, s.x);
-    const std::string sample = name + ": sample " + std::to_string(k);
-    if (ks.map.kind == SamplePointMap::Kind::Nodes && (ks.map.nodes < 1 || ks.map.nodes > 4))
-      return sample + " needs a Nodes map of 1 to 4 nodes";
-    for (int b = 0; b < ks.Blocks(); ++b)
-      if (badBlock(ks.dof[b])) return sample + " reads a dof block outside δ or partly prescribed";
-    if (!(ks.weight >= 0.0)) return name + ": sample weights must be >= 0";
-    if (ks.hasNormal && !(std::abs(ks.n.norm() - 1.0) < 1e-9))
-      return sample + ": its colliding normal must be a unit vector";
-  }
-  for (int b = 0; b < kind.NumSampleBodies(); ++b) {
-    const std::string body = name + ": sample body " + std::to_string(b);
-    int dof[2];
-    kind.SampleBodyDofs(b, dof);
-    if (!kind.SampleBody(b)) return body + " has no geometry (SampleBody is null)";
-    if (badBlock(dof[0]) || badBlock(dof[1]) ||
-        kind.IsPrescribed(dof[0]) != kind.IsPrescribed(dof[1]))
-      return body + " reads a dof block outside δ or partly prescribed";
-  }
-  if (const RigidCollider* c = kind.Collider()) {
-    // The assembler and the step limit take φ >= |Y| − boundingRadius (the shape within it).
-    if (!(c->boundingRadius > 0.0))
-      return name + ": the collider's boundingRadius must be > 0 (max |X| over its shape, m)";
-    const KindFrame f = kind.ColliderFrame(s.x);
-    if (f.rigid && f.blocks != 2)
-      return name + ": a rigid collider frame moves with 2 blocks, [δp] and [δθ]";
-    if (f.blocks < 0 || f.blocks > 4) return name + ": the collider frame moves with 0 to 4 blocks";
-    if (!f.rigid && !f.F.bottomRows<3>().isZero())
-      return name + ": a collider frame that rotates with a general map of the dofs is not supported yet";
-    for (int b = 0; b < f.blocks; ++b)
-      if (badBlock(f.dof[b]))
-        return name + ": the collider frame reads a dof block outside δ or partly prescribed";
-  }
-  return {};
 }
 
 bool Scene::SetKindState(ActorHandle a, const KindState& state, Error* error) {
@@ -248,24 +185,6 @@ void Scene::UnpackState(const Eigen::VectorXd& s) {
   });
 }
 
-// A snapshot's layout is the one of checkpoint files and of Python's SceneState: the rigid
-// actors' states in their order of creation under `states` (p, R, v, Ṙ), the other actors' (soft
-// actors and other kinds, in their order of creation) under `vectorStates`. Inside the scene a
-// rigid actor's state is its RigidKind's vector state (RigidKind::Pack, exact both ways).
-void Scene::SplitRigid(const std::vector<VectorState>& vector, std::vector<RigidBodyState>* rigid,
-                       std::vector<VectorState>* rest) const {
-  std::vector<char> isRigid(vector.size(), 0);
-  rigid->assign(rigidDescs_.size(), RigidBodyState());
-  for (size_t i = 0; i < actors_.size(); ++i)
-    if (actors_[i].rigid) {
-      isRigid[i] = 1;
-      (*rigid)[actors_[i].desc] = RigidKind::Unpack(vector[i]);
-    }
-  rest->clear();
-  for (size_t v = 0; v < vector.size(); ++v)
-    if (!isRigid[v]) rest->push_back(vector[v]);
-}
-
 void Scene::HoldStatic(int a, const RigidBodyState& state) {
   const RigidKind& kind = RigidOf({a});
   if (kind.Model().dynamic) return;
@@ -274,42 +193,69 @@ void Scene::HoldStatic(int a, const RigidBodyState& state) {
   ChangeKind(a, [&](ActorKind& k) { static_cast<RigidKind&>(k).Hold(state); });
 }
 
-void Scene::JoinRigid(const std::vector<RigidBodyState>& rigid,
-                      const std::vector<VectorState>& rest,
-                      std::vector<VectorState>* vector) const {
-  vector->assign(rigid.size() + rest.size(), SoftBodyState());
-  std::vector<char> isRigid(vector->size(), 0);
-  for (size_t i = 0; i < actors_.size(); ++i)
-    if (actors_[i].rigid) {
-      isRigid[i] = 1;
-      (*vector)[i] = RigidKind::Pack(rigid[actors_[i].desc]);
+namespace {
+
+// A snapshot's layout is the one of checkpoint files and of Python's SceneState: the rigid
+// actors' states in their order of creation under `rigidStates` (p, R, v, Ṙ), the other actors' (soft
+// actors and other kinds, in their order of creation) under `vectorStates`. Inside the scene a
+// rigid actor's state is its RigidKind's vector state (RigidKind::Pack, exact both ways).
+// rigidDesc[i]: actor i's index among the rigid actors, −1 for another kind.
+void SplitRigid(const std::vector<int>& rigidDesc, const std::vector<VectorState>& vector,
+                std::vector<RigidBodyState>* rigid, std::vector<VectorState>* rest) {
+  rigid->clear();
+  rest->clear();
+  for (size_t i = 0; i < vector.size(); ++i) {
+    if (rigidDesc[i] < 0) {
+      rest->push_back(vector[i]);
+      continue;
     }
+    if (static_cast<int>(rigid->size()) <= rigidDesc[i]) rigid->resize(rigidDesc[i] + 1);
+    (*rigid)[rigidDesc[i]] = RigidKind::Unpack(vector[i]);
+  }
+}
+
+void JoinRigid(const std::vector<int>& rigidDesc, const std::vector<RigidBodyState>& rigid,
+               const std::vector<VectorState>& rest, std::vector<VectorState>* vector) {
+  vector->assign(rigidDesc.size(), VectorState());
   size_t next = 0;
-  for (size_t v = 0; v < vector->size(); ++v)
-    if (!isRigid[v]) (*vector)[v] = rest[next++];
+  for (size_t i = 0; i < rigidDesc.size(); ++i)
+    (*vector)[i] = rigidDesc[i] >= 0 ? RigidKind::Pack(rigid[rigidDesc[i]]) : rest[next++];
+}
+
+}  // namespace
+
+std::vector<int> Scene::RigidDescs() const {
+  std::vector<int> desc(actors_.size(), -1);
+  for (size_t i = 0; i < actors_.size(); ++i)
+    if (actors_[i].rigid) desc[i] = actors_[i].desc;
+  return desc;
 }
 
 Scene::Snapshot Scene::Save() const {
   Snapshot s{StepState(), driver_.GetState()};
+  const std::vector<int> rigidDesc = RigidDescs();
   s.step.time = step_.time;
   s.step.historyTimes = step_.historyTimes;
-  SplitRigid(step_.vectorStates, &s.step.rigidStates, &s.step.vectorStates);
+  SplitRigid(rigidDesc, step_.vectorStates, &s.step.rigidStates, &s.step.vectorStates);
   s.step.rigidHistory.resize(step_.vectorHistory.size());
   s.step.vectorHistory.resize(step_.vectorHistory.size());
   for (size_t h = 0; h < step_.vectorHistory.size(); ++h)
-    SplitRigid(step_.vectorHistory[h], &s.step.rigidHistory[h], &s.step.vectorHistory[h]);
+    SplitRigid(rigidDesc, step_.vectorHistory[h], &s.step.rigidHistory[h],
+               &s.step.vectorHistory[h]);
   return s;
 }
 
 void Scene::Restore(const Snapshot& s) {
   step_.time = s.step.time;
   step_.historyTimes = s.step.historyTimes;
-  JoinRigid(s.step.rigidStates, s.step.vectorStates, &step_.vectorStates);
+  const std::vector<int> rigidDesc = RigidDescs();
+  JoinRigid(rigidDesc, s.step.rigidStates, s.step.vectorStates, &step_.vectorStates);
   for (size_t i = 0; i < actors_.size(); ++i)
     if (actors_[i].rigid) HoldStatic(static_cast<int>(i), s.step.rigidStates[actors_[i].desc]);
   step_.vectorHistory.resize(s.step.vectorHistory.size());
   for (size_t h = 0; h < s.step.vectorHistory.size(); ++h)
-    JoinRigid(s.step.rigidHistory[h], s.step.vectorHistory[h], &step_.vectorHistory[h]);
+    JoinRigid(rigidDesc, s.step.rigidHistory[h], s.step.vectorHistory[h],
+              &step_.vectorHistory[h]);
   driver_.SetState(s.driver);
   buffers_.reportStage.valid = false;  // the state is not the last stage's any more
 }

@@ -41,4 +41,69 @@ Eigen::MatrixXd ActorKind::CenterOfMassJacobian(const KindState& s) const {
   return C;
 }
 
+std::string ValidateKindLayout(const ActorKind& kind, const Eigen::Vector3d& gravity) {
+  const std::string name = "actor (" + kind.KindName() + ")";
+  if (std::string m = kind.Validate(); !m.empty()) return m;
+  if (std::string m = Validate(kind.contact, "contact."); !m.empty()) return m;
+  const int n = kind.NumDofs();
+  if (n <= 0) return name + ": NumDofs must be > 0";
+  const KindState s = kind.InitialState();
+  if (s.x.size() != n || s.v.size() != n)
+    return name + ": the initial state needs " + std::to_string(n) + " entries in x and v";
+  if (!s.x.allFinite() || !s.v.allFinite()) return name + ": the initial state must be finite";
+  const int m = kind.NumTangentDofs();
+  if (m <= 0 || m > n) return name + ": NumTangentDofs must be in [1, NumDofs]";
+  {  // A stage load at the first stage's time: m finite entries.
+    KindStageData stage;
+    stage.dt = 1.0;
+    stage.gravity = gravity;
+    stage.qHat = stage.q0 = stage.qLast = s.x;
+    Eigen::VectorXd f;
+    if (kind.StageLoad(stage, &f) && (f.size() != m || !f.allFinite()))
+      return name + ": StageLoad must give NumTangentDofs (" + std::to_string(m) +
+             ") finite entries, got " + std::to_string(f.size());
+  }
+  // Blocks read by the contact assembler: whole 3-dof blocks of δ, prescribed all or none.
+  auto badBlock = [&](int first) {
+    if (first < 0 || first + 3 > m) return true;
+    return kind.IsPrescribed(first) != kind.IsPrescribed(first + 1) ||
+           kind.IsPrescribed(first) != kind.IsPrescribed(first + 2);
+  };
+  for (int k = 0; k < kind.NumSamples(); ++k) {
+    const KindSample ks = kind.Sample(k, s.x);
+    const std::string sample = name + ": sample " + std::to_string(k);
+    if (ks.map.kind == SamplePointMap::Kind::Nodes && (ks.map.nodes < 1 || ks.map.nodes > 4))
+      return sample + " needs a Nodes map of 1 to 4 nodes";
+    for (int b = 0; b < ks.Blocks(); ++b)
+      if (badBlock(ks.dof[b])) return sample + " reads a dof block outside δ or partly prescribed";
+    if (!(ks.weight >= 0.0)) return name + ": sample weights must be >= 0";
+    if (ks.hasNormal && !(std::abs(ks.n.norm() - 1.0) < 1e-9))
+      return sample + ": its colliding normal must be a unit vector";
+  }
+  for (int b = 0; b < kind.NumSampleBodies(); ++b) {
+    const std::string body = name + ": sample body " + std::to_string(b);
+    int dof[2];
+    kind.SampleBodyDofs(b, dof);
+    if (!kind.SampleBody(b)) return body + " has no geometry (SampleBody is null)";
+    if (badBlock(dof[0]) || badBlock(dof[1]) ||
+        kind.IsPrescribed(dof[0]) != kind.IsPrescribed(dof[1]))
+      return body + " reads a dof block outside δ or partly prescribed";
+  }
+  if (const RigidCollider* c = kind.Collider()) {
+    // The assembler and the step limit take φ >= |Y| − boundingRadius (the shape within it).
+    if (!(c->boundingRadius > 0.0))
+      return name + ": the collider's boundingRadius must be > 0 (max |X| over its shape, m)";
+    const KindFrame f = kind.ColliderFrame(s.x);
+    if (f.rigid && f.blocks != 2)
+      return name + ": a rigid collider frame moves with 2 blocks, [δp] and [δθ]";
+    if (f.blocks < 0 || f.blocks > 4) return name + ": the collider frame moves with 0 to 4 blocks";
+    if (!f.rigid && !f.F.bottomRows<3>().isZero())
+      return name + ": a collider frame that rotates with a general map of the dofs is not supported yet";
+    for (int b = 0; b < f.blocks; ++b)
+      if (badBlock(f.dof[b]))
+        return name + ": the collider frame reads a dof block outside δ or partly prescribed";
+  }
+  return {};
+}
+
 }  // namespace superdex

@@ -385,4 +385,10 @@ class ActorKind {
   std::string name;
 };
 
+/// Empty when an actor of `kind` can be added to a scene with this gravity [m/s²]; else why not
+/// (the kind's own Validate and contact parameters, its state sizes, a stage load's size, and
+/// that its samples, sample bodies and collider frame read whole 3-dof blocks of its tangent
+/// step, prescribed all or none).
+std::string ValidateKindLayout(const ActorKind& kind, const Eigen::Vector3d& gravity);
+
 }  // namespace superdex
