@@ -112,16 +112,16 @@ double SceneStageProblem::EvaluateKindTerms(const std::vector<Eigen::VectorXd>& 
   const KindStage& ks = *stage_;
   double value = 0.0;
   Eigen::VectorXd& g = ws_->kindGradient;
-  std::vector<Eigen::Triplet<double>>& H = ws_->kindHessian;
   std::vector<double>& kindValue = ws_->kindValue;
   kindValue.assign(ks.Size(), 0.0);
   for (size_t k = 0; k < ks.Size(); ++k) {
     const ActorKind& kind = *(*ks.kinds)[k];
     const std::vector<int>& dof = ks.stageDof[k];
     if (order >= 1) g.setZero(kind.NumTangentDofs());
-    H.clear();
+    // The kind appends its local entries to triplets_; they are renumbered in place below.
+    const size_t first = triplets_.size();
     kindValue[k] = kind.StageEnergy(ks.data[k], x[k], order, projection,
-                                    order >= 1 ? &g : nullptr, order >= 2 ? &H : nullptr);
+                                    order >= 1 ? &g : nullptr, order >= 2 ? &triplets_ : nullptr);
     if (!kindLoad_.empty() && kindLoad_[k].size() > 0) {
       const Eigen::VectorXd& f = kindLoad_[k];
       kindValue[k] -= kindLoadWork_[k];
@@ -137,11 +137,15 @@ double SceneStageProblem::EvaluateKindTerms(const std::vector<Eigen::VectorXd>& 
     if (order < 1) continue;
     for (size_t i = 0; i < dof.size(); ++i)
       if (dof[i] >= 0) (*gPot)[dof[i]] += g[i];
-    // Every entry the kind appends, zero or not: the kind keeps its pattern stable.
-    for (const Eigen::Triplet<double>& t : H) {
+    // Every entry the kind appends, zero or not (the kind keeps its pattern stable), at the
+    // stage dofs; entries on a prescribed dof are dropped.
+    size_t kept = first;
+    for (size_t e = first; e < triplets_.size(); ++e) {
+      const Eigen::Triplet<double>& t = triplets_[e];
       const int r = dof[t.row()], c = dof[t.col()];
-      if (r >= 0 && c >= 0) triplets_.emplace_back(r, c, t.value());
+      if (r >= 0 && c >= 0) triplets_[kept++] = Eigen::Triplet<double>(r, c, t.value());
     }
+    triplets_.resize(kept);
   }
   return value;
 }

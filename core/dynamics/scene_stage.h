@@ -63,7 +63,7 @@ struct StageWorkspace {
   size_t blockPosition = 0;                ///< where in `triplets` the blocks stand
   Eigen::VectorXd kindGradient;                    ///< a kind's local gradient
   Eigen::VectorXd kindDelta;                       ///< a kind's local step (or residual)
-  std::vector<Eigen::Triplet<double>> kindHessian; ///< a kind's local Hessian entries
+  std::vector<Eigen::Triplet<double>> kindHessian; ///< a kind's local Jacobian corrections
   TripletAssembly hessianAssembly;   ///< Evaluate's Hessians (pattern kept between iterations)
   TripletAssembly jacobianAssembly;  ///< EvaluateResidual's Jacobians
 };

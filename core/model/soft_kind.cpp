@@ -22,9 +22,6 @@ SoftKind::SoftKind(SoftBodyModel model, const SoftBodyState& initial)
     : model_(std::move(model)), initial_(initial) {
   contact = model_.contact;
   name = model_.name;
-  freeNode_.assign(model_.numFree, 0);
-  for (int a = 0; a < model_.NumNodes(); ++a)
-    if (model_.freeIndex[a] >= 0) freeNode_[model_.freeIndex[a]] = a;
 }
 
 std::unique_ptr<SoftKind> SoftKind::Build(const SoftActorDesc& desc, Error* error) {
@@ -52,8 +49,6 @@ struct SoftStageScratch : KindScratch {
   SoftStageTarget target;
   bool prepared = false;
   SoftTermScratch terms;
-  Eigen::VectorXd freeGradient;
-  std::vector<Eigen::Triplet<double>> freeHessian;
 };
 
 // The stage's target from its data.
@@ -76,19 +71,9 @@ double SoftKind::StageEnergy(const KindStageData& stage, const Eigen::VectorXd& 
                              std::vector<Eigen::Triplet<double>>* H) const {
   SoftStageScratch& s = stage.scratch.Get<SoftStageScratch>();
   if (!s.prepared) Prepare(model_, stage, &s);  // stage data built by hand
-  // The soft terms on the free nodes (dofs 3 freeIndex[a]), then scattered to the local dofs.
-  if (order >= 1) s.freeGradient.setZero(3 * model_.numFree);
-  s.freeHessian.clear();
-  const double value = EvaluateSoftStageTerms(
-      model_, s.target, stage.dt, stage.gravity, q, order, projection, 0,
-      order >= 1 ? &s.freeGradient : nullptr, order >= 2 ? &s.freeHessian : nullptr, &s.terms);
-  if (order < 1) return value;
-  auto local = [&](int i) { return 3 * freeNode_[i / 3] + i % 3; };
-  for (int i = 0; i < s.freeGradient.size(); ++i) (*g)[local(i)] += s.freeGradient[i];
-  if (order < 2) return value;
-  for (const Eigen::Triplet<double>& t : s.freeHessian)
-    H->emplace_back(local(t.row()), local(t.col()), t.value());
-  return value;
+  // The soft terms on the free nodes, at their local dofs (node a: 3a).
+  return EvaluateSoftStageTerms(model_, s.target, stage.dt, stage.gravity, q, order, projection,
+                                order >= 1 ? g : nullptr, order >= 2 ? H : nullptr, &s.terms);
 }
 
 void SoftKind::Prescribe(double t, Eigen::VectorXd* q) const {

@@ -86,7 +86,6 @@ class SoftKind : public ActorKind {
  private:
   SoftBodyModel model_;
   SoftBodyState initial_;
-  std::vector<int> freeNode_;  // per free node: its node index
 };
 
 }  // namespace superdex

@@ -40,7 +40,7 @@ void PrepareSoftDamping(const SoftBodyModel& m, SoftStageTarget* target) {
 
 double EvaluateSoftStageTerms(const SoftBodyModel& m, const SoftStageTarget& target, double dt,
                               const Eigen::Vector3d& gravity, const Eigen::VectorXd& x, int order,
-                              PsdProjection projection, int dofOffset, Eigen::VectorXd* gradient,
+                              PsdProjection projection, Eigen::VectorXd* gradient,
                               std::vector<Eigen::Triplet<double>>* triplets,
                               SoftTermScratch* scratch, double* minDetF) {
   const int n = m.NumNodes();
@@ -48,14 +48,13 @@ double EvaluateSoftStageTerms(const SoftBodyModel& m, const SoftStageTarget& tar
   double value = 0.0;
   // Inertia and gravity on the free nodes.
   for (int a = 0; a < n; ++a) {
-    const int free = m.freeIndex[a];
-    if (free < 0) continue;
+    if (m.freeIndex[a] < 0) continue;
     const double ma = m.nodeMass[a];
     const Eigen::Vector3d xa = x.segment<3>(3 * a);
     const Eigen::Vector3d dx = xa - target.xHat.segment<3>(3 * a);
     value += 0.5 * w * ma * dx.squaredNorm() - ma * gravity.dot(xa);
     if (order == 0) continue;
-    const int o = dofOffset + 3 * free;
+    const int o = 3 * a;
     gradient->segment<3>(o) += w * ma * dx - ma * gravity;
     if (order < 2) continue;
     for (int k = 0; k < 3; ++k) triplets->emplace_back(o + k, o + k, w * ma);
@@ -104,8 +103,7 @@ double EvaluateSoftStageTerms(const SoftBodyModel& m, const SoftStageTarget& tar
     const Eigen::Vector4i& T = m.rest.tets[t];
     int offs[4];
     for (int a = 0; a < 4; ++a) {
-      const int free = m.freeIndex[T[a]];
-      offs[a] = free < 0 ? -1 : dofOffset + 3 * free;
+      offs[a] = m.freeIndex[T[a]] < 0 ? -1 : 3 * T[a];
       if (offs[a] >= 0) gradient->segment<3>(offs[a]) += term.gradient.segment<3>(3 * a);
     }
     if (order < 2) continue;

@@ -39,13 +39,13 @@ struct SoftTermScratch {
   std::vector<TetElasticTerm> terms;
 };
 
-/// Φ_soft at positions x; order >= 1 adds the gradient into *gradient at the actor's dofs
-/// (dofOffset + 3 freeIndex[a]); order 2 appends Hessian triplets, element Hessians projected
+/// Φ_soft at positions x; order >= 1 adds the gradient into *gradient at the free nodes' dofs
+/// (node a: 3a, as in x); order 2 appends their Hessian triplets, element Hessians projected
 /// per `projection`. Tets are evaluated in parallel and reduced in a fixed order. *minDetF (may be
 /// null) receives the smallest det F.
 double EvaluateSoftStageTerms(const SoftBodyModel& model, const SoftStageTarget& target, double dt,
                               const Eigen::Vector3d& gravity, const Eigen::VectorXd& x, int order,
-                              PsdProjection projection, int dofOffset, Eigen::VectorXd* gradient,
+                              PsdProjection projection, Eigen::VectorXd* gradient,
                               std::vector<Eigen::Triplet<double>>* triplets,
                               SoftTermScratch* scratch, double* minDetF = nullptr);
 
