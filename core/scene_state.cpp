@@ -30,21 +30,15 @@ const KindState& Scene::KindStateOf(ActorHandle a) const { return step_.vectorSt
 bool Scene::SetSoftState(ActorHandle a, const SoftBodyState& state, Error* error) {
   if (!ValidHandle(*this, a, error)) return false;
   if (!actors_[a.index].soft) return Fail(error, "actor: " + ActorName(a) + " is not soft");
-  const int n = 3 * SoftModel(a).NumNodes();
-  if (state.x.size() != n || state.v.size() != n)
-    return Fail(error, "state: x and v need " + std::to_string(n) + " entries (3 per node)");
-  if (!state.x.allFinite() || !state.v.allFinite())
-    return Fail(error, "state: x and v must be finite");
-  step_.vectorStates[a.index] = state;
-  ClearHistory();
-  return true;
+  return SetKindState(a, state, error);
 }
 
 bool Scene::SetKindState(ActorHandle a, const KindState& state, Error* error) {
   if (!ValidHandle(*this, a, error)) return false;
   const int n = Kind(a).NumDofs();
   if (state.x.size() != n || state.v.size() != n)
-    return Fail(error, "state: x and v need " + std::to_string(n) + " entries");
+    return Fail(error, "state: x and v need " + std::to_string(n) + " entries" +
+                           (actors_[a.index].soft ? " (3 per node)" : ""));
   if (!state.x.allFinite() || !state.v.allFinite())
     return Fail(error, "state: x and v must be finite");
   step_.vectorStates[a.index] = state;
