@@ -79,9 +79,9 @@ Eigen::Vector3d Normalized(const Eigen::Vector3d& v) {
 /// the residual [A's part, −λ_a F⁻ᵀ g per tet node].
 struct CurrentModeSample {
   SamplePointMap kin;
-  // A: rigid (p, R, body point and normal) or a face (its nodes, barycentrics)
-  Eigen::Vector3d pA, XA, nBody;
-  Eigen::Matrix3d RA;
+  // A: a rigid map's origin p_A, arm r = y − p_A and normal (world; R = I + [δθ]× moves r and n
+  // alike), or a face's nodes (its map's barycentrics)
+  Eigen::Vector3d pA, rA, normalA;
   Eigen::Vector3d xs[3];
   // B: tet nodes, reference data, field at the current pullback
   Eigen::Vector3d xb[4];
@@ -98,10 +98,10 @@ struct CurrentModeSample {
     Vec3<T> y, n, r;
     if (kin.kind == SamplePointMap::Kind::Rigid) {
       const Vec3<T> dth(delta[3], delta[4], delta[5]);
-      const Mat3<T> R = RA.cast<T>() + SkewT<T>(dth) * RA.cast<T>();
-      r = R * XA.cast<T>();
+      const Mat3<T> R = Mat3<T>::Identity() + SkewT<T>(dth);
+      r = R * rA.cast<T>();
       y = pA.cast<T>() + Vec3<T>(delta[0], delta[1], delta[2]) + r;
-      n = R * nBody.cast<T>();
+      n = R * normalA.cast<T>();
     } else {
       Vec3<T> x[3];
       for (int a = 0; a < 3; ++a)
@@ -322,18 +322,10 @@ struct OnSoftCollider {
     cs.X0 = pb0.X;
     cs.field = field;
     cs.setup = &ds;
-    if (A.rigid) {
-      cs.pA = A.pose->p;
-      cs.RA = A.pose->R;
-      cs.XA = A.pose->R.transpose() * sp.kin.r;
-      cs.nBody = A.pose->R.transpose() * sp.n;
-      AddResidualJacobian<18>(cs, w, &e.dissipationJacobian);
-    } else if (A.kind && sp.kin.kind == SamplePointMap::Kind::Rigid) {
-      // In world terms: R = I + [δθ]× moves r and n alike.
+    if (sp.kin.kind == SamplePointMap::Kind::Rigid) {
       cs.pA = sp.kin.origin;
-      cs.RA.setIdentity();
-      cs.XA = sp.kin.r;
-      cs.nBody = sp.n;
+      cs.rA = sp.kin.r;
+      cs.normalA = sp.n;
       AddResidualJacobian<18>(cs, w, &e.dissipationJacobian);
     } else {
       for (int a = 0; a < 3; ++a) cs.xs[a] = sp.faceNodes[a];
@@ -420,7 +412,7 @@ void EvaluatePairOnSoftCollider(const CollidingInput& A, const SoftColliderInput
   for (size_t k = 0; k < M.samples.size(); ++k) {
     const SurfaceSample& s = M.samples[k];
     sp.key = static_cast<int>(k);
-    sp.kin = SamplePointMap::Rigid(a.R * s.X);
+    sp.kin = SamplePointMap::Rigid(a.R * s.X, a.p);
     sp.y = a.p + sp.kin.r;
     sp.yn = an.p + an.R * s.X;
     // Cheap rejection: a sample outside both boxes carries nothing.
