@@ -5,6 +5,7 @@
 #include <random>
 
 #include "core/contact/dissipation_kernels.h"
+#include "seeded_random.h"
 
 using namespace superdex;
 using namespace superdex::dissipation_kernels;
@@ -46,7 +47,7 @@ TEST_CASE("current-mode dissipation kernel: closed-form linearization equals AD"
             SdfSample field;
             field.gradient = (Eigen::Vector3d(0.0, 0.0, 1.0) + 0.2 * vec()).normalized() *
                              (1.0 + 0.05 * u(rng));
-            const Eigen::Matrix3d A = Eigen::Matrix3d::Random();
+            const Eigen::Matrix3d A = test::UniformMatrix(rng);
             // Trials 8-11: a flat field (∇²Φ = 0: planes, box faces), the kernel's short path.
             field.hessian = trial < 8 ? Eigen::Matrix3d(3.0 * (A + A.transpose()))
                                       : Eigen::Matrix3d::Zero();

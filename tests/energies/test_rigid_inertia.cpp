@@ -6,6 +6,7 @@
 #include "core/model/rigid_math.h"
 #include "derivative_check.h"
 #include "energies/rigid_inertia.h"
+#include "seeded_random.h"
 
 using namespace superdex;
 
@@ -15,7 +16,7 @@ TEST_CASE("rigid inertia: gradient and Hessian through the exp retraction", "[en
   auto rv = [&]() { return Eigen::Vector3d(n01(rng), n01(rng), n01(rng)); };
   for (int trial = 0; trial < 10; ++trial) {
     const double m = 2.5;
-    Eigen::Matrix3d A = Eigen::Matrix3d::Random();
+    Eigen::Matrix3d A = test::UniformMatrix(rng);
     const Eigen::Matrix3d J = A * A.transpose() + 0.1 * Eigen::Matrix3d::Identity();
     const Eigen::Vector3d p = rv(), pHat = rv();
     const Eigen::Matrix3d R = ExpSo3(rv());
@@ -58,7 +59,7 @@ TEST_CASE("rigid inertia: the closed-form free-stage minimizer is stationary and
     if (trial % 3 == 0) {
       J = Eigen::Vector3d(0.011, 0.011 * (1 + 1e-9), 0.011).asDiagonal();
     } else {
-      const Eigen::Matrix3d A = Eigen::Matrix3d::Random();
+      const Eigen::Matrix3d A = test::UniformMatrix(rng);
       J = A * A.transpose() + 0.05 * Eigen::Matrix3d::Identity();
     }
     const Eigen::Matrix3d R0 = ExpSo3(rv());

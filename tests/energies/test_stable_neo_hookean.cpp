@@ -9,6 +9,7 @@
 
 #include "derivative_check.h"
 #include "energies/stable_neo_hookean.h"
+#include "seeded_random.h"
 
 using namespace superdex;
 
@@ -16,15 +17,6 @@ namespace {
 
 using Vector12d = Eigen::Matrix<double, 12, 1>;
 using Matrix12d = Eigen::Matrix<double, 12, 12>;
-
-// A matrix of entries uniform in [−1, 1] from `rng` (not Eigen's Random, which reads the
-// process-wide std::rand state: the states would depend on the tests run before).
-Eigen::Matrix3d UniformMatrix(std::mt19937& rng) {
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Eigen::Matrix3d m;
-  for (int i = 0; i < 9; ++i) m.data()[i] = u(rng);
-  return m;
-}
 
 Eigen::Matrix3d RandomRotation(std::mt19937& rng) {
   std::normal_distribution<double> n01;
@@ -103,7 +95,7 @@ std::vector<Deformed> RandomStates(unsigned seed) {
         break;
       default:
         d.kind = "general";
-        d.F = Eigen::Matrix3d::Identity() + 0.6 * UniformMatrix(rng);
+        d.F = Eigen::Matrix3d::Identity() + 0.6 * test::UniformMatrix(rng);
         break;
     }
     const Eigen::Vector3d t(range(-1, 1), range(-1, 1), range(-1, 1));
@@ -236,7 +228,7 @@ TEST_CASE("stable neo-Hookean: projected Hessian is PSD and exact where no proje
     for (const Deformed& d : RandomStates(seed)) {
       states.push_back(d);
       // Mild deformations, mostly PSD already (and the rest state itself).
-      states.push_back(WithF(d, Eigen::Matrix3d::Identity() + 0.05 * UniformMatrix(mild),
+      states.push_back(WithF(d, Eigen::Matrix3d::Identity() + 0.05 * test::UniformMatrix(mild),
                              "mild"));
     }
   }
@@ -338,7 +330,7 @@ TEST_CASE("stable neo-Hookean: uniform stretch patch test and the linear-elastic
     }
     // Small strain: σ = 2μ ε + λ tr(ε) I, uniaxial and a general symmetric strain.
     std::mt19937 strainRng(43);
-    Eigen::Matrix3d S = UniformMatrix(strainRng);
+    Eigen::Matrix3d S = test::UniformMatrix(strainRng);
     S = (0.5 * (S + S.transpose())).eval();
     for (const Eigen::Matrix3d& strain :
          {Eigen::Matrix3d(Eigen::Vector3d(1e-6, 0.0, 0.0).asDiagonal()),

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "optim/block_jacobi.h"
+#include "seeded_random.h"
 #include "optim/linear_solver.h"
 
 using namespace superdex;
@@ -69,7 +70,7 @@ TEST_CASE("CHOLMOD solves random sparse SPD systems", "[optim]") {
   std::mt19937 rng(7);
   for (int trial = 0; trial < 5; ++trial) {
     const SparseMatrix H = RandomSpd(200, 400, rng);
-    const Eigen::VectorXd b = Eigen::VectorXd::Random(200);
+    const Eigen::VectorXd b = test::UniformVector(200, rng);
     SymmetricSolver solver;
     REQUIRE(solver.Factorize(H));
     CHECK(std::string(solver.Backend()) == "cholmod");
@@ -84,7 +85,7 @@ TEST_CASE("a second factorization with the same pattern reuses the analysis", "[
   const SparseMatrix H2 = NewValuesSamePattern(H1, rng);
   REQUIRE(H2.nonZeros() == H1.nonZeros());
   REQUIRE((H2 - H1).norm() > 1e-3 * H1.norm());
-  const Eigen::VectorXd b = Eigen::VectorXd::Random(200);
+  const Eigen::VectorXd b = test::UniformVector(200, rng);
 
   SymmetricSolver reused;
   REQUIRE(reused.Factorize(H1));
@@ -112,7 +113,7 @@ TEST_CASE("a different pattern triggers a new analysis", "[optim]") {
   SymmetricSolver solver;
   for (int n : {50, 120, 120}) {
     const SparseMatrix H = RandomSpd(n, 2 * n, rng);
-    const Eigen::VectorXd b = Eigen::VectorXd::Random(n);
+    const Eigen::VectorXd b = test::UniformVector(n, rng);
     REQUIRE(solver.Factorize(H));
     CHECK(RelativeResidual(H, solver.Solve(b), b) <= 1e-10);
   }
@@ -125,7 +126,7 @@ TEST_CASE("small systems: the dense Cholesky, with fixed sizes for one rigid bod
   for (int n : {5, 6, 12}) {
     DYNAMIC_SECTION("n = " << n) {
       const SparseMatrix H = RandomSpd(n, 2 * n, rng);
-      const Eigen::VectorXd b = Eigen::VectorXd::Random(n);
+      const Eigen::VectorXd b = test::UniformVector(n, rng);
       SymmetricSolver solver;
       REQUIRE(solver.Factorize(H));
       CHECK(std::string(solver.Backend()) == "dense");
@@ -161,7 +162,7 @@ TEST_CASE("an indefinite matrix is rejected, and the solver recovers", "[optim]"
   CHECK_FALSE(solver.Factorize(laplacian));
 
   // The same pattern with positive definite values factorizes again after the failures.
-  const Eigen::VectorXd b = Eigen::VectorXd::Random(200);
+  const Eigen::VectorXd b = test::UniformVector(200, rng);
   REQUIRE(solver.Factorize(H));
   CHECK(std::string(solver.Backend()) == "cholmod");
   CHECK(RelativeResidual(H, solver.Solve(b), b) <= 1e-10);
@@ -178,7 +179,7 @@ TEST_CASE("non-finite entries and uncompressed input", "[optim]") {
   SparseMatrix uncompressed = H;
   uncompressed.uncompress();
   REQUIRE_FALSE(uncompressed.isCompressed());
-  const Eigen::VectorXd b = Eigen::VectorXd::Random(40);
+  const Eigen::VectorXd b = test::UniformVector(40, rng);
   REQUIRE(solver.Factorize(uncompressed));
   CHECK(RelativeResidual(H, solver.Solve(b), b) <= 1e-10);
 }
@@ -191,7 +192,7 @@ TEST_CASE("Krylov solves: conjugate gradients and BiCGSTAB agree with the direct
   iterative.tolerance = 1e-10;
   for (int trial = 0; trial < 3; ++trial) {
     const SparseMatrix H = RandomSpd(400, 800, rng, 5.0);
-    const Eigen::VectorXd b = Eigen::VectorXd::Random(400);
+    const Eigen::VectorXd b = test::UniformVector(400, rng);
     SymmetricSolver direct, krylov;
     krylov.SetSettings(iterative);
     REQUIRE(direct.Factorize(H));
@@ -225,7 +226,7 @@ TEST_CASE("Krylov solves: too few iterations fall back to the direct solve; inde
           "are reported as a failed Cholesky would be", "[optim]") {
   std::mt19937 rng(12);
   const SparseMatrix H = RandomSpd(300, 300, rng, 1e-3);  // ill-conditioned
-  const Eigen::VectorXd b = Eigen::VectorXd::Random(300);
+  const Eigen::VectorXd b = test::UniformVector(300, rng);
   LinearSolverSettings few;
   few.kind = LinearSolverKind::Iterative;
   few.maxIterations = 3;
@@ -292,7 +293,7 @@ TEST_CASE("block-Jacobi preconditioner: exact on a 3x3-block-diagonal matrix", "
   SparseMatrix H(3 * blocks, 3 * blocks);
   H.setFromTriplets(t.begin(), t.end());
   H.makeCompressed();
-  const Eigen::VectorXd b = Eigen::VectorXd::Random(3 * blocks);
+  const Eigen::VectorXd b = test::UniformVector(3 * blocks, rng);
   BlockJacobi P;
   P.compute(H);
   CHECK(P.PositiveDefinite());
@@ -333,7 +334,7 @@ TEST_CASE("block-Jacobi preconditioner: one 6x6 block per rigid body, 3x3 blocks
   SparseMatrix H(n, n);
   H.setFromTriplets(t.begin(), t.end());
   H.makeCompressed();
-  const Eigen::VectorXd b = Eigen::VectorXd::Random(n);
+  const Eigen::VectorXd b = test::UniformVector(n, rng);
   BlockJacobi P;
   P.SetLayout(DofBlockLayout::LeadingSix(bodies));
   P.compute(H);
