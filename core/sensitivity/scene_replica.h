@@ -22,7 +22,7 @@ struct SceneReplica {
     for (int s = 0; s < recorded.used; ++s) {
       const StageTapeEntry& from = recorded.stages[s];
       StageTapeEntry& to = tape.stages[s];
-      to.softX = from.softX;
+      to.x = from.x;
       to.mode = from.mode;
       to.slips = from.slips;
       to.factored = factor && from.factored && to.lu->Factorize(from.jacobian);

@@ -3,20 +3,20 @@
 namespace superdex {
 
 void TapeRecorder::Record(const StageInputs& inputs, const StageDissipation& dissipation,
-                          const std::vector<Eigen::VectorXd>& softX) {
+                          const std::vector<Eigen::VectorXd>& x) {
   if (static_cast<int>(tape_->stages.size()) <= stage_) tape_->stages.emplace_back();
   StageTapeEntry& e = tape_->stages[stage_++];
   tape_->used = stage_;
-  e.softX = softX;
+  e.x = x;
   e.mode = dissipation.mode;
   // The stage Jacobian at the accepted solution, in the same mode (a copy of the iterate: the
   // problem commits into the vectors it is given).
-  std::vector<Eigen::VectorXd> softAt = e.softX;
+  std::vector<Eigen::VectorXd> at = e.x;
   StageDissipation recording = dissipation;
   e.slips.Clear();
   recording.slips = &e.slips;
   recording.recordSlips = true;
-  SceneStageProblem problem = inputs.Problem(recording, &softAt);
+  SceneStageProblem problem = inputs.Problem(recording, &at);
   Eigen::VectorXd r;
   Eigen::SparseMatrix<double> J;
   problem.EvaluateResidual(&r, &J);
@@ -25,9 +25,9 @@ void TapeRecorder::Record(const StageInputs& inputs, const StageDissipation& dis
 }
 
 void TapeRecorder::Supply(const StageInputs& inputs, const StageDissipation& dissipation,
-                          std::vector<Eigen::VectorXd>* softX) {
+                          std::vector<Eigen::VectorXd>* x) {
   StageTapeEntry& e = tape_->stages[stage_++];
-  *softX = e.softX;
+  *x = e.x;
   const int numDofs = inputs.numDofs;
   if (numDofs == 0) {
     e.residual.resize(0);
@@ -36,7 +36,7 @@ void TapeRecorder::Supply(const StageInputs& inputs, const StageDissipation& dis
   StageDissipation d = dissipation;
   d.mode = e.mode;
   d.slips = &e.slips;
-  SceneStageProblem problem = inputs.Problem(d, softX);
+  SceneStageProblem problem = inputs.Problem(d, x);
   if (mode_ == Mode::Replay) {  // one Newton step with the recorded factors
     Eigen::VectorXd r;
     problem.Residual(Eigen::VectorXd::Zero(numDofs), &r);

@@ -20,13 +20,13 @@ namespace superdex {
 /// One stage as recorded: its accepted solution, the dissipation mode it was solved in, the stage
 /// Jacobian ∂r/∂δ there and its LU factors.
 struct StageTapeEntry {
-  std::vector<Eigen::VectorXd> softX;  ///< the vector states (soft actors, then the kinds')
+  std::vector<Eigen::VectorXd> x;  ///< the actors' configurations (the stage's solution)
   DissipationMode mode = DissipationMode::ExplicitNormals;
   Eigen::SparseMatrix<double> jacobian;
   std::unique_ptr<UnsymmetricSolver> lu = std::make_unique<UnsymmetricSolver>();
   bool factored = false;
   /// Inject mode (core/sensitivity/step_linearization.h): the stage's solution is taken as
-  /// softX ⊕ inject (the stage's chart: each kind's tangent dofs, δx per free soft node;
+  /// x ⊕ inject (the stage's chart: each actor's free tangent dofs, a rigid body's [δp, δθ];
   /// empty = 0), and the stage residual there, with the inputs of the perturbed step, is kept in
   /// `residual`.
   Eigen::VectorXd inject, residual;
@@ -48,9 +48,9 @@ class TapeRecorder : public StageRecorder {
   bool Supplies() const override { return mode_ != Mode::Record; }
   bool Records() const override { return mode_ == Mode::Record; }
   void Supply(const StageInputs& inputs, const StageDissipation& dissipation,
-              std::vector<Eigen::VectorXd>* softX) override;
+              std::vector<Eigen::VectorXd>* x) override;
   void Record(const StageInputs& inputs, const StageDissipation& dissipation,
-              const std::vector<Eigen::VectorXd>& softX) override;
+              const std::vector<Eigen::VectorXd>& x) override;
 
  private:
   StepTape* tape_;
