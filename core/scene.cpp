@@ -169,7 +169,8 @@ ActorHandle Scene::AddActor(std::unique_ptr<ActorKind> actor, Error* error,
   if (!ValidParent(parent, error)) return {};
   if (!actor) return Fail(error, "actor: null"), ActorHandle();
   if (!UniqueName(actor->name, error)) return {};
-  if (std::string m = ValidateKindLayout(*actor, settings_.gravity); !m.empty()) return Fail(error, m), ActorHandle();
+  if (std::string m = ValidateKindLayout(*actor, settings_.gravity); !m.empty())
+    return Fail(error, m), ActorHandle();
   return Register(std::move(actor), contactLayer, parent);
 }
 

@@ -190,8 +190,8 @@ void Scene::HoldStatic(int a, const RigidBodyState& state) {
 namespace {
 
 // A snapshot's layout is the one of checkpoint files and of Python's SceneState: the rigid
-// actors' states in their order of creation under `rigidStates` (p, R, v, Ṙ), the other actors' (soft
-// actors and other kinds, in their order of creation) under `vectorStates`. Inside the scene a
+// actors' states in their order of creation under `rigidStates` (p, R, v, Ṙ), the other actors'
+// (soft actors and other kinds, in their order of creation) under `vectorStates`. Inside the scene a
 // rigid actor's state is its RigidKind's vector state (RigidKind::Pack, exact both ways).
 // rigidDesc[i]: actor i's index among the rigid actors, −1 for another kind.
 void SplitRigid(const std::vector<int>& rigidDesc, const std::vector<VectorState>& vector,

@@ -135,8 +135,7 @@ void ContactPipeline::ConsiderKindPair(int a, int b) {
   // A kinematic collider moves: its parameters combine as a dynamic one's (spec: "taken from the
   // colliding actor when the collider is static").
   // The threshold padding applies when A has no collider of its own (spec: None or PointCloud).
-  p.params = CombineContactParams(A.contact, B.contact, kindStatic_[b],
-                                  !kindCollider_[a] && !kindTetCollider_[a]);
+  p.params = CombineContactParams(A.contact, B.contact, kindStatic_[b], PadsThreshold(a));
   kindPairs_.push_back(p);
 }
 
@@ -147,9 +146,8 @@ void ContactPipeline::ConsiderKindOnTetField(int k, int b) {
   SoftColliderPair p;
   p.colliding = k;
   p.collider = b;
-  // Both move; A's own collider type decides the threshold padding.
-  p.params = CombineContactParams(A.contact, (*kinds_)[b]->contact, false,
-                                  A.Collider() == nullptr && !kindTetCollider_[k]);
+  // Both move.
+  p.params = CombineContactParams(A.contact, (*kinds_)[b]->contact, false, PadsThreshold(k));
   for (p.body = 0; p.body < A.NumSampleBodies(); ++p.body) softColliderPairs_.push_back(p);
   p.body = -1;  // the kind's own samples
   if (A.NumSamples() > 0) softColliderPairs_.push_back(p);

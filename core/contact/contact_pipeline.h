@@ -146,6 +146,9 @@ class ContactPipeline {
   // Kind k's sample bodies (one pair per body) and own samples (one pair) colliding on kind b's
   // tet field, when the roles and the filter allow it.
   void ConsiderKindOnTetField(int k, int b);
+  // Whether colliding kind a's pairs take the threshold padding (spec: its collider is None or
+  // PointCloud, i.e. it has neither a frame field nor a tet field of its own).
+  bool PadsThreshold(int a) const { return !kindCollider_[a] && !kindTetCollider_[a]; }
   // The colliding side's samples of a kind pair that can contribute on its collider side B.
   // kindSides_ and kindBodies_ at the request's configurations, for the kinds of kindPairs_.
   void FormKindSides(const Request& q);

@@ -1,6 +1,7 @@
 // A soft body as a collider (experimental, spec: "Contact Kinematics"): the grid SDF Φ_B of its
-// reference surface, mapped by the deformation (a kind's tet field, ActorKind::TetCollider). For a query point y the pullback X_B(y) is found
-// in the deformed tet t that contains y and inverted through its affine map:
+// reference surface, mapped by the deformation (a kind's tet field, ActorKind::TetCollider). For
+// a query point y the pullback X_B(y) is found in the deformed tet t that contains y and inverted
+// through its affine map:
 //   β = Ds⁻¹ (y − x_0),  λ = (1 − Σβ, β),  X = X_0 + Dm β,   F = Ds Dm⁻¹,  F⁻¹ = Dm Ds⁻¹,
 // Ds, Dm the tet's deformed and reference edge matrices. Points in no tet are rejected. The
 // spatial field φ_B(y) = Φ_B(X_B(y)) is not an exact SDF; V_rel = (X − X⁰)/Δt_i is measured in

@@ -71,8 +71,9 @@ SolverStats StageDriver::Solve(const SceneSettings& settings, const StageScene& 
   SceneStageProblem problem = inputs.Problem(dissipation, x);
   // The warm start (Newton only: Ipopt and Ceres check the cold stage). Kept cold: (1) scenes with
   // a kind that refuses it (ActorKind::Shortcuts: a soft body's, for its collider's piecewise
-  // smooth stages). (2) Recorded steps (sensitivities, adjoint): their derivatives are evaluated at the
-  // recorded solution, which a start reaches only to the solver's tolerance (docs/solver.md).
+  // smooth stages). (2) Recorded steps (sensitivities, adjoint): their derivatives are evaluated
+  // at the recorded solution, which a start reaches only to the solver's tolerance
+  // (docs/solver.md).
   const bool warm = settings.stageSolver == StageSolverKind::Newton && predictTime > 0.0 &&
                     settings.warmStart && !scene.coldStages && !recording;
   if (warm) WarmStartStage(settings, scene, dt, stage, *x, predictTime, &problem);

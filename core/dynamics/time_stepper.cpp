@@ -87,7 +87,8 @@ void StepDirk(const StepState& step, double h, IntegrationMethod method, StageHo
     KindStage& stage = buffers.stage;
     host.MakeStage(dt, step.time + cStage * h, start, last, &stage);
     host.SolveStage(dt, stage, &x, cStage * h, &rep);
-    for (size_t a = 0; a < na; ++a) host.KindOf(a).DirkStageSlope(x[a], start[a], dt, &slopes[a][st]);
+    for (size_t a = 0; a < na; ++a)
+      host.KindOf(a).DirkStageSlope(x[a], start[a], dt, &slopes[a][st]);
     last = x;
   }
   std::vector<double>& hb = buffers.stageWeights;  // h b_i

@@ -9,6 +9,13 @@ namespace {
 
 Eigen::Vector3d Node(const Eigen::VectorXd& x, int i) { return x.segment<3>(3 * i); }
 
+// Σ_a m_a u_a over the nodes (u: their positions [m] or velocities [m/s]).
+Eigen::Vector3d NodeMassSum(const SoftBodyModel& m, const Eigen::VectorXd& u) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (int a = 0; a < m.NumNodes(); ++a) sum += m.nodeMass[a] * Node(u, a);
+  return sum;
+}
+
 // The centroid of face F at positions x and its largest distance to a corner [m].
 double FaceBall(const Eigen::VectorXd& x, const Eigen::Vector3i& F, Eigen::Vector3d* c) {
   const Eigen::Vector3d a = Node(x, F[0]), b = Node(x, F[1]), d = Node(x, F[2]);
@@ -93,9 +100,7 @@ double SoftKind::InternalEnergy(const KindState& s) const {
 }
 
 Eigen::Vector3d SoftKind::LinearMomentum(const KindState& s) const {
-  Eigen::Vector3d p = Eigen::Vector3d::Zero();
-  for (int a = 0; a < model_.NumNodes(); ++a) p += model_.nodeMass[a] * Node(s.v, a);
-  return p;
+  return NodeMassSum(model_, s.v);
 }
 
 Eigen::Vector3d SoftKind::AngularMomentum(const KindState& s) const {
@@ -106,15 +111,11 @@ Eigen::Vector3d SoftKind::AngularMomentum(const KindState& s) const {
 }
 
 Eigen::Vector3d SoftKind::CenterOfMass(const KindState& s) const {
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (int a = 0; a < model_.NumNodes(); ++a) c += model_.nodeMass[a] * Node(s.x, a);
-  return c / model_.mass;
+  return NodeMassSum(model_, s.x) / model_.mass;
 }
 
 Eigen::Vector3d SoftKind::CenterOfMassVelocity(const KindState& s) const {
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (int a = 0; a < model_.NumNodes(); ++a) c += model_.nodeMass[a] * Node(s.v, a);
-  return c / model_.mass;
+  return NodeMassSum(model_, s.v) / model_.mass;
 }
 
 void SoftKind::DifferenceGroups(const KindState& s,

@@ -20,8 +20,9 @@ struct Direction {
   double step = 0.0;
 };
 
-// A group of an actor's coordinates (a rigid body, a soft node) as the differences see it: the directions of its local coordinates and of
-// its own contact parameters, and the units (bodies and nodes) whose rows its moves reach.
+// A group of an actor's coordinates (a rigid body, a soft node) as the differences see it: the
+// directions of its local coordinates and of its own contact parameters, and the units (bodies
+// and nodes) whose rows its moves reach.
 struct Mover {
   std::vector<Direction> directions, parameters;
   std::vector<int> reach;
