@@ -489,12 +489,12 @@ std::vector<std::string> Scene::Notices() const {
   for (ActorHandle a : SoftActors())
     if (!SoftModel(a).notice.empty()) out.push_back(SoftModel(a).notice);
   // Kinds' own samples without a rigid or deforming face's normal do not collide on soft
-  // fields (CollidesOnSoftField).
+  // fields (CollidesOnTetField).
   bool softCollider = false;
   for (const auto& k : kinds_) softCollider = softCollider || k->TetCollider();
   for (const auto& k : kinds_) {
     if (!softCollider || k->NumSamples() == 0) continue;
-    if (CollidesOnSoftField(k->Sample(0, k->InitialState().x))) continue;
+    if (CollidesOnTetField(k->Sample(0, k->InitialState().x))) continue;
     out.push_back("actors of the generic layer (" + k->KindName() +
                   ") whose samples have no colliding normal do not collide on a soft actor's "
                   "field: that pair is not supported yet (soft actors do collide on theirs)");

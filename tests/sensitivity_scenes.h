@@ -104,7 +104,7 @@ inline Scene SoftCubeOnGround(IntegrationMethod method, DissipationMode mode, do
 // A 0.1 × 0.1 × 0.05 m, 0.5 kg rigid box set down on a soft slab (0.3 × 0.3 × 0.05 m, 3 × 3 × 1
 // cells, E = 1e5 Pa, its bottom nodes pinned), sliding along x at vx [m/s]; μ = √(0.5 mu) between
 // them, penalty 1e7 Pa/m, c_n = 1 s/m. The slab's surface samples meet the box's SDF; with
-// `slabCollider` the box's samples also meet the slab's own grid SDF (core/contact/soft_collider.h).
+// `slabCollider` the box's samples also meet the slab's own grid SDF (core/contact/tet_field.h).
 inline Scene BoxOnSoftSlab(IntegrationMethod method, DissipationMode mode, double vx, double mu,
                            bool slabCollider = false) {
   Scene scene(TightSettings(method, mode));

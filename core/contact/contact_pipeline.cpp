@@ -2,6 +2,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include <cmath>
+
 #include "core/contact/broad_phase.h"
 
 namespace superdex {
@@ -80,9 +82,19 @@ void ContactPipeline::Configure(const ContactFilter* filter,
   kindSamples_.clear();
   kindStepLimit_.clear();
   kindFaceSamples_.clear();
+  kindTetFields_.clear();
   if (kinds_)
     for (const ActorKind* k : *kinds_) {
       const bool tet = k->TetCollider() && k->TetCollider()->collider == ColliderType::Sdf;
+      // The reference grid of a tet field as a field (the pullback is the tet's).
+      RigidCollider field;
+      if (tet) {
+        field.type = ColliderType::Sdf;
+        field.grid = k->TetCollider()->colliderGrid;
+        field.lipschitz = std::sqrt(3.0);
+        field.boundingRadius = INFINITY;
+      }
+      kindTetFields_.push_back(field);
       kindInflation_.push_back(k->Collider() || tet ? ColliderReach(k->contact) : 0.0);
       kindCollider_.push_back(k->Collider() != nullptr);
       kindTetCollider_.push_back(tet);
@@ -112,8 +124,8 @@ void ContactPipeline::FindPairs(const KindView* kinds) {
     boxes_[k].Inflate(kindInflation_[k]);
   }
   overlapCache_.Find(boxes_, &overlaps_);
-  softColliderPairs_.clear();
   kindPairs_.clear();
+  tetPairs_ = false;
   for (const auto& [i, j] : overlaps_) {  // each on the other's field
     ConsiderKindPair(i, j);
     ConsiderKindPair(j, i);
@@ -122,10 +134,10 @@ void ContactPipeline::FindPairs(const KindView* kinds) {
 
 void ContactPipeline::ConsiderKindPair(int a, int b) {
   if (a == b) return;  // self-contact of a kind: not in this layer yet
-  if (kindTetCollider_[b]) return ConsiderKindOnTetField(a, b);
   const ActorKind& A = *(*kinds_)[a];
   const ActorKind& B = *(*kinds_)[b];
-  if (!kindColliding_[a] || !kindCollider_[b]) return;
+  const bool tet = kindTetCollider_[b] != 0;
+  if (!kindColliding_[a] || !(kindCollider_[b] || tet)) return;
   // Neither has a stage unknown (static, kinematic or all prescribed): nothing to solve for.
   if (!kindHasDofs_[a] && !kindHasDofs_[b]) return;
   if (filter_ && !filter_->Allowed(kindActor_[a], kindActor_[b])) return;
@@ -133,116 +145,59 @@ void ContactPipeline::ConsiderKindPair(int a, int b) {
   p.a = a;
   p.b = b;
   // A kinematic collider moves: its parameters combine as a dynamic one's (spec: "taken from the
-  // colliding actor when the collider is static").
+  // colliding actor when the collider is static"); a tet field always moves.
   // The threshold padding applies when A has no collider of its own (spec: None or PointCloud).
-  p.params = CombineContactParams(A.contact, B.contact, kindStatic_[b], PadsThreshold(a));
+  p.params = CombineContactParams(A.contact, B.contact, !tet && kindStatic_[b], PadsThreshold(a));
   kindPairs_.push_back(p);
+  tetPairs_ = tetPairs_ || tet;
 }
 
-void ContactPipeline::ConsiderKindOnTetField(int k, int b) {
-  const ActorKind& A = *(*kinds_)[k];
-  if (!kindColliding_[k]) return;
-  if (filter_ && !filter_->Allowed(kindActor_[k], kindActor_[b])) return;
-  SoftColliderPair p;
-  p.colliding = k;
-  p.collider = b;
-  // Both move.
-  p.params = CombineContactParams(A.contact, (*kinds_)[b]->contact, false, PadsThreshold(k));
-  for (p.body = 0; p.body < A.NumSampleBodies(); ++p.body) softColliderPairs_.push_back(p);
-  p.body = -1;  // the kind's own samples
-  if (A.NumSamples() > 0) softColliderPairs_.push_back(p);
-}
-
-void ContactPipeline::BuildLocators(const KindView& kinds, bool last) {
-  if (softColliderPairs_.empty()) return;
-  const size_t nk = kinds_->size();
-  kindLocators_.resize(nk);
-  kindLocatorsLast_.resize(nk);
-  locatorBuilt_.assign(nk, 0);
-  for (const SoftColliderPair& p : softColliderPairs_) {
-    if (locatorBuilt_[p.collider]) continue;
-    locatorBuilt_[p.collider] = 1;
-    const std::vector<Eigen::Vector4i>& tets = (*kinds_)[p.collider]->TetCollider()->rest.tets;
-    kindLocators_[p.collider].Build((*kinds.q)[p.collider], tets);
-    if (last && kinds.qLast) kindLocatorsLast_[p.collider].Build((*kinds.qLast)[p.collider], tets);
+FrameSide ContactPipeline::TetSide(const KindView& kinds, int k,
+                                   const DissipationContext* dissipation) {
+  TetFieldSide& tet = kindTetSides_[k];
+  tet.model = (*kinds_)[k]->TetCollider();
+  tet.x = &(*kinds.q)[k];
+  tet.xLast = kinds.qLast ? &(*kinds.qLast)[k] : tet.x;
+  tet.x0 = dissipation ? EntryOf(kinds.q0, k) : nullptr;
+  tet.nodeDof = &(*kinds.stageDof)[k];
+  kindLocators_[k].Build(*tet.x, tet.model->rest.tets);
+  tet.locator = &kindLocators_[k];
+  tet.locatorLast = tet.locator;
+  // Explicit normals locate the samples' x_n points at x_n.
+  if (dissipation && dissipation->mode == DissipationMode::ExplicitNormals && kinds.qLast) {
+    kindLocatorsLast_[k].Build(*tet.xLast, tet.model->rest.tets);
+    tet.locatorLast = &kindLocatorsLast_[k];
   }
+  tet.FormBoxes();
+  FrameSide side;
+  side.motion = FrameSide::Motion::Tet;
+  side.field = &kindTetFields_[k];
+  side.tet = &tet;
+  side.hasLast = true;
+  side.hasStart = tet.x0 != nullptr;
+  return side;
 }
 
-void ContactPipeline::SampleBodyOffsets(const KindView& kinds, int k, int body,
-                                        int offs[2]) const {
-  int dof[2];
-  (*kinds_)[k]->SampleBodyDofs(body, dof);
-  const std::vector<int>* stageDof = kinds.stageDof ? &(*kinds.stageDof)[k] : nullptr;
-  for (int c = 0; c < 2; ++c) offs[c] = stageDof ? (*stageDof)[dof[c]] : -1;
-}
-
-void ContactPipeline::SoftColliderInputs(const SoftColliderPair& sp, const KindView& kinds,
-                                         bool kindStart, RigidPose* pose, RigidStageStart* start,
-                                         CollidingInput* a, SoftColliderInput* b) const {
-  *a = CollidingInput();
-  const int k = sp.colliding;
-  if (sp.body < 0) {  // a kind's own samples
-    a->kind = (*kinds_)[k];
-    a->stageDof = &(*kinds.stageDof)[k];
-    a->x = &(*kinds.q)[k];
-    a->xLast = EntryOf(kinds.qLast, k);
-    a->x0 = kindStart ? EntryOf(kinds.q0, k) : nullptr;
-  } else {  // a kind's sample body
-    const ActorKind& A = *(*kinds_)[k];
-    const bool hasStart = SampleBodyAt(A, sp.body, (*kinds.q)[k], EntryOf(kinds.qLast, k),
-                                       kindStart ? EntryOf(kinds.q0, k) : nullptr, pose, start);
-    a->rigid = A.SampleBody(sp.body);
-    a->pose = pose;
-    a->start = hasStart ? start : nullptr;
-    SampleBodyOffsets(kinds, k, sp.body, a->bodyOffs);
-  }
-  *b = SoftColliderInput();
-  const int c = sp.collider;
-  b->model = (*kinds_)[c]->TetCollider();
-  b->x = &(*kinds.q)[c];
-  b->xLast = EntryOf(kinds.qLast, c);
-  b->x0 = kindStart ? EntryOf(kinds.q0, c) : nullptr;
-  b->locator = &kindLocators_[c];
-  b->locatorLast = kinds.qLast ? &kindLocatorsLast_[c] : &kindLocators_[c];
-  b->nodeDof = &(*kinds.stageDof)[c];
-}
-
-template <typename Id>
-void ContactPipeline::BeginSlips(const DissipationContext* dissipation, SlipPairKind kind,
-                                 size_t n, Id id) {
-  SlipLists& lists = slipLists_[static_cast<int>(kind)];
-  lists.use.clear();  // no slips in use: SlipUse gives every pair none
+void ContactPipeline::BeginSlips(const DissipationContext* dissipation) {
+  slipUse_.clear();  // no slips in use: SlipUse gives every pair none
   if (!dissipation || !dissipation->slips) return;
-  lists.use.resize(n);
+  const size_t n = kindPairs_.size();
+  slipUse_.resize(n);
   if (dissipation->recordSlips) {
-    lists.record.assign(n, PairSlips());
-    for (size_t k = 0; k < n; ++k) lists.use[k] = {&lists.record[k], true};
+    slipRecord_.assign(n, PairSlips());
+    for (size_t k = 0; k < n; ++k) slipUse_[k] = {&slipRecord_[k], true};
     return;
   }
-  for (size_t k = 0; k < n; ++k) {
-    const std::pair<int, int> p = id(k);
-    lists.use[k].slips = dissipation->slips->Find(kind, p.first, p.second);
-  }
+  for (size_t k = 0; k < n; ++k)
+    slipUse_[k].slips = dissipation->slips->Find(kindPairs_[k].a, kindPairs_[k].b);
 }
 
-template <typename Id>
-void ContactPipeline::EndSlips(const DissipationContext* dissipation, SlipPairKind kind, size_t n,
-                               Id id) {
+void ContactPipeline::EndSlips(const DissipationContext* dissipation) {
   if (!dissipation || !dissipation->slips || !dissipation->recordSlips) return;
-  SlipLists& lists = slipLists_[static_cast<int>(kind)];
-  for (size_t k = 0; k < n; ++k) {
-    if (lists.record[k].samples.empty()) continue;
-    const std::pair<int, int> p = id(k);
-    dissipation->slips->Add(kind, p.first, p.second, std::move(lists.record[k]));
+  for (size_t k = 0; k < kindPairs_.size(); ++k) {
+    if (slipRecord_[k].samples.empty()) continue;
+    dissipation->slips->Add(kindPairs_[k].a, kindPairs_[k].b, std::move(slipRecord_[k]));
   }
-}
-
-template <typename Id, typename PairFn>
-void ContactPipeline::SweepPairs(const DissipationContext* dissipation, SlipPairKind kind,
-                                 size_t n, bool parallel, Id id, PairFn&& evaluate) {
-  BeginSlips(dissipation, kind, n, id);
-  ForEachPair(n, parallel, evaluate);
-  EndSlips(dissipation, kind, n, id);
 }
 
 DissipationSetup ContactPipeline::MakeSetup(const PairContactParams& params,
@@ -266,8 +221,8 @@ DissipationSetup ContactPipeline::MakeSetup(const PairContactParams& params,
 size_t ContactPipeline::KindPairWork() const {
   size_t work = 0;
   for (const KindPair& kp : kindPairs_) {
-    // A deforming surface's samples: always in parallel.
-    if (kindFaceSamples_[kp.a]) return kParallelSampleWork;
+    // A deforming surface's samples, or a tet field's pullbacks: always in parallel.
+    if (kindFaceSamples_[kp.a] || kindTetCollider_[kp.b]) return kParallelSampleWork;
     work += kindSamples_[kp.a];
   }
   return work;
@@ -275,7 +230,7 @@ size_t ContactPipeline::KindPairWork() const {
 
 bool ContactPipeline::SplitLastEvaluation(std::vector<double>* share,
                                           std::vector<std::pair<int, int>>* joins) const {
-  if (!softColliderPairs_.empty() || kindResults_.size() != kindPairs_.size()) return false;
+  if (evaluatedTetPairs_ || kindResults_.size() != kindPairs_.size()) return false;
   // Each pair's values to its first dynamic actor; two dynamic actors with an active sample join.
   for (size_t k = 0; k < kindPairs_.size(); ++k) {
     const KindPair& kp = kindPairs_[k];
@@ -304,6 +259,7 @@ void ContactPipeline::StepLimits(const KindView& now, const KindView& next,
   auto evaluateKind = [&](size_t k) {
     const KindPair& kp = kindPairs_[k];
     kindPairLimits_[k] = 1.0;
+    if (kindTetCollider_[kp.b]) return;  // none on a tet field
     if (!kindStepLimit_[kp.a] || !kindStepLimit_[kp.b]) return;  // ActorKind::Shortcuts
     const PenaltyParams penalty = PenaltyOf(kp.params);
     const FrameSide B = KindFrameSide(*(*kinds_)[kp.b], q(next, kp.b), &q(now, kp.b), nullptr,
@@ -367,45 +323,10 @@ double ContactPipeline::Evaluate(int order, PsdProjection projection, Eigen::Vec
   double energy = 0.0;
   ContactStats st;
   EvaluateKindPairs(q, &energy, &st);
-  EvaluateOnSoftPairs(q, &energy, &st);
+  evaluatedTetPairs_ = tetPairs_;
   if (dissipation && dissipation->slips && dissipation->recordSlips) dissipation->slips->Seal();
   if (stats) *stats = st;
   return energy;
-}
-
-void ContactPipeline::EvaluateOnSoftPairs(const Request& q, double* energy, ContactStats* st) {
-  if (softColliderPairs_.empty()) return;
-  const DissipationContext* dissipation = q.dissipation;
-  // Colliding ids: a kind's own samples k, its sample bodies k + nk (b + 1); collider: the kind.
-  const int nk = static_cast<int>(kinds_->size());
-  const auto onSoftId = [&](size_t k) {
-    const SoftColliderPair& p = softColliderPairs_[k];
-    return std::make_pair(p.colliding + nk * (p.body + 1), p.collider);
-  };
-  // Samples of kinds on tet fields, one stencil per sample.
-  BuildLocators(*q.kinds, true);
-  softColliderResults_.resize(softColliderPairs_.size());
-  auto evaluateOnSoft = [&](size_t k) {
-    const SoftColliderPair& sp = softColliderPairs_[k];
-    const PenaltyParams pp = PenaltyOf(sp.params);
-    CollidingInput a;
-    SoftColliderInput b;
-    RigidPose pose;
-    RigidStageStart start;
-    SoftColliderInputs(sp, *q.kinds, dissipation != nullptr, &pose, &start, &a, &b);
-    DissipationSetup setup;
-    if (dissipation) setup = MakeSetup(sp.params, *dissipation, q.isotropic);
-    setup.slips = SlipUse(SlipPairKind::OnSoft, k);
-    PairStencils& r = softColliderResults_[k];
-    EvaluatePairOnSoftCollider(a, b, pp, sp.params.maxAlignmentNormals,
-                               dissipation ? &setup : nullptr, q.order, &r);
-    if (q.order < 2) return;
-    for (int e = 0; e < r.count; ++e) ProjectStencil(q.potential, q.projection, &r.stencils[e]);
-  };
-  SweepPairs(dissipation, SlipPairKind::OnSoft, softColliderPairs_.size(), true, onSoftId,
-             evaluateOnSoft);
-  for (size_t k = 0; k < softColliderPairs_.size(); ++k)
-    ReducePair(q, softColliderResults_[k], energy, st);
 }
 
 void ContactPipeline::FormKindSides(const Request& q) {
@@ -418,13 +339,18 @@ void ContactPipeline::FormKindSides(const Request& q) {
   }
   kindSides_.resize(nk);
   kindBodies_.resize(nk);
+  kindTetSides_.resize(nk);  // sized before TetSide points into it
+  kindLocators_.resize(nk);
+  kindLocatorsLast_.resize(nk);
   const KindView& kv = *q.kinds;
   for (size_t k = 0; k < nk; ++k) {
     if (!kindRoles_[k]) continue;
     const ActorKind& kind = *(*kinds_)[k];
     const Eigen::VectorXd& x = (*kv.q)[k];
     const Eigen::VectorXd* x0 = q.dissipation ? EntryOf(kv.q0, k) : nullptr;  // with dissipation
-    if (kindRoles_[k] & 1)
+    if ((kindRoles_[k] & 1) && kindTetCollider_[k])
+      kindSides_[k] = TetSide(kv, k, q.dissipation);
+    else if (kindRoles_[k] & 1)
       kindSides_[k] = KindFrameSide(kind, x, EntryOf(kv.qLast, k), x0, (*kv.stageDof)[k]);
     if ((kindRoles_[k] & 2) && kind.NumSampleBodies() > 0)
       kindBodies_[k].Form(kind, x, EntryOf(kv.qLast, k), x0);
@@ -450,7 +376,7 @@ void ContactPipeline::EvaluateKindPairs(const Request& q, double* energy, Contac
     const KindPair& kp = kindPairs_[k];
     DissipationSetup setup;
     if (dissipation) setup = MakeSetup(kp.params, *dissipation, q.isotropic);
-    setup.slips = SlipUse(SlipPairKind::Kind, k);
+    setup.slips = SlipUse(k);
     const FrameSide& B = kindSides_[kp.b];
     // Evaluated into the worker's own stencils, then kept in the pair's compact ones where they
     // fit (a pair of rigid bodies' [δp, δθ]: the memory the sweeps touch is a quarter).
@@ -470,9 +396,9 @@ void ContactPipeline::EvaluateKindPairs(const Request& q, double* energy, Contac
     else
       kindWideResults_[k].CopyFrom(scratch, q.order);
   };
-  auto kindId = [&](size_t k) { return std::make_pair(kindPairs_[k].a, kindPairs_[k].b); };
-  SweepPairs(dissipation, SlipPairKind::Kind, kindPairs_.size(),
-             KindPairWork() >= kParallelSampleWork, kindId, evaluate);
+  BeginSlips(dissipation);
+  ForEachPair(kindPairs_.size(), KindPairWork() >= kParallelSampleWork, evaluate);
+  EndSlips(dissipation);
   for (size_t k = 0; k < kindPairs_.size(); ++k)
     WithKindResults(k, [&](const auto& r) { ReducePair(q, r, energy, st); });
 }
@@ -485,23 +411,6 @@ void ContactPipeline::CollectSamples(std::vector<ContactSampleRecord>* records,
   auto setupOf = [&](const PairContactParams& params) {
     return dissipation ? MakeSetup(params, *dissipation, false) : DissipationSetup();
   };
-  if (!softColliderPairs_.empty()) BuildLocators(*kinds, false);
-  PairStencils scratchOnSoft;
-  for (const SoftColliderPair& sp : softColliderPairs_) {
-    const PenaltyParams pp = PenaltyOf(sp.params);
-    CollidingInput a;
-    SoftColliderInput b;
-    RigidPose pose;
-    RigidStageStart start;
-    SoftColliderInputs(sp, *kinds, false, &pose, &start, &a, &b);
-    const size_t first = records->size();
-    EvaluatePairOnSoftCollider(a, b, pp, sp.params.maxAlignmentNormals, nullptr, 0, &scratchOnSoft,
-                               records);
-    for (size_t k = first; k < records->size(); ++k) {
-      (*records)[k].colliding = kindActor_[sp.colliding];
-      (*records)[k].collider = kindActor_[sp.collider];
-    }
-  }
   Request q;
   q.kinds = kinds;
   q.dissipation = dissipation;

@@ -1,7 +1,7 @@
 // The contact pipeline (spec: "Contact Pipeline") over the generic layer's actors (rigid and soft
 // ones among them): broad phase over actor bounding boxes, narrow phase of colliding samples
 // against collider fields, response into the stage's gradient and Hessian through the one
-// assembler of core/contact/kind_contact.h (pairs on a kind's tet field: soft_collider.h).
+// assembler of core/contact/kind_contact.h (on a frame's field or a kind's tet field alike).
 #pragma once
 
 #include <Eigen/Core>
@@ -15,7 +15,6 @@
 #include "core/model/rigid_body.h"
 #include "core/contact/rigid_contact.h"
 #include "core/contact/rigid_dissipation.h"
-#include "core/contact/soft_collider.h"
 #include "optim/stage_problem.h"
 #include "optim/triplet_assembly.h"
 
@@ -45,15 +44,6 @@ struct DissipationContext {
   bool recordSlips = false;
 };
 
-/// Ordered pair (A colliding: sample body `body` of kind `colliding`, or its own samples with
-/// body −1; B: kind `collider`'s tet field, ActorKind::TetCollider).
-struct SoftColliderPair {
-  int body = 0;
-  int colliding = -1;
-  int collider = -1;
-  PairContactParams params;
-};
-
 /// The actors of the generic layer for one evaluation (core/model/actor_kind.h): per actor k its
 /// q, its x_n (or null), its stage start x⁰ (dissipation; or null) and the stage offsets of its
 /// local dofs (−1 for a prescribed dof).
@@ -64,8 +54,9 @@ struct KindView {
   const std::vector<std::vector<int>>* stageDof = nullptr;
 };
 
-/// Ordered pair on a field carried by a kind's frame (A colliding, B collider: indices into the
-/// kinds), evaluated by the one assembler of core/contact/kind_contact.h.
+/// Ordered pair on a collider field of a kind, carried by its frame or its tets (A colliding, B
+/// collider: indices into the kinds), evaluated by the one assembler of
+/// core/contact/kind_contact.h.
 struct KindPair {
   int a = -1, b = -1;
   PairContactParams params;
@@ -109,7 +100,7 @@ class ContactPipeline {
   /// Every active contact sample at the view's configurations (serial; for reporting). Records
   /// carry actor indices (see Configure) and, for samples on a face, the face. With a stage's
   /// `dissipation` (and the view's x⁰, x_n), as Evaluate takes them, each record carries its
-  /// dissipation traction too; pairs on a tet field report their normal traction only.
+  /// dissipation traction too.
   void CollectSamples(std::vector<ContactSampleRecord>* records, const KindView* kinds = nullptr,
                       const DissipationContext* dissipation = nullptr);
 
@@ -136,16 +127,12 @@ class ContactPipeline {
     bool potential = true;   ///< no dissipation, or ExplicitNormals
     bool isotropic = false;  ///< DissipationSetup::isotropicFrictionHessian
   };
-  /// Each pair kind of Evaluate: its pairs in parallel, then reduced in pair order into *energy
-  /// and *st and scattered into the request's outputs.
-  void EvaluateOnSoftPairs(const Request& q, double* energy, ContactStats* st);
+  /// Evaluate's pairs in parallel, then reduced in pair order into *energy and *st and
+  /// scattered into the request's outputs.
   void EvaluateKindPairs(const Request& q, double* energy, ContactStats* st);
   void FindPairs(const KindView* kinds);
   // The generic layer's ordered pair (a, b) when the roles, the filter and the motion allow it.
   void ConsiderKindPair(int a, int b);
-  // Kind k's sample bodies (one pair per body) and own samples (one pair) colliding on kind b's
-  // tet field, when the roles and the filter allow it.
-  void ConsiderKindOnTetField(int k, int b);
   // Whether colliding kind a's pairs take the threshold padding (spec: its collider is None or
   // PointCloud, i.e. it has neither a frame field nor a tet field of its own).
   bool PadsThreshold(int a) const { return !kindCollider_[a] && !kindTetCollider_[a]; }
@@ -165,27 +152,22 @@ class ContactPipeline {
   /// scattered into the request's outputs by the blocks they carry (ContactStencil::blocks).
   template <typename Stencils>
   void ReducePair(const Request& q, const Stencils& r, double* energy, ContactStats* st) const;
-  // The two sides of a pair on a tet field (the locators must be built); a kind's sample body's
-  // pose and stage start are formed in *pose and *start (from the kinds' view; its x⁰ where
-  // `kindStart`, as with dissipation), which must outlive *a.
-  void SoftColliderInputs(const SoftColliderPair& pair, const KindView& kinds, bool kindStart,
-                          RigidPose* pose,
-                          RigidStageStart* start, CollidingInput* a,
-                          SoftColliderInput* b) const;
-  // The stage offsets of kind k's sample body `body`'s [δp, δθ] (−1: prescribed).
-  void SampleBodyOffsets(const KindView& kinds, int k, int body, int offs[2]) const;
 
   const ContactFilter* filter_ = nullptr;
   std::vector<Aabb> boxes_;
   std::vector<std::pair<int, int>> overlaps_;
   OverlapCache overlapCache_;  // the broad phase's candidates, kept while the boxes stay inside
   std::vector<double> kindPairLimits_;
-  std::vector<SoftColliderPair> softColliderPairs_;
-  std::vector<PairStencils> softColliderResults_;
-  std::vector<TetLocator> kindLocators_, kindLocatorsLast_;  // per kind with a tet field
-  std::vector<char> locatorBuilt_;                           // per kind: scratch of BuildLocators
-  // The point locators of the tet fields in softColliderPairs_ (x_n's too with `last`).
-  void BuildLocators(const KindView& kinds, bool last);
+  bool tetPairs_ = false;  // some pair of kindPairs_ is on a tet field
+  // Per kind with a tet field in the collider role: its point locators over x and x_n, its side
+  // (FormKindSides), and its reference grid as a field (Configure).
+  std::vector<TetLocator> kindLocators_, kindLocatorsLast_;
+  std::vector<TetFieldSide> kindTetSides_;
+  std::vector<RigidCollider> kindTetFields_;
+  // Kind k's tet field as a collider side at the view's configurations (with the stage start
+  // and, for explicit normals, x_n's locator when there is a `dissipation`).
+  FrameSide TetSide(const KindView& kinds, int k, const DissipationContext* dissipation);
+  bool evaluatedTetPairs_ = false;  // the last Evaluate had pairs on a tet field
   const std::vector<const ActorKind*>* kinds_ = nullptr;
   std::vector<int> kindActor_;
   std::vector<double> kindInflation_;
@@ -217,31 +199,16 @@ class ContactPipeline {
   std::vector<FrameSide> kindSides_;
   std::vector<SampleBodyPoses> kindBodies_;
   std::vector<char> kindRoles_;  // per kind: 1 collider, 2 sample bodies (bits)
-  // Per pair kind (SlipPairKind): the pairs' slip use in the evaluation under way and, when
-  // recording, their buffers.
-  struct SlipLists {
-    std::vector<PairSlipUse> use;
-    std::vector<PairSlips> record;
-  };
-  SlipLists slipLists_[2];  // indexed by SlipPairKind
-  /// Sets slipLists_[kind].use for n pairs named by id(k) = (colliding, collider): buffers to
-  /// record into or the records to read; left empty without slips in the context (plain
-  /// simulation pays no per-pair work for them).
-  template <typename Id>
-  void BeginSlips(const DissipationContext* dissipation, SlipPairKind kind, size_t n, Id id);
+  // The pairs' slip use in the evaluation under way and, when recording, their buffers.
+  std::vector<PairSlipUse> slipUse_;
+  std::vector<PairSlips> slipRecord_;
+  /// Sets slipUse_ for the pairs: buffers to record into or the records to read; left empty
+  /// without slips in the context (plain simulation pays no per-pair work for them).
+  void BeginSlips(const DissipationContext* dissipation);
   /// Pair k's slip use in the evaluation under way (none when the list is empty).
-  PairSlipUse SlipUse(SlipPairKind kind, size_t k) const {
-    const std::vector<PairSlipUse>& use = slipLists_[static_cast<int>(kind)].use;
-    return use.empty() ? PairSlipUse() : use[k];
-  }
-  /// Evaluates n pairs of one kind, evaluate(k) for pair k (in parallel when `parallel`), with
-  /// their slips set up before (BeginSlips) and handed over after (EndSlips).
-  template <typename Id, typename PairFn>
-  void SweepPairs(const DissipationContext* dissipation, SlipPairKind kind, size_t n,
-                  bool parallel, Id id, PairFn&& evaluate);
+  PairSlipUse SlipUse(size_t k) const { return slipUse_.empty() ? PairSlipUse() : slipUse_[k]; }
   /// Recording: hands the buffers to the context's record.
-  template <typename Id>
-  void EndSlips(const DissipationContext* dissipation, SlipPairKind kind, size_t n, Id id);
+  void EndSlips(const DissipationContext* dissipation);
 };
 
 }  // namespace superdex

@@ -1,5 +1,6 @@
 #include "core/contact/kind_contact.h"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 
@@ -26,12 +27,15 @@ inline Eigen::Vector3d Mul(const Eigen::Matrix3d& R, const Eigen::Vector3d& X) {
                          R(2, 0) * X[0] + R(2, 1) * X[1] + R(2, 2) * X[2]);
 }
 
-/// The frame's part of a point stencil RigidPullbackStencil formed on [y, δp_B, δθ_B]: kept for
-/// a rigid frame, dropped for a static one, and for a translating frame mapped to its dofs by
-/// δp_B = F_p δq_B (g_B = F_pᵀ g_p, H_yB = H_yp F_p, H_By = F_pᵀ H_py, H_BB = F_pᵀ H_pp F_p; the
-/// rotation part vanishes with a frame that does not rotate).
-void PullbackOnFrame(const FrameSide& B, const Eigen::Vector3d& d, const Eigen::Vector3d& gY,
+/// The collider's part of a point stencil: on a tet field the tet's (TetPullbackStencil);
+/// otherwise RigidPullbackStencil formed on [y, δp_B, δθ_B], kept for a rigid frame, dropped for a
+/// static one, and for a translating frame mapped to its dofs by δp_B = F_p δq_B (g_B = F_pᵀ g_p,
+/// H_yB = H_yp F_p, H_By = F_pᵀ H_py, H_BB = F_pᵀ H_pp F_p; the rotation part vanishes with a
+/// frame that does not rotate).
+void ColliderStencil(const FrameSide& B, const SamplePullback& p, const Eigen::Vector3d& gY,
                      const Eigen::Matrix3d* HY, PointStencil* point) {
+  if (p.tet) return TetPullbackStencil(*p.tet, gY, HY, point);
+  const Eigen::Vector3d& d = p.d;
   RigidPullbackStencil(B.pose.R, d, gY, HY, B.motion != FrameSide::Motion::Static, point);
   if (B.motion != FrameSide::Motion::Translation) return;
   const int m = 3 * B.blocks;
@@ -47,22 +51,104 @@ void PullbackOnFrame(const FrameSide& B, const Eigen::Vector3d& d, const Eigen::
   point->H.block(3, 3, m, m) = Fp.transpose() * Hpp * Fp;
 }
 
+/// A covector of B's coordinates in the world: R_B v on a frame, F⁻ᵀ v on a tet field (the
+/// field's gradient, a traction).
+Eigen::Vector3d ToWorld(const FrameSide& B, const SamplePullback& p, const Eigen::Vector3d& v) {
+  return p.tet ? Eigen::Vector3d(p.tet->Finv.transpose() * v) : Eigen::Vector3d(B.pose.R * v);
+}
+
 template <typename T>
 Vec3<T> Cross(const Vec3<T>& a, const Vec3<T>& b) {
   return Vec3<T>(a.y() * b.z() - a.z() * b.y(), a.z() * b.x() - a.x() * b.z(),
                  a.x() * b.y() - a.y() * b.x());
 }
 
+/// B's pullback of a sample's moved point y and normal n as jets: Y and N_A in B's coordinates,
+/// and the world force f of a B-covector g. On a frame, with the first-order retraction of its
+/// rotation ω: Y = R_Bᵀ(d − ω × d), N_A = R_Bᵀ(n − ω × n), f = R_B g + ω × R_B g. On a tet field,
+/// through the tet's affine map at the moved nodes: Y = X_0 + Dm Ds⁻¹(y − x_0), N_A the unit
+/// Fᵀ n, f = F⁻ᵀ g, and λ the point's barycentric coordinates (B's residual −λ_a f per node).
+template <typename Jet>
+struct JetPullback {
+  Vec3<Jet> pB, om, d;
+  Mat3<Jet> RBt, Finv;
+  Jet lambda[4];
+  bool tet = false;
+
+  JetPullback(const FrameSide& B, const SamplePullback& p, const Jet* delta, int nA,
+              const Vec3<Jet>& y) {
+    tet = p.tet != nullptr;
+    if (tet) {
+      FormTet(B, p, delta + nA, y);
+      return;
+    }
+    pB = B.pose.p.cast<Jet>();
+    om = Vec3<Jet>::Zero();
+    if (B.motion == FrameSide::Motion::Rigid) {
+      pB += Vec3<Jet>(delta[nA], delta[nA + 1], delta[nA + 2]);
+      om = Vec3<Jet>(delta[nA + 3], delta[nA + 4], delta[nA + 5]);
+    } else if (B.motion == FrameSide::Motion::Translation) {
+      for (int c = 0; c < B.Dofs(); ++c) pB += B.Fp.col(c).cast<Jet>() * delta[nA + c];
+    }
+    RBt = B.pose.R.transpose().cast<Jet>();
+    d = y - pB;
+    Y = RBt * (d - Cross<Jet>(om, d));
+  }
+  void FormTet(const FrameSide& B, const SamplePullback& p, const Jet* dB, const Vec3<Jet>& y) {
+    const SoftBodyModel& m = *B.tet->model;
+    const Eigen::Vector4i& T = m.rest.tets[p.tet->tet];
+    Vec3<Jet> x[4];
+    for (int a = 0; a < 4; ++a)
+      x[a] = B.tet->x->segment<3>(3 * T[a]).cast<Jet>() +
+             Vec3<Jet>(dB[3 * a], dB[3 * a + 1], dB[3 * a + 2]);
+    Mat3<Jet> Ds;
+    Ds << x[1] - x[0], x[2] - x[0], x[3] - x[0];
+    const Mat3<Jet> Dsinv = Ds.inverse();
+    const Vec3<Jet> beta = Dsinv * (y - x[0]);
+    lambda[0] = Jet(1.0) - beta.sum();
+    for (int a = 0; a < 3; ++a) lambda[a + 1] = beta[a];
+    const Eigen::Matrix3d& DmInv = m.elements[p.tet->tet].DmInv;
+    const Mat3<Jet> Dm = DmInv.inverse().cast<Jet>();
+    Y = m.rest.vertices[T[0]].cast<Jet>() + Dm * beta;
+    Finv = Dm * Dsinv;
+    F = Ds * DmInv.cast<Jet>();
+  }
+  Vec3<Jet> Normal(const Vec3<Jet>& n) const {
+    if (!tet) return RBt * (n - Cross<Jet>(om, n));
+    const Vec3<Jet> N = F.transpose() * n;
+    return N / sqrt(N.squaredNorm());
+  }
+  Vec3<Jet> Force(const FrameSide& B, const Vec3<Jet>& g) const {
+    if (tet) return Finv.transpose() * g;
+    const Vec3<Jet> fB = B.pose.R.cast<Jet>() * g;
+    return fB + Cross<Jet>(om, fB);
+  }
+  /// B's part of the residual of world force f on A's point.
+  void AddResidual(const FrameSide& B, const Vec3<Jet>& f, int nA, Jet* r) const {
+    if (tet) {
+      for (int a = 0; a < 4; ++a)
+        for (int k = 0; k < 3; ++k) r[nA + 3 * a + k] = -lambda[a] * f[k];
+    } else if (B.motion == FrameSide::Motion::Rigid) {
+      const Vec3<Jet> tau = -Cross<Jet>(d, f);
+      for (int k = 0; k < 3; ++k) r[nA + k] = -f[k], r[nA + 3 + k] = tau[k];
+    } else if (B.motion == FrameSide::Motion::Translation) {
+      for (int c = 0; c < B.Dofs(); ++c) r[nA + c] = -(B.Fp.col(c).cast<Jet>().dot(f));
+    }
+  }
+  Vec3<Jet> Y;
+  Mat3<Jet> F;
+};
+
 /// Adds w ∂r/∂δ of one sample's current-mode residual on the pair stencil δ = [δq_A, δq_B], r the
-/// world residual: A's part Jᵀ f (a rigid A: [f; r_A × f]), B's part [−f; −d × f] (rigid) or
-/// F_pᵀ(−f) (translating), f = R_B ∂R/∂V(Y, N_A). Differentiated by forward-mode AD with the
-/// first-order retractions y + δp + δθ × r, R ← (I + [δθ]×) R (exact first derivatives at δ = 0,
-/// the stage's world-torque convention), Y = R_Bᵀ(d − ω × d), N_A = R_Bᵀ(n − ω × n).
+/// world residual: A's part Jᵀ f (a rigid A: [f; r_A × f]), B's part [−f; −d × f] (rigid),
+/// F_pᵀ(−f) (translating) or −λ_a f per tet node, f B's covector ∂R/∂V in the world
+/// (JetPullback). Differentiated by forward-mode AD with the first-order retractions
+/// y + δp + δθ × r, R ← (I + [δθ]×) R (exact first derivatives at δ = 0, the stage's world-torque
+/// convention).
 template <int N>  // jets of N >= n derivatives (the smallest of 9, 12, 15, 24 that holds the stencil)
 void AddCurrentModeJacobian(const PairSample& s, const FrameSide& B, const SdfSample& field,
-                            const Eigen::Vector3d& Y, const Eigen::Vector3d& Yn,
-                            const Eigen::Vector3d& Y0, const DissipationSetup& ds,
-                            StencilMatrix* J) {
+                            const SamplePullback& p, const Eigen::Vector3d& Y0,
+                            const DissipationSetup& ds, StencilMatrix* J) {
   const int nA = s.map.Dofs(), nB = B.Dofs(), n = nA + nB;
   using Jet = ceres::Jet<double, N>;
   Jet delta[N];
@@ -84,20 +170,10 @@ void AddCurrentModeJacobian(const PairSample& s, const FrameSide& B, const SdfSa
       nw = m / sqrt(m.squaredNorm());
     }
   }
-  Vec3<Jet> pB = B.pose.p.cast<Jet>(), om = Vec3<Jet>::Zero();
-  if (B.motion == FrameSide::Motion::Rigid) {
-    pB += vec(nA);
-    om = vec(nA + 3);
-  } else if (B.motion == FrameSide::Motion::Translation) {
-    for (int c = 0; c < nB; ++c) pB += B.Fp.col(c).cast<Jet>() * delta[nA + c];
-  }
-  const Mat3<Jet> RBt = B.pose.R.transpose().cast<Jet>();
-  const Vec3<Jet> d = y - pB;
-  const Vec3<Jet> Yj = RBt * (d - Cross<Jet>(om, d));
-  const Vec3<Jet> NA = s.hasNormal ? Vec3<Jet>(RBt * (nw - Cross<Jet>(om, nw))) : Vec3<Jet>::Zero();
-  const Vec3<Jet> g = CurrentModeDissipationGradient<Jet>(Yj, NA, Y, field, Yn, Y0, ds);
-  const Vec3<Jet> fB = B.pose.R.cast<Jet>() * g;
-  const Vec3<Jet> f = fB + Cross<Jet>(om, fB);
+  const JetPullback<Jet> pb(B, p, delta, nA, y);
+  const Vec3<Jet> NA = s.hasNormal ? pb.Normal(nw) : Vec3<Jet>::Zero();
+  const Vec3<Jet> g = CurrentModeDissipationGradient<Jet>(pb.Y, NA, p.Y, field, p.Yn, Y0, ds);
+  const Vec3<Jet> f = pb.Force(B, g);
   Jet r[N];
   if (rigidA) {
     const Vec3<Jet> tau = Cross<Jet>(rA, f);
@@ -106,24 +182,18 @@ void AddCurrentModeJacobian(const PairSample& s, const FrameSide& B, const SdfSa
     for (int a = 0; a < s.map.nodes; ++a)
       for (int k = 0; k < 3; ++k) r[3 * a + k] = s.map.bary[a] * f[k];
   }
-  if (B.motion == FrameSide::Motion::Rigid) {
-    const Vec3<Jet> tau = -Cross<Jet>(d, f);
-    for (int k = 0; k < 3; ++k) r[nA + k] = -f[k], r[nA + 3 + k] = tau[k];
-  } else if (B.motion == FrameSide::Motion::Translation) {
-    for (int c = 0; c < nB; ++c) r[nA + c] = -(B.Fp.col(c).cast<Jet>().dot(f));
-  }
+  pb.AddResidual(B, f, nA, r);
   for (int i = 0; i < n; ++i) J->row(i) += s.weight * r[i].v.head(n).transpose();
 }
 
 void AddCurrentModeJacobianOfSize(const PairSample& s, const FrameSide& B, const SdfSample& field,
-                                  const Eigen::Vector3d& Y, const Eigen::Vector3d& Yn,
-                                  const Eigen::Vector3d& Y0, const DissipationSetup& ds,
-                                  StencilMatrix* J) {
+                                  const SamplePullback& p, const Eigen::Vector3d& Y0,
+                                  const DissipationSetup& ds, StencilMatrix* J) {
   const int n = s.map.Dofs() + B.Dofs();
-  if (n <= 9) return AddCurrentModeJacobian<9>(s, B, field, Y, Yn, Y0, ds, J);
-  if (n <= 12) return AddCurrentModeJacobian<12>(s, B, field, Y, Yn, Y0, ds, J);
-  if (n <= 15) return AddCurrentModeJacobian<15>(s, B, field, Y, Yn, Y0, ds, J);
-  AddCurrentModeJacobian<kMaxStencil>(s, B, field, Y, Yn, Y0, ds, J);
+  if (n <= 9) return AddCurrentModeJacobian<9>(s, B, field, p, Y0, ds, J);
+  if (n <= 12) return AddCurrentModeJacobian<12>(s, B, field, p, Y0, ds, J);
+  if (n <= 15) return AddCurrentModeJacobian<15>(s, B, field, p, Y0, ds, J);
+  AddCurrentModeJacobian<kMaxStencil>(s, B, field, p, Y0, ds, J);
 }
 
 SamplePullback PullbackOf(const PairSample& s, const FrameSide& B) {
@@ -143,7 +213,7 @@ bool AddPenalty(const PairSample& s, const FrameSide& B, const SamplePullback& p
                 const PenaltyParams& penalty, double m, int order, PairStencils* out,
                 ContactStencil* st, RigidSampleSums* sums, ContactSampleRecord* record) {
   if (!(field.value < penalty.delta)) return false;
-  if (s.hasNormal && std::isfinite(m)) {
+  if (s.hasNormal && std::isfinite(m) && p.hasLast) {
     SdfSample atLast;  // the gradient alone
     if (B.hasLast) B.field->EvaluateFirstOrderBelow(p.Yn, INFINITY, &atLast);
     const Eigen::Vector3d& G = B.hasLast ? atLast.gradient : field.gradient;
@@ -155,9 +225,11 @@ bool AddPenalty(const PairSample& s, const FrameSide& B, const SamplePullback& p
   const PenaltyDensity W = NormalPenaltyDensity(field.value, penalty);
   out->penaltyValue += s.weight * W.W;
   if (record) {
-    record->normal = B.pose.R * field.gradient.normalized();
+    const Eigen::Vector3d gradient = ToWorld(B, p, field.gradient);  // ∇_y φ
+    record->normal = p.tet ? gradient.normalized()
+                           : Eigen::Vector3d(B.pose.R * field.gradient.normalized());
     record->lambdaN = W.lambdaN;
-    record->traction = W.lambdaN * (B.pose.R * field.gradient);
+    record->traction = W.lambdaN * gradient;
   }
   if (order < 1) return true;
   Eigen::Vector3d gY;
@@ -170,7 +242,7 @@ bool AddPenalty(const PairSample& s, const FrameSide& B, const SamplePullback& p
     if (order >= 2) sums->penalty.Add(B.pose.R.transpose() * s.map.r, gY, HY, s.weight);
     return true;
   }
-  PullbackOnFrame(B, p.d, gY, order >= 2 ? &HY : nullptr, &point);
+  ColliderStencil(B, p, gY, order >= 2 ? &HY : nullptr, &point);
   ChainToActor(s.map, point, s.weight, &st->penaltyGradient,
                order >= 2 ? &st->penaltyHessian : nullptr);
   return true;
@@ -204,16 +276,16 @@ void AddDissipation(const PairSample& s, int k, const FrameSide& B, const Sample
     N = SplitDirection(field.gradient, p.NA, ds);
   }
   if (lambdaHat == 0.0) return;
-  const Eigen::Vector3d Y0 = B.start.Rinv * (s.y0 - B.start.p);
+  const Eigen::Vector3d Y0 = p.tet ? p.Y0 : Eigen::Vector3d(B.start.Rinv * (s.y0 - B.start.p));
   const Eigen::Vector3d V = (p.Y - Y0) / ds.dt;
   const bool hessian = explicitNormals && order >= 2;
   const DissipationDensity D = EvaluateSampleDissipation(
       lambdaHat, N, V, ds.coefficients, ds.HessianKind(hessian), ds.slips, k);
   st->dissipationActive = true;
   out->AddDissipative(s.weight, ds.dt, D, ds.coefficients.mu, lambdaHat);
-  if (record) {  // the tractions on A, −∂R/∂V split, B's frame to the world
-    record->friction = B.pose.R * (D.coulomb + D.viscousTangential);
-    record->damping = B.pose.R * D.viscousNormal;
+  if (record) {  // the tractions on A, −∂R/∂V split, B's coordinates to the world
+    record->friction = ToWorld(B, p, D.coulomb + D.viscousTangential);
+    record->damping = ToWorld(B, p, D.viscousNormal);
   }
   if (order == 0) return;
   const Eigen::Matrix3d HY = D.hessian / ds.dt;
@@ -231,18 +303,20 @@ void AddDissipation(const PairSample& s, int k, const FrameSide& B, const Sample
     return;
   }
   PointStencil point;
-  PullbackOnFrame(B, p.d, D.gradient, hessian ? &HY : nullptr, &point);
+  ColliderStencil(B, p, D.gradient, hessian ? &HY : nullptr, &point);
   ChainToActor(s.map, point, s.weight, &st->dissipationResidual,
                hessian ? &st->dissipationJacobian : nullptr);
   if (order >= 2 && !explicitNormals)
-    AddCurrentModeJacobianOfSize(s, B, field, p.Y, p.Yn, Y0, ds, &st->dissipationJacobian);
+    AddCurrentModeJacobianOfSize(s, B, field, p, Y0, ds, &st->dissipationJacobian);
 }
 
-/// Fills a stencil's blocks: the sample's, then the frame's.
-void SetBlocks(const PairSample& s, const FrameSide& B, ContactStencil* st) {
+/// Fills a stencil's blocks: the sample's, then the frame's (on a tet field, tet t's nodes).
+void SetBlocks(const PairSample& s, const FrameSide& B, int t, ContactStencil* st) {
   st->blocks = 0;
   for (int b = 0; b < s.blocks; ++b) st->offs[st->blocks++] = s.offs[b];
-  if (B.motion == FrameSide::Motion::Rigid) {
+  if (B.motion == FrameSide::Motion::Tet) {
+    for (int c = 0; c < 4; ++c) st->offs[st->blocks++] = B.tet->NodeOffset(t, c);
+  } else if (B.motion == FrameSide::Motion::Rigid) {
     st->offs[st->blocks++] = B.offs[0];
     st->offs[st->blocks++] = B.offs[1];
   } else if (B.motion == FrameSide::Motion::Translation) {
@@ -281,15 +355,16 @@ void FrameEvaluation::Close() {  // kept when it has a contribution, else its sl
   st_ = nullptr;
 }
 
-void FrameEvaluation::Open(const PairSample& s) {
-  if (st_ && s.face == st_->aFace) {
+void FrameEvaluation::Open(const PairSample& s, int t) {
+  if (st_ && s.face == st_->aFace && t == openTet_) {
     int k = 0;
     while (k < s.blocks && s.offs[k] == st_->offs[k]) ++k;
     if (k == s.blocks) return;
   }
   Close();
-  st_ = &out_->Slot(s.face, -1, s.map.Dofs() + B_.Dofs(), order_);
-  SetBlocks(s, B_, st_);
+  st_ = &out_->Slot(s.face, t, s.map.Dofs() + B_.Dofs(), order_);
+  openTet_ = t;
+  SetBlocks(s, B_, t, st_);
   sums_.Begin(s, B_);
 }
 
@@ -346,7 +421,77 @@ void FrameEvaluation::AddOpenTerms(const PairSample& s, const SamplePullback& p,
   records_->push_back(rec);
 }
 
+namespace {
+bool Inside(const Aabb& b, const Eigen::Vector3d& p) {
+  return (p.array() >= b.min.array()).all() && (p.array() <= b.max.array()).all();
+}
+}  // namespace
+
+void FrameEvaluation::AddOnTet(const PairSample& s) {
+  if (!CollidesOnTetField(s)) return;
+  const TetFieldSide& T = *B_.tet;
+  ContactSampleRecord rec;  // the sample's report, when records_ asks for one
+  ContactSampleRecord* record = records_ ? &rec : nullptr;
+  bool penalty = false;
+  SdfSample field;
+  field.value = NAN;  // not located now
+  TetPullback pb, pbn, pb0;
+  Eigen::Vector4d lambda;
+  const int t = Inside(T.box, s.y) ? T.locator->Locate(s.y, &lambda) : -1;
+  if (t >= 0 && PullbackThrough(*T.model, *T.x, t, s.y, &pb)) {
+    field = B_.field->Evaluate(pb.X);
+    out_->minPhi = std::min(out_->minPhi, field.value);
+    SamplePullback p;
+    p.tet = &pb;
+    p.Y = pb.X;
+    p.NA = ReferenceNormal(pb, s.n);
+    p.hasLast = PullbackThrough(*T.model, *T.xLast, t, s.yLast, &pbn);
+    if (p.hasLast) {
+      p.Yn = pbn.X;
+      p.NAn = ReferenceNormal(pbn, s.nLast);
+    }
+    Open(s, t);
+    penalty = AddPenalty(s, B_, p, field, penalty_, maxAlignment_, order_, out_, st_, &sums_,
+                         record);
+    if (withDissipation_ && !explicitNormals_ && p.hasLast &&
+        PullbackThrough(*T.model, *T.x0, t, s.y0, &pb0)) {
+      p.Y0 = pb0.X;
+      AddDissipation(s, s.key, B_, p, field, *dissipation_, order_, out_, st_, &sums_, record);
+    }
+  }
+  if (explicitNormals_) AddOnTetAtLast(s, record);
+  if (!record || !(penalty || !rec.friction.isZero(0) || !rec.damping.isZero(0))) return;
+  rec.position = s.y;
+  rec.phi = field.value;
+  rec.weight = s.weight;
+  rec.face = s.face;
+  records_->push_back(rec);
+}
+
+void FrameEvaluation::AddOnTetAtLast(const PairSample& s, ContactSampleRecord* record) {
+  const TetFieldSide& T = *B_.tet;
+  if (!Inside(T.boxLast, s.yLast)) return;
+  Eigen::Vector4d lambda;
+  const int t = T.locatorLast->Locate(s.yLast, &lambda);
+  TetPullback pbn, pb, pb0;
+  if (t < 0 || !PullbackThrough(*T.model, *T.xLast, t, s.yLast, &pbn) ||
+      !PullbackThrough(*T.model, *T.x, t, s.y, &pb) ||
+      !PullbackThrough(*T.model, *T.x0, t, s.y0, &pb0))
+    return;
+  SamplePullback p;
+  p.tet = &pb;
+  p.Y = pb.X;
+  p.Yn = pbn.X;
+  p.Y0 = pb0.X;
+  p.NA = ReferenceNormal(pb, s.n);
+  p.NAn = ReferenceNormal(pbn, s.nLast);
+  Open(s, t);
+  const SdfSample unused;  // explicit normals read the field at Y_n
+  AddDissipation(s, s.key, B_, p, unused, *dissipation_, order_, out_, st_, &sums_, record);
+}
+
 void FrameEvaluation::Add(const PairSample& s) {
+  if (B_.tet) return AddOnTet(s);
   const SamplePullback p = PullbackOf(s, B_);
   // The field's derivatives only where a term can use them: φ < δ for the penalty and the
   // current load; the reconstructed load φ + G·(Y_n − Y) >= φ − L|Y_n − Y| needs φ below
@@ -374,6 +519,7 @@ bool FrameEvaluation::BeginRigidBody(const RigidPose& a, const RigidPose& an,
 
 void FrameEvaluation::AddRigidSamples(const SurfaceSample* samples, int begin, int end,
                                       int keyOffset, double motion) {
+  if (B_.tet) return SampleSink::AddRigidSamples(samples, begin, end, keyOffset, motion);
   // One product per pullback through the body's composed transforms: Y, and Y_n where the
   // explicit normals' load reads it; the rest only for a candidate (AddRigidCandidate). The
   // reconstructed load's bound is the leaf's, δ + L max |Y_n − Y| (Add's per-sample bound is no

@@ -1,6 +1,7 @@
 // The contact assembler of the generic actor layer: colliding samples of any actor (a kind's
 // samples, or a rigid body's) on a collider field carried by a frame (a rigid body's pose, or a
-// kind's collider frame, core/model/actor_kind.h).
+// kind's collider frame, core/model/actor_kind.h) or by a kind's tets (core/contact/tet_field.h:
+// the pullback Y is the located tet's, and its stencil side the tet's four nodes).
 //
 // Per sample, with the pullback Y = R_Bᵀ(y − p_B) [m] into the frame:
 //   penalty      w W(Φ_B(Y))                                              [J]
@@ -31,6 +32,7 @@
 #include "core/contact/dissipation_setup.h"
 #include "core/contact/rigid_contact.h"
 #include "core/contact/rigid_dissipation.h"
+#include "core/contact/tet_field.h"
 #include "core/model/actor_kind.h"
 #include "core/model/rigid_body.h"
 
@@ -58,9 +60,11 @@ struct PairSample {
   int offs[4] = {-1, -1, -1, -1};
 };
 
-/// The collider side: a field in a frame at the current pose, at x_n and at the stage start.
+/// The collider side: a field in a frame at the current pose, at x_n and at the stage start; or a
+/// kind's tet field (Motion::Tet, core/contact/tet_field.h), whose pullback is the located tet's
+/// and whose frame is the world's.
 struct FrameSide {
-  enum class Motion { Static, Rigid, Translation };
+  enum class Motion { Static, Rigid, Translation, Tet };
   const RigidCollider* field = nullptr;
   RigidPose pose;                          ///< current
   RigidPose last;                          ///< x_n (the geometry reference)
@@ -71,13 +75,20 @@ struct FrameSide {
   /// with the iterate (a face perpendicular to the collider flips s's sign at round-off).
   bool hasLast = false;
   /// Static: no dofs. Rigid: [δp_B, δθ_B] at offs[0], offs[1]. Translation: δp_B = F_p δq_B over
-  /// `blocks` 3-dof blocks.
+  /// `blocks` 3-dof blocks. Tet: the four nodes of a sample's tet (`field` the reference grid,
+  /// `tet` the field; the poses the identity, hasLast set).
   Motion motion = Motion::Static;
   Eigen::Matrix<double, 3, kMaxFrameDofs> Fp = Eigen::Matrix<double, 3, kMaxFrameDofs>::Zero();
   int blocks = 0;
   int offs[4] = {-1, -1, -1, -1};
+  const TetFieldSide* tet = nullptr;
   int Dofs() const {
-    return motion == Motion::Static ? 0 : motion == Motion::Rigid ? 6 : 3 * blocks;
+    switch (motion) {
+      case Motion::Static: return 0;
+      case Motion::Rigid: return 6;
+      case Motion::Tet: return 12;
+      default: return 3 * blocks;
+    }
   }
 };
 
@@ -145,7 +156,7 @@ struct RigidSampleSums {
   /// Starts a stencil: on when its samples are a Rigid map's and B does not deform.
   void Begin(const PairSample& s, const FrameSide& B) {
     on = s.map.kind == SamplePointMap::Kind::Rigid && s.hasNormal &&
-         B.motion != FrameSide::Motion::Translation;
+         (B.motion == FrameSide::Motion::Static || B.motion == FrameSide::Motion::Rigid);
     if (!on) return;
     bDynamic = B.motion == FrameSide::Motion::Rigid;
     c = s.map.origin - B.pose.p;
@@ -178,9 +189,14 @@ struct RigidSampleSums {
 };
 
 /// A sample's pullbacks into B's frame: d = y − p_B (world) [m], Y now and Y_n at x_n [m], and
-/// the colliding normal N_A in B's coordinates at both (zero without one).
+/// the colliding normal N_A in B's coordinates at both (zero without one). On a tet field: `tet`
+/// the pullback Y is taken through (its map to the stencil), Y⁰ at the stage start through the
+/// same tet, and `hasLast` whether that tet has a pullback at x_n (else no alignment rejection).
 struct SamplePullback {
   Eigen::Vector3d d, Y, Yn, NA, NAn;
+  const TetPullback* tet = nullptr;
+  Eigen::Vector3d Y0;
+  bool hasLast = true;
 };
 
 /// EvaluateSamplesOnFrame one sample at a time, as a sink: a gather feeds it directly, so that a
@@ -217,8 +233,14 @@ class FrameEvaluation final : public SampleSink {
   // Whether a sample with φ >= δ carries no reconstructed load either: φ + G·(Y_n − Y) >= δ
   // (between δ and the bound, the load decides; AddPenalty, AddDissipation).
   bool LoadFree(const SamplePullback& p, const SdfSample& field) const;
-  // Opens the stencil of sample s when it does not share the open one's blocks.
-  void Open(const PairSample& s);
+  // Opens the stencil of sample s (on a tet field: with tet t's nodes) when it does not share
+  // the open one's blocks.
+  void Open(const PairSample& s, int t = -1);
+  // A sample on a tet field: its penalty and current-mode dissipation through the tet that
+  // contains it, its explicit normals' dissipation through the tet that contained it at x_n.
+  void AddOnTet(const PairSample& s);
+  // The explicit normals' dissipation of sample s on a tet field (AddOnTet).
+  void AddOnTetAtLast(const PairSample& s, ContactSampleRecord* record);
   // The terms of a candidate sample s with pullback p at field value `field` (`below`: within
   // the bound; else the field is not read).
   void AddTerms(const PairSample& s, const SamplePullback& p, const SdfSample& field, bool below);
@@ -246,6 +268,7 @@ class FrameEvaluation final : public SampleSink {
   double reachLast2_ = 0.0;  // ReachSquared(δ): explicit normals' reach at Y_n
   bool penaltyValueOnly_ = false;  // order 0 without dissipation or records
   ContactStencil* st_ = nullptr;
+  int openTet_ = -1;        // the open stencil's tet on a tet field
   bool rigidOpen_ = false;  // the rigid body's stencil is open (its samples share their blocks)
   RigidSampleSums sums_;
 };
@@ -291,9 +314,13 @@ class BallCulling {
     return InFrame(RBt_ * (c - B_.pose.p), [&] { return RnBt_ * (cLast - B_.last.p); }, r);
   }
   /// The same test on the centre in B's frame: Y now, and lastY() at x_n (formed only where the
-  /// load geometry needs it).
+  /// load geometry needs it). On a tet field (the world's frame): the ball touches the field's box
+  /// now, or with explicit normals at x_n (samples outside both meet no tet).
   template <typename LastCentre>
   bool InFrame(const Eigen::Vector3d& Y, LastCentre&& lastY, double r) const {
+    if (B_.tet)
+      return B_.tet->box.TouchesBall(Y, r) ||
+             (mode_ == DissipationMode::ExplicitNormals && B_.tet->boxLast.TouchesBall(lastY(), r));
     const double L = field_.lipschitz;
     const double phiNow = field_.Value(Y) - L * r;
     if (phiNow < delta_) return true;

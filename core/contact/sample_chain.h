@@ -5,8 +5,8 @@
 // derivatives reach the pair's stencil [q_A, q_B] in two steps:
 //   1. the collider's side (its pullback, the collider role of its actor kind): g_Y = ∂f/∂Y and
 //      H_Y = ∂²f/∂Y² become the gradient and Hessian of f on the point stencil [y, q_B]
-//      (PointStencil): RigidPullbackStencil, or the soft collider's tet pullback
-//      (core/contact/soft_collider.cpp);
+//      (PointStencil): RigidPullbackStencil, or a tet field's TetPullbackStencil
+//      (core/contact/tet_field.h);
 //   2. the colliding side (ChainToActor): y = y(q_A) through the sample's SamplePointMap
 //      (core/model/sample_map.h), with its curvature where the map is nonlinear, times the
 //      quadrature weight w [m²], applied here and only here.

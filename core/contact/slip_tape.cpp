@@ -12,24 +12,24 @@ const SlipReference* PairSlips::Find(int key) const {
   return it != samples.end() && it->first == key ? &it->second : nullptr;
 }
 
-void StageSlips::Add(SlipPairKind kind, int colliding, int collider, PairSlips slips) {
+void StageSlips::Add(int colliding, int collider, PairSlips slips) {
   std::sort(slips.samples.begin(), slips.samples.end(),
             [](const auto& a, const auto& b) { return a.first < b.first; });
-  pairs_.push_back({static_cast<int>(kind), colliding, collider, std::move(slips)});
+  pairs_.push_back({colliding, collider, std::move(slips)});
 }
 
 void StageSlips::Seal() {
   std::sort(pairs_.begin(), pairs_.end(), [](const Entry& a, const Entry& b) {
-    return std::tie(a.kind, a.colliding, a.collider) < std::tie(b.kind, b.colliding, b.collider);
+    return std::tie(a.colliding, a.collider) < std::tie(b.colliding, b.collider);
   });
 }
 
-PairSlips* StageSlips::Find(SlipPairKind kind, int colliding, int collider) {
-  const auto key = std::make_tuple(static_cast<int>(kind), colliding, collider);
+PairSlips* StageSlips::Find(int colliding, int collider) {
+  const auto key = std::make_tuple(colliding, collider);
   const auto it = std::lower_bound(pairs_.begin(), pairs_.end(), key, [](const Entry& e, const auto& k) {
-    return std::tie(e.kind, e.colliding, e.collider) < k;
+    return std::tie(e.colliding, e.collider) < k;
   });
-  if (it == pairs_.end() || std::tie(it->kind, it->colliding, it->collider) != key) return nullptr;
+  if (it == pairs_.end() || std::tie(it->colliding, it->collider) != key) return nullptr;
   return &it->slips;
 }
 

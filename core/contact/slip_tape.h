@@ -37,25 +37,21 @@ struct PairSlipUse {
   bool record = false;
 };
 
-/// The pair kinds of the contact pipeline, named by the pipeline's kind indices. Kind: a pair on
-/// a frame's field (colliding a, collider b). OnSoft: on a tet field (colliding: the kind's own
-/// samples k, or its sample body b as k + K (b + 1) for K kinds; collider: the field's kind).
-enum class SlipPairKind { OnSoft = 0, Kind = 1 };
-
-/// One stage's record, pairs sorted by (kind, colliding, collider).
+/// One stage's record of the contact pipeline's pairs, named by its kind indices (colliding,
+/// collider), sorted by them.
 class StageSlips {
  public:
   void Clear() { pairs_.clear(); }
   /// Adds a pair's record (its samples are sorted here); call Seal after the last.
-  void Add(SlipPairKind kind, int colliding, int collider, PairSlips slips);
+  void Add(int colliding, int collider, PairSlips slips);
   void Seal();
   /// The pair's record, or null.
-  PairSlips* Find(SlipPairKind kind, int colliding, int collider);
+  PairSlips* Find(int colliding, int collider);
   size_t Samples() const;
 
  private:
   struct Entry {
-    int kind, colliding, collider;
+    int colliding, collider;
     PairSlips slips;
   };
   std::vector<Entry> pairs_;

@@ -357,7 +357,7 @@ class ActorKind {
   virtual KindFrame ColliderFrame(const Eigen::VectorXd& /*q*/) const { return {}; }
   /// Or a collider role carried by a tet deformation (a soft body's Sdf collider: the grid SDF
   /// over its reference configuration pulled back through its deformed tets, core/contact/
-  /// soft_collider.h): the model holding the rest tets, their reference data and the grid; node
+  /// tet_field.h): the model holding the rest tets, their reference data and the grid; node
   /// a's position is q's entries 3a .. 3a+2, its tangent dofs the same. Null: none.
   virtual const SoftBodyModel* TetCollider() const { return nullptr; }
 

@@ -69,7 +69,7 @@ struct SoftActorDesc {
   ContactParams contact;
   /// Soft actors are colliding only by default (spec: "Default Roles by Actor Type"). Sdf or Auto
   /// (experimental) make the actor a collider too: a grid SDF of its reference surface, mapped by
-  /// the deformation (core/contact/soft_collider.h). Other types are refused.
+  /// the deformation (core/contact/tet_field.h). Other types are refused.
   ColliderType colliderType = ColliderType::None;
   GridSdfParams gridSdf;  ///< sizes the collider grid
   ActorBoundaryElementType boundaryElementType = ActorBoundaryElementType::P1Q3;

@@ -8,7 +8,7 @@
 // y = Σ_a b_a x_a (a Nodes map on the face's three nodes), the colliding normal the deformed unit
 // face normal, which moves with the nodes (KindSample::faceNormal). With colliderType Sdf it is
 // a collider too: its reference grid SDF pulled back through the deformed tets (TetCollider,
-// core/contact/soft_collider.h).
+// core/contact/tet_field.h).
 #pragma once
 
 #include <memory>

@@ -7,6 +7,7 @@
 #include "core/scene.h"
 #include "scene_builders.h"
 #include "scene_runs.h"
+#include "sensitivity_scenes.h"
 
 using namespace superdex;
 
@@ -105,4 +106,33 @@ TEST_CASE("contact results: both passes of a box on a box add up to one load",
   CHECK(boxes.force.z() == Approx(-0.5 * kG).epsilon(1e-6));  // on the lower box, from the upper
   CHECK(PairOf(&scene, 0, 1).force.z() == Approx(-1.5 * kG).epsilon(1e-6));
   CHECK(boxes.area == Approx(0.04).epsilon(1e-9));
+}
+
+TEST_CASE("contact results: a box sliding on a soft slab's Sdf field: the reported forces are "
+          "the box's momentum change", "[core][contact_report][soft][physics]") {
+  // Both passes carry friction: the slab's nodes on the box's field, and the box's samples on the
+  // slab's tet field (friction in B's reference coordinates, mapped to the world by F⁻ᵀ). The
+  // records describe the last stage at its solution, so under backward Euler the pair's force on
+  // the box is m (v_{n+1} − v_n)/Δt − m g, to the stage's tolerance.
+  for (DissipationMode mode : {DissipationMode::ReconstructedLoad, DissipationMode::ExplicitNormals}) {
+    DYNAMIC_SECTION(ToString(mode)) {
+      Scene scene = test::BoxOnSoftSlab(IntegrationMethod::BackwardEuler, mode, 0.5, 0.5, true);
+      const double dt = 5e-3, m = 0.5;
+      Run(&scene, 0.025, dt);
+      const Eigen::Vector3d v0 = scene.State({1}).v;
+      Run(&scene, dt, dt);
+      const Eigen::Vector3d v1 = scene.State({1}).v;
+      int onTets = 0;  // the box's samples on the slab's field with friction
+      for (const ContactSampleRecord& r : scene.ContactSamples())
+        if (r.colliding == 1 && r.collider == 0 && !r.friction.isZero(0)) ++onTets;
+      CHECK(onTets > 0);
+      const ContactPairSummary p = PairOf(&scene, 0, 1);  // forces on the slab
+      const Eigen::Vector3d expected = m * (v1 - v0) / dt + m * kG * Eigen::Vector3d::UnitZ();
+      INFO("friction " << p.frictionForce.transpose() << ", normal " << p.normalForce.transpose()
+                       << ", damping " << p.dampingForce.transpose() << "; expected on the box "
+                       << expected.transpose());
+      CHECK(p.frictionForce.x() > 0.0);  // the box drags the slab along +x
+      CHECK((-p.force - expected).norm() < 1e-6 * m * kG);
+    }
+  }
 }

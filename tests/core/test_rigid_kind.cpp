@@ -448,7 +448,7 @@ TEST_CASE("the slips of a rigid kind's pairs are recorded and evaluated about th
                     &view);
   slips.Seal();
   REQUIRE(stats.dissipativeSamples > 0);
-  const PairSlips* pair = slips.Find(SlipPairKind::Kind, 1, 0);  // the cube on the ground
+  const PairSlips* pair = slips.Find(1, 0);  // the cube on the ground
   REQUIRE(pair);
   CHECK(static_cast<int>(pair->samples.size()) == stats.dissipativeSamples);
   context.recordSlips = false;
@@ -603,7 +603,7 @@ TEST_CASE("a soft cube lands on rigid kinds as on the built-in rigid actors",
 
 TEST_CASE("a rigid kind lands on a soft Sdf collider as the built-in rigid actor does",
           "[core][kind][rigid][soft][contact]") {
-  // A kind's sample body on a soft actor's grid field (core/contact/soft_collider.h, the tet
+  // A kind's sample body on a soft actor's grid field (core/contact/tet_field.h, the tet
   // pullback): a soft slab (0.4 × 0.4 × 0.1 m, E = 1e6 Pa, its bottom resting 0.1 mm in a static
   // ground) with colliderType Sdf, and a 0.1 m cube dropped 1 cm onto it, sliding at 0.2 m/s,
   // as a rigid kind in one scene and a built-in actor in the other: the same states to the

@@ -26,11 +26,11 @@ TEST_CASE("Slip tape: pairs and samples are found by their names, missing ones a
   a.samples = {{7, SlipReference()}, {2, SlipReference()}, {5, SlipReference()}};
   a.samples[0].second.sliding = true;  // key 7
   b.samples = {{0, SlipReference()}};
-  stage.Add(SlipPairKind::OnSoft, 0, 3, b);  // kind 0's samples on kind 3's tet field
-  stage.Add(SlipPairKind::Kind, 4, 1, a);
+  stage.Add(4, 1, a);  // kind 4's samples on kind 1's field, added before (0, 3)
+  stage.Add(0, 3, b);
   stage.Seal();
   CHECK(stage.Samples() == 4);
-  PairSlips* found = stage.Find(SlipPairKind::Kind, 4, 1);
+  PairSlips* found = stage.Find(4, 1);
   REQUIRE(found);
   // Sorted by key on Add: 2, 5, 7.
   CHECK(found->samples[0].first == 2);
@@ -40,12 +40,13 @@ TEST_CASE("Slip tape: pairs and samples are found by their names, missing ones a
   CHECK_FALSE(found->Find(5)->sliding);
   CHECK(found->Find(3) == nullptr);
   CHECK(found->Find(8) == nullptr);
-  CHECK(stage.Find(SlipPairKind::Kind, 1, 4) == nullptr);        // ordered pairs
-  CHECK(stage.Find(SlipPairKind::OnSoft, 4, 1) == nullptr);  // another kind
-  REQUIRE(stage.Find(SlipPairKind::OnSoft, 0, 3));
+  CHECK(stage.Find(1, 4) == nullptr);  // ordered pairs
+  CHECK(stage.Find(0, 1) == nullptr);
+  REQUIRE(stage.Find(0, 3));
+  CHECK(stage.Find(0, 3)->samples.size() == 1);
   stage.Clear();
   CHECK(stage.Samples() == 0);
-  CHECK(stage.Find(SlipPairKind::Kind, 4, 1) == nullptr);
+  CHECK(stage.Find(4, 1) == nullptr);
 }
 
 TEST_CASE("Slip tape: a sample's force is recorded, then evaluated about the record",
