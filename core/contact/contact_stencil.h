@@ -150,6 +150,22 @@ void ProjectStencil(bool potential, PsdProjection projection, BasicContactStenci
 }
 
 /// Adds the stencil's penalty gradient into *gradient and its dissipative residual into
+/// *dissipationResidual (null: into *gradient), by groups of Size dofs at the stage offsets
+/// offs[g] (−1: a group without dofs).
+template <int Size, typename Stencil>
+void ScatterStencilVectors(const Stencil& s, const int* offs, int groups,
+                           Eigen::VectorXd* gradient, Eigen::VectorXd* dissipationResidual) {
+  Eigen::VectorXd* dr = dissipationResidual ? dissipationResidual : gradient;
+  for (int g = 0; g < groups; ++g) {
+    if (offs[g] < 0) continue;
+    if (s.penaltyActive)
+      gradient->segment<Size>(offs[g]) += s.penaltyGradient.template segment<Size>(Size * g);
+    if (s.dissipationActive)
+      dr->segment<Size>(offs[g]) += s.dissipationResidual.template segment<Size>(Size * g);
+  }
+}
+
+/// Adds the stencil's penalty gradient into *gradient and its dissipative residual into
 /// *dissipationResidual (null: into *gradient), and with `triplets` appends its matrix: the
 /// (projected) Hessian, plus the dissipation Jacobian in the residual modes, 3 × 3 block by block
 /// at offs[b] (−1: a block without dofs, e.g. a prescribed node), nonzero entries only.
@@ -157,13 +173,7 @@ template <typename Stencil>
 void ScatterStencil(const Stencil& s, const int* offs, int blocks, bool potential,
                     Eigen::VectorXd* gradient, Eigen::VectorXd* dissipationResidual,
                     std::vector<Eigen::Triplet<double>>* triplets) {
-  Eigen::VectorXd* dr = dissipationResidual ? dissipationResidual : gradient;
-  for (int b = 0; b < blocks; ++b) {
-    if (offs[b] < 0) continue;
-    if (s.penaltyActive) gradient->segment<3>(offs[b]) += s.penaltyGradient.template segment<3>(3 * b);
-    if (s.dissipationActive)
-      dr->segment<3>(offs[b]) += s.dissipationResidual.template segment<3>(3 * b);
-  }
+  ScatterStencilVectors<3>(s, offs, blocks, gradient, dissipationResidual);
   if (!triplets) return;
   const bool withH = s.penaltyActive || (potential && s.dissipationActive);
   const bool withJ = !potential && s.dissipationActive;
@@ -190,13 +200,7 @@ template <typename Stencil>
 void ScatterStencil6(const Stencil& s, const int* offs6, int groups, bool potential,
                      Eigen::VectorXd* gradient, Eigen::VectorXd* dissipationResidual,
                      std::vector<DenseBlock6>* blocks) {
-  Eigen::VectorXd* dr = dissipationResidual ? dissipationResidual : gradient;
-  for (int g = 0; g < groups; ++g) {
-    if (offs6[g] < 0) continue;
-    if (s.penaltyActive) gradient->segment<6>(offs6[g]) += s.penaltyGradient.template segment<6>(6 * g);
-    if (s.dissipationActive)
-      dr->segment<6>(offs6[g]) += s.dissipationResidual.template segment<6>(6 * g);
-  }
+  ScatterStencilVectors<6>(s, offs6, groups, gradient, dissipationResidual);
   if (!blocks) return;
   auto append = [&](const auto& M) {
     for (int gi = 0; gi < groups; ++gi) {
