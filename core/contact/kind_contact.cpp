@@ -239,7 +239,7 @@ bool AddPenalty(const PairSample& s, const FrameSide& B, const SamplePullback& p
   if (sums->on) {
     AddFunctionOfPullback(s.map.r, p.d, B.pose.R, gY, nullptr, sums->bDynamic, s.weight,
                           &sums->penaltyGradient, nullptr);
-    if (order >= 2) sums->penalty.Add(B.pose.R.transpose() * s.map.r, gY, HY, s.weight);
+    if (order >= 2) sums->penalty.Add(sums->rB, gY, HY, s.weight);
     return true;
   }
   ColliderStencil(B, p, gY, order >= 2 ? &HY : nullptr, &point);
@@ -288,12 +288,13 @@ void AddDissipation(const PairSample& s, int k, const FrameSide& B, const Sample
     record->damping = ToWorld(B, p, D.viscousNormal);
   }
   if (order == 0) return;
-  const Eigen::Matrix3d HY = D.hessian / ds.dt;
+  Eigen::Matrix3d HY;  // ∂²(Δt R)/∂Y², a potential's only
+  if (hessian) HY = D.hessian / ds.dt;
   if (sums->on) {
     AddFunctionOfPullback(s.map.r, p.d, B.pose.R, D.gradient, nullptr, sums->bDynamic, s.weight,
                           &sums->dissipationResidual, nullptr);
     if (order < 2) return;
-    const Eigen::Vector3d rB = B.pose.R.transpose() * s.map.r;
+    const Eigen::Vector3d& rB = sums->rB;
     if (explicitNormals) {
       sums->potentialDissipation.Add(rB, D.gradient, HY, s.weight);
     } else {
@@ -405,8 +406,14 @@ void FrameEvaluation::AddTerms(const PairSample& s, const SamplePullback& p, con
 
 void FrameEvaluation::AddOpenTerms(const PairSample& s, const SamplePullback& p,
                                    const SdfSample& field, bool below) {
-  ContactSampleRecord rec;  // the sample's report, when records_ asks for one
-  ContactSampleRecord* record = records_ ? &rec : nullptr;
+  ContactSampleRecord* record = nullptr;  // the sample's report, when records_ asks for one
+  if (records_) {
+    rec_ = ContactSampleRecord();
+    record = &rec_;
+  }
+  ContactSampleRecord& rec = rec_;
+  // The regrouped sums' arm in B's frame, R_Bᵀ r, for both terms' second derivatives.
+  if (sums_.on && order_ >= 2) sums_.rB = B_.pose.R.transpose() * s.map.r;
   const bool penalty =
       below && AddPenalty(s, B_, p, field, penalty_, maxAlignment_, order_, out_, st_, &sums_, record);
   if (withDissipation_ && (below || explicitNormals_))

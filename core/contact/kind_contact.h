@@ -149,6 +149,7 @@ struct RigidSampleSums {
   bool on = false;
   bool bDynamic = false;
   Eigen::Vector3d c = Eigen::Vector3d::Zero();  ///< p_A − p_B [m]
+  Eigen::Vector3d rB;                            ///< the sample's arm R_Bᵀ r_A [m]
   PairVector penaltyGradient, dissipationResidual;
   PairHessianSums penalty, potentialDissipation;
   PairForceJacobianSums force{true};
@@ -271,6 +272,7 @@ class FrameEvaluation final : public SampleSink {
   int openTet_ = -1;        // the open stencil's tet on a tet field
   bool rigidOpen_ = false;  // the rigid body's stencil is open (its samples share their blocks)
   RigidSampleSums sums_;
+  ContactSampleRecord rec_;  // the sample's report under way (with records_)
 };
 
 /// Evaluates every sample on the frame's field into stencils: consecutive samples with the same
