@@ -26,6 +26,10 @@ struct Aabb {
   bool Overlaps(const Aabb& o) const {
     return (min.array() <= o.max.array()).all() && (o.min.array() <= max.array()).all();
   }
+  /// Whether the point p lies in the closed box.
+  bool Contains(const Eigen::Vector3d& p) const {
+    return (p.array() >= min.array()).all() && (p.array() <= max.array()).all();
+  }
   /// Whether the ball of centre c and radius r [m] meets the box.
   bool TouchesBall(const Eigen::Vector3d& c, double r) const {
     return (c.cwiseMax(min).cwiseMin(max) - c).squaredNorm() <= r * r;

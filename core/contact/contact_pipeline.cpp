@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/contact/broad_phase.h"
@@ -125,7 +126,6 @@ void ContactPipeline::FindPairs(const KindView* kinds) {
   }
   overlapCache_.Find(boxes_, &overlaps_);
   kindPairs_.clear();
-  tetPairs_ = false;
   for (const auto& [i, j] : overlaps_) {  // each on the other's field
     ConsiderKindPair(i, j);
     ConsiderKindPair(j, i);
@@ -149,7 +149,6 @@ void ContactPipeline::ConsiderKindPair(int a, int b) {
   // The threshold padding applies when A has no collider of its own (spec: None or PointCloud).
   p.params = CombineContactParams(A.contact, B.contact, !tet && kindStatic_[b], PadsThreshold(a));
   kindPairs_.push_back(p);
-  tetPairs_ = tetPairs_ || tet;
 }
 
 FrameSide ContactPipeline::TetSide(const KindView& kinds, int k,
@@ -323,7 +322,8 @@ double ContactPipeline::Evaluate(int order, PsdProjection projection, Eigen::Vec
   double energy = 0.0;
   ContactStats st;
   EvaluateKindPairs(q, &energy, &st);
-  evaluatedTetPairs_ = tetPairs_;
+  evaluatedTetPairs_ = std::any_of(kindPairs_.begin(), kindPairs_.end(),
+                                   [&](const KindPair& kp) { return kindTetCollider_[kp.b] != 0; });
   if (dissipation && dissipation->slips && dissipation->recordSlips) dissipation->slips->Seal();
   if (stats) *stats = st;
   return energy;

@@ -158,7 +158,6 @@ class ContactPipeline {
   std::vector<std::pair<int, int>> overlaps_;
   OverlapCache overlapCache_;  // the broad phase's candidates, kept while the boxes stay inside
   std::vector<double> kindPairLimits_;
-  bool tetPairs_ = false;  // some pair of kindPairs_ is on a tet field
   // Per kind with a tet field in the collider role: its point locators over x and x_n, its side
   // (FormKindSides), and its reference grid as a field (Configure).
   std::vector<TetLocator> kindLocators_, kindLocatorsLast_;

@@ -406,12 +406,7 @@ void FrameEvaluation::AddTerms(const PairSample& s, const SamplePullback& p, con
 
 void FrameEvaluation::AddOpenTerms(const PairSample& s, const SamplePullback& p,
                                    const SdfSample& field, bool below) {
-  ContactSampleRecord* record = nullptr;  // the sample's report, when records_ asks for one
-  if (records_) {
-    rec_ = ContactSampleRecord();
-    record = &rec_;
-  }
-  ContactSampleRecord& rec = rec_;
+  ContactSampleRecord* record = BeginRecord();
   // The regrouped sums' arm in B's frame, R_Bᵀ r, for both terms' second derivatives.
   if (sums_.on && order_ >= 2) sums_.rB = B_.pose.R.transpose() * s.map.r;
   const bool penalty =
@@ -419,32 +414,35 @@ void FrameEvaluation::AddOpenTerms(const PairSample& s, const SamplePullback& p,
   if (withDissipation_ && (below || explicitNormals_))
     AddDissipation(s, s.key, B_, p, field, s.hasNormal ? *dissipation_ : noNormal_, order_, out_,
                    st_, &sums_, record);
-  // Reported when its penalty is active or its dissipation exerts a traction.
-  if (!record || !(penalty || !rec.friction.isZero(0) || !rec.damping.isZero(0))) return;
-  rec.position = s.y;
-  rec.phi = below ? field.value : NAN;  // not read without the penalty's bound
-  rec.weight = s.weight;
-  rec.face = s.face;
-  records_->push_back(rec);
+  if (record) EndRecord(s, below ? field.value : NAN, penalty);  // φ not read beyond the bound
 }
 
-namespace {
-bool Inside(const Aabb& b, const Eigen::Vector3d& p) {
-  return (p.array() >= b.min.array()).all() && (p.array() <= b.max.array()).all();
+ContactSampleRecord* FrameEvaluation::BeginRecord() {
+  if (!records_) return nullptr;
+  rec_ = ContactSampleRecord();
+  return &rec_;
 }
-}  // namespace
+
+void FrameEvaluation::EndRecord(const PairSample& s, double phi, bool penalty) {
+  // Reported when its penalty is active or its dissipation exerts a traction.
+  if (!(penalty || !rec_.friction.isZero(0) || !rec_.damping.isZero(0))) return;
+  rec_.position = s.y;
+  rec_.phi = phi;
+  rec_.weight = s.weight;
+  rec_.face = s.face;
+  records_->push_back(rec_);
+}
 
 void FrameEvaluation::AddOnTet(const PairSample& s) {
   if (!CollidesOnTetField(s)) return;
   const TetFieldSide& T = *B_.tet;
-  ContactSampleRecord rec;  // the sample's report, when records_ asks for one
-  ContactSampleRecord* record = records_ ? &rec : nullptr;
+  ContactSampleRecord* record = BeginRecord();
   bool penalty = false;
   SdfSample field;
   field.value = NAN;  // not located now
   TetPullback pb, pbn, pb0;
   Eigen::Vector4d lambda;
-  const int t = Inside(T.box, s.y) ? T.locator->Locate(s.y, &lambda) : -1;
+  const int t = T.box.Contains(s.y) ? T.locator->Locate(s.y, &lambda) : -1;
   if (t >= 0 && PullbackThrough(*T.model, *T.x, t, s.y, &pb)) {
     field = B_.field->Evaluate(pb.X);
     out_->minPhi = std::min(out_->minPhi, field.value);
@@ -467,17 +465,12 @@ void FrameEvaluation::AddOnTet(const PairSample& s) {
     }
   }
   if (explicitNormals_) AddOnTetAtLast(s, record);
-  if (!record || !(penalty || !rec.friction.isZero(0) || !rec.damping.isZero(0))) return;
-  rec.position = s.y;
-  rec.phi = field.value;
-  rec.weight = s.weight;
-  rec.face = s.face;
-  records_->push_back(rec);
+  if (record) EndRecord(s, field.value, penalty);  // φ NaN where no tet contains y
 }
 
 void FrameEvaluation::AddOnTetAtLast(const PairSample& s, ContactSampleRecord* record) {
   const TetFieldSide& T = *B_.tet;
-  if (!Inside(T.boxLast, s.yLast)) return;
+  if (!T.boxLast.Contains(s.yLast)) return;
   Eigen::Vector4d lambda;
   const int t = T.locatorLast->Locate(s.yLast, &lambda);
   TetPullback pbn, pb, pb0;

@@ -242,6 +242,11 @@ class FrameEvaluation final : public SampleSink {
   void AddOnTet(const PairSample& s);
   // The explicit normals' dissipation of sample s on a tet field (AddOnTet).
   void AddOnTetAtLast(const PairSample& s, ContactSampleRecord* record);
+  // A sample's report (rec_), when records_ asks for one: started empty (null without
+  // records_), then appended with the sample's place, φ and weight if its penalty is active or
+  // its dissipation exerts a traction.
+  ContactSampleRecord* BeginRecord();
+  void EndRecord(const PairSample& s, double phi, bool penalty);
   // The terms of a candidate sample s with pullback p at field value `field` (`below`: within
   // the bound; else the field is not read).
   void AddTerms(const PairSample& s, const SamplePullback& p, const SdfSample& field, bool below);

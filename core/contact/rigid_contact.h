@@ -30,7 +30,7 @@ namespace superdex {
 struct ContactSampleRecord {
   int colliding = -1;        ///< actor index of A (filled by the pipeline)
   int collider = -1;         ///< actor index of B
-  Eigen::Vector3d position;  ///< x_A [m]
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< x_A [m]
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< R_B N_B: the collider field's unit direction
   double phi = 0.0;          ///< φ_B(x_A) [m] (NaN for a sample with dissipation only, not read)
   double lambdaN = 0.0;      ///< normal-load coefficient λ_n [Pa]
