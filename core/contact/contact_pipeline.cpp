@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "core/contact/broad_phase.h"
 
@@ -84,6 +85,7 @@ void ContactPipeline::Configure(const ContactFilter* filter,
   kindStepLimit_.clear();
   kindFaceSamples_.clear();
   kindTetFields_.clear();
+  staticSides_.clear();  // the kinds may be new ones
   if (kinds_)
     for (const ActorKind* k : *kinds_) {
       const bool tet = k->TetCollider() && k->TetCollider()->collider == ColliderType::Sdf;
@@ -338,6 +340,7 @@ void ContactPipeline::FormKindSides(const Request& q) {
     kindRoles_[kp.a] |= 2;
   }
   kindSides_.resize(nk);
+  staticSides_.resize(nk);
   kindBodies_.resize(nk);
   kindTetSides_.resize(nk);  // sized before TetSide points into it
   kindLocators_.resize(nk);
@@ -350,11 +353,36 @@ void ContactPipeline::FormKindSides(const Request& q) {
     const Eigen::VectorXd* x0 = q.dissipation ? EntryOf(kv.q0, k) : nullptr;  // with dissipation
     if ((kindRoles_[k] & 1) && kindTetCollider_[k])
       kindSides_[k] = TetSide(kv, k, q.dissipation);
+    else if ((kindRoles_[k] & 1) && kindStatic_[k])
+      FormStaticSide(k, x, EntryOf(kv.qLast, k), x0, (*kv.stageDof)[k]);
     else if (kindRoles_[k] & 1)
-      kindSides_[k] = KindFrameSide(kind, x, EntryOf(kv.qLast, k), x0, (*kv.stageDof)[k]);
+      FormKindFrameSide(kind, x, EntryOf(kv.qLast, k), x0, (*kv.stageDof)[k], &kindSides_[k]);
     if ((kindRoles_[k] & 2) && kind.NumSampleBodies() > 0)
       kindBodies_[k].Form(kind, x, EntryOf(kv.qLast, k), x0);
   }
+}
+
+void ContactPipeline::FormStaticSide(int k, const Eigen::VectorXd& x, const Eigen::VectorXd* qLast,
+                                     const Eigen::VectorXd* x0, const std::vector<int>& stageDof) {
+  auto same = [](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), sizeof(double) * a.size()) == 0;
+  };
+  FrameSide& side = kindSides_[k];
+  StaticSide& held = staticSides_[k];
+  if ((qLast && !same(*qLast, x)) || (x0 && !same(*x0, x))) {  // moved by hand within a stage
+    held.formed = false;
+    return FormKindFrameSide(*(*kinds_)[k], x, qLast, x0, stageDof, &side);
+  }
+  // Its x_n and x⁰ the same values as x: the frame at all three is the frame at x.
+  if (!held.formed || !same(held.x, x) || held.stageDof != stageDof) {
+    FormKindFrameSide(*(*kinds_)[k], x, &x, &x, stageDof, &side);
+    held.x = x;
+    held.stageDof = stageDof;
+    held.formed = true;
+  }
+  side.field = (*kinds_)[k]->Collider();  // the kind itself may have been replaced since
+  side.hasLast = qLast != nullptr;
+  side.hasStart = x0 != nullptr;
 }
 
 void ContactPipeline::GatherKindPairSamples(const Request& q, const KindPair& kp,

@@ -196,6 +196,16 @@ class ContactPipeline {
   // Per kind, at the kind pairs' evaluation under way: its collider frame and its sample bodies,
   // formed once for all its pairs (FormKindSides; only for kinds in a pair in that role).
   std::vector<FrameSide> kindSides_;
+  // A static kind's side (it is held where it was created: its x_n and x⁰ are the values of x)
+  // is formed again only when x or the stage offsets change (a state set by hand).
+  struct StaticSide {
+    bool formed = false;
+    Eigen::VectorXd x;
+    std::vector<int> stageDof;
+  };
+  std::vector<StaticSide> staticSides_;
+  void FormStaticSide(int k, const Eigen::VectorXd& x, const Eigen::VectorXd* qLast,
+                      const Eigen::VectorXd* x0, const std::vector<int>& stageDof);
   std::vector<SampleBodyPoses> kindBodies_;
   std::vector<char> kindRoles_;  // per kind: 1 collider, 2 sample bodies (bits)
   // The pairs' slip use in the evaluation under way and, when recording, their buffers.

@@ -17,7 +17,7 @@ namespace superdex {
 struct RigidStageStart {
   Eigen::Vector3d p = Eigen::Vector3d::Zero();
   Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-  Eigen::Matrix3d Rinv = Eigen::Matrix3d::Identity();
+  Eigen::Matrix3d Rinv = Eigen::Matrix3d::Identity();  ///< R⁻¹: a collider frame's (Y⁰ = R⁻¹(y⁰ − p))
   RigidPose last;  ///< x_n: the geometry reference (a rotation)
 };
 

@@ -658,10 +658,7 @@ bool SampleSink::BeginRigidBody(const RigidPose& a, const RigidPose& an,
   a_ = a;
   an_ = an;
   start_ = start;
-  rigid_ = PairSample();
-  rigid_.hasNormal = true;
-  rigid_.map = SamplePointMap::Rigid(Eigen::Vector3d::Zero(), a.p);
-  rigid_.blocks = 2;
+  rigid_.map.origin = a.p;  // the rest of the sample is each one's (FormRigidSample)
   rigid_.offs[0] = offP;
   rigid_.offs[1] = offTheta;
   return true;
@@ -735,17 +732,48 @@ void GatherKindSamples(const ActorKind& A, const Eigen::VectorXd& q, const Eigen
   });
 }
 
+namespace {
+
+// KindFrameSide's parts from the frame f at q: the pose, the motion, F_p and the stage offsets.
+void SetFrameAt(const KindFrame& f, const std::vector<int>& stageDof, FrameSide* side) {
+  side->pose = f.pose;
+  side->blocks = 0;
+  std::fill(side->offs, side->offs + 4, -1);
+  if (f.rigid) {
+    side->motion = FrameSide::Motion::Rigid;
+    side->offs[0] = stageDof[f.dof[0]];
+    side->offs[1] = stageDof[f.dof[1]];
+    if (side->offs[0] < 0) side->motion = FrameSide::Motion::Static;  // a prescribed pose
+    return;
+  }
+  side->motion = f.blocks > 0 ? FrameSide::Motion::Translation : FrameSide::Motion::Static;
+  side->blocks = f.blocks;
+  side->Fp.leftCols(3 * f.blocks) = f.F.topRows<3>();
+  for (int b = 0; b < f.blocks; ++b) side->offs[b] = stageDof[f.dof[b]];
+}
+
+// KindFrameSide's stage start from the frame's pose p0 at x⁰ (its x_n, side->last, set before).
+void SetFrameStart(const RigidPose& p0, FrameSide* side) {
+  side->start.p = p0.p;
+  side->start.R = p0.R;
+  side->start.Rinv = p0.R.inverse();  // R⁰ an affine combination, not always a rotation
+  side->start.last = side->last;
+  side->hasStart = true;
+}
+
+}  // namespace
+
 bool SampleBodyAt(const ActorKind& A, int b, const Eigen::VectorXd& q,
                   const Eigen::VectorXd* qLast, const Eigen::VectorXd* q0, RigidPose* pose,
                   RigidStageStart* start) {
   *pose = A.SampleBodyPose(b, q);
   start->last = qLast ? A.SampleBodyPose(b, *qLast) : *pose;
   const RigidPose p0 = q0 ? A.SampleBodyPose(b, *q0) : *pose;  // without x⁰: y⁰ = y
-  start->p = p0.p;
+  start->p = p0.p;  // a colliding body's y⁰ = p⁰ + R⁰ X needs no inverse
   start->R = p0.R;
-  start->Rinv = p0.R.inverse();  // R⁰ an affine combination, not always a rotation
   return qLast || q0;
 }
+
 
 void GatherKindSampleRange(const ActorKind& A, const Eigen::VectorXd& q,
                            const Eigen::VectorXd* qLast, const Eigen::VectorXd* q0,
@@ -782,31 +810,20 @@ void GatherKindSampleRange(const ActorKind& A, const Eigen::VectorXd& q,
 FrameSide KindFrameSide(const ActorKind& B, const Eigen::VectorXd& q, const Eigen::VectorXd* qLast,
                         const Eigen::VectorXd* q0, const std::vector<int>& stageDof) {
   FrameSide side;
-  const KindFrame f = B.ColliderFrame(q);
-  side.field = B.Collider();
-  side.pose = f.pose;
-  side.last = qLast ? B.ColliderFrame(*qLast).pose : f.pose;
-  side.hasLast = qLast != nullptr;
-  if (q0) {
-    const RigidPose p0 = B.ColliderFrame(*q0).pose;
-    side.start.p = p0.p;
-    side.start.R = p0.R;
-    side.start.Rinv = p0.R.inverse();  // R⁰ an affine combination, not always a rotation
-    side.start.last = side.last;
-    side.hasStart = true;
-  }
-  if (f.rigid) {
-    side.motion = FrameSide::Motion::Rigid;
-    side.offs[0] = stageDof[f.dof[0]];
-    side.offs[1] = stageDof[f.dof[1]];
-    if (side.offs[0] < 0) side.motion = FrameSide::Motion::Static;  // a prescribed pose
-    return side;
-  }
-  side.motion = f.blocks > 0 ? FrameSide::Motion::Translation : FrameSide::Motion::Static;
-  side.blocks = f.blocks;
-  side.Fp.leftCols(3 * f.blocks) = f.F.topLeftCorner(3, 3 * f.blocks);
-  for (int b = 0; b < f.blocks; ++b) side.offs[b] = stageDof[f.dof[b]];
+  FormKindFrameSide(B, q, qLast, q0, stageDof, &side);
   return side;
+}
+
+void FormKindFrameSide(const ActorKind& B, const Eigen::VectorXd& q, const Eigen::VectorXd* qLast,
+                       const Eigen::VectorXd* q0, const std::vector<int>& stageDof,
+                       FrameSide* side) {
+  side->field = B.Collider();
+  side->tet = nullptr;
+  SetFrameAt(B.ColliderFrame(q), stageDof, side);
+  side->last = qLast ? B.ColliderFrame(*qLast).pose : side->pose;
+  side->hasLast = qLast != nullptr;
+  side->hasStart = false;
+  if (q0) SetFrameStart(B.ColliderFrame(*q0).pose, side);
 }
 
 }  // namespace superdex

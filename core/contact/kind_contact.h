@@ -78,7 +78,7 @@ struct FrameSide {
   /// `blocks` 3-dof blocks. Tet: the four nodes of a sample's tet (`field` the reference grid,
   /// `tet` the field; the poses the identity, hasLast set).
   Motion motion = Motion::Static;
-  Eigen::Matrix<double, 3, kMaxFrameDofs> Fp = Eigen::Matrix<double, 3, kMaxFrameDofs>::Zero();
+  Eigen::Matrix<double, 3, kMaxFrameDofs> Fp;  ///< Translation: its first 3·blocks columns
   int blocks = 0;
   int offs[4] = {-1, -1, -1, -1};
   const TetFieldSide* tet = nullptr;
@@ -123,6 +123,11 @@ class SampleSink {
                                double motion);
 
  protected:
+  SampleSink() {
+    rigid_.hasNormal = true;
+    rigid_.map = SamplePointMap::Rigid(Eigen::Vector3d::Zero());
+    rigid_.blocks = 2;
+  }
   ~SampleSink() = default;
   /// The body's sample at `ss` as a PairSample, in rigid_ (its per-body fields set by
   /// BeginRigidBody).
@@ -163,9 +168,9 @@ struct RigidSampleSums {
     c = s.map.origin - B.pose.p;
     penaltyGradient.setZero();
     dissipationResidual.setZero();
-    penalty = PairHessianSums();
-    potentialDissipation = PairHessianSums();
-    force = PairForceJacobianSums(bDynamic);
+    penalty.Clear();
+    potentialDissipation.Clear();
+    force.Clear(bDynamic);
   }
   /// Writes the sums into the stencil (its parts zero on n dofs).
   void Flush(const FrameSide& B, int order, ContactStencil* st) const {
@@ -410,8 +415,9 @@ void GatherKindSamples(const ActorKind& A, const Eigen::VectorXd& q, const Eigen
                        const FrameSide& B, double delta, const DissipationSetup* dissipation,
                        SampleSink* sink, const SampleBodyPoses* bodies = nullptr);
 /// Sample body b of kind A at q: its pose, and as its stage start its pose at x_n (qLast) and at
-/// x⁰ (q0) (each the pose at q where null; R⁰ with its exact inverse, an affine combination of
-/// rotations). Returns whether it has a start (qLast or q0 given).
+/// x⁰ (q0) (each the pose at q where null; R⁰ an affine combination of rotations, its inverse not
+/// formed: a colliding body's y⁰ = p⁰ + R⁰ X needs none). Returns whether it has a start (qLast
+/// or q0 given).
 bool SampleBodyAt(const ActorKind& A, int b, const Eigen::VectorXd& q,
                   const Eigen::VectorXd* qLast, const Eigen::VectorXd* q0, RigidPose* pose,
                   RigidStageStart* start);
@@ -425,5 +431,9 @@ void GatherKindSampleRange(const ActorKind& A, const Eigen::VectorXd& q,
 /// (qLast; null: q) and x⁰ (q0; null: no stage start).
 FrameSide KindFrameSide(const ActorKind& B, const Eigen::VectorXd& q, const Eigen::VectorXd* qLast,
                         const Eigen::VectorXd* q0, const std::vector<int>& stageDof);
+/// KindFrameSide into *side (kept from evaluation to evaluation: no copy of the side).
+void FormKindFrameSide(const ActorKind& B, const Eigen::VectorXd& q, const Eigen::VectorXd* qLast,
+                       const Eigen::VectorXd* q0, const std::vector<int>& stageDof,
+                       FrameSide* side);
 
 }  // namespace superdex

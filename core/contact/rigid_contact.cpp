@@ -114,13 +114,20 @@ void PairHessianSums::Add(const Eigen::Vector3d& rB, const Eigen::Vector3d& gY,
   const Eigen::Matrix3d K = -Skew(rB);
   const Eigen::Matrix3d H = w * HY;
   const Eigen::Matrix3d HK = TimesSkew(H, K);
+  if (empty_) {
+    H0_.setZero();
+    H1_.setZero();
+    H2_.setZero();
+    P_.setZero();
+    N_.setZero();
+    empty_ = false;
+  }
   H0_ += H;
   H1_ += HK;
   H2_ += SkewTransposeTimes(K, HK);
   const Eigen::Vector3d g = w * gY;
   P_ += g * rB.transpose();
   N_ += g;
-  empty_ = false;
 }
 
 void PairHessianSums::AddTo(const Eigen::Matrix3d& RB, const Eigen::Vector3d& c, bool bDynamic,

@@ -82,11 +82,14 @@ class PairHessianSums {
   void AddTo(const Eigen::Matrix3d& RB, const Eigen::Vector3d& c, bool bDynamic,
              PairMatrix* hess) const;
   bool Empty() const { return empty_; }
+  /// Starts the sums again (they are zeroed at the next Add).
+  void Clear() { empty_ = true; }
 
  private:
-  Eigen::Matrix3d H0_ = Eigen::Matrix3d::Zero(), H1_ = Eigen::Matrix3d::Zero(),
-                  H2_ = Eigen::Matrix3d::Zero(), P_ = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d N_ = Eigen::Vector3d::Zero();
+  // Valid once a sample was added (a stencil's sums are cleared at every pair: zeroing them only
+  // where a sample comes keeps a pair without contact free of that cost).
+  Eigen::Matrix3d H0_, H1_, H2_, P_;
+  Eigen::Vector3d N_;
   bool empty_ = true;
 };
 

@@ -36,6 +36,10 @@ void PairForceJacobianSums::Add(const Eigen::Vector3d& rB, const Eigen::Vector3d
   const Eigen::Matrix3d Q = SkewTimes<3>(Skew(nB).transpose(), (w * GN).transpose()).transpose();
   const Eigen::Vector3d wg = w * g;
   const Eigen::Matrix3d MS = SkewTimes<3>(S.transpose(), M.transpose()).transpose();  // M S
+  if (empty_) {
+    for (Eigen::Matrix3d* X : {&M_, &MS_, &SM_, &SMS_, &Q_, &SQ_, &F_, &FS_, &SF_}) X->setZero();
+    empty_ = false;
+  }
   M_ += M;
   MS_ += MS;
   SM_ += SkewTimes<3>(S, M);
@@ -45,7 +49,6 @@ void PairForceJacobianSums::Add(const Eigen::Vector3d& rB, const Eigen::Vector3d
   // [a]×[b]× = b aᵀ − (a·b) I.
   const double ab = wg.dot(rB);
   FS_ += rB * wg.transpose() - ab * Eigen::Matrix3d::Identity();
-  empty_ = false;
   if (!bDynamic_) return;
   F_ += Skew(wg);
   SF_ += wg * rB.transpose() - ab * Eigen::Matrix3d::Identity();

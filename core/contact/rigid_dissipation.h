@@ -51,6 +51,11 @@ class PairForceJacobianSums {
  public:
   /// With a static B only the first 6 × 6 block is formed, and Σ F, Σ SF (its columns) are skipped.
   explicit PairForceJacobianSums(bool bDynamic) : bDynamic_(bDynamic) {}
+  /// Starts the sums again for a B that is dynamic or not (zeroed at the next Add).
+  void Clear(bool bDynamic) {
+    bDynamic_ = bDynamic;
+    empty_ = true;
+  }
   /// One sample: r_B = R_Bᵀ r, n_B = R_Bᵀ n_w (the kernel's N_A), the kernel's g, G_Y, G_N.
   void Add(const Eigen::Vector3d& rB, const Eigen::Vector3d& nB, const Eigen::Vector3d& g,
            const Eigen::Matrix3d& GY, const Eigen::Matrix3d& GN, double w);
@@ -58,11 +63,8 @@ class PairForceJacobianSums {
   void AddTo(const Eigen::Matrix3d& RB, const Eigen::Vector3d& c, PairMatrix* J) const;
 
  private:
-  Eigen::Matrix3d M_ = Eigen::Matrix3d::Zero(), MS_ = Eigen::Matrix3d::Zero(),
-                  SM_ = Eigen::Matrix3d::Zero(), SMS_ = Eigen::Matrix3d::Zero(),
-                  Q_ = Eigen::Matrix3d::Zero(), SQ_ = Eigen::Matrix3d::Zero(),
-                  F_ = Eigen::Matrix3d::Zero(), FS_ = Eigen::Matrix3d::Zero(),
-                  SF_ = Eigen::Matrix3d::Zero();
+  // Valid once a sample was added (zeroed there, as PairHessianSums's).
+  Eigen::Matrix3d M_, MS_, SM_, SMS_, Q_, SQ_, F_, FS_, SF_;
   bool bDynamic_;
   bool empty_ = true;
 };

@@ -97,6 +97,8 @@ std::string ValidateKindLayout(const ActorKind& kind, const Eigen::Vector3d& gra
     if (f.rigid && f.blocks != 2)
       return name + ": a rigid collider frame moves with 2 blocks, [δp] and [δθ]";
     if (f.blocks < 0 || f.blocks > 4) return name + ": the collider frame moves with 0 to 4 blocks";
+    if (!f.rigid && f.F.cols() != 3 * f.blocks)
+      return name + ": the collider frame's Jacobian F must have 3 columns per block it moves with";
     if (!f.rigid && !f.F.bottomRows<3>().isZero())
       return name + ": a collider frame that rotates with a general map of the dofs is not supported yet";
     for (int b = 0; b < f.blocks; ++b)

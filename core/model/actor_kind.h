@@ -126,7 +126,8 @@ struct KindFrame {
   bool rigid = false;
   int blocks = 0;
   int dof[4] = {0, 0, 0, 0};
-  Eigen::Matrix<double, 6, kMaxFrameDofs> F = Eigen::Matrix<double, 6, kMaxFrameDofs>::Zero();
+  /// rigid = false: F, 6 × 3·blocks (no storage beyond kMaxFrameDofs columns, none allocated).
+  Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, kMaxFrameDofs> F;
 };
 
 /// A DIRK stage's slope (V_i, K_i) of one actor, with the kind's own per-stage data (a rigid

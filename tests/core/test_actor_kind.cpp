@@ -84,6 +84,7 @@ class PointMass : public ActorKind {
     f.pose.p = q;
     f.blocks = 1;
     f.dof[0] = 0;
+    f.F.setZero(6, 3);
     f.F.topLeftCorner<3, 3>().setIdentity();
     return f;
   }
@@ -273,6 +274,44 @@ TEST_CASE("an actor kind is validated when added", "[core][kind][validation]") {
                                              Eigen::Vector3d::Zero());
   CHECK_FALSE(scene.AddActor(std::move(noReach), &error).IsValid());
   CHECK(error.message.find("boundingRadius must be > 0") != std::string::npos);
+}
+
+namespace {
+
+// A point mass whose collider frame's Jacobian F has `columns` columns, and rotates with its dofs
+// when `rotates` (neither is allowed: F is 6 × 3·blocks, its rotation rows zero).
+class BadFramePointMass : public PointMass {
+ public:
+  BadFramePointMass(int columns, bool rotates)
+      : PointMass(1.0, 1e-4, 0.01, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()),
+        columns_(columns),
+        rotates_(rotates) {}
+  std::unique_ptr<ActorKind> Clone() const override {
+    return std::make_unique<BadFramePointMass>(*this);
+  }
+  KindFrame ColliderFrame(const Eigen::VectorXd& q) const override {
+    KindFrame f = PointMass::ColliderFrame(q);
+    f.F.conservativeResize(6, columns_);
+    if (rotates_) f.F(3, 0) = 1.0;
+    return f;
+  }
+
+ private:
+  int columns_;
+  bool rotates_;
+};
+
+}  // namespace
+
+TEST_CASE("a kind's collider frame is validated when added: F's shape and its rotation rows",
+          "[core][kind][validation]") {
+  Scene scene;
+  Error error;
+  CHECK_FALSE(scene.AddActor(std::make_unique<BadFramePointMass>(6, false), &error).IsValid());
+  CHECK(error.message.find("must have 3 columns per block") != std::string::npos);
+  CHECK_FALSE(scene.AddActor(std::make_unique<BadFramePointMass>(3, true), &error).IsValid());
+  CHECK(error.message.find("rotates with a general map") != std::string::npos);
+  CHECK(scene.AddActor(std::make_unique<BadFramePointMass>(3, false), &error).IsValid());
 }
 
 namespace {
