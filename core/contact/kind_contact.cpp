@@ -609,7 +609,7 @@ bool StepLimitSink::BeginRigidBody(const RigidPose&, const RigidPose& an,
                                    const BodyInFrame& inFrame) {
   A_ = inFrame;
   // The current configuration's transforms with B's transpose taken inside the products, as the
-  // rigid pairs' limit always formed them: ComposeInFrame's stored transpose gives products that
+  // rigid pairs' limit always formed them: ComposeLastInFrame's stored transpose gives products that
   // differ in the last bit, and the recorded runs' limits (tests/regression) are these.
   A_.Rn = B_.last.R.transpose() * an.R;
   A_.tn = B_.last.R.transpose() * (an.p - B_.last.p);
@@ -631,12 +631,26 @@ void AppendRigidSamples(const RigidBodyModel& A, const RigidPose& a, const Rigid
                         int offP, int offTheta, int keyOffset, const FrameSide& B, double delta,
                         const DissipationSetup* dissipation, SampleSink* sink) {
   const RigidPose& an = start ? start->last : a;
-  // The tree is culled in B's frame as the sink pulls the samples back.
-  const BodyInFrame in = ComposeInFrame(a, an, B);
-  const BallCulling near(B, delta, dissipation, start != nullptr, in.turn);
-  auto keep = [&](const Eigen::Vector3d& c, double r) {
-    return near.InFrame(in.t + in.R * c, [&] { return Eigen::Vector3d(in.tn + in.Rn * c); }, r);
+  // The tree is culled in B's frame as the sink pulls the samples back; the transforms at x_n are
+  // formed where a test first reads them.
+  BodyInFrame in;
+  ComposeNowInFrame(a, B, &in);
+  bool composedLast = false;
+  auto composeLast = [&] {
+    if (!composedLast) ComposeLastInFrame(an, B, &in);
+    composedLast = true;
   };
+  const BallCulling near(B, delta, dissipation, start != nullptr, &in.turn);
+  auto keep = [&](const Eigen::Vector3d& c, double r) {
+    return near.InFrame(in.t + in.R * c, [&] {
+      composeLast();
+      return Eigen::Vector3d(in.tn + in.Rn * c);
+    }, r);
+  };
+  // The root first (ForEachSampleRange tests it again, alike): a body none of whose samples can
+  // contribute (in flight) is done before the sink is told of it.
+  if (A.sampleTree.empty() || !keep(A.sampleTree[0].center, A.sampleTree[0].radius)) return;
+  composeLast();
   if (!sink->BeginRigidBody(a, an, start, offP, offTheta, A.samplesRadius, in)) return;
   // A leaf's bound on |Y_n − Y| = |(t_n − t) + (R_n − R) X| over its ball |X − c| <= r:
   // |(t_n − t) + (R_n − R) c| + turn r, with the body bound's round-off margin.
@@ -683,15 +697,17 @@ void SampleSink::AddRigidSamples(const SurfaceSample* samples, int begin, int en
   for (int q = begin; q < end; ++q) Add(FormRigidSample(samples[q], keyOffset + q));
 }
 
-BodyInFrame ComposeInFrame(const RigidPose& a, const RigidPose& an, const FrameSide& B) {
-  BodyInFrame f;
-  const Eigen::Matrix3d RBt = B.pose.R.transpose(), RnBt = B.last.R.transpose();
-  f.R = RBt * a.R;
-  f.t = RBt * (a.p - B.pose.p);
-  f.Rn = RnBt * an.R;
-  f.tn = RnBt * (an.p - B.last.p);
-  f.turn = (f.Rn - f.R).norm();
-  return f;
+void ComposeNowInFrame(const RigidPose& a, const FrameSide& B, BodyInFrame* f) {
+  const Eigen::Matrix3d RBt = B.pose.R.transpose();
+  f->R = RBt * a.R;
+  f->t = RBt * (a.p - B.pose.p);
+}
+
+void ComposeLastInFrame(const RigidPose& an, const FrameSide& B, BodyInFrame* f) {
+  const Eigen::Matrix3d RnBt = B.last.R.transpose();
+  f->Rn = RnBt * an.R;
+  f->tn = RnBt * (an.p - B.last.p);
+  f->turn = (f->Rn - f->R).norm();
 }
 
 void SampleBodyPoses::Form(const ActorKind& A, const Eigen::VectorXd& q,
@@ -726,7 +742,8 @@ void GatherKindSamples(const ActorKind& A, const Eigen::VectorXd& q, const Eigen
   }
   // A kind's ball may turn by anything between x_n and now: |ΔY| of a sample within 2 r of its
   // centre's.
-  const BallCulling near(B, delta, dissipation, q0 != nullptr, 2.0);
+  const double spread = 2.0;
+  const BallCulling near(B, delta, dissipation, q0 != nullptr, &spread);
   A.ForEachSampleNear(q, qLast ? *qLast : q, near, [&](int begin, int end) {
     GatherKindSampleRange(A, q, qLast, q0, stageDof, begin, end, sink);
   });

@@ -99,8 +99,10 @@ struct BodyInFrame {
   Eigen::Vector3d t, tn;
   double turn = 0.0;
 };
-/// A at pose a now and an at x_n, in B's frame (B.pose now, B.last at x_n).
-BodyInFrame ComposeInFrame(const RigidPose& a, const RigidPose& an, const FrameSide& B);
+/// A at pose a now in B's frame (B.pose): R and t; and at x_n (an, B.last): Rn, tn and then turn
+/// (after the part now).
+void ComposeNowInFrame(const RigidPose& a, const FrameSide& B, BodyInFrame* f);
+void ComposeLastInFrame(const RigidPose& an, const FrameSide& B, BodyInFrame* f);
 
 /// Receives a gather's samples one at a time (a sample is valid only during the call).
 class SampleSink {
@@ -108,10 +110,11 @@ class SampleSink {
   virtual void Add(const PairSample& s) = 0;
   /// A rigid body's samples, announced by body (pose a now, an at x_n, the stage start `start`
   /// or null; [δp] at stage dof offP, [δθ] at offTheta, −1: none; `radius` >= every sample's
-  /// |X| [m]; `inFrame`: a and an composed into the collider's frame, ComposeInFrame), then a
-  /// leaf of its sample tree at a time in the body frame. Returns whether the sink takes the
-  /// body's samples (false: the gather skips them; a sink that can tell from the body's motion
-  /// alone that none of them matters).
+  /// |X| [m]; `inFrame`: a and an composed into the collider's frame, ComposeNowInFrame and
+  /// ComposeLastInFrame), then a leaf of its sample tree at a time in the body frame; a body whose
+  /// tree's root is culled is not announced. Returns whether the sink takes the body's samples
+  /// (false: the gather skips them; a sink that can tell from the body's motion alone that none
+  /// of them matters).
   virtual bool BeginRigidBody(const RigidPose& a, const RigidPose& an,
                               const RigidStageStart* start, int offP, int offTheta,
                               double radius, const BodyInFrame& inFrame);
@@ -305,12 +308,13 @@ void EvaluateSamplesOnFrame(const std::vector<PairSample>& samples, const FrameS
 /// φ >= φ(centre) − L r. Explicit normals read the load at x_n; so does the reconstructed load on
 /// an affine field (a plane), where φ + G·(Y_n − Y) is Φ(Y_n) exactly; otherwise the reconstructed
 /// load is bounded below over the ball by the field (RigidCollider::FirstOrderLowerBound, with the
-/// centre's Y_n − Y), and a sample's Y_n − Y differs from its ball centre's by at most `spread` r
-/// (a rigid body: ‖R_n,BᵀR_n,A − R_BᵀR_A‖_F).
+/// centre's Y_n − Y), and a sample's Y_n − Y differs from its ball centre's by at most *spread r
+/// (a rigid body: ‖R_n,BᵀR_n,A − R_BᵀR_A‖_F; read only after the centre at x_n is asked for, so
+/// that it may be formed with it).
 class BallCulling {
  public:
   BallCulling(const FrameSide& B, double delta, const DissipationSetup* dissipation,
-              bool hasStart, double spread)
+              bool hasStart, const double* spread)
       : field_(*B.field),
         B_(B),
         RBt_(B.pose.R.transpose()),
@@ -339,14 +343,15 @@ class BallCulling {
     if (mode_ == DissipationMode::ImplicitLoad) return false;
     const Eigen::Vector3d Yn = lastY();
     if (loadAtLast_) return field_.Value(Yn) - L * r < delta_;
-    return field_.FirstOrderLowerBound(Y, r, Yn - Y) - L * spread_ * r < delta_;
+    return field_.FirstOrderLowerBound(Y, r, Yn - Y) - L * *spread_ * r < delta_;
   }
 
  private:
   const RigidCollider& field_;
   const FrameSide& B_;
   Eigen::Matrix3d RBt_, RnBt_;
-  double delta_, spread_;
+  double delta_;
+  const double* spread_;
   DissipationMode mode_;
   bool loadAtLast_ = false;
 };
