@@ -31,6 +31,7 @@ namespace superdex {
 
 /// A dense 6 × 6 block of a sparse matrix: entries (row + r, col + c) = v[6c + r].
 struct DenseBlock6 {
+  DenseBlock6() {}  // v is its writer's (not zero-filled first: a pile appends thousands per sweep)
   int row = 0, col = 0;
   double v[36];
 };

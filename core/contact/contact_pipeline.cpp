@@ -402,8 +402,8 @@ void ContactPipeline::EvaluateKindPairs(const Request& q, double* energy, Contac
   FormKindSides(q);
   auto evaluate = [&](size_t k) {
     const KindPair& kp = kindPairs_[k];
-    DissipationSetup setup;
-    if (dissipation) setup = MakeSetup(kp.params, *dissipation, q.isotropic);
+    DissipationSetup setup =
+        dissipation ? MakeSetup(kp.params, *dissipation, q.isotropic) : DissipationSetup();
     setup.slips = SlipUse(k);
     const FrameSide& B = kindSides_[kp.b];
     // Evaluated into the worker's own stencils, then kept in the pair's compact ones where they
@@ -420,9 +420,9 @@ void ContactPipeline::EvaluateKindPairs(const Request& q, double* energy, Contac
     }
     kindWide_[k] = !fits;
     if (fits)
-      kindResults_[k].CopyFrom(scratch, q.order);
+      kindResults_[k].CopyFrom(scratch, q.order, q.potential);
     else
-      kindWideResults_[k].CopyFrom(scratch, q.order);
+      kindWideResults_[k].CopyFrom(scratch, q.order, q.potential);
   };
   BeginSlips(dissipation);
   ForEachPair(kindPairs_.size(), KindPairWork() >= kParallelSampleWork, evaluate);

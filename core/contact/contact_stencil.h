@@ -93,10 +93,12 @@ struct BasicPairStencils {
     if (mu > 0.0 && lambdaHat > 0.0)
       maxCoulombRatio = std::max(maxCoulombRatio, D.coulomb.norm() / (mu * lambdaHat));
   }
-  /// Becomes a copy of `from`: its counts and its kept stencils, with the parts an evaluation of
-  /// that order wrote (each stencil's dofs within this one's storage).
+  /// Becomes a copy of `from`: its counts and its kept stencils, with the parts of an evaluation
+  /// of that order that the scatter reads (each stencil's dofs within this one's storage): the
+  /// active terms' vectors, and the Hessian where a term is active, the dissipation Jacobian only
+  /// in a residual mode (`potential` false; a potential's is summed into the Hessian, projected).
   template <typename From>
-  void CopyFrom(const BasicPairStencils<From>& from, int order) {
+  void CopyFrom(const BasicPairStencils<From>& from, int order, bool potential) {
     penaltyValue = from.penaltyValue;
     dissipationValue = from.dissipationValue;
     activeSamples = from.activeSamples;
@@ -114,14 +116,12 @@ struct BasicPairStencils {
       std::copy(s.offs, s.offs + 8, d.offs);
       d.penaltyActive = s.penaltyActive;
       d.dissipationActive = s.dissipationActive;
-      if (order >= 1) {
-        d.penaltyGradient = s.penaltyGradient;
-        d.dissipationResidual = s.dissipationResidual;
-      }
-      if (order >= 2) {
+      if (order >= 1 && s.penaltyActive) d.penaltyGradient = s.penaltyGradient;
+      if (order >= 1 && s.dissipationActive) d.dissipationResidual = s.dissipationResidual;
+      if (order >= 2 && (s.penaltyActive || s.dissipationActive))
         d.penaltyHessian = s.penaltyHessian;
+      if (order >= 2 && !potential && s.dissipationActive)
         d.dissipationJacobian = s.dissipationJacobian;
-      }
     }
   }
 };
