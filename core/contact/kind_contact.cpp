@@ -749,37 +749,6 @@ void GatherKindSamples(const ActorKind& A, const Eigen::VectorXd& q, const Eigen
   });
 }
 
-namespace {
-
-// KindFrameSide's parts from the frame f at q: the pose, the motion, F_p and the stage offsets.
-void SetFrameAt(const KindFrame& f, const std::vector<int>& stageDof, FrameSide* side) {
-  side->pose = f.pose;
-  side->blocks = 0;
-  std::fill(side->offs, side->offs + 4, -1);
-  if (f.rigid) {
-    side->motion = FrameSide::Motion::Rigid;
-    side->offs[0] = stageDof[f.dof[0]];
-    side->offs[1] = stageDof[f.dof[1]];
-    if (side->offs[0] < 0) side->motion = FrameSide::Motion::Static;  // a prescribed pose
-    return;
-  }
-  side->motion = f.blocks > 0 ? FrameSide::Motion::Translation : FrameSide::Motion::Static;
-  side->blocks = f.blocks;
-  side->Fp.leftCols(3 * f.blocks) = f.F.topRows<3>();
-  for (int b = 0; b < f.blocks; ++b) side->offs[b] = stageDof[f.dof[b]];
-}
-
-// KindFrameSide's stage start from the frame's pose p0 at x⁰ (its x_n, side->last, set before).
-void SetFrameStart(const RigidPose& p0, FrameSide* side) {
-  side->start.p = p0.p;
-  side->start.R = p0.R;
-  side->start.Rinv = p0.R.inverse();  // R⁰ an affine combination, not always a rotation
-  side->start.last = side->last;
-  side->hasStart = true;
-}
-
-}  // namespace
-
 bool SampleBodyAt(const ActorKind& A, int b, const Eigen::VectorXd& q,
                   const Eigen::VectorXd* qLast, const Eigen::VectorXd* q0, RigidPose* pose,
                   RigidStageStart* start) {
@@ -834,13 +803,33 @@ FrameSide KindFrameSide(const ActorKind& B, const Eigen::VectorXd& q, const Eige
 void FormKindFrameSide(const ActorKind& B, const Eigen::VectorXd& q, const Eigen::VectorXd* qLast,
                        const Eigen::VectorXd* q0, const std::vector<int>& stageDof,
                        FrameSide* side) {
+  const KindFrame f = B.ColliderFrame(q);
   side->field = B.Collider();
   side->tet = nullptr;
-  SetFrameAt(B.ColliderFrame(q), stageDof, side);
-  side->last = qLast ? B.ColliderFrame(*qLast).pose : side->pose;
+  side->pose = f.pose;
+  side->last = qLast ? B.ColliderFrame(*qLast).pose : f.pose;
   side->hasLast = qLast != nullptr;
-  side->hasStart = false;
-  if (q0) SetFrameStart(B.ColliderFrame(*q0).pose, side);
+  side->hasStart = q0 != nullptr;
+  if (q0) {
+    const RigidPose p0 = B.ColliderFrame(*q0).pose;
+    side->start.p = p0.p;
+    side->start.R = p0.R;
+    side->start.Rinv = p0.R.inverse();  // R⁰ an affine combination, not always a rotation
+    side->start.last = side->last;
+  }
+  side->blocks = 0;
+  std::fill(side->offs, side->offs + 4, -1);  // the side is kept from evaluation to evaluation
+  if (f.rigid) {
+    side->motion = FrameSide::Motion::Rigid;
+    side->offs[0] = stageDof[f.dof[0]];
+    side->offs[1] = stageDof[f.dof[1]];
+    if (side->offs[0] < 0) side->motion = FrameSide::Motion::Static;  // a prescribed pose
+    return;
+  }
+  side->motion = f.blocks > 0 ? FrameSide::Motion::Translation : FrameSide::Motion::Static;
+  side->blocks = f.blocks;
+  side->Fp.leftCols(3 * f.blocks) = f.F.topRows<3>();
+  for (int b = 0; b < f.blocks; ++b) side->offs[b] = stageDof[f.dof[b]];
 }
 
 }  // namespace superdex
