@@ -564,8 +564,32 @@ Eigen::Vector3d AngularMomentum(const RigidBodyModel& m, const RigidBodyState& s
   return m.mass * s.p.cross(s.v) + SpinMomentum(s.R, s.Rdot, m.secondMoment);
 }
 
+namespace {
+// The box of a plane's half-space Φ = w·(x − p) <= 0 (w = R n, the world normal): bounded by the
+// face x_i = p_i when w is parallel to axis i (its other components exactly zero), else all of
+// space. The face is moved outward by a round-off margin of Φ's evaluation, so that no point with
+// Φ <= 0 as the field computes it lies outside.
+Aabb HalfSpaceBounds(const Eigen::Vector3d& p, const Eigen::Vector3d& w) {
+  Aabb b = Aabb::Everything();
+  int axis = -1;
+  for (int i = 0; i < 3; ++i) {
+    if (w[i] == 0.0) continue;
+    if (axis >= 0) return b;  // oblique: the half-space's box is everything
+    axis = i;
+  }
+  if (axis < 0) return b;
+  const double margin = 1e-12 * (1.0 + std::abs(p[axis]));
+  if (w[axis] > 0.0)
+    b.max[axis] = p[axis] + margin;
+  else
+    b.min[axis] = p[axis] - margin;
+  return b;
+}
+}  // namespace
+
 Aabb WorldBounds(const RigidBodyModel& m, const Eigen::Vector3d& p, const Eigen::Matrix3d& R) {
-  if (m.shape.kind == RigidShapeKind::Plane) return Aabb::Everything();
+  if (m.shape.kind == RigidShapeKind::Plane)
+    return HalfSpaceBounds(p, R * m.shape.planeNormal);
   Aabb b;
   if (m.shape.kind == RigidShapeKind::Sphere) {
     b.Extend(p);

@@ -240,7 +240,8 @@ Eigen::Matrix3d WorldInertia(const Eigen::Matrix3d& R, const Eigen::Matrix3d& J)
 /// centre (the inertia's curvature J/Δt² against the sampling's spurious torques).
 constexpr double kCorrectionTrust = 0.25;
 
-/// World AABB of the shape at the given pose (infinite for a plane).
+/// World AABB of the shape at the given pose (a plane's: its half-space's, all of space unless
+/// its normal is parallel to an axis).
 Aabb WorldBounds(const RigidBodyModel& model, const Eigen::Vector3d& p, const Eigen::Matrix3d& R);
 
 /// Calls visit(begin, end) for the sample range of every leaf of m's sample tree reached by
