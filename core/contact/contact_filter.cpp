@@ -3,16 +3,21 @@
 namespace superdex {
 
 void ContactFilter::AddActor(const std::string& layer, int parent) {
+  ++version_;
   layerOf_.push_back(layer);
   parent_.push_back(parent);
   children_.emplace_back();
   if (parent >= 0) children_[parent].push_back(NumActors() - 1);
 }
 
-void ContactFilter::SetLayer(int actor, const std::string& layer) { layerOf_[actor] = layer; }
+void ContactFilter::SetLayer(int actor, const std::string& layer) {
+  ++version_;
+  layerOf_[actor] = layer;
+}
 
 void ContactFilter::EnableLayer(const std::string& colliding, const std::string& collider,
                                 bool enable) {
+  ++version_;
   layers_[{colliding, collider}] = enable;
 }
 
@@ -25,6 +30,7 @@ std::vector<int> ContactFilter::Resolve(int actor, bool includeNested) const {
 }
 
 void ContactFilter::EnableActors(int a, int b, bool enable, bool includeNested) {
+  ++version_;
   for (int i : Resolve(a, includeNested))
     for (int j : Resolve(b, includeNested)) actors_[{i, j}] = enable;
 }

@@ -46,7 +46,11 @@ class ContactFilter {
   }
   const std::map<std::pair<int, int>, bool>& ActorSettings() const { return actors_; }
 
+  /// Counts the changes: a user of Allowed may keep its answers while it stays the same.
+  long Version() const { return version_; }
+
  private:
+  long version_ = 0;
   std::vector<std::string> layerOf_;
   std::vector<int> parent_;
   std::vector<std::vector<int>> children_;

@@ -86,6 +86,7 @@ void ContactPipeline::Configure(const ContactFilter* filter,
   kindFaceSamples_.clear();
   kindTetFields_.clear();
   staticSides_.clear();  // the kinds may be new ones
+  pairsFormed_ = false;
   if (kinds_)
     for (const ActorKind* k : *kinds_) {
       const bool tet = k->TetCollider() && k->TetCollider()->collider == ColliderType::Sdf;
@@ -127,11 +128,18 @@ void ContactPipeline::FindPairs(const KindView* kinds) {
     boxes_[k].Inflate(kindInflation_[k]);
   }
   overlapCache_.Find(boxes_, &overlaps_);
+  // The eligible pairs and their combined parameters depend on the overlaps, the filter and the
+  // kinds (Configure) only.
+  const long version = filter_ ? filter_->Version() : 0;
+  if (pairsFormed_ && version == pairFilterVersion_ && overlaps_ == pairOverlaps_) return;
   kindPairs_.clear();
   for (const auto& [i, j] : overlaps_) {  // each on the other's field
     ConsiderKindPair(i, j);
     ConsiderKindPair(j, i);
   }
+  pairOverlaps_ = overlaps_;
+  pairFilterVersion_ = version;
+  pairsFormed_ = true;
 }
 
 void ContactPipeline::ConsiderKindPair(int a, int b) {

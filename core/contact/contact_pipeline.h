@@ -180,6 +180,11 @@ class ContactPipeline {
   std::vector<char> kindFaceSamples_;
 
   std::vector<KindPair> kindPairs_;
+  // What kindPairs_ was formed from (FindPairs keeps it while both are unchanged): the broad
+  // phase's overlaps and the filter's version; none since Configure when !pairsFormed_.
+  std::vector<std::pair<int, int>> pairOverlaps_;
+  long pairFilterVersion_ = 0;
+  bool pairsFormed_ = false;
   // Per kind pair, its stencils: compact (12 dofs each, as rigid pairs') when all of them fit,
   // else wide (kindWide_[k]).
   std::vector<RigidPairStencils> kindResults_;

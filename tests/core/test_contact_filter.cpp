@@ -154,3 +154,25 @@ TEST_CASE("contact filter: a filtered pair exerts no force", "[core][filter][phy
     else CHECK(std::abs(drop) < 1e-6);
   }
 }
+
+TEST_CASE("contact filter: a setting changed between steps takes effect at the next evaluation",
+          "[core][filter][physics]") {
+  // A cube resting on the ground: its contact is found and evaluated, then disabled (the pairs
+  // the pipeline keeps from evaluation to evaluation must follow), then enabled again, each
+  // by a setting between two evaluations with the boxes unchanged.
+  Scene scene;
+  Error e;
+  const ActorHandle ground = scene.AddRigidActor(test::StaticGround(1e9, 0.0), &e);
+  RigidActorDesc box = test::Cube(1e9, 0.0, 0.0);
+  box.position = Eigen::Vector3d(0, 0, 0.1000165);
+  const ActorHandle cube = scene.AddRigidActor(box, &e);
+  CHECK(scene.ContactState().activeSamples > 0);
+  REQUIRE(scene.EnableActorContactAsymmetric(cube, ground, false, IncludeNestedActors::No, &e));
+  CHECK(scene.ContactState().activeSamples == 0);
+  CHECK(scene.ContactState().candidatePairs == 0);
+  REQUIRE(scene.EnableActorContactSymmetric(cube, ground, true, IncludeNestedActors::No, &e));
+  CHECK(scene.ContactState().activeSamples > 0);
+  REQUIRE(scene.SetContactLayer(cube, "c", &e));
+  REQUIRE(scene.EnableLayerContactAsymmetric("c", scene.ContactLayer(ground), false, &e));
+  CHECK(scene.ContactState().activeSamples == 0);
+}
