@@ -119,13 +119,13 @@ void EndStep(double h, StepWork* work, StepState* step) {
   if (step->vectorHistory.size() < 2) {
     step->vectorHistory.insert(step->vectorHistory.begin(), step->vectorStates);
     step->historyTimes.insert(step->historyTimes.begin(), step->time);
-  } else {  // the oldest entry's storage takes the current state
+  } else {  // the current state moves to the front; the oldest entry's storage goes to `next`
     std::swap(step->vectorHistory[0], step->vectorHistory[1]);
     std::swap(step->historyTimes[0], step->historyTimes[1]);
-    step->vectorHistory[0] = step->vectorStates;
+    step->vectorHistory[0].swap(step->vectorStates);
     step->historyTimes[0] = step->time;
   }
-  step->vectorStates.swap(work->next);  // next keeps the former state's storage
+  step->vectorStates.swap(work->next);  // next keeps storage to be written at the next step
   step->time += h;
 }
 

@@ -43,7 +43,7 @@ void StepBdf(const StepState& step, double h, IntegrationMethod method, StageHos
 void StepDirk(const StepState& step, double h, IntegrationMethod method, StageHost& host,
               StepBuffers* buffers, StepWork* work);
 /// Ends a step of h [s]: the multistep history takes x_n, the states the end states of *work,
-/// the time advances.
+/// the time advances. work->next is left with storage only (its values are not kept).
 void EndStep(double h, StepWork* work, StepState* step);
 
 }  // namespace superdex
