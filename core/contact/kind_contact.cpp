@@ -550,9 +550,11 @@ void FrameEvaluation::AddRigidSamples(const SurfaceSample* samples, int begin, i
 
 void FrameEvaluation::AddRigidCandidate(const SurfaceSample& ss, int key, bool hasYn,
                                         SamplePullback* p, const SdfSample& field, bool below) {
-  if (!hasYn) p->Yn = MulAdd(A_.Rn, ss.X, A_.tn);
+  // Y_n and N_A at x_n: read by the alignment test at x_n (B.hasLast) and by the dissipation.
+  const bool atLast = B_.hasLast || withDissipation_;
+  if (!hasYn && atLast) p->Yn = MulAdd(A_.Rn, ss.X, A_.tn);
   p->NA = Mul(A_.R, ss.normal);
-  p->NAn = Mul(A_.Rn, ss.normal);
+  if (atLast) p->NAn = Mul(A_.Rn, ss.normal);
   PairSample& s = rigid_;
   s.weight = ss.weight;
   s.key = key;
