@@ -46,6 +46,16 @@ struct Fixture {
 
 const std::string kAll = "111111 111111 111111 111111 111111 111111";
 
+// A ground (k = 1e9, frictionless) and a cube resting on it at its equilibrium depth.
+void AddRestingCube(Scene* scene, ActorHandle* ground, ActorHandle* cube) {
+  Error e;
+  *ground = scene->AddRigidActor(test::StaticGround(1e9, 0.0), &e);
+  RigidActorDesc box = test::Cube(1e9, 0.0, 0.0);
+  box.position = Eigen::Vector3d(0, 0, 0.1000165);
+  *cube = scene->AddRigidActor(box, &e);
+  REQUIRE(cube->IsValid());
+}
+
 }  // namespace
 
 TEST_CASE("contact filter: every control, as a table of allowed ordered pairs", "[core][filter]") {
@@ -137,10 +147,8 @@ TEST_CASE("contact filter: a filtered pair exerts no force", "[core][filter][phy
   for (bool filtered : {false, true}) {
     Scene scene;
     Error e;
-    const ActorHandle ground = scene.AddRigidActor(test::StaticGround(1e9, 0.0), &e);
-    RigidActorDesc box = test::Cube(1e9, 0.0, 0.0);
-    box.position = Eigen::Vector3d(0, 0, 0.1000165);
-    const ActorHandle cube = scene.AddRigidActor(box, &e);
+    ActorHandle ground, cube;
+    AddRestingCube(&scene, &ground, &cube);
     if (filtered)
       REQUIRE(scene.EnableActorContactAsymmetric(cube, ground, false, IncludeNestedActors::No, &e));
     for (int i = 0; i < 100; ++i) {
@@ -162,10 +170,8 @@ TEST_CASE("contact filter: a setting changed between steps takes effect at the n
   // by a setting between two evaluations with the boxes unchanged.
   Scene scene;
   Error e;
-  const ActorHandle ground = scene.AddRigidActor(test::StaticGround(1e9, 0.0), &e);
-  RigidActorDesc box = test::Cube(1e9, 0.0, 0.0);
-  box.position = Eigen::Vector3d(0, 0, 0.1000165);
-  const ActorHandle cube = scene.AddRigidActor(box, &e);
+  ActorHandle ground, cube;
+  AddRestingCube(&scene, &ground, &cube);
   CHECK(scene.ContactState().activeSamples > 0);
   REQUIRE(scene.EnableActorContactAsymmetric(cube, ground, false, IncludeNestedActors::No, &e));
   CHECK(scene.ContactState().activeSamples == 0);
