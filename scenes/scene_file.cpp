@@ -185,8 +185,9 @@ RigidActorDesc ReadRigidDesc(const json& a, const std::string& path, const std::
   CheckObject(a, path,
               {"name", "type", "dynamic", "shape", "density", "mass", "inertia", "position",
                "orientation", "euler_deg", "velocity", "angular_velocity", "contact",
-               "collider_type", "boundary_element_type", "contact_layer", "parent", "grid",
-               "grid_sdf", "kinematic", "path", "applied_force", "applied_torque"});
+               "collider_type", "boundary_element_type", "surface_integral", "contact_layer",
+               "parent", "grid", "grid_sdf", "kinematic", "path", "applied_force",
+               "applied_torque"});
   const std::string type = String(a, path, "type", std::string("rigid"));
   if (type != "rigid")
     Throw(Join(path, "type"), "unknown value \"" + type + "\" (supported: rigid, soft)");
@@ -209,6 +210,7 @@ RigidActorDesc ReadRigidDesc(const json& a, const std::string& path, const std::
   if (a.contains("contact")) d.contact = ReadContact(a.at("contact"), Join(path, "contact"));
   d.colliderType = Enum(a, path, "collider_type", ColliderType::Auto);
   d.boundaryElementType = Enum(a, path, "boundary_element_type", ActorBoundaryElementType::P1Q3);
+  d.surfaceIntegral = Enum(a, path, "surface_integral", SurfaceIntegral::Quadrature);
   d.contactLayer = String(a, path, "contact_layer", std::string("default"));
   if (a.contains("grid_sdf")) d.gridSdf = ReadGridSdf(a.at("grid_sdf"), Join(path, "grid_sdf"));
   if (a.contains("path")) {

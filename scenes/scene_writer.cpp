@@ -135,6 +135,8 @@ bool RigidActorJson(const Scene& scene, ActorHandle a, const Beside& beside, jso
     }
   }
   PlacementAndContact(d, &j);
+  if (d.surfaceIntegral != SurfaceIntegral::Quadrature)
+    j["surface_integral"] = ToString(d.surfaceIntegral);
   j["angular_velocity"] = Vec(d.angularVelocity);
   if (!d.path.empty()) {
     json path = json::array();

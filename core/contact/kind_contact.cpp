@@ -8,6 +8,7 @@
 #include "core/contact/rigid_dissipation.h"
 #include "core/contact/sample_chain.h"
 #include "core/model/rigid_math.h"
+#include "energies/sphere_penalty.h"
 
 namespace superdex {
 namespace {
@@ -409,8 +410,9 @@ void FrameEvaluation::AddOpenTerms(const PairSample& s, const SamplePullback& p,
   ContactSampleRecord* record = BeginRecord();
   // The regrouped sums' arm in B's frame, R_Bᵀ r, for both terms' second derivatives.
   if (sums_.on && order_ >= 2) sums_.rB = B_.pose.R.transpose() * s.map.r;
-  const bool penalty =
-      below && AddPenalty(s, B_, p, field, penalty_, maxAlignment_, order_, out_, st_, &sums_, record);
+  const bool penalty = below && !exactPenalty_ &&
+                       AddPenalty(s, B_, p, field, penalty_, maxAlignment_, order_, out_, st_,
+                                  &sums_, record);
   if (withDissipation_ && (below || explicitNormals_))
     AddDissipation(s, s.key, B_, p, field, s.hasNormal ? *dissipation_ : noNormal_, order_, out_,
                    st_, &sums_, record);
@@ -507,13 +509,81 @@ void FrameEvaluation::Add(const PairSample& s) {
 
 bool FrameEvaluation::BeginRigidBody(const RigidPose& a, const RigidPose& an,
                                      const RigidStageStart* start, int offP, int offTheta,
-                                     double radius, const BodyInFrame& inFrame) {
-  SampleSink::BeginRigidBody(a, an, start, offP, offTheta, radius, inFrame);
+                                     const RigidBodyModel& body, const BodyInFrame& inFrame) {
+  SampleSink::BeginRigidBody(a, an, start, offP, offTheta, body, inFrame);
   rigidOpen_ = false;
   A_ = inFrame;
   dA_ = a.p - B_.pose.p;
   // |Y_n − Y| of any sample, with a margin for round-off.
-  motion_ = ((A_.tn - A_.t).norm() + A_.turn * radius) * (1.0 + 1e-12) + 1e-15;
+  motion_ = ((A_.tn - A_.t).norm() + A_.turn * body.samplesRadius) * (1.0 + 1e-12) + 1e-15;
+  exactPenalty_ = body.surfaceIntegral == SurfaceIntegral::ExactSphere && AddExactSpherePenalty(body);
+  // With the penalty exact, the samples serve the dissipation and the records only.
+  return !exactPenalty_ || withDissipation_ || records_;
+}
+
+ContactSampleRecord FrameEvaluation::ExactSphereRecord(const RigidBodyModel& body,
+                                                      const Eigen::Vector3d& w, double x,
+                                                      double phiDeepest, double dE) const {
+  // One record for the active cap: at its deepest point, its area (φ < δ: t + 1 <= the cap's
+  // height over r, from φ(t) = δ) as the weight and the mean traction −E' w / area on it.
+  const double r = body.shape.radius;
+  double height;  // t₀ + 1, t₀ the cap's edge
+  if (B_.field->type == ColliderType::Plane) {
+    height = (penalty_.delta - phiDeepest) / r;
+  } else {
+    const double reach = B_.field->sphere.radius + penalty_.delta;
+    height = (reach * reach - (x - r) * (x - r)) / (2.0 * x * r);
+  }
+  ContactSampleRecord rec;
+  rec.position = a_.p - r * w;
+  rec.normal = w;
+  rec.phi = phiDeepest;
+  rec.weight = 2.0 * 3.14159265358979323846 * r * r * std::clamp(height, 0.0, 2.0);
+  rec.lambdaN = rec.weight > 0.0 ? -dE / rec.weight : 0.0;
+  rec.traction = rec.lambdaN * w;
+  return rec;
+}
+
+bool FrameEvaluation::AddExactSpherePenalty(const RigidBodyModel& body) {
+  const RigidCollider& f = *B_.field;
+  const bool plane = f.type == ColliderType::Plane && B_.motion == FrameSide::Motion::Static;
+  const bool sphere = f.type == ColliderType::Sphere && (B_.motion == FrameSide::Motion::Static ||
+                                                         B_.motion == FrameSide::Motion::Rigid);
+  if (!plane && !sphere) return false;
+  // A's centre (its body origin) in B's frame, A_.t: E depends on its height over the plane or
+  // its distance from the sphere's centre alone, so A's rotation and B's do not enter.
+  const double r = body.shape.radius;
+  const Eigen::Vector3d& Y = A_.t;
+  const double x = plane ? f.plane.normal.dot(Y) - f.plane.offset : Y.norm();
+  const SpherePenalty e = plane ? SpherePlanePenalty(x, r, maxAlignment_, penalty_)
+                                : SphereSpherePenalty(x, r, f.sphere.radius, maxAlignment_, penalty_);
+  const double phiDeepest = plane ? x - r : x - r - f.sphere.radius;
+  out_->minPhi = std::min(out_->minPhi, phiDeepest);
+  if (!(phiDeepest < penalty_.delta)) return true;
+  ++out_->activeSamples;  // the whole sphere counts as one
+  out_->penaltyValue += e.E;
+  Open(rigid_);
+  rigidOpen_ = true;
+  st_->penaltyActive = true;
+  // w: the world direction in which x grows.
+  const Eigen::Vector3d w = B_.pose.R * (plane ? f.plane.normal : Eigen::Vector3d(Y / x));
+  if (records_) records_->push_back(ExactSphereRecord(body, w, x, phiDeepest, e.dE));
+  if (order_ < 1) return true;
+  // ∇E = E' w on A's translation (−E' w on B's).
+  sums_.penaltyGradient.segment<3>(0) += e.dE * w;
+  if (sums_.bDynamic) sums_.penaltyGradient.segment<3>(6) -= e.dE * w;
+  if (order_ < 2) return true;
+  // ∇²E = E'' w wᵀ (+ (E'/d)(I − w wᵀ) for the sphere's distance), ± on A's and B's translations.
+  Eigen::Matrix3d K = e.d2E * w * w.transpose();
+  if (!plane) K += e.dE / x * (Eigen::Matrix3d::Identity() - w * w.transpose());
+  sums_.exact = true;
+  sums_.exactHessian.setZero();
+  sums_.exactHessian.block<3, 3>(0, 0) = K;
+  if (sums_.bDynamic) {
+    sums_.exactHessian.block<3, 3>(0, 6) = -K;
+    sums_.exactHessian.block<3, 3>(6, 0) = -K;
+    sums_.exactHessian.block<3, 3>(6, 6) = K;
+  }
   return true;
 }
 
@@ -607,7 +677,7 @@ void StepLimitSink::Add(const PairSample& s) {
 }
 
 bool StepLimitSink::BeginRigidBody(const RigidPose&, const RigidPose& an,
-                                   const RigidStageStart*, int, int, double radius,
+                                   const RigidStageStart*, int, int, const RigidBodyModel& body,
                                    const BodyInFrame& inFrame) {
   A_ = inFrame;
   // The current configuration's transforms with B's transpose taken inside the products, as the
@@ -616,7 +686,7 @@ bool StepLimitSink::BeginRigidBody(const RigidPose&, const RigidPose& an,
   A_.Rn = B_.last.R.transpose() * an.R;
   A_.tn = B_.last.R.transpose() * (an.p - B_.last.p);
   // |Y₁ − Y₀| <= |t₁ − t₀| + ‖R₁ − R₀‖ |X| for every sample, and |Δs| <= L |Y₁ − Y₀|.
-  const double moved = (inFrame.tn - inFrame.t).norm() + inFrame.turn * radius;
+  const double moved = (inFrame.tn - inFrame.t).norm() + inFrame.turn * body.samplesRadius;
   return B_.field->lipschitz * moved > 0.25 * penalty_.eps;
 }
 
@@ -653,7 +723,7 @@ void AppendRigidSamples(const RigidBodyModel& A, const RigidPose& a, const Rigid
   // contribute (in flight) is done before the sink is told of it.
   if (A.sampleTree.empty() || !keep(A.sampleTree[0].center, A.sampleTree[0].radius)) return;
   composeLast();
-  if (!sink->BeginRigidBody(a, an, start, offP, offTheta, A.samplesRadius, in)) return;
+  if (!sink->BeginRigidBody(a, an, start, offP, offTheta, A, in)) return;
   // A leaf's bound on |Y_n − Y| = |(t_n − t) + (R_n − R) X| over its ball |X − c| <= r:
   // |(t_n − t) + (R_n − R) c| + turn r, with the body bound's round-off margin.
   const Eigen::Vector3d dt = in.tn - in.t;
@@ -669,8 +739,8 @@ void AppendRigidSamples(const RigidBodyModel& A, const RigidPose& a, const Rigid
 }  // namespace
 
 bool SampleSink::BeginRigidBody(const RigidPose& a, const RigidPose& an,
-                                const RigidStageStart* start, int offP, int offTheta, double,
-                                const BodyInFrame&) {
+                                const RigidStageStart* start, int offP, int offTheta,
+                                const RigidBodyModel&, const BodyInFrame&) {
   a_ = a;
   an_ = an;
   start_ = start;

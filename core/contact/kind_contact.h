@@ -109,15 +109,16 @@ class SampleSink {
  public:
   virtual void Add(const PairSample& s) = 0;
   /// A rigid body's samples, announced by body (pose a now, an at x_n, the stage start `start`
-  /// or null; [δp] at stage dof offP, [δθ] at offTheta, −1: none; `radius` >= every sample's
-  /// |X| [m]; `inFrame`: a and an composed into the collider's frame, ComposeNowInFrame and
+  /// or null; [δp] at stage dof offP, [δθ] at offTheta, −1: none; `body` its model, whose
+  /// samplesRadius bounds every sample's |X| [m]; `inFrame`: a and an composed into the
+  /// collider's frame, ComposeNowInFrame and
   /// ComposeLastInFrame), then a leaf of its sample tree at a time in the body frame; a body whose
   /// tree's root is culled is not announced. Returns whether the sink takes the body's samples
   /// (false: the gather skips them; a sink that can tell from the body's motion alone that none
   /// of them matters).
   virtual bool BeginRigidBody(const RigidPose& a, const RigidPose& an,
                               const RigidStageStart* start, int offP, int offTheta,
-                              double radius, const BodyInFrame& inFrame);
+                              const RigidBodyModel& body, const BodyInFrame& inFrame);
   /// The samples begin .. end−1 of a body's array, keys from keyOffset + begin; `motion` [m]
   /// bounds their |Y_n − Y| in the collider's frame (a leaf's bound, or infinity). The default
   /// forms each as a PairSample (a Rigid map, its normal turning with the body) and passes it to
@@ -161,6 +162,8 @@ struct RigidSampleSums {
   PairVector penaltyGradient, dissipationResidual;
   PairHessianSums penalty, potentialDissipation;
   PairForceJacobianSums force{true};
+  bool exact = false;  // an exact integral's Hessian (FrameEvaluation::AddExactSpherePenalty)
+  PairMatrix exactHessian;
 
   /// Starts a stencil: on when its samples are a Rigid map's and B does not deform.
   void Begin(const PairSample& s, const FrameSide& B) {
@@ -174,6 +177,7 @@ struct RigidSampleSums {
     penalty.Clear();
     potentialDissipation.Clear();
     force.Clear(bDynamic);
+    exact = false;
   }
   /// Writes the sums into the stencil (its parts zero on n dofs).
   void Flush(const FrameSide& B, int order, ContactStencil* st) const {
@@ -186,6 +190,7 @@ struct RigidSampleSums {
     if (st->penaltyActive) {
       M.setZero();
       penalty.AddTo(B.pose.R, c, bDynamic, &M);
+      if (exact) M += exactHessian;
       st->penaltyHessian = M.topLeftCorner(n, n);
     }
     if (st->dissipationActive) {
@@ -219,8 +224,12 @@ class FrameEvaluation final : public SampleSink {
   void Add(const PairSample& s) override;
   /// A rigid body's samples: each one's pullback Y, and Y_n where the bound needs it, first; the
   /// rest only when the field says it can contribute (most samples a pile's culling keeps do not).
+  /// A sphere with SurfaceIntegral::ExactSphere on a plane's or a sphere's field has its penalty
+  /// integrated exactly here (AddExactSpherePenalty); its samples are then taken for the
+  /// dissipation and the records only.
   bool BeginRigidBody(const RigidPose& a, const RigidPose& an, const RigidStageStart* start,
-                      int offP, int offTheta, double radius, const BodyInFrame& inFrame) override;
+                      int offP, int offTheta, const RigidBodyModel& body,
+                      const BodyInFrame& inFrame) override;
   void AddRigidSamples(const SurfaceSample* samples, int begin, int end, int keyOffset,
                        double motion) override;
   void Finish();
@@ -261,6 +270,13 @@ class FrameEvaluation final : public SampleSink {
   // AddTerms into the open stencil.
   void AddOpenTerms(const PairSample& s, const SamplePullback& p, const SdfSample& field,
                     bool below);
+  // The exact penalty of sphere `body` (SurfaceIntegral::ExactSphere) on B's plane or sphere
+  // field into the body's stencil; whether B's field is one (else the samples carry it).
+  bool AddExactSpherePenalty(const RigidBodyModel& body);
+  // Its record: the active cap at its deepest point (w: B's unit direction there, world; x the
+  // height or distance; dE = E'(x)).
+  ContactSampleRecord ExactSphereRecord(const RigidBodyModel& body, const Eigen::Vector3d& w,
+                                        double x, double phiDeepest, double dE) const;
   // A rigid body's candidate sample ss (its pullback p with Y, and Y_n when hasYn) formed and
   // its terms added.
   void AddRigidCandidate(const SurfaceSample& ss, int key, bool hasYn, SamplePullback* p,
@@ -284,6 +300,7 @@ class FrameEvaluation final : public SampleSink {
   ContactStencil* st_ = nullptr;
   int openTet_ = -1;        // the open stencil's tet on a tet field
   bool rigidOpen_ = false;  // the rigid body's stencil is open (its samples share their blocks)
+  bool exactPenalty_ = false;  // the open rigid body's penalty is integrated exactly
   RigidSampleSums sums_;
   ContactSampleRecord rec_;  // the sample's report under way (with records_)
 };
@@ -380,7 +397,8 @@ class StepLimitSink final : public SampleSink {
   StepLimitSink(const FrameSide& B, const PenaltyParams& penalty);
   void Add(const PairSample& s) override;
   bool BeginRigidBody(const RigidPose& a, const RigidPose& an, const RigidStageStart* start,
-                      int offP, int offTheta, double radius, const BodyInFrame& inFrame) override;
+                      int offP, int offTheta, const RigidBodyModel& body,
+                      const BodyInFrame& inFrame) override;
   void AddRigidSamples(const SurfaceSample* samples, int begin, int end, int keyOffset,
                        double motion) override;
   /// α of the samples so far (1 without any).

@@ -34,4 +34,9 @@ SUPERDEX_ENUM_NAMES(IncludeNestedActors,
     {IncludeNestedActors::No, "No"},
     {IncludeNestedActors::Yes, "Yes"})
 
+SUPERDEX_ENUM_NAMES(SurfaceIntegral,
+    {SurfaceIntegral::Quadrature, "Quadrature", "the spec's rule on the sampled surface (default)"},
+    {SurfaceIntegral::ExactSphere, "ExactSphere",
+     "a sphere's penalty integrated exactly against plane and sphere fields"})
+
 }  // namespace superdex

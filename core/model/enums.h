@@ -27,10 +27,18 @@ enum class IntegrationMethod {
 /// Whether actor-pair filtering applies to nested actors too (spec: "Contact Filtering").
 enum class IncludeNestedActors { No, Yes };
 
+/// How a rigid colliding actor integrates its normal penalty over its surface (superdex's own
+/// option, not a spec parameter). Quadrature: the spec's rule (boundaryElementType) on the
+/// sampled surface. ExactSphere (sphere shapes): the exact integral over the sphere against a
+/// plane or a sphere's field (energies/sphere_penalty.h), the rule against every other collider;
+/// the dissipation stays the rule's either way.
+enum class SurfaceIntegral { Quadrature, ExactSphere };
+
 /// The name tables (optim/field_table.h: ToString, Parse, AllNames work through them).
 EnumNames<ColliderType> NamesOf(ColliderType);
 EnumNames<IntegrationMethod> NamesOf(IntegrationMethod);
 EnumNames<ActorBoundaryElementType> NamesOf(ActorBoundaryElementType);
 EnumNames<IncludeNestedActors> NamesOf(IncludeNestedActors);
+EnumNames<SurfaceIntegral> NamesOf(SurfaceIntegral);
 
 }  // namespace superdex

@@ -406,7 +406,11 @@ bool BuildRigidBody(const RigidActorDesc& d, const std::string& prefix, RigidBod
   m->contact = d.contact;
   m->requestedCollider = d.colliderType;
   m->boundaryElementType = d.boundaryElementType;
+  m->surfaceIntegral = d.surfaceIntegral;
   m->contactLayer = d.contactLayer;
+  if (d.surfaceIntegral == SurfaceIntegral::ExactSphere && shape.kind != RigidShapeKind::Sphere)
+    return Fail(error, prefix + "surface_integral: ExactSphere needs a sphere shape, got " +
+                           ToString(shape.kind));
 
   if (std::string msg = Validate(d.contact, prefix + "contact."); !msg.empty())
     return Fail(error, msg);

@@ -71,6 +71,8 @@ struct RigidActorDesc {
   ContactParams contact;
   ColliderType colliderType = ColliderType::Auto;
   ActorBoundaryElementType boundaryElementType = ActorBoundaryElementType::P1Q3;
+  /// The penalty's surface integral (core/model/enums.h); ExactSphere needs a sphere shape.
+  SurfaceIntegral surfaceIntegral = SurfaceIntegral::Quadrature;
   std::string contactLayer = "default";
   GridSdfParams gridSdf;  ///< used when the collider resolves to Sdf
   /// A kinematic actor (dynamic must be false) follows a prescribed motion: it collides as a
@@ -169,6 +171,7 @@ struct RigidBodyModel {
   ColliderType requestedCollider = ColliderType::Auto;
   ContactParams contact;
   ActorBoundaryElementType boundaryElementType = ActorBoundaryElementType::P1Q3;
+  SurfaceIntegral surfaceIntegral = SurfaceIntegral::Quadrature;
   std::string contactLayer;
   std::string notice;  ///< a one-time note for the run log (e.g. a collider not supported yet)
   bool kinematic = false;  ///< a prescribed motion (dynamic false): KinematicStateAt

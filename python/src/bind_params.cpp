@@ -33,6 +33,8 @@ template <>
 constexpr bool kPythonEnum<IncludeNestedActors> = true;
 template <>
 constexpr bool kPythonEnum<GridSdfResolutionMode> = true;
+template <>
+constexpr bool kPythonEnum<SurfaceIntegral> = true;
 
 template <typename E>
 void BindEnum(py::module_& m, const char* name, const char* doc) {
@@ -242,6 +244,9 @@ void BindParams(py::module_& m) {
                                 "Whether actor-pair filtering also applies to nested actors.");
   BindEnum<GridSdfResolutionMode>(m, "GridSdfResolutionMode",
                                   "Reference length that sizes a grid SDF's voxels.");
+  BindEnum<SurfaceIntegral>(m, "SurfaceIntegral",
+                            "How a rigid actor integrates its normal penalty over its surface "
+                            "(superdex's option, not a spec parameter).");
 
   const char* validated = " Every assignment is validated; a bad value raises ValueError naming "
                           "the field and the rule.";

@@ -152,6 +152,9 @@ void BindRigidActorDesc(py::module_& m) {
       .def_readwrite("contact", &RigidActorDesc::contact, "ContactParams")
       .def_readwrite("collider_type", &RigidActorDesc::colliderType)
       .def_readwrite("boundary_element_type", &RigidActorDesc::boundaryElementType)
+      .def_readwrite("surface_integral", &RigidActorDesc::surfaceIntegral,
+                     "SurfaceIntegral: ExactSphere integrates a sphere's penalty exactly against "
+                     "plane and sphere fields")
       .def_readwrite("contact_layer", &RigidActorDesc::contactLayer)
       .def_readwrite("grid_sdf", &RigidActorDesc::gridSdf, "GridSdfParams for an Sdf collider");
 }

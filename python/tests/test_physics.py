@@ -115,3 +115,29 @@ def test_friction_on_a_resting_cube_on_an_incline_holds_it():
     pair = scene.contact_pairs()[0]
     assert -pair["friction_force"] @ down == pytest.approx(-9.81 * math.sin(th), rel=1e-4)
     assert -pair["force"] == pytest.approx([0, 0, 9.81], abs=1e-4 * 9.81)
+
+
+def test_an_exact_sphere_rests_with_one_cap_record_carrying_its_weight():
+    s = sd.SceneSettings()
+    s.integrator = sd.IntegrationMethod.BackwardEuler
+    scene = sd.Scene(s)
+    scene.add_rigid_actor(sd.RigidActorDesc("ground", sd.RigidShape.plane(), dynamic=False))
+    ball = sd.RigidActorDesc("ball", sd.RigidShape.sphere(0.1))
+    assert ball.surface_integral == sd.SurfaceIntegral.Quadrature
+    ball.surface_integral = sd.SurfaceIntegral.ExactSphere
+    ball.mass = 1.0
+    ball.position = [0, 0, 0.1]
+    scene.add_rigid_actor(ball)
+    scene.run(1.0, 5e-3, every=200)
+    samples = scene.contact_samples()
+    assert len(samples["weight"]) == 1  # the active cap, whole
+    force = (samples["weight"][:, None] * samples["traction"]).sum(axis=0)
+    assert force[2] == pytest.approx(9.81, rel=1e-6)
+
+
+def test_exact_sphere_integral_needs_a_sphere():
+    scene = sd.Scene()
+    box = cube("box")
+    box.surface_integral = sd.SurfaceIntegral.ExactSphere
+    with pytest.raises(ValueError, match="surface_integral: ExactSphere needs a sphere shape"):
+        scene.add_rigid_actor(box)

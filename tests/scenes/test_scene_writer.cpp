@@ -84,6 +84,7 @@ std::unique_ptr<Scene> BuiltScene(bool massChanged = false) {
   ball.appliedForce = {{0.0, Eigen::Vector3d(0, 1, 0)}, {0.01, Eigen::Vector3d(1, 0, 0)}};
   ball.appliedTorque = {{0.0, Eigen::Vector3d(0, 0, 0.01)}};
   ball.contact.normalViscousDampingCoefficient = 2.0;
+  ball.surfaceIntegral = SurfaceIntegral::ExactSphere;
   const ActorHandle b = scene->AddRigidActor(ball, &e);
   REQUIRE(b.IsValid());
   RigidActorDesc box;
@@ -163,6 +164,7 @@ TEST_CASE("scene writer: a built scene written and loaded runs the same trajecto
   CHECK(loaded.GetContactParams(loaded.FindActor("rock")).coulombFrictionCoefficient == 0.3);
   CHECK(loaded.SoftModel(loaded.FindActor("jelly")).material.youngsModulus == 3e5);
   CHECK(loaded.ContactLayer(loaded.FindActor("jelly")) == "soft");
+  CHECK(loaded.RigidDesc(loaded.FindActor("ball")).surfaceIntegral == SurfaceIntegral::ExactSphere);
   CHECK(loaded.Parent(loaded.FindActor("box")).index == loaded.FindActor("ball").index);
   CHECK_FALSE(loaded.ContactAllowed(loaded.FindActor("jelly"), loaded.FindActor("box")));
   CHECK(loaded.ContactAllowed(loaded.FindActor("box"), loaded.FindActor("jelly")));

@@ -1,0 +1,216 @@
+// SurfaceIntegral::ExactSphere (core/model/enums.h): a sphere's penalty integrated exactly against
+// a plane's or a sphere's field, through the contact assembler (FrameEvaluation) as the pipeline
+// evaluates it: its value is the closed form's, its gradient and Hessian on [δp_A, δθ_A (, δp_B,
+// δθ_B)] pass the finite-difference check through both retractions, its sampled dissipation is
+// untouched, and a resting sphere sits at the analytic height.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <random>
+
+#include "core/contact/kind_contact.h"
+#include "core/model/rigid_kind.h"
+#include "core/model/rigid_math.h"
+#include "core/scene.h"
+#include "derivative_check.h"
+#include "energies/sphere_penalty.h"
+#include "rigid_pair_eval.h"
+#include "scene_builders.h"
+
+using namespace superdex;
+
+namespace {
+
+RigidBodyModel Build(RigidShapeKind kind, double radius, bool dynamic, SurfaceIntegral integral) {
+  RigidActorDesc d;
+  d.name = "a";
+  d.dynamic = dynamic;
+  d.shape.kind = kind;
+  d.shape.radius = radius;
+  d.shape.surfaceResolution = 2;
+  d.surfaceIntegral = integral;
+  RigidBodyModel m;
+  RigidBodyState s;
+  Error e;
+  INFO(e.message);
+  REQUIRE(BuildRigidBody(d, "", &m, &s, &e));
+  return m;
+}
+
+struct Pair {
+  RigidBodyModel A, B;
+  RigidPose a, b;
+  bool bDynamic = false;
+};
+
+// The pair's stencils with A's samples fed straight into a FrameEvaluation (the pipeline's way).
+PairStencils Evaluate(const Pair& c, const PenaltyParams& p, double m, int order,
+                      std::vector<ContactSampleRecord>* records = nullptr) {
+  const test::RigidSide sa(c.A, c.a, nullptr, 0), sb(c.B, c.b, nullptr, c.bDynamic ? 6 : -1);
+  const FrameSide side = KindFrameSide(sb.kind, sb.q, nullptr, nullptr, sb.stageDof);
+  PairStencils out;
+  FrameEvaluation evaluation(side, p, m, nullptr, order, &out, records);
+  GatherKindSamples(sa.kind, sa.q, nullptr, nullptr, sa.stageDof, side, p.delta, nullptr,
+                    &evaluation);
+  evaluation.Finish();
+  return out;
+}
+
+double ValueAt(Pair c, const PenaltyParams& p, double m, const Eigen::VectorXd& d) {
+  c.a.p += d.head<3>();
+  c.a.R = ExpSo3(d.segment<3>(3)) * c.a.R;
+  if (c.bDynamic) {
+    c.b.p += d.segment<3>(6);
+    c.b.R = ExpSo3(d.segment<3>(9)) * c.b.R;
+  }
+  return Evaluate(c, p, m, 0).penaltyValue;
+}
+
+void CheckDerivatives(const Pair& c, const PenaltyParams& p, double m, double exactValue) {
+  const PairStencils r = Evaluate(c, p, m, 2);
+  REQUIRE(r.count == 1);
+  CHECK(r.activeSamples == 1);
+  // The same closed form at a height formed from the poses in another order: round-off only.
+  CHECK(r.penaltyValue == Approx(exactValue).epsilon(1e-9));
+  const ContactStencil& st = r.stencils[0];
+  const auto check = test::CheckDerivatives(
+      [&](const Eigen::VectorXd& d) { return ValueAt(c, p, m, d); },
+      Eigen::VectorXd(st.penaltyGradient), Eigen::MatrixXd(st.penaltyHessian), 1e-6);
+  INFO("gradient error " << check.gradientError << ", Hessian error " << check.hessianError);
+  CHECK(check.gradientError < 1e-5);
+  CHECK(check.hessianError < 1e-4);
+  CHECK(st.penaltyGradient.segment<3>(3).norm() == 0.0);  // no torque on a sphere
+}
+
+// E'(d) of a sphere on a sphere's field (negative where they press: the force −E' pushes apart).
+double SphereSphereNormalForceSign(double d, double rA, double rB, const PenaltyParams& p) {
+  return SphereSpherePenalty(d, rA, rB, 0.0, p).dE;
+}
+
+// A 1 kg exact ball of radius 0.1 m (c_n = 2 s/m) dropped from height z [m] above the origin
+// onto `support` (static, at the origin): its position after 2 s at Δt = 5e-3 (BDF2).
+Eigen::Vector3d RestingPosition(const RigidActorDesc& support, double z) {
+  Scene scene;
+  Error e;
+  REQUIRE(scene.AddRigidActor(support, &e).IsValid());
+  RigidActorDesc ball = test::Ball(0.1, 0.0);
+  ball.surfaceIntegral = SurfaceIntegral::ExactSphere;
+  ball.position = Eigen::Vector3d(0, 0, z);
+  ball.contact.normalViscousDampingCoefficient = 2.0;
+  const ActorHandle h = scene.AddRigidActor(ball, &e);
+  REQUIRE(h.IsValid());
+  for (int i = 0; i < 400; ++i) {
+    StepReport rep;
+    REQUIRE(scene.Step(5e-3, &rep, &e));
+    REQUIRE(rep.status == StageStatus::Converged);
+  }
+  return scene.State(h).p;
+}
+
+}  // namespace
+
+TEST_CASE("an exact sphere's penalty through the assembler: the closed form and its derivatives",
+          "[core][contact][sphere][gradient]") {
+  PenaltyParams p;
+  p.k = 1e5;  // keeps the differences well conditioned; nothing depends on k
+  std::mt19937 rng(11);
+  std::normal_distribution<double> n01;
+  auto rot = [&]() { return ExpSo3(Eigen::Vector3d(n01(rng), n01(rng), n01(rng))); };
+  const double r = 0.1;
+  for (double depth : {0.3 * p.eps, 1.5 * p.eps, 4.0 * p.eps}) {  // past δ: ramp, both, linear
+    DYNAMIC_SECTION("on a tilted plane, depth " << depth) {
+      Pair c{Build(RigidShapeKind::Sphere, r, true, SurfaceIntegral::ExactSphere),
+             Build(RigidShapeKind::Plane, 0.0, false, SurfaceIntegral::Quadrature), {}, {}, false};
+      c.b.R = rot();
+      c.b.p = Eigen::Vector3d(0.3, -0.2, 0.1);
+      const Eigen::Vector3d n = c.b.R * Eigen::Vector3d::UnitZ();
+      const double h = r + p.delta - depth;
+      c.a.R = rot();
+      c.a.p = c.b.p + h * n + 0.2 * n.unitOrthogonal();
+      CheckDerivatives(c, p, 0.0, SpherePlanePenalty(h, r, 0.0, p).E);
+    }
+    DYNAMIC_SECTION("on a moving sphere, depth " << depth) {
+      Pair c{Build(RigidShapeKind::Sphere, r, true, SurfaceIntegral::ExactSphere),
+             Build(RigidShapeKind::Sphere, 0.15, true, SurfaceIntegral::Quadrature), {}, {}, true};
+      c.a.R = rot();
+      c.b.R = rot();
+      const double d = r + 0.15 + p.delta - depth;
+      c.b.p = c.a.p + Eigen::Vector3d(0.05, 0.2, 0.1).normalized() * d;
+      CheckDerivatives(c, p, 0.35, SphereSpherePenalty(d, r, 0.15, 0.35, p).E);
+    }
+  }
+}
+
+TEST_CASE("an exact sphere leaves boxes to its samples, and reports one record for its cap",
+          "[core][contact][sphere]") {
+  PenaltyParams p;
+  const double r = 0.1;
+  Pair box{Build(RigidShapeKind::Sphere, r, true, SurfaceIntegral::ExactSphere), {}, {}, {}, false};
+  RigidActorDesc bd;
+  bd.name = "box";
+  bd.dynamic = false;
+  bd.shape.kind = RigidShapeKind::Box;
+  bd.shape.halfExtents = Eigen::Vector3d(0.5, 0.5, 0.1);
+  RigidBodyState s;
+  Error e;
+  REQUIRE(BuildRigidBody(bd, "", &box.B, &s, &e));
+  box.a.p = Eigen::Vector3d(0.01, 0.02, 0.1 + r - 0.002);
+  const PairStencils sampled = Evaluate(box, p, 0.0, 0);
+  CHECK(sampled.activeSamples > 1);  // the quadrature's samples, one by one
+
+  Pair plane{box.A, Build(RigidShapeKind::Plane, 0.0, false, SurfaceIntegral::Quadrature), {}, {},
+             false};
+  plane.a.p = Eigen::Vector3d(0, 0, r - 0.002);
+  std::vector<ContactSampleRecord> records;
+  const PairStencils exact = Evaluate(plane, p, 0.0, 0, &records);
+  REQUIRE(records.size() == 1);
+  const SpherePenalty e0 = SpherePlanePenalty(r - 0.002, r, 0.0, p);
+  // Its traction times its area is the whole force −E' n, at the deepest point.
+  CHECK((records[0].traction * records[0].weight - Eigen::Vector3d(0, 0, -e0.dE)).norm() <
+        1e-12 * std::abs(e0.dE));
+  CHECK(records[0].position.z() == Approx(-0.002).margin(1e-15));
+  CHECK(records[0].phi == Approx(-0.002).margin(1e-15));
+  CHECK(exact.penaltyValue == Approx(e0.E).epsilon(1e-12));
+}
+
+TEST_CASE("an exact sphere rests at the analytic height on a plane and on a sphere",
+          "[core][contact][sphere][physics]") {
+  // Static equilibrium: the total force 2π r W(s) at the deepest penetration s = δ − φ_min
+  // (on a plane; on a sphere the ρ-weighted integral) balances m g. The height is solved here
+  // from W alone by bisection, the simulation reaches it from a drop of 1 mm.
+  const PenaltyParams p;  // k = 1e9, ε = 5 mm, δ = 1 mm: the defaults
+  const double r = 0.1, g = 9.81, mass = 1.0;
+  auto bisect = [](auto&& f, double lo, double hi) {  // f(lo) < 0 < f(hi)
+    for (int k = 0; k < 200; ++k) {
+      const double mid = 0.5 * (lo + hi);
+      (f(mid) < 0.0 ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+  };
+  auto W = [&](double s) { return NormalPenaltyDensity(p.delta - s, p).W; };
+  SECTION("on a plane") {
+    const double s = bisect([&](double x) { return 2.0 * M_PI * r * W(x) - mass * g; }, 0.0, 0.05);
+    const double restHeight = r + p.delta - s;
+    const Eigen::Vector3d rest = RestingPosition(test::StaticGround(1e9, 0.0), restHeight + 1e-3);
+    INFO("rest height " << rest.z() << ", analytic " << restHeight);
+    CHECK(std::abs(rest.z() - restHeight) < 1e-6);
+  }
+  SECTION("on a fixed sphere") {
+    // The balance −E'(d) = m g of the closed form (checked against a surface quadrature and
+    // finite differences in tests/energies/test_sphere_penalty.cpp).
+    const double rB = 0.15;
+    const double d = bisect(
+        [&](double x) { return mass * g + SphereSphereNormalForceSign(x, r, rB, p); },
+        r + rB + p.delta - 0.05, r + rB + p.delta);
+    RigidActorDesc fixed;
+    fixed.name = "fixed";
+    fixed.dynamic = false;
+    fixed.shape.kind = RigidShapeKind::Sphere;
+    fixed.shape.radius = rB;
+    fixed.contact.penaltyCoefficient = 1e9;
+    const Eigen::Vector3d rest = RestingPosition(fixed, d + 1e-3);
+    INFO("rest height " << rest.z() << ", analytic " << d);
+    CHECK(std::abs(rest.z() - d) < 1e-6);
+    CHECK(rest.head<2>().norm() < 1e-9);
+  }
+}
