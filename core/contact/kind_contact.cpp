@@ -555,6 +555,9 @@ bool FrameEvaluation::AddExactSpherePenalty(const RigidBodyModel& body) {
   const double r = body.shape.radius;
   const Eigen::Vector3d& Y = A_.t;
   const double x = plane ? f.plane.normal.dot(Y) - f.plane.offset : Y.norm();
+  // The sphere field's closed form holds for centres farther apart than A's radius (there the
+  // alignment grows along the surface); deeper the samples take over.
+  if (!plane && !(x > r * (1.0 + 1e-9))) return false;
   const SpherePenalty e = plane ? SpherePlanePenalty(x, r, maxAlignment_, penalty_)
                                 : SphereSpherePenalty(x, r, f.sphere.radius, maxAlignment_, penalty_);
   const double phiDeepest = plane ? x - r : x - r - f.sphere.radius;

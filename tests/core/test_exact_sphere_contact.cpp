@@ -173,6 +173,20 @@ TEST_CASE("an exact sphere leaves boxes to its samples, and reports one record f
   CHECK(exact.penaltyValue == Approx(e0.E).epsilon(1e-12));
 }
 
+TEST_CASE("an exact sphere sunk past its radius into a sphere's field falls back to its samples",
+          "[core][contact][sphere]") {
+  // Centres closer than A's radius: outside the closed form's domain (d > r_A). A's surface
+  // there faces away from B's centre (s_al = 1), so only m = 1 keeps its samples.
+  PenaltyParams p;
+  Pair c{Build(RigidShapeKind::Sphere, 0.1, true, SurfaceIntegral::ExactSphere),
+         Build(RigidShapeKind::Sphere, 0.03, true, SurfaceIntegral::Quadrature), {}, {}, true};
+  c.b.p = Eigen::Vector3d(0.08, 0.0, 0.0);
+  const PairStencils r = Evaluate(c, p, 1.0, 2);
+  CHECK(r.activeSamples > 1);  // the samples, one by one
+  CHECK(std::isfinite(r.penaltyValue));
+  CHECK(r.penaltyValue > 0.0);
+}
+
 TEST_CASE("an exact sphere rests at the analytic height on a plane and on a sphere",
           "[core][contact][sphere][physics]") {
   // Static equilibrium: the total force 2π r W(s) at the deepest penetration s = δ − φ_min
