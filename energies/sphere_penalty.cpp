@@ -7,8 +7,6 @@ namespace superdex {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // The ramp's part in u = s/ε on 0 <= u <= 2 (h = ε u³(4 − u)/16):
 //   Q0 = (k/2) ε³/256 (16u⁷/7 − u⁸ + u⁹/9),  Q1 = (k/2) ε⁴/256 (2u⁸ − 8u⁹/9 + u¹⁰/10).
 PenaltyAntiderivatives RampIntegrals(double u, const PenaltyParams& p) {
@@ -49,7 +47,7 @@ SpherePenalty SpherePlanePenalty(double h, double r, double m, const PenaltyPara
   const double tau = std::clamp(m, -1.0, 1.0);
   const double sHi = p.delta - h + r;        // the deepest sample, t = −1
   const double sLo = p.delta - h - r * tau;  // the cut, t = τ
-  const double c = 2.0 * kPi * r;
+  const double c = 2.0 * M_PI * r;
   const DensityInS hi = AtS(sHi, p), lo = AtS(sLo, p);
   SpherePenalty out;
   out.E = c * (PenaltyIntegrals(sHi, p).Q0 - PenaltyIntegrals(sLo, p).Q0);
@@ -80,7 +78,7 @@ SpherePenalty SphereSpherePenalty(double d, double rA, double rB, double m,
   // s_max' = −1, s_min' = −ρ_hi', s_min'' = −ρ_hi''.
   const double F1 = -gMax1 + gMin1 * rhoHi1;
   const double F2 = gMax2 - (gMin2 * rhoHi1 * rhoHi1 - gMin1 * rhoHi2);
-  const double c = 2.0 * kPi * rA;
+  const double c = 2.0 * M_PI * rA;
   SpherePenalty out;
   out.E = c * F / d;
   out.dE = c * (F1 / d - F / (d * d));

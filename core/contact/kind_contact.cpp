@@ -538,7 +538,7 @@ ContactSampleRecord FrameEvaluation::ExactSphereRecord(const RigidBodyModel& bod
   rec.position = a_.p - r * w;
   rec.normal = w;
   rec.phi = phiDeepest;
-  rec.weight = 2.0 * 3.14159265358979323846 * r * r * std::clamp(height, 0.0, 2.0);
+  rec.weight = 2.0 * M_PI * r * r * std::clamp(height, 0.0, 2.0);
   rec.lambdaN = rec.weight > 0.0 ? -dE / rec.weight : 0.0;
   rec.traction = rec.lambdaN * w;
   return rec;
