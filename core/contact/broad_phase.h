@@ -10,9 +10,9 @@ namespace superdex {
 
 /// Unordered pairs (i < j) of overlapping boxes, by sweep and prune along the axis of largest
 /// spread: O(n log n + k) for n finite boxes and k overlaps. Boxes with an infinite extent
-/// (planes' half-spaces) are tested against every other box. Empty boxes overlap nothing. Output is sorted, so the
-/// result does not depend on the input's internal ordering choices. Up to 8 boxes every pair is
-/// tested directly.
+/// (planes' half-spaces) are tested against every other box. Empty boxes overlap nothing. Output
+/// is sorted, so the result does not depend on the input's internal ordering choices. Up to 8
+/// boxes every pair is tested directly.
 void FindOverlappingPairs(const std::vector<Aabb>& boxes, std::vector<std::pair<int, int>>* pairs);
 
 /// FindOverlappingPairs over boxes that move a little between calls (the evaluations of a

@@ -568,25 +568,21 @@ bool FrameEvaluation::AddExactSpherePenalty(const RigidBodyModel& body) {
   Open(rigid_);
   rigidOpen_ = true;
   st_->penaltyActive = true;
-  // w: the world direction in which x grows.
-  const Eigen::Vector3d w = B_.pose.R * (plane ? f.plane.normal : Eigen::Vector3d(Y / x));
+  // ∇_Y x in B's frame; w, its world direction, is where x grows.
+  const Eigen::Vector3d gHat = plane ? f.plane.normal : Eigen::Vector3d(Y / x);
+  const Eigen::Vector3d w = B_.pose.R * gHat;
   if (records_) records_->push_back(ExactSphereRecord(body, w, x, phiDeepest, e.dE));
   if (order_ < 1) return true;
-  // ∇E = E' w on A's translation (−E' w on B's).
-  sums_.penaltyGradient.segment<3>(0) += e.dE * w;
-  if (sums_.bDynamic) sums_.penaltyGradient.segment<3>(6) -= e.dE * w;
+  // E as a function of the centre's pullback Y (a sample at arm r = 0), through the one chain
+  // of the samples: g_Y = E' ĝ, H_Y = E'' ĝĝᵀ (+ (E'/d)(I − ĝĝᵀ) for the sphere's distance).
+  const Eigen::Vector3d gY = e.dE * gHat;
+  const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
+  AddFunctionOfPullback(zero, dA_, B_.pose.R, gY, nullptr, sums_.bDynamic, 1.0,
+                        &sums_.penaltyGradient, nullptr);
   if (order_ < 2) return true;
-  // ∇²E = E'' w wᵀ (+ (E'/d)(I − w wᵀ) for the sphere's distance), ± on A's and B's translations.
-  Eigen::Matrix3d K = e.d2E * w * w.transpose();
-  if (!plane) K += e.dE / x * (Eigen::Matrix3d::Identity() - w * w.transpose());
-  sums_.exact = true;
-  sums_.exactHessian.setZero();
-  sums_.exactHessian.block<3, 3>(0, 0) = K;
-  if (sums_.bDynamic) {
-    sums_.exactHessian.block<3, 3>(0, 6) = -K;
-    sums_.exactHessian.block<3, 3>(6, 0) = -K;
-    sums_.exactHessian.block<3, 3>(6, 6) = K;
-  }
+  Eigen::Matrix3d HY = e.d2E * gHat * gHat.transpose();
+  if (!plane) HY += e.dE / x * (Eigen::Matrix3d::Identity() - gHat * gHat.transpose());
+  sums_.penalty.Add(zero, gY, HY, 1.0);
   return true;
 }
 

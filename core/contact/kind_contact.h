@@ -162,8 +162,6 @@ struct RigidSampleSums {
   PairVector penaltyGradient, dissipationResidual;
   PairHessianSums penalty, potentialDissipation;
   PairForceJacobianSums force{true};
-  bool exact = false;  // an exact integral's Hessian (FrameEvaluation::AddExactSpherePenalty)
-  PairMatrix exactHessian;
 
   /// Starts a stencil: on when its samples are a Rigid map's and B does not deform.
   void Begin(const PairSample& s, const FrameSide& B) {
@@ -177,7 +175,6 @@ struct RigidSampleSums {
     penalty.Clear();
     potentialDissipation.Clear();
     force.Clear(bDynamic);
-    exact = false;
   }
   /// Writes the sums into the stencil (its parts zero on n dofs).
   void Flush(const FrameSide& B, int order, ContactStencil* st) const {
@@ -190,7 +187,6 @@ struct RigidSampleSums {
     if (st->penaltyActive) {
       M.setZero();
       penalty.AddTo(B.pose.R, c, bDynamic, &M);
-      if (exact) M += exactHessian;
       st->penaltyHessian = M.topLeftCorner(n, n);
     }
     if (st->dissipationActive) {
