@@ -58,6 +58,16 @@ inline RigidActorDesc HeapSphere(int k) {
   return d;
 }
 
+/// A static sphere "fixed" of radius r [m] at the origin (default contact parameters).
+inline RigidActorDesc FixedSphere(double r) {
+  RigidActorDesc d;
+  d.name = "fixed";
+  d.dynamic = false;
+  d.shape.kind = RigidShapeKind::Sphere;
+  d.shape.radius = r;
+  return d;
+}
+
 /// A dynamic 1 kg ball "ball" of radius r [m] (surface resolution 3) with Coulomb coefficient mu.
 inline RigidActorDesc Ball(double r, double mu) {
   RigidActorDesc ball;

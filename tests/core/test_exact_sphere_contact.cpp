@@ -216,13 +216,7 @@ TEST_CASE("an exact sphere rests at the analytic height on a plane and on a sphe
     const double d = bisect(
         [&](double x) { return mass * g + SphereSphereNormalForceSign(x, r, rB, p); },
         r + rB + p.delta - 0.05, r + rB + p.delta);
-    RigidActorDesc fixed;
-    fixed.name = "fixed";
-    fixed.dynamic = false;
-    fixed.shape.kind = RigidShapeKind::Sphere;
-    fixed.shape.radius = rB;
-    fixed.contact.penaltyCoefficient = 1e9;
-    const Eigen::Vector3d rest = RestingPosition(fixed, d + 1e-3);
+    const Eigen::Vector3d rest = RestingPosition(test::FixedSphere(rB), d + 1e-3);
     INFO("rest height " << rest.z() << ", analytic " << d);
     CHECK(std::abs(rest.z() - d) < 1e-6);
     CHECK(rest.head<2>().norm() < 1e-9);

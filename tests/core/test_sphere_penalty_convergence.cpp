@@ -13,14 +13,6 @@ using namespace superdex;
 
 namespace {
 
-PenaltyParams Defaults() {
-  PenaltyParams p;
-  p.k = 1e9;
-  p.eps = 0.005;
-  p.delta = 0.001;
-  return p;
-}
-
 // The sampled energy of a ball of radius 0.1 m at surface resolution `res`, its centre at
 // `centre`, on `collider`.
 double SampledEnergy(const RigidActorDesc& collider, const Eigen::Vector3d& centre, int res) {
@@ -51,7 +43,7 @@ void CheckConvergence(const RigidActorDesc& collider, const Eigen::Vector3d& cen
 
 TEST_CASE("a sampled sphere's penalty converges to the exact integral on a plane",
           "[core][contact][sphere]") {
-  const PenaltyParams p = Defaults();
+  const PenaltyParams p;  // k = 1e9 Pa/m, ε = 5 mm, δ = 1 mm: the actors' defaults
   for (double depth : {0.5e-3, 2e-3, 6e-3, 20e-3}) {  // penetration past the threshold δ [m]
     DYNAMIC_SECTION("depth " << depth) {
       const double h = 0.1 + p.delta - depth;
@@ -64,13 +56,8 @@ TEST_CASE("a sampled sphere's penalty converges to the exact integral on a plane
 
 TEST_CASE("a sampled sphere's penalty converges to the exact integral on a sphere's field",
           "[core][contact][sphere]") {
-  const PenaltyParams p = Defaults();
-  RigidActorDesc fixed;
-  fixed.name = "fixed";
-  fixed.dynamic = false;
-  fixed.shape.kind = RigidShapeKind::Sphere;
-  fixed.shape.radius = 0.07;
-  fixed.contact.penaltyCoefficient = 1e9;
+  const PenaltyParams p;  // k = 1e9 Pa/m, ε = 5 mm, δ = 1 mm: the actors' defaults
+  const RigidActorDesc fixed = test::FixedSphere(0.07);
   const Eigen::Vector3d e = Eigen::Vector3d(2, 1, -1).normalized();
   for (double depth : {2e-3, 6e-3, 20e-3}) {
     DYNAMIC_SECTION("depth " << depth) {

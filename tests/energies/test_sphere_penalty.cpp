@@ -32,14 +32,6 @@ double Integrate(const std::function<double(double)>& f, double a, double b, int
   return sum;
 }
 
-PenaltyParams Params() {
-  PenaltyParams p;
-  p.k = 1e9;
-  p.eps = 0.005;
-  p.delta = 0.001;
-  return p;
-}
-
 double W(double s, const PenaltyParams& p) { return NormalPenaltyDensity(p.delta - s, p).W; }
 
 // E over the sphere of centre c, radius r: the points y = c + r u on the polar axis `axis`
@@ -99,7 +91,7 @@ void CheckAgainstDifferences(F&& penalty, double x, double step) {
 }  // namespace
 
 TEST_CASE("the penalty's antiderivatives Q0, Q1 integrate W and s W", "[energies][sphere]") {
-  const PenaltyParams p = Params();
+  const PenaltyParams p;  // k = 1e9 Pa/m, ε = 5 mm, δ = 1 mm
   for (double u : {0.0, 0.3, 1.0, 1.7, 2.0, 2.5, 7.0, 40.0}) {
     const double s = u * p.eps;
     const PenaltyAntiderivatives q = PenaltyIntegrals(s, p);
@@ -115,7 +107,7 @@ TEST_CASE("the penalty's antiderivatives Q0, Q1 integrate W and s W", "[energies
 
 TEST_CASE("a sphere on a plane: the exact surface integral and its derivatives",
           "[energies][sphere][gradient]") {
-  const PenaltyParams p = Params();
+  const PenaltyParams p;  // k = 1e9 Pa/m, ε = 5 mm, δ = 1 mm
   const double r = 0.1;
   const Eigen::Vector3d n = Eigen::Vector3d(1, -2, 3).normalized();
   auto plane = [&](const Eigen::Vector3d& y, Eigen::Vector3d* G) {
@@ -141,7 +133,7 @@ TEST_CASE("a sphere on a plane: the exact surface integral and its derivatives",
 
 TEST_CASE("a sphere on a sphere's field: the exact surface integral and its derivatives",
           "[energies][sphere][gradient]") {
-  const PenaltyParams p = Params();
+  const PenaltyParams p;  // k = 1e9 Pa/m, ε = 5 mm, δ = 1 mm
   const double rA = 0.1, rB = 0.07;
   const Eigen::Vector3d cB(0.2, -0.1, 0.3);
   auto sphere = [&](const Eigen::Vector3d& y, Eigen::Vector3d* G) {
