@@ -5,6 +5,7 @@
 // stencil [δp_A, δθ_A] (B static) or [δp_A, δθ_A, δp_B, δθ_B].
 #pragma once
 
+#include <stdexcept>
 #include <vector>
 
 #include "core/contact/kind_contact.h"
@@ -27,6 +28,29 @@ struct RigidPairDissipation {
   int activeSamples = 0;
   double maxCoulombRatio = 0.0;
 };
+
+/// The model of rigid body `d` (throws on a description BuildRigidBody refuses).
+inline RigidBodyModel BodyModel(const RigidActorDesc& d) {
+  RigidBodyModel m;
+  RigidBodyState s;
+  Error e;
+  if (!BuildRigidBody(d, "", &m, &s, &e)) throw std::runtime_error(e.message);
+  return m;
+}
+
+/// A sphere "a" of radius r [m] at surface resolution `resolution`, its penalty's surface
+/// integral `integral`.
+inline RigidBodyModel SphereModel(double r, bool dynamic, SurfaceIntegral integral,
+                                  int resolution) {
+  RigidActorDesc d;
+  d.name = "a";
+  d.dynamic = dynamic;
+  d.shape.kind = RigidShapeKind::Sphere;
+  d.shape.radius = r;
+  d.shape.surfaceResolution = resolution;
+  d.surfaceIntegral = integral;
+  return BodyModel(d);
+}
 
 /// A rigid configuration q = [p, R column-major] (RigidKind::Pack).
 inline Eigen::VectorXd PoseQ(const RigidPose& pose) {

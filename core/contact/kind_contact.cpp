@@ -7,6 +7,7 @@
 #include "core/contact/dissipation_kernels.h"
 #include "core/contact/rigid_dissipation.h"
 #include "core/contact/sample_chain.h"
+#include "core/contact/sphere_cap.h"
 #include "core/model/rigid_math.h"
 #include "energies/sphere_penalty.h"
 
@@ -509,16 +510,42 @@ void FrameEvaluation::Add(const PairSample& s) {
 
 bool FrameEvaluation::BeginRigidBody(const RigidPose& a, const RigidPose& an,
                                      const RigidStageStart* start, int offP, int offTheta,
-                                     const RigidBodyModel& body, const BodyInFrame& inFrame) {
-  SampleSink::BeginRigidBody(a, an, start, offP, offTheta, body, inFrame);
+                                     int keyOffset, const RigidBodyModel& body,
+                                     const BodyInFrame& inFrame) {
+  SampleSink::BeginRigidBody(a, an, start, offP, offTheta, keyOffset, body, inFrame);
   rigidOpen_ = false;
   A_ = inFrame;
   dA_ = a.p - B_.pose.p;
   // |Y_n − Y| of any sample, with a margin for round-off.
   motion_ = ((A_.tn - A_.t).norm() + A_.turn * body.samplesRadius) * (1.0 + 1e-12) + 1e-15;
   exactPenalty_ = body.surfaceIntegral == SurfaceIntegral::ExactSphere && AddExactSpherePenalty(body);
-  // With the penalty exact, the samples serve the dissipation and the records only.
+  // With the penalty exact, the samples serve the dissipation and the records only; where the
+  // dissipation's load is the cap's at x_n, the cap's own quadrature serves it instead.
+  if (exactPenalty_ && withDissipation_ && AddCapDissipation(body, keyOffset)) return false;
   return !exactPenalty_ || withDissipation_ || records_;
+}
+
+bool FrameEvaluation::AddCapDissipation(const RigidBodyModel& body, int keyOffset) {
+  // Explicit normals read the load, the normals and the alignment at x_n; the reconstructed load
+  // φ + G·(Y_n − Y) on a plane is φ(Y_n). Both vanish outside the cap at x_n, whose points are
+  // fixed in A's body frame for the stage. (The current load, and the reconstructed one on a
+  // curved field, reach beyond it: the body's samples carry those.)
+  const RigidCollider& f = *B_.field;
+  const bool plane = f.type == ColliderType::Plane;
+  if (!(explicitNormals_ || (reconstructed_ && plane))) return false;
+  const double r = body.shape.radius;
+  const Eigen::Vector3d& Yn = A_.tn;  // A's centre in B's frame at x_n
+  const double dn = Yn.norm();
+  if (!plane && !(dn > r * (1.0 + 1e-9))) return false;  // the closed form's range, as now
+  const double m = dissipation_->maxAlignment;
+  const PenaltyParams& p = dissipation_->penalty;
+  const SphereCap cap = plane ? PlaneCap(f.plane.normal.dot(Yn) - f.plane.offset, r, m, p)
+                              : SphereFieldCap(dn, r, f.sphere.radius, m, p);
+  const Eigen::Vector3d e = plane ? f.plane.normal : Eigen::Vector3d(Yn / dn);
+  SurfaceSample capSamples[kSphereCapMaxSamples];
+  const int n = SphereCapSamples(cap, r, e, A_.Rn.transpose(), capSamples);
+  AddRigidSamples(capSamples, 0, n, keyOffset + static_cast<int>(body.samples.size()), motion_);
+  return true;
 }
 
 ContactSampleRecord FrameEvaluation::ExactSphereRecord(const RigidBodyModel& body,
@@ -676,7 +703,7 @@ void StepLimitSink::Add(const PairSample& s) {
 }
 
 bool StepLimitSink::BeginRigidBody(const RigidPose&, const RigidPose& an,
-                                   const RigidStageStart*, int, int, const RigidBodyModel& body,
+                                   const RigidStageStart*, int, int, int, const RigidBodyModel& body,
                                    const BodyInFrame& inFrame) {
   A_ = inFrame;
   // The current configuration's transforms with B's transpose taken inside the products, as the
@@ -722,7 +749,7 @@ void AppendRigidSamples(const RigidBodyModel& A, const RigidPose& a, const Rigid
   // contribute (in flight) is done before the sink is told of it.
   if (A.sampleTree.empty() || !keep(A.sampleTree[0].center, A.sampleTree[0].radius)) return;
   composeLast();
-  if (!sink->BeginRigidBody(a, an, start, offP, offTheta, A, in)) return;
+  if (!sink->BeginRigidBody(a, an, start, offP, offTheta, keyOffset, A, in)) return;
   // A leaf's bound on |Y_n − Y| = |(t_n − t) + (R_n − R) X| over its ball |X − c| <= r:
   // |(t_n − t) + (R_n − R) c| + turn r, with the body bound's round-off margin.
   const Eigen::Vector3d dt = in.tn - in.t;
@@ -738,7 +765,7 @@ void AppendRigidSamples(const RigidBodyModel& A, const RigidPose& a, const Rigid
 }  // namespace
 
 bool SampleSink::BeginRigidBody(const RigidPose& a, const RigidPose& an,
-                                const RigidStageStart* start, int offP, int offTheta,
+                                const RigidStageStart* start, int offP, int offTheta, int,
                                 const RigidBodyModel&, const BodyInFrame&) {
   a_ = a;
   an_ = an;
@@ -807,7 +834,7 @@ void GatherKindSamples(const ActorKind& A, const Eigen::VectorXd& q, const Eigen
       const RigidStageStart& s = bodies ? bodies->start[b] : start;
       AppendRigidSamples(body, p, hasStart ? &s : nullptr, stageDof[dof[0]], stageDof[dof[1]],
                          keyOffset, B, delta, dissipation, sink);
-      keyOffset += static_cast<int>(body.samples.size());
+      keyOffset += static_cast<int>(body.samples.size()) + kSphereCapMaxSamples;
     }
     return;
   }

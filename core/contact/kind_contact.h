@@ -109,7 +109,9 @@ class SampleSink {
  public:
   virtual void Add(const PairSample& s) = 0;
   /// A rigid body's samples, announced by body (pose a now, an at x_n, the stage start `start`
-  /// or null; [δp] at stage dof offP, [δθ] at offTheta, −1: none; `body` its model, whose
+  /// or null; [δp] at stage dof offP, [δθ] at offTheta, −1: none; its slip keys from keyOffset:
+  /// its samples' and then kSphereCapMaxSamples more for a sink's own samples of the body
+  /// (core/contact/sphere_cap.h); `body` its model, whose
   /// samplesRadius bounds every sample's |X| [m]; `inFrame`: a and an composed into the
   /// collider's frame, ComposeNowInFrame and
   /// ComposeLastInFrame), then a leaf of its sample tree at a time in the body frame; a body whose
@@ -117,7 +119,7 @@ class SampleSink {
   /// (false: the gather skips them; a sink that can tell from the body's motion alone that none
   /// of them matters).
   virtual bool BeginRigidBody(const RigidPose& a, const RigidPose& an,
-                              const RigidStageStart* start, int offP, int offTheta,
+                              const RigidStageStart* start, int offP, int offTheta, int keyOffset,
                               const RigidBodyModel& body, const BodyInFrame& inFrame);
   /// The samples begin .. end−1 of a body's array, keys from keyOffset + begin; `motion` [m]
   /// bounds their |Y_n − Y| in the collider's frame (a leaf's bound, or infinity). The default
@@ -224,7 +226,7 @@ class FrameEvaluation final : public SampleSink {
   /// integrated exactly here (AddExactSpherePenalty); its samples are then taken for the
   /// dissipation and the records only.
   bool BeginRigidBody(const RigidPose& a, const RigidPose& an, const RigidStageStart* start,
-                      int offP, int offTheta, const RigidBodyModel& body,
+                      int offP, int offTheta, int keyOffset, const RigidBodyModel& body,
                       const BodyInFrame& inFrame) override;
   void AddRigidSamples(const SurfaceSample* samples, int begin, int end, int keyOffset,
                        double motion) override;
@@ -269,6 +271,11 @@ class FrameEvaluation final : public SampleSink {
   // The exact penalty of sphere `body` (SurfaceIntegral::ExactSphere) on B's plane or sphere
   // field into the body's stencil; whether B's field is one (else the samples carry it).
   bool AddExactSpherePenalty(const RigidBodyModel& body);
+  // The dissipation of sphere `body` with an exact penalty on the cap's quadrature at x_n
+  // (core/contact/sphere_cap.h), where the mode's load vanishes outside that cap (explicit
+  // normals; the reconstructed load on a plane), its slip keys after the body's samples'
+  // (keyOffset their first); whether it applies (else the body's samples carry it).
+  bool AddCapDissipation(const RigidBodyModel& body, int keyOffset);
   // Its record: the active cap at its deepest point (w: B's unit direction there, world; x the
   // height or distance; dE = E'(x)).
   ContactSampleRecord ExactSphereRecord(const RigidBodyModel& body, const Eigen::Vector3d& w,
@@ -393,7 +400,7 @@ class StepLimitSink final : public SampleSink {
   StepLimitSink(const FrameSide& B, const PenaltyParams& penalty);
   void Add(const PairSample& s) override;
   bool BeginRigidBody(const RigidPose& a, const RigidPose& an, const RigidStageStart* start,
-                      int offP, int offTheta, const RigidBodyModel& body,
+                      int offP, int offTheta, int keyOffset, const RigidBodyModel& body,
                       const BodyInFrame& inFrame) override;
   void AddRigidSamples(const SurfaceSample* samples, int begin, int end, int keyOffset,
                        double motion) override;

@@ -22,19 +22,12 @@ using namespace superdex;
 namespace {
 
 RigidBodyModel Build(RigidShapeKind kind, double radius, bool dynamic, SurfaceIntegral integral) {
+  if (kind == RigidShapeKind::Sphere) return test::SphereModel(radius, dynamic, integral, 2);
   RigidActorDesc d;
   d.name = "a";
   d.dynamic = dynamic;
   d.shape.kind = kind;
-  d.shape.radius = radius;
-  d.shape.surfaceResolution = 2;
-  d.surfaceIntegral = integral;
-  RigidBodyModel m;
-  RigidBodyState s;
-  Error e;
-  INFO(e.message);
-  REQUIRE(BuildRigidBody(d, "", &m, &s, &e));
-  return m;
+  return test::BodyModel(d);
 }
 
 struct Pair {
