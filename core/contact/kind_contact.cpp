@@ -529,37 +529,36 @@ bool FrameEvaluation::AddCapDissipation(const RigidBodyModel& body, int keyOffse
   // Explicit normals read the load, the normals and the alignment at x_n; the reconstructed load
   // φ + G·(Y_n − Y) on a plane is φ(Y_n). Both vanish outside the cap at x_n, whose points are
   // fixed in A's body frame for the stage. (The current load, and the reconstructed one on a
-  // curved field, reach beyond it: the body's samples carry those.)
-  const RigidCollider& f = *B_.field;
-  const bool plane = f.type == ColliderType::Plane;
-  if (!(explicitNormals_ || (reconstructed_ && plane))) return false;
+  // curved field or a box, whose face region holds at x_n but is not checked at the current
+  // samples, reach beyond it: the body's samples carry those.)
+  const bool planeCollider = B_.field->type == ColliderType::Plane;
+  if (!(explicitNormals_ || (reconstructed_ && planeCollider))) return false;
   const double r = body.shape.radius;
-  const Eigen::Vector3d& Yn = A_.tn;  // A's centre in B's frame at x_n
-  const double dn = Yn.norm();
-  if (!plane && !(dn > r * (1.0 + 1e-9))) return false;  // the closed form's range, as now
   const double m = dissipation_->maxAlignment;
   const PenaltyParams& p = dissipation_->penalty;
-  const SphereCap cap = plane ? PlaneCap(f.plane.normal.dot(Yn) - f.plane.offset, r, m, p)
-                              : SphereFieldCap(dn, r, f.sphere.radius, m, p);
-  const Eigen::Vector3d e = plane ? f.plane.normal : Eigen::Vector3d(Yn / dn);
+  const AxialField a = AxialFieldAt(*B_.field, A_.tn, r, m, p);  // A's centre at x_n
+  if (a.kind == AxialField::Kind::None) return false;
+  const SphereCap cap = a.kind == AxialField::Kind::Plane ? PlaneCap(a.x, r, m, p)
+                                                          : SphereFieldCap(a.x, r, a.radius, m, p);
   SurfaceSample capSamples[kSphereCapMaxSamples];
-  const int n = SphereCapSamples(cap, r, e, A_.Rn.transpose(), capSamples);
+  const int n = SphereCapSamples(cap, r, a.axis, A_.Rn.transpose(), capSamples);
   AddRigidSamples(capSamples, 0, n, keyOffset + static_cast<int>(body.samples.size()), motion_);
   return true;
 }
 
 ContactSampleRecord FrameEvaluation::ExactSphereRecord(const RigidBodyModel& body,
-                                                      const Eigen::Vector3d& w, double x,
-                                                      double phiDeepest, double dE) const {
+                                                      const AxialField& a,
+                                                      const Eigen::Vector3d& w, double phiDeepest,
+                                                      double dE) const {
   // One record for the active cap: at its deepest point, its area (φ < δ: t + 1 <= the cap's
   // height over r, from φ(t) = δ) as the weight and the mean traction −E' w / area on it.
   const double r = body.shape.radius;
   double height;  // t₀ + 1, t₀ the cap's edge
-  if (B_.field->type == ColliderType::Plane) {
+  if (a.kind == AxialField::Kind::Plane) {
     height = (penalty_.delta - phiDeepest) / r;
   } else {
-    const double reach = B_.field->sphere.radius + penalty_.delta;
-    height = (reach * reach - (x - r) * (x - r)) / (2.0 * x * r);
+    const double reach = a.radius + penalty_.delta;
+    height = (reach * reach - (a.x - r) * (a.x - r)) / (2.0 * a.x * r);
   }
   ContactSampleRecord rec;
   rec.position = a_.p - r * w;
@@ -572,22 +571,16 @@ ContactSampleRecord FrameEvaluation::ExactSphereRecord(const RigidBodyModel& bod
 }
 
 bool FrameEvaluation::AddExactSpherePenalty(const RigidBodyModel& body) {
-  const RigidCollider& f = *B_.field;
-  const bool plane = f.type == ColliderType::Plane && B_.motion == FrameSide::Motion::Static;
-  const bool sphere = f.type == ColliderType::Sphere && (B_.motion == FrameSide::Motion::Static ||
-                                                         B_.motion == FrameSide::Motion::Rigid);
-  if (!plane && !sphere) return false;
-  // A's centre (its body origin) in B's frame, A_.t: E depends on its height over the plane or
-  // its distance from the sphere's centre alone, so A's rotation and B's do not enter.
+  if (B_.motion != FrameSide::Motion::Static && B_.motion != FrameSide::Motion::Rigid) return false;
+  // A's centre (its body origin) in B's frame, A_.t: E depends on its height over the plane (or
+  // box face) or its distance from the sphere's centre alone, so A's rotation and B's do not enter.
   const double r = body.shape.radius;
-  const Eigen::Vector3d& Y = A_.t;
-  const double x = plane ? f.plane.normal.dot(Y) - f.plane.offset : Y.norm();
-  // The sphere field's closed form holds for centres farther apart than A's radius (there the
-  // alignment grows along the surface); deeper the samples take over.
-  if (!plane && !(x > r * (1.0 + 1e-9))) return false;
-  const SpherePenalty e = plane ? SpherePlanePenalty(x, r, maxAlignment_, penalty_)
-                                : SphereSpherePenalty(x, r, f.sphere.radius, maxAlignment_, penalty_);
-  const double phiDeepest = plane ? x - r : x - r - f.sphere.radius;
+  const AxialField a = AxialFieldAt(*B_.field, A_.t, r, maxAlignment_, penalty_);
+  if (a.kind == AxialField::Kind::None) return false;
+  const bool plane = a.kind == AxialField::Kind::Plane;
+  const SpherePenalty e = plane ? SpherePlanePenalty(a.x, r, maxAlignment_, penalty_)
+                                : SphereSpherePenalty(a.x, r, a.radius, maxAlignment_, penalty_);
+  const double phiDeepest = plane ? a.x - r : a.x - r - a.radius;
   out_->minPhi = std::min(out_->minPhi, phiDeepest);
   if (!(phiDeepest < penalty_.delta)) return true;
   ++out_->activeSamples;  // the whole sphere counts as one
@@ -595,10 +588,10 @@ bool FrameEvaluation::AddExactSpherePenalty(const RigidBodyModel& body) {
   Open(rigid_);
   rigidOpen_ = true;
   st_->penaltyActive = true;
-  // ∇_Y x in B's frame; w, its world direction, is where x grows.
-  const Eigen::Vector3d gHat = plane ? f.plane.normal : Eigen::Vector3d(Y / x);
+  // ĝ = ∇_Y x in B's frame; w, its world direction, is where x grows.
+  const Eigen::Vector3d& gHat = a.axis;
   const Eigen::Vector3d w = B_.pose.R * gHat;
-  if (records_) records_->push_back(ExactSphereRecord(body, w, x, phiDeepest, e.dE));
+  if (records_) records_->push_back(ExactSphereRecord(body, a, w, phiDeepest, e.dE));
   if (order_ < 1) return true;
   // E as a function of the centre's pullback Y (a sample at arm r = 0), through the one chain
   // of the samples: g_Y = E' ĝ, H_Y = E'' ĝĝᵀ (+ (E'/d)(I − ĝĝᵀ) for the sphere's distance).
@@ -608,7 +601,7 @@ bool FrameEvaluation::AddExactSpherePenalty(const RigidBodyModel& body) {
                         &sums_.penaltyGradient, nullptr);
   if (order_ < 2) return true;
   Eigen::Matrix3d HY = e.d2E * gHat * gHat.transpose();
-  if (!plane) HY += e.dE / x * (Eigen::Matrix3d::Identity() - gHat * gHat.transpose());
+  if (!plane) HY += e.dE / a.x * (Eigen::Matrix3d::Identity() - gHat * gHat.transpose());
   sums_.penalty.Add(zero, gY, HY, 1.0);
   return true;
 }

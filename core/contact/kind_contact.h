@@ -32,6 +32,7 @@
 #include "core/contact/dissipation_setup.h"
 #include "core/contact/rigid_contact.h"
 #include "core/contact/rigid_dissipation.h"
+#include "core/contact/sphere_cap.h"
 #include "core/contact/tet_field.h"
 #include "core/model/actor_kind.h"
 #include "core/model/rigid_body.h"
@@ -222,9 +223,10 @@ class FrameEvaluation final : public SampleSink {
   void Add(const PairSample& s) override;
   /// A rigid body's samples: each one's pullback Y, and Y_n where the bound needs it, first; the
   /// rest only when the field says it can contribute (most samples a pile's culling keeps do not).
-  /// A sphere with SurfaceIntegral::ExactSphere on a plane's or a sphere's field has its penalty
-  /// integrated exactly here (AddExactSpherePenalty); its samples are then taken for the
-  /// dissipation and the records only.
+  /// A sphere with SurfaceIntegral::ExactSphere on a plane's, a box face's or a sphere's field
+  /// has its penalty integrated exactly here (AddExactSpherePenalty), and its dissipation on its
+  /// cap's quadrature where the mode allows (AddCapDissipation); else its samples carry the
+  /// dissipation and the records.
   bool BeginRigidBody(const RigidPose& a, const RigidPose& an, const RigidStageStart* start,
                       int offP, int offTheta, int keyOffset, const RigidBodyModel& body,
                       const BodyInFrame& inFrame) override;
@@ -268,18 +270,20 @@ class FrameEvaluation final : public SampleSink {
   // AddTerms into the open stencil.
   void AddOpenTerms(const PairSample& s, const SamplePullback& p, const SdfSample& field,
                     bool below);
-  // The exact penalty of sphere `body` (SurfaceIntegral::ExactSphere) on B's plane or sphere
-  // field into the body's stencil; whether B's field is one (else the samples carry it).
+  // The exact penalty of sphere `body` (SurfaceIntegral::ExactSphere) on B's field where it is a
+  // plane's, a box face's or a sphere's about the body (AxialFieldAt), into the body's stencil;
+  // whether it is (else the samples carry it).
   bool AddExactSpherePenalty(const RigidBodyModel& body);
   // The dissipation of sphere `body` with an exact penalty on the cap's quadrature at x_n
   // (core/contact/sphere_cap.h), where the mode's load vanishes outside that cap (explicit
   // normals; the reconstructed load on a plane), its slip keys after the body's samples'
   // (keyOffset their first); whether it applies (else the body's samples carry it).
   bool AddCapDissipation(const RigidBodyModel& body, int keyOffset);
-  // Its record: the active cap at its deepest point (w: B's unit direction there, world; x the
-  // height or distance; dE = E'(x)).
-  ContactSampleRecord ExactSphereRecord(const RigidBodyModel& body, const Eigen::Vector3d& w,
-                                        double x, double phiDeepest, double dE) const;
+  // The penalty's record: the active cap at its deepest point (a: B's field about the body; w,
+  // its axis in world coordinates; dE = E'(x)).
+  ContactSampleRecord ExactSphereRecord(const RigidBodyModel& body, const AxialField& a,
+                                        const Eigen::Vector3d& w, double phiDeepest,
+                                        double dE) const;
   // A rigid body's candidate sample ss (its pullback p with Y, and Y_n when hasYn) formed and
   // its terms added.
   void AddRigidCandidate(const SurfaceSample& ss, int key, bool hasYn, SamplePullback* p,

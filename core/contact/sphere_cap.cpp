@@ -7,6 +7,56 @@
 
 namespace superdex {
 
+namespace {
+
+// A box's face k (sign ±) as a plane, where the sphere's part below δ on it lies in the face's
+// region: with D the sphere's depth past the face, every point of the cap t <= t_hi has
+// |Y_j ± lateral| − h_j <= −D <= min(q_k, 0) for the other axes j (q = |X| − h), so the box's
+// distance is q_k there.
+AxialField BoxFace(const BoxSdf& box, const Eigen::Vector3d& Y, double r, double m,
+                   const PenaltyParams& p) {
+  const Eigen::Vector3d q = Y.cwiseAbs() - box.halfExtents;
+  Eigen::Index k;
+  q.maxCoeff(&k);
+  AxialField a;
+  a.x = q[k];
+  const double tHi = std::min(std::clamp(m, -1.0, 1.0), (p.delta - a.x) / r);
+  if (tHi > -1.0) {  // else the sphere is beyond δ of the face plane, hence of the box
+    const double lateral = tHi < 0.0 ? r * std::sqrt(1.0 - tHi * tHi) : r;
+    const double depth = std::max(r - a.x, 0.0);
+    for (int j = 0; j < 3; ++j)
+      if (j != k && !(std::abs(Y[j]) + lateral + depth <= box.halfExtents[j])) return {};
+  }
+  a.kind = AxialField::Kind::Plane;
+  a.axis = Eigen::Vector3d::Unit(k) * (Y[k] < 0.0 ? -1.0 : 1.0);
+  return a;
+}
+
+}  // namespace
+
+AxialField AxialFieldAt(const RigidCollider& f, const Eigen::Vector3d& Y, double r, double m,
+                        const PenaltyParams& p) {
+  AxialField a;
+  switch (f.type) {
+    case ColliderType::Plane:
+      a.kind = AxialField::Kind::Plane;
+      a.axis = f.plane.normal;
+      a.x = f.plane.normal.dot(Y) - f.plane.offset;
+      return a;
+    case ColliderType::Box:
+      return BoxFace(f.box, Y, r, m, p);
+    case ColliderType::Sphere:
+      a.x = Y.norm();
+      if (!(a.x > r * (1.0 + 1e-9))) return a;  // deeper, the alignment is not monotone in t
+      a.kind = AxialField::Kind::Sphere;
+      a.axis = Y / a.x;
+      a.radius = f.sphere.radius;
+      return a;
+    default:
+      return a;
+  }
+}
+
 SphereCap PlaneCap(double h, double r, double m, const PenaltyParams& p) {
   SphereCap cap;
   cap.hi = std::min(std::clamp(m, -1.0, 1.0), (p.delta - h) / r);

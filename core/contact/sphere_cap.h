@@ -25,6 +25,22 @@
 
 namespace superdex {
 
+/// B's field about a sphere of radius r [m] centred at Y (B's frame) where it depends on one
+/// coordinate x: a plane's, or a box face's where every point of the sphere the plane's field
+/// puts below δ lies in the face's region (there the box's exact distance is the face plane's,
+/// and elsewhere both are >= δ, φ_box >= φ_plane); or a sphere's at centre distance x > r (the
+/// closed forms' range, energies/sphere_penalty.h). Otherwise None (the samples carry it).
+struct AxialField {
+  enum class Kind { None, Plane, Sphere };
+  Kind kind = Kind::None;
+  Eigen::Vector3d axis = Eigen::Vector3d::Zero();  ///< ∇_Y x: the face's normal, or Y/|Y|
+  double x = 0.0;       ///< the centre's height over the plane, or its distance from B's [m]
+  double radius = 0.0;  ///< B's sphere radius [m]
+};
+/// m: the maximum alignment that bounds the cap (t <= m on a plane).
+AxialField AxialFieldAt(const RigidCollider& f, const Eigen::Vector3d& Y, double r, double m,
+                        const PenaltyParams& p);
+
 /// The cap's interval in t: [lo, hi] with the ramp's start at `split` (s = 2ε; outside
 /// (lo, hi) when one panel only). Empty when hi <= lo.
 struct SphereCap {

@@ -60,6 +60,7 @@ double ValueAt(Pair c, const PenaltyParams& p, double m, const Eigen::VectorXd& 
 }
 
 void CheckDerivatives(const Pair& c, const PenaltyParams& p, double m, double exactValue) {
+  INFO("exact value " << exactValue);
   const PairStencils r = Evaluate(c, p, m, 2);
   REQUIRE(r.count == 1);
   CHECK(r.activeSamples == 1);
@@ -134,24 +135,50 @@ TEST_CASE("an exact sphere's penalty through the assembler: the closed form and 
   }
 }
 
-TEST_CASE("an exact sphere leaves boxes to its samples, and reports one record for its cap",
+TEST_CASE("an exact sphere on a box face is the plane's closed form, near an edge its samples",
           "[core][contact][sphere]") {
   PenaltyParams p;
   const double r = 0.1;
-  Pair box{Build(RigidShapeKind::Sphere, r, true, SurfaceIntegral::ExactSphere), {}, {}, {}, false};
   RigidActorDesc bd;
   bd.name = "box";
   bd.dynamic = false;
   bd.shape.kind = RigidShapeKind::Box;
-  bd.shape.halfExtents = Eigen::Vector3d(0.5, 0.5, 0.1);
-  RigidBodyState s;
-  Error e;
-  REQUIRE(BuildRigidBody(bd, "", &box.B, &s, &e));
-  box.a.p = Eigen::Vector3d(0.01, 0.02, 0.1 + r - 0.002);
-  const PairStencils sampled = Evaluate(box, p, 0.0, 0);
-  CHECK(sampled.activeSamples > 1);  // the quadrature's samples, one by one
+  bd.shape.halfExtents = Eigen::Vector3d(0.5, 0.4, 0.1);
+  Pair box{Build(RigidShapeKind::Sphere, r, true, SurfaceIntegral::ExactSphere),
+           test::BodyModel(bd), {}, {}, false};
+  const double h = r - 0.002;  // the centre's height over the face
+  SECTION("inside the top face's region") {
+    box.a.p = Eigen::Vector3d(0.01, 0.02, 0.1 + h);
+    const PairStencils exact = Evaluate(box, p, 0.0, 0);
+    CHECK(exact.activeSamples == 1);
+    CHECK(exact.penaltyValue == Approx(SpherePlanePenalty(h, r, 0.0, p).E).epsilon(1e-12));
+  }
+  SECTION("on the -y face of a turned box") {
+    box.b.R = ExpSo3(Eigen::Vector3d(0.2, -0.1, 0.4));
+    box.b.p = Eigen::Vector3d(0.3, 0.1, -0.2);
+    box.a.p = box.b.p + box.b.R * Eigen::Vector3d(0.1, -0.4 - h, 0.0);
+    const PairStencils exact = Evaluate(box, p, 0.0, 0);
+    CHECK(exact.activeSamples == 1);
+    CHECK(exact.penaltyValue == Approx(SpherePlanePenalty(h, r, 0.0, p).E).epsilon(1e-9));
+  }
+  SECTION("its cap reaching past an edge: the samples") {
+    // The cap's radius √(2 r s) ≈ 2.4 cm at s = 3 mm: 2 cm from the edge it crosses it.
+    box.a.p = Eigen::Vector3d(0.48, 0.0, 0.1 + h);
+    CHECK(Evaluate(box, p, 0.0, 0).activeSamples > 1);
+  }
+  SECTION("derivatives on a moving box's face, through both retractions") {
+    box.bDynamic = true;
+    box.b.R = ExpSo3(Eigen::Vector3d(-0.3, 0.2, 0.1));
+    box.a.p = box.b.R * Eigen::Vector3d(-0.1, 0.05, 0.1 + h);
+    CheckDerivatives(box, p, 0.0, SpherePlanePenalty(h, r, 0.0, p).E);
+  }
+}
 
-  Pair plane{box.A, Build(RigidShapeKind::Plane, 0.0, false, SurfaceIntegral::Quadrature), {}, {},
+TEST_CASE("an exact sphere reports one record for its cap", "[core][contact][sphere]") {
+  PenaltyParams p;
+  const double r = 0.1;
+  Pair plane{Build(RigidShapeKind::Sphere, r, true, SurfaceIntegral::ExactSphere),
+             Build(RigidShapeKind::Plane, 0.0, false, SurfaceIntegral::Quadrature), {}, {},
              false};
   plane.a.p = Eigen::Vector3d(0, 0, r - 0.002);
   std::vector<ContactSampleRecord> records;

@@ -289,3 +289,30 @@ TEST_CASE("sphere cap: a dropped exact ball's restitution is the fine icosphere'
     }
   }
 }
+
+TEST_CASE("sphere cap: on a box face its dissipation is the face plane's", "[core][contact][sphere]") {
+  // A box whose top face lies on the tilted plane of Sliding: inside the face's region the box's
+  // field is the plane's, and so is every term of the explicit normals' dissipation.
+  const PenaltyParams p;
+  const RigidBodyModel exact = test::SphereModel(0.1, true, SurfaceIntegral::ExactSphere, 2);
+  const DissipationSetup setup = Setup(DissipationMode::ExplicitNormals);
+  RigidActorDesc box;
+  box.name = "box";
+  box.dynamic = false;
+  box.shape.kind = RigidShapeKind::Box;
+  box.shape.halfExtents = Eigen::Vector3d(1.0, 1.0, 0.2);
+  for (double depth : {0.6 * p.eps, 3.0 * p.eps}) {
+    const Stage onPlane = Sliding(false, depth);
+    Stage onBox = onPlane;
+    onBox.B = test::BodyModel(box);
+    onBox.b.p -= 0.2 * (onPlane.b.R * Eigen::Vector3d::UnitZ());
+    onBox.bStart = test::StartAt(onBox.b, onBox.b);
+    const test::RigidPairDissipation plane = Dissipation(exact, onPlane, setup, 2);
+    const test::RigidPairDissipation face = Dissipation(exact, onBox, setup, 2);
+    INFO("depth " << depth);
+    CHECK(face.activeSamples == plane.activeSamples);
+    CHECK(face.value == Approx(plane.value).epsilon(1e-10));
+    CHECK((face.residual - plane.residual).norm() < 1e-10 * plane.residual.norm());
+    CHECK((face.jacobian - plane.jacobian).norm() < 1e-10 * plane.jacobian.norm());
+  }
+}
