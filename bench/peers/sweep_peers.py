@@ -4,8 +4,9 @@
     python3 bench/peers/sweep_peers.py --build BUILD [--quick] [--scenes drop,stack] [--out out/peers]
 
 Sweeps the time step of every engine (superdex: BDF2 and BackwardEuler, each with the default
-reconstructed-load dissipation, with explicit normals and with the current load), computes each
-scene's error metric,
+reconstructed-load dissipation, with explicit normals and with the current load; on the drop and
+the pile also with the spheres' penalty integrated exactly, surface_integral ExactSphere),
+computes each scene's error metric,
 and writes per scene a Markdown table (printed, and saved to OUT/SCENE.md), the raw results
 (OUT/SCENE.json) and a log-log plot of error against wall time per simulated second
 (OUT/SCENE.png). Each table ends with superdex's wall time over each peer's at equal error,
@@ -31,8 +32,15 @@ SOURCE = os.path.dirname(os.path.dirname(HERE))
 # Dissipation modes (README, "Dissipation modes"): the scene file's experimental_eval_params.
 MODES = {"reconstructed": ("reconstructed load", None),
          "explicit": ("explicit normals", {"explicit_normals": True}),
-         "current": ("current load", {"implicit_normal_force_for_dissipation": True})}
-SUPERDEX_CURVES = [(i, m) for i in ("BDF2", "BackwardEuler") for m in MODES]
+         "current": ("current load", {"implicit_normal_force_for_dissipation": True}),
+         # The same modes with every sphere's penalty integrated exactly (surface_integral
+         # ExactSphere, docs/scene-format.md), its dissipation on its contact cap where the mode
+         # allows.
+         "reconstructed_exact": ("reconstructed load, exact spheres", None),
+         "explicit_exact": ("explicit normals, exact spheres", {"explicit_normals": True})}
+EXACT_SPHERES = {"reconstructed_exact", "explicit_exact"}
+SUPERDEX_CURVES = [(i, m) for i in ("BDF2", "BackwardEuler")
+                   for m in ("reconstructed", "explicit", "current")]
 
 # Per scene: the error plotted, durations (full, quick), dt sweeps (full, quick) for superdex
 # and the peers, and the superdex curves run (all six unless limited).
@@ -44,9 +52,10 @@ SCENES = {
                       [1e-2, 3e-3, 1e-3, 3e-4, 1e-4]),
                  # The drop has no damping: the energy-conserving symplectic methods, and BDF2.
                  sdx_curves=([("SymplecticDIRK12", "reconstructed"), ("SymplecticDIRK22", "reconstructed"),
-                              ("SymplecticDIRK22", "explicit"), ("BDF2", "reconstructed")],
+                              ("SymplecticDIRK22", "explicit"), ("BDF2", "reconstructed"),
+                              ("SymplecticDIRK22", "reconstructed_exact")],
                              [("SymplecticDIRK12", "reconstructed"), ("SymplecticDIRK22", "reconstructed"),
-                              ("BDF2", "reconstructed")]),
+                              ("BDF2", "reconstructed"), ("SymplecticDIRK22", "reconstructed_exact")]),
                  peer=([1e-2, 5e-3, 3e-3, 2e-3, 1.5e-3, 1e-3, 5e-4, 3e-4, 1e-4, 3e-5],
                        [1e-2, 3e-3, 1e-3, 3e-4, 1e-4])),
     "incline": dict(label="relative error of the sliding acceleration", duration=(2.0, 1.5),
@@ -65,7 +74,8 @@ SCENES = {
                   peer=([2e-2, 1e-2, 3e-3, 1e-3, 3e-4], [2e-2, 1e-2, 3e-3, 1e-3])),
     "pile": dict(label="max penetration [m]", duration=(0.5, 0.3),
                  sdx=([2e-2, 1e-2], [2e-2, 1e-2]), peer=([1e-2, 5e-3, 2e-3], [1e-2, 5e-3]),
-                 sdx_curves=([("BDF2", "reconstructed"), ("BDF2", "explicit")],) * 2),
+                 sdx_curves=([("BDF2", "reconstructed"), ("BDF2", "explicit"),
+                              ("BDF2", "reconstructed_exact"), ("BDF2", "explicit_exact")],) * 2),
     "tumble": dict(label="relative energy drift after 5 s", duration=(5.0, 5.0),
                    sdx=([4e-2, 2e-2, 1e-2, 5e-3, 2e-3], [4e-2, 1e-2, 2e-3]),
                    peer=([4e-2, 1e-2, 3e-3, 1e-3, 3e-4, 1e-4], [1e-2, 1e-3, 1e-4]),
@@ -218,6 +228,10 @@ def run_superdex(build, scene, integrator, mode, dt, duration, tmp, timeout, vf=
     settings = sj.setdefault("settings", {})
     if MODES[mode][1]:
         settings["experimental_eval_params"] = MODES[mode][1]
+    if mode in EXACT_SPHERES:
+        for actor in sj["actors"]:
+            if actor.get("shape", {}).get("type") == "sphere":
+                actor["surface_integral"] = "ExactSphere"
     if vf:  # every actor's friction fall-off speed
         for actor in sj["actors"]:
             actor.setdefault("contact", {})["friction_falloff_vel"] = vf

@@ -37,6 +37,6 @@ SUPERDEX_ENUM_NAMES(IncludeNestedActors,
 SUPERDEX_ENUM_NAMES(SurfaceIntegral,
     {SurfaceIntegral::Quadrature, "Quadrature", "the spec's rule on the sampled surface (default)"},
     {SurfaceIntegral::ExactSphere, "ExactSphere",
-     "a sphere's penalty integrated exactly against plane and sphere fields"})
+     "a sphere's penalty integrated exactly against plane, box-face and sphere fields"})
 
 }  // namespace superdex

@@ -30,8 +30,9 @@ enum class IncludeNestedActors { No, Yes };
 /// How a rigid colliding actor integrates its normal penalty over its surface (superdex's own
 /// option, not a spec parameter). Quadrature: the spec's rule (boundaryElementType) on the
 /// sampled surface. ExactSphere (sphere shapes): the exact integral over the sphere against a
-/// plane or a sphere's field (energies/sphere_penalty.h), the rule against every other collider;
-/// the dissipation stays the rule's either way.
+/// plane's, a box face's or a sphere's field (energies/sphere_penalty.h), the rule elsewhere; the
+/// dissipation on a quadrature of the active cap where the mode allows it
+/// (core/contact/sphere_cap.h), else on the rule's samples.
 enum class SurfaceIntegral { Quadrature, ExactSphere };
 
 /// The name tables (optim/field_table.h: ToString, Parse, AllNames work through them).

@@ -154,7 +154,7 @@ void BindRigidActorDesc(py::module_& m) {
       .def_readwrite("boundary_element_type", &RigidActorDesc::boundaryElementType)
       .def_readwrite("surface_integral", &RigidActorDesc::surfaceIntegral,
                      "SurfaceIntegral: ExactSphere integrates a sphere's penalty exactly against "
-                     "plane and sphere fields")
+                     "plane, box-face and sphere fields, its dissipation on its contact cap")
       .def_readwrite("contact_layer", &RigidActorDesc::contactLayer)
       .def_readwrite("grid_sdf", &RigidActorDesc::gridSdf, "GridSdfParams for an Sdf collider");
 }
