@@ -62,7 +62,7 @@ SphereCap SphereFieldCap(double d, double rA, double rB, double m, const Penalty
 /// The rule's sizes: Gauss points on the ramp's panel and on the linear panel, and azimuths.
 constexpr int kCapRampPoints = 4;
 constexpr int kCapLinearPoints = 3;
-constexpr int kCapAzimuths = 6;
+constexpr int kCapAzimuths = 4;
 constexpr int kSphereCapMaxSamples = (kCapRampPoints + kCapLinearPoints) * kCapAzimuths;
 
 /// The cap's samples of a sphere of radius r [m] centred at its body origin, with axis e (unit,
