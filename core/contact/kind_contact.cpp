@@ -528,16 +528,11 @@ bool FrameEvaluation::BeginRigidBody(const RigidPose& a, const RigidPose& an,
 bool FrameEvaluation::AddCapDissipation(const RigidBodyModel& body, int keyOffset) {
   // Explicit normals read the load, the normals and the alignment at x_n; the reconstructed load
   // φ + G·(Y_n − Y) on a plane is φ(Y_n). Both vanish outside the cap at x_n, whose points are
-  // fixed in A's body frame for the stage. On a sphere's field the reconstructed load is
-  // Ĝ·Y_n − r_B <= φ(Y_n) (Ĝ = Y/|Y|): it reaches past that cap by |Y_n|(1 − cos θ) in s, θ the
-  // sample's turn about B's centre from x_n, where λ_n grows like s⁵ (a fringe the cap leaves
-  // out; tests/core/test_sphere_cap.cpp measures it). (The current load, and the reconstructed
-  // one on a box, whose face region holds at x_n but is not checked at the current samples,
-  // reach beyond it: the body's samples carry those.)
-  const ColliderType type = B_.field->type;
-  if (!(explicitNormals_ ||
-        (reconstructed_ && (type == ColliderType::Plane || type == ColliderType::Sphere))))
-    return false;
+  // fixed in A's body frame for the stage. (The current load, and the reconstructed one on a
+  // curved field or a box, whose face region holds at x_n but is not checked at the current
+  // samples, reach beyond it: the body's samples carry those.)
+  const bool planeCollider = B_.field->type == ColliderType::Plane;
+  if (!(explicitNormals_ || (reconstructed_ && planeCollider))) return false;
   const double r = body.shape.radius;
   const double m = dissipation_->maxAlignment;
   const PenaltyParams& p = dissipation_->penalty;
