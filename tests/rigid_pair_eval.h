@@ -10,6 +10,7 @@
 
 #include "core/contact/kind_contact.h"
 #include "core/model/rigid_kind.h"
+#include "core/model/rigid_math.h"
 
 namespace superdex::test {
 
@@ -52,6 +53,16 @@ inline RigidBodyModel SphereModel(double r, bool dynamic, SurfaceIntegral integr
   return BodyModel(d);
 }
 
+/// Both poses retracted by a pair stencil's step d = [δp_A, δθ_A (, δp_B, δθ_B)]: p += δp,
+/// R ← Exp(δθ) R (B's part only when B is dynamic).
+inline void RetractPair(const Eigen::VectorXd& d, bool bDynamic, RigidPose* a, RigidPose* b) {
+  a->p += d.segment<3>(0);
+  a->R = ExpSo3(d.segment<3>(3)) * a->R;
+  if (!bDynamic) return;
+  b->p += d.segment<3>(6);
+  b->R = ExpSo3(d.segment<3>(9)) * b->R;
+}
+
 /// A rigid configuration q = [p, R column-major] (RigidKind::Pack).
 inline Eigen::VectorXd PoseQ(const RigidPose& pose) {
   return RigidKind::Pack(RigidBodyState{pose.p, pose.R}).x;
@@ -81,22 +92,33 @@ struct RigidSide {
 
 /// The pair's stencils at the poses (aStart, bStart: x⁰ and x_n, x_n the alignment test's
 /// reference; null: the current poses) with `setup` (null: penalty only; then aStart/bStart may
-/// be null).
+/// be null). `streamed`: A's samples fed straight into a FrameEvaluation, as the pipeline does
+/// (there an exact sphere's closed form and cap quadrature replace its samples); else listed
+/// first, then EvaluateSamplesOnFrame.
 inline PairStencils EvaluateRigidPair(const RigidBodyModel& A, const RigidPose& a,
                                       const RigidStageStart* aStart, const RigidBodyModel& B,
                                       const RigidPose& b, const RigidStageStart* bStart,
                                       bool bDynamic, const PenaltyParams& penalty,
                                       double maxAlignment, const DissipationSetup* setup,
                                       int order,
-                                      std::vector<ContactSampleRecord>* records = nullptr) {
+                                      std::vector<ContactSampleRecord>* records = nullptr,
+                                      bool streamed = false) {
   const RigidSide sa(A, a, aStart, 0), sb(B, b, bStart, bDynamic ? 6 : -1);
   const FrameSide side =
       KindFrameSide(sb.kind, sb.q, sb.Last(), setup ? sb.Start() : nullptr, sb.stageDof);
+  const Eigen::VectorXd* aStartQ = setup ? sa.Start() : nullptr;
+  PairStencils out;
+  if (streamed) {
+    FrameEvaluation evaluation(side, penalty, maxAlignment, setup, order, &out, records);
+    GatherKindSamples(sa.kind, sa.q, sa.Last(), aStartQ, sa.stageDof, side, penalty.delta, setup,
+                      &evaluation);
+    evaluation.Finish();
+    return out;
+  }
   std::vector<PairSample> samples;
   SampleList list(&samples);
-  GatherKindSamples(sa.kind, sa.q, sa.Last(), setup ? sa.Start() : nullptr, sa.stageDof, side,
-                    penalty.delta, setup, &list);
-  PairStencils out;
+  GatherKindSamples(sa.kind, sa.q, sa.Last(), aStartQ, sa.stageDof, side, penalty.delta, setup,
+                    &list);
   EvaluateSamplesOnFrame(samples, side, penalty, maxAlignment, setup, order, &out, records);
   return out;
 }
@@ -154,15 +176,8 @@ inline void EvaluateRigidPairPenalty(const RigidBodyModel& A, const RigidPose& a
   }
 }
 
-/// The stage-discrete dissipation of A's samples on B with the stage starts a0, b0.
-inline void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
-                                         const RigidStageStart& a0, const RigidBodyModel& B,
-                                         const RigidPose& b, const RigidStageStart& b0,
-                                         bool bDynamic, const DissipationSetup& setup, int order,
-                                         RigidPairDissipation* out) {
-  const int n = bDynamic ? 12 : 6;
-  const PairStencils r = EvaluateRigidPair(A, a, &a0, B, b, &b0, bDynamic, setup.penalty,
-                                           setup.maxAlignment, &setup, order);
+/// The dissipative parts of a pair's stencils (on n = 6 or 12 dofs) summed into *out.
+inline void SumDissipation(const PairStencils& r, int n, int order, RigidPairDissipation* out) {
   out->value = r.dissipationValue;
   out->activeSamples = r.dissipativeSamples;
   out->maxCoulombRatio = r.maxCoulombRatio;
@@ -174,6 +189,17 @@ inline void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPos
     if (order >= 1) out->residual += st.dissipationResidual;
     if (order >= 2) out->jacobian += st.dissipationJacobian;
   }
+}
+
+/// The stage-discrete dissipation of A's samples on B with the stage starts a0, b0.
+inline void EvaluateRigidPairDissipation(const RigidBodyModel& A, const RigidPose& a,
+                                         const RigidStageStart& a0, const RigidBodyModel& B,
+                                         const RigidPose& b, const RigidStageStart& b0,
+                                         bool bDynamic, const DissipationSetup& setup, int order,
+                                         RigidPairDissipation* out) {
+  const PairStencils r = EvaluateRigidPair(A, a, &a0, B, b, &b0, bDynamic, setup.penalty,
+                                           setup.maxAlignment, &setup, order);
+  SumDissipation(r, bDynamic ? 12 : 6, order, out);
 }
 
 }  // namespace superdex::test

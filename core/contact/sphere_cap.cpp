@@ -20,7 +20,7 @@ AxialField BoxFace(const BoxSdf& box, const Eigen::Vector3d& Y, double r, double
   q.maxCoeff(&k);
   AxialField a;
   a.x = q[k];
-  const double tHi = std::min(std::clamp(m, -1.0, 1.0), (p.delta - a.x) / r);
+  const double tHi = PlaneCap(a.x, r, m, p).hi;  // the face plane's cap
   if (tHi > -1.0) {  // else the sphere is beyond δ of the face plane, hence of the box
     const double lateral = tHi < 0.0 ? r * std::sqrt(1.0 - tHi * tHi) : r;
     const double depth = std::max(r - a.x, 0.0);
@@ -70,7 +70,7 @@ SphereCap SphereFieldCap(double d, double rA, double rB, double m, const Penalty
   const double reach = rB + p.delta;
   const double rhoCut = std::sqrt(std::max(d * d - (1.0 - mm * mm) * rA * rA, 0.0)) + mm * rA;
   SphereCap cap;
-  cap.hi = std::min({tAt(std::min(reach, rhoCut)), 1.0});
+  cap.hi = std::min(tAt(std::min(reach, rhoCut)), 1.0);
   cap.split = reach - 2.0 * p.eps > 0.0 ? tAt(reach - 2.0 * p.eps) : -1.0;
   return cap;
 }

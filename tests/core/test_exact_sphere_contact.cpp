@@ -39,23 +39,12 @@ struct Pair {
 // The pair's stencils with A's samples fed straight into a FrameEvaluation (the pipeline's way).
 PairStencils Evaluate(const Pair& c, const PenaltyParams& p, double m, int order,
                       std::vector<ContactSampleRecord>* records = nullptr) {
-  const test::RigidSide sa(c.A, c.a, nullptr, 0), sb(c.B, c.b, nullptr, c.bDynamic ? 6 : -1);
-  const FrameSide side = KindFrameSide(sb.kind, sb.q, nullptr, nullptr, sb.stageDof);
-  PairStencils out;
-  FrameEvaluation evaluation(side, p, m, nullptr, order, &out, records);
-  GatherKindSamples(sa.kind, sa.q, nullptr, nullptr, sa.stageDof, side, p.delta, nullptr,
-                    &evaluation);
-  evaluation.Finish();
-  return out;
+  return test::EvaluateRigidPair(c.A, c.a, nullptr, c.B, c.b, nullptr, c.bDynamic, p, m, nullptr,
+                                 order, records, /*streamed=*/true);
 }
 
 double ValueAt(Pair c, const PenaltyParams& p, double m, const Eigen::VectorXd& d) {
-  c.a.p += d.head<3>();
-  c.a.R = ExpSo3(d.segment<3>(3)) * c.a.R;
-  if (c.bDynamic) {
-    c.b.p += d.segment<3>(6);
-    c.b.R = ExpSo3(d.segment<3>(9)) * c.b.R;
-  }
+  test::RetractPair(d, c.bDynamic, &c.a, &c.b);
   return Evaluate(c, p, m, 0).penaltyValue;
 }
 

@@ -11,6 +11,7 @@ using namespace superdex;
 using test::EvaluateRigidPairDissipation;
 using test::EvaluateRigidPairPenalty;
 using test::RigidPairStepLimit;
+using test::RetractPair;
 using test::RigidPairDissipation;
 using test::RigidPairPenalty;
 
@@ -52,12 +53,7 @@ struct PairCase {
 // Value of the pair energy after retracting both poses by the stencil step d.
 double PairValue(const PairCase& c, const PenaltyParams& p, const Eigen::VectorXd& d) {
   RigidPose a = c.a, b = c.b;
-  a.p += d.segment<3>(0);
-  a.R = ExpSo3(d.segment<3>(3)) * a.R;
-  if (c.bDynamic) {
-    b.p += d.segment<3>(6);
-    b.R = ExpSo3(d.segment<3>(9)) * b.R;
-  }
+  RetractPair(d, c.bDynamic, &a, &b);
   RigidPairPenalty out;
   EvaluateRigidPairPenalty(c.A, a, c.B, b, c.bDynamic, p, 0, &out);
   return out.value;

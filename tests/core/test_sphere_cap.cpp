@@ -45,25 +45,11 @@ struct Stage {
 // pipeline's way, which is where the cap replaces the samples).
 test::RigidPairDissipation Dissipation(const RigidBodyModel& A, const Stage& c,
                                        const DissipationSetup& setup, int order) {
-  const test::RigidSide sa(A, c.a, &c.aStart, 0), sb(c.B, c.b, &c.bStart, c.bDynamic ? 6 : -1);
-  const FrameSide side = KindFrameSide(sb.kind, sb.q, sb.Last(), sb.Start(), sb.stageDof);
-  PairStencils out;
-  FrameEvaluation evaluation(side, setup.penalty, setup.maxAlignment, &setup, order, &out);
-  GatherKindSamples(sa.kind, sa.q, sa.Last(), sa.Start(), sa.stageDof, side, setup.penalty.delta,
-                    &setup, &evaluation);
-  evaluation.Finish();
-  const int n = c.bDynamic ? 12 : 6;
+  const PairStencils out =
+      test::EvaluateRigidPair(A, c.a, &c.aStart, c.B, c.b, &c.bStart, c.bDynamic, setup.penalty,
+                              setup.maxAlignment, &setup, order, nullptr, /*streamed=*/true);
   test::RigidPairDissipation d;
-  d.value = out.dissipationValue;
-  d.activeSamples = out.dissipativeSamples;
-  d.residual.setZero(n);
-  d.jacobian.setZero(n, n);
-  for (int k = 0; k < out.count; ++k) {
-    const ContactStencil& st = out.stencils[k];
-    if (!st.dissipationActive) continue;
-    if (order >= 1) d.residual += st.dissipationResidual;
-    if (order >= 2) d.jacobian += st.dissipationJacobian;
-  }
+  test::SumDissipation(out, c.bDynamic ? 12 : 6, order, &d);
   return d;
 }
 
@@ -207,12 +193,7 @@ TEST_CASE("sphere cap: the explicit normals' dissipation is the icosphere's at r
         // The exact potential Δt R of the points fixed at x_n: its gradient and Hessian.
         auto valueAt = [&](const Eigen::VectorXd& d) {
           Stage moved = c;
-          moved.a.p += d.head<3>();
-          moved.a.R = ExpSo3(d.segment<3>(3)) * moved.a.R;
-          if (c.bDynamic) {
-            moved.b.p += d.segment<3>(6);
-            moved.b.R = ExpSo3(d.segment<3>(9)) * moved.b.R;
-          }
+          test::RetractPair(d, c.bDynamic, &moved.a, &moved.b);
           return Dissipation(exact, moved, setup, 0).value;
         };
         const auto check = test::CheckDerivatives(valueAt, cap.residual, cap.jacobian, 1e-7);
