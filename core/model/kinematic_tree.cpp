@@ -12,11 +12,12 @@
 namespace superdex {
 namespace {
 
-Eigen::Matrix3d RotationAt(const Eigen::VectorXd& q, int offset) {
+Eigen::Matrix3d RotationAt(const Eigen::Ref<const Eigen::VectorXd>& q, int offset) {
   return Eigen::Map<const Eigen::Matrix3d>(q.data() + offset);
 }
 
-void SetRotation(const Eigen::Matrix3d& R, int offset, Eigen::VectorXd* q) {
+template <typename Vector>
+void SetRotation(const Eigen::Matrix3d& R, int offset, Vector* q) {
   Eigen::Map<Eigen::Matrix3d>(q->data() + offset) = R;
 }
 
@@ -121,28 +122,26 @@ Eigen::VectorXd KinematicTree::ZeroConfiguration() const {
   return q;
 }
 
-void KinematicTree::Retract(const Eigen::VectorXd& q, const Eigen::VectorXd& delta,
-                            Eigen::VectorXd* out) const {
-  *out = q;
+void KinematicTree::Retract(ConstRef q, ConstRef delta, Eigen::Ref<Eigen::VectorXd> out) const {
+  out = q;
   for (int l = 0; l < NumLinks(); ++l) {
     const int o = coordinateOffset_[l], t = tangentOffset_[l];
     switch (joints_[l].type) {
       case JointType::Fixed: break;
       case JointType::Revolute:
-      case JointType::Prismatic: (*out)[o] += delta[t]; break;
+      case JointType::Prismatic: out[o] += delta[t]; break;
       case JointType::Spherical:
-        SetRotation(ExpSo3(delta.segment<3>(t)) * RotationAt(q, o), o, out);
+        SetRotation(ExpSo3(delta.segment<3>(t)) * RotationAt(q, o), o, &out);
         break;
       case JointType::Free:
-        out->segment<3>(o) += delta.segment<3>(t);
-        SetRotation(ExpSo3(delta.segment<3>(t + 3)) * RotationAt(q, o + 3), o + 3, out);
+        out.segment<3>(o) += delta.segment<3>(t);
+        SetRotation(ExpSo3(delta.segment<3>(t + 3)) * RotationAt(q, o + 3), o + 3, &out);
         break;
     }
   }
 }
 
-void KinematicTree::TangentBetween(const Eigen::VectorXd& from, const Eigen::VectorXd& to,
-                                   Eigen::VectorXd* delta) const {
+void KinematicTree::TangentBetween(ConstRef from, ConstRef to, Eigen::VectorXd* delta) const {
   delta->setZero(numTangent_);
   for (int l = 0; l < NumLinks(); ++l) {
     const int o = coordinateOffset_[l], t = tangentOffset_[l];
@@ -162,7 +161,7 @@ void KinematicTree::TangentBetween(const Eigen::VectorXd& from, const Eigen::Vec
   }
 }
 
-void KinematicTree::Evaluate(const Eigen::VectorXd& q, KinematicFrames* frames) const {
+void KinematicTree::Evaluate(ConstRef q, KinematicFrames* frames) const {
   frames->link.resize(NumLinks());
   frames->twist.assign(numTangent_, JointTwist());
   for (int l = 0; l < NumLinks(); ++l) {
@@ -205,11 +204,10 @@ void KinematicTree::Evaluate(const Eigen::VectorXd& q, KinematicFrames* frames) 
   }
 }
 
-Eigen::MatrixXd KinematicTree::PointJacobian(const KinematicFrames& frames, int l,
-                                             const Eigen::Vector3d& x) const {
-  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(3, numTangent_);
-  for (int k : ancestorDofs_[l]) J.col(k) = frames.twist[k].w.cross(x) + frames.twist[k].v;
-  return J;
+void KinematicTree::PointJacobian(const KinematicFrames& frames, int l, const Eigen::Vector3d& x,
+                                  Eigen::MatrixXd* J) const {
+  J->setZero(3, numTangent_);
+  for (int k : ancestorDofs_[l]) J->col(k) = frames.twist[k].w.cross(x) + frames.twist[k].v;
 }
 
 void KinematicTree::AddPointCurvature(const KinematicFrames& frames, int l,
@@ -235,14 +233,13 @@ void KinematicTree::AddPointCurvature(const KinematicFrames& frames, int l,
   }
 }
 
-Eigen::MatrixXd KinematicTree::LinkChartJacobian(const KinematicFrames& frames, int l,
-                                                 const Eigen::Vector3d& c) const {
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(6, numTangent_);
+void KinematicTree::LinkChartJacobian(const KinematicFrames& frames, int l,
+                                      const Eigen::Vector3d& c, Eigen::MatrixXd* A) const {
+  A->setZero(6, numTangent_);
   for (int k : ancestorDofs_[l]) {
-    A.block<3, 1>(0, k) = frames.twist[k].w.cross(c) + frames.twist[k].v;
-    A.block<3, 1>(3, k) = frames.twist[k].w;
+    A->block<3, 1>(0, k) = frames.twist[k].w.cross(c) + frames.twist[k].v;
+    A->block<3, 1>(3, k) = frames.twist[k].w;
   }
-  return A;
 }
 
 void KinematicTree::AddLinkChartCurvature(const KinematicFrames& frames, int l,

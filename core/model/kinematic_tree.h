@@ -97,25 +97,30 @@ class KinematicTree {
   const std::vector<int>& AncestorDofs(int l) const { return ancestorDofs_[l]; }
   int GroupOf(int dof) const { return group_[dof]; }
 
+  using ConstRef = Eigen::Ref<const Eigen::VectorXd>;
+
   /// The zero configuration: every angle and offset 0, every rotation the identity.
   Eigen::VectorXd ZeroConfiguration() const;
-  /// *out = q ⊕ δ (the joints' own rules above).
-  void Retract(const Eigen::VectorXd& q, const Eigen::VectorXd& delta, Eigen::VectorXd* out) const;
+  /// out = q ⊕ δ (the joints' own rules above); out has NumCoordinates entries and may not alias q.
+  void Retract(ConstRef q, ConstRef delta, Eigen::Ref<Eigen::VectorXd> out) const;
+  void Retract(ConstRef q, ConstRef delta, Eigen::VectorXd* out) const {
+    out->resize(numCoordinates_);
+    Retract(q, delta, Eigen::Ref<Eigen::VectorXd>(*out));
+  }
   /// The tangent step from `from` to `to` (the inverse of Retract; rotations by their logarithm).
-  void TangentBetween(const Eigen::VectorXd& from, const Eigen::VectorXd& to,
-                      Eigen::VectorXd* delta) const;
+  void TangentBetween(ConstRef from, ConstRef to, Eigen::VectorXd* delta) const;
   /// Forward kinematics at q: link poses and dof twists.
-  void Evaluate(const Eigen::VectorXd& q, KinematicFrames* frames) const;
+  void Evaluate(ConstRef q, KinematicFrames* frames) const;
 
   /// ∂x/∂δ (3 × NumTangentDofs, zero outside AncestorDofs(l)) of the world point x of link l.
-  Eigen::MatrixXd PointJacobian(const KinematicFrames& frames, int l,
-                                const Eigen::Vector3d& x) const;
+  void PointJacobian(const KinematicFrames& frames, int l, const Eigen::Vector3d& x,
+                     Eigen::MatrixXd* J) const;
   /// Adds Σ_jk f·∂²x/∂δ_j∂δ_k into *H (NumTangentDofs square) for the world point x of link l.
   void AddPointCurvature(const KinematicFrames& frames, int l, const Eigen::Vector3d& x,
                          const Eigen::Vector3d& f, Eigen::MatrixXd* H) const;
   /// A (6 × NumTangentDofs): the rigid chart [δc; δφ] of link l about the world point c per δ.
-  Eigen::MatrixXd LinkChartJacobian(const KinematicFrames& frames, int l,
-                                    const Eigen::Vector3d& c) const;
+  void LinkChartJacobian(const KinematicFrames& frames, int l, const Eigen::Vector3d& c,
+                         Eigen::MatrixXd* A) const;
   /// Adds Σ_jk (f·∂²c/∂δ_j∂δ_k + τ·∂²φ/∂δ_j∂δ_k) into *H for link l's chart about c.
   void AddLinkChartCurvature(const KinematicFrames& frames, int l, const Eigen::Vector3d& c,
                              const Eigen::Vector3d& f, const Eigen::Vector3d& tau,

@@ -141,7 +141,9 @@ TEST_CASE("a material point's Jacobian and curvature match central differences o
     const Eigen::Vector3d X = 0.5 * test::UniformVector(3, rng);
     const Eigen::Vector3d load = test::UniformVector(3, rng);
     const Eigen::Vector3d x = f.link[l].p + f.link[l].R * X;
-    const Eigen::VectorXd g = tree.PointJacobian(f, l, x).transpose() * load;
+    Eigen::MatrixXd J;
+    tree.PointJacobian(f, l, x, &J);
+    const Eigen::VectorXd g = J.transpose() * load;
     Eigen::MatrixXd H = Eigen::MatrixXd::Zero(n, n);
     tree.AddPointCurvature(f, l, x, load, &H);
     const auto value = [&](const Eigen::VectorXd& d) {
@@ -176,7 +178,8 @@ TEST_CASE("a link's inertia carried through its chart has the exact Hessian in t
     };
     const RigidInertiaTerm e = energy(f.link[l], true);
     const Eigen::Vector3d c = f.link[l].p + f.link[l].R * com;
-    const Eigen::MatrixXd chart = tree.LinkChartJacobian(f, l, c);
+    Eigen::MatrixXd chart;
+    tree.LinkChartJacobian(f, l, c, &chart);
     const Eigen::VectorXd g = chart.transpose() * e.gradient;
     Eigen::MatrixXd H = chart.transpose() * e.hessian * chart;
     tree.AddLinkChartCurvature(f, l, c, e.gradient.head<3>(), e.gradient.tail<3>(), &H);
