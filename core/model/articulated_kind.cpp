@@ -11,6 +11,7 @@
 
 #include "core/model/rigid_kind.h"
 #include "core/model/rigid_math.h"
+#include "energies/joint_energies.h"
 #include "energies/psd_projection.h"
 #include "energies/rigid_inertia.h"
 
@@ -97,7 +98,18 @@ std::unique_ptr<ArticulatedKind> ArticulatedKind::Build(const ArticulatedActorDe
       Fail(error, who + LinkName(desc, l) + ": " + m);
       return nullptr;
     }
+    if (std::string m = superdex::Validate(d.jointParams, "joint_params."); !m.empty()) {
+      Fail(error, who + LinkName(desc, l) + ": " + m);
+      return nullptr;
+    }
+    const JointType type = d.joint.type;
+    if (d.jointParams.Active() && type != JointType::Revolute && type != JointType::Prismatic) {
+      Fail(error, who + LinkName(desc, l) + ": joint_params: limits, damping and drives are for " +
+                      "Revolute and Prismatic joints, the joint is " + ToString(type));
+      return nullptr;
+    }
     Link link;
+    link.joint = d.jointParams;
     link.mass = d.mass;
     link.com = d.centerOfMass;
     link.secondMoment = 0.5 * d.inertia.trace() * Eigen::Matrix3d::Identity() - d.inertia;
@@ -267,11 +279,81 @@ double ArticulatedKind::StageEnergy(const KindStageData& stage, const Eigen::Vec
     if (projection == PsdProjection::None)
       tree_.AddLinkChartCurvature(s.frames, l, c, load.head<3>(), load.tail<3>(), &s.hessian);
   }
+  value += JointTerms(stage, q, order, g, &s.hessian);
   if (order >= 2) {
     for (int j = 0; j < m; ++j)  // every entry: the pattern stays the same from stage to stage
       for (int i = 0; i < m; ++i) H->emplace_back(i, j, s.hessian(i, j));
   }
   return value;
+}
+
+namespace {
+
+/// A drive's stage law: a = k_p + k_d/Δt and x_eq (energies/joint_energies.h, DriveEnergy) at time
+/// t from the stage start x⁰.
+struct DriveLaw {
+  double a = 0.0;
+  double xEq = 0.0;
+};
+
+double TargetVelocity(const JointParams& p, double t) {
+  return p.driveTargetVelocity.empty() ? PiecewiseSlope(p.driveTargetPosition, t)
+                                       : PiecewiseLinear(p.driveTargetVelocity, t);
+}
+
+DriveLaw DriveAt(const JointParams& p, double t, double dt, double x0) {
+  DriveLaw law;
+  const double kd = p.driveDamping / dt;
+  law.a = p.driveStiffness + kd;
+  law.xEq = (p.driveStiffness * PiecewiseLinear(p.driveTargetPosition, t) +
+             kd * (x0 + dt * TargetVelocity(p, t))) / law.a;
+  return law;
+}
+
+}  // namespace
+
+double ArticulatedKind::JointTerms(const KindStageData& stage, const Eigen::VectorXd& q, int order,
+                                   Eigen::VectorXd* g, Eigen::MatrixXd* H) const {
+  double value = 0.0;
+  for (int l = 0; l < NumLinks(); ++l) {
+    const JointParams& p = links_[l].joint;
+    if (!p.Active()) continue;  // (only 1-dof joints have active terms: Build)
+    const int o = tree_.CoordinateOffset(l), t = tree_.TangentOffset(l);
+    const double x = q[o], x0 = stage.q0[o];
+    JointEnergy e = JointLimitEnergy(x, p.lowerLimit, p.upperLimit, p.limitStiffness);
+    if (p.damping > 0.0) {
+      const double c = p.damping / stage.dt;
+      e.value += 0.5 * c * (x - x0) * (x - x0);
+      e.d1 += c * (x - x0);
+      e.d2 += c;
+    }
+    if (p.driveStiffness > 0.0 || p.driveDamping > 0.0) {
+      const DriveLaw law = DriveAt(p, stage.time, stage.dt, x0);
+      const JointEnergy d = DriveEnergy(x, law.xEq, law.a, p.driveForceLimit);
+      e.value += d.value;
+      e.d1 += d.d1;
+      e.d2 += d.d2;
+    }
+    value += e.value;
+    if (order >= 1) (*g)[t] += e.d1;
+    if (order >= 2) (*H)(t, t) += e.d2;
+  }
+  return value;
+}
+
+Eigen::VectorXd ArticulatedKind::DriveForces(const KindState& s, double t) const {
+  Eigen::VectorXd F = Eigen::VectorXd::Zero(NumTangentDofs());
+  Eigen::VectorXd u;
+  for (int l = 0; l < NumLinks(); ++l) {
+    const JointParams& p = links_[l].joint;
+    if (!(p.driveStiffness > 0.0 || p.driveDamping > 0.0)) continue;
+    if (u.size() == 0) u = JointVelocities(s);
+    const int o = tree_.CoordinateOffset(l), k = tree_.TangentOffset(l);
+    const double f = -p.driveStiffness * (s.x[o] - PiecewiseLinear(p.driveTargetPosition, t)) -
+                     p.driveDamping * (u[k] - TargetVelocity(p, t));
+    F[k] = std::clamp(f, -p.driveForceLimit, p.driveForceLimit);
+  }
+  return F;
 }
 
 void ArticulatedKind::Retract(const Eigen::VectorXd& q, const Eigen::VectorXd& delta,

@@ -10,8 +10,11 @@
 // material points' own, exactly as for a rigid body. The stage unknowns are the joint
 // coordinates' tangent step δ (kinematic_tree.h); joints hold exactly by construction.
 // Stage energy, over the links of mass m_l > 0 with second moment J_l about the centre of mass:
-//   Φ(q_J) = Σ_l [ 1/(2Δt_i²) (m_l ‖c_l − ĉ_l‖² + tr((R_l − R̂_l) J_l (R_l − R̂_l)ᵀ)) − m_l g·c_l ]   [J]
-// (energies/rigid_inertia.h per link), with its exact gradient and Hessian in δ: each link's
+//   Φ(q_J) = Σ_l [ 1/(2Δt_i²) (m_l ‖c_l − ĉ_l‖² + tr((R_l − R̂_l) J_l (R_l − R̂_l)ᵀ)) − m_l g·c_l ]
+//            + Σ_joints [ U_limit(x) + c/(2Δt_i) (x − x⁰)² + U_drive(x) ]                    [J]
+// (energies/rigid_inertia.h per link; a 1-dof joint's coordinate x with its stage start x⁰: the
+// limits' penalty, viscous damping as the incremental potential of ½ c ẋ², and the PD drive's
+// implicit potential, energies/joint_energies.h), with its exact gradient and Hessian in δ: each link's
 // chart gradient (f, τ) and Hessian carried through its chart Jacobian A_l plus the forward
 // kinematics' curvature (KinematicTree::AddLinkChartCurvature). The exact Hessian is indefinite
 // at speed even at the stage start (the curvature −m ẋ·∂²x/Δt_i against M/Δt_i²: a spinning
@@ -40,6 +43,7 @@
 
 #include "core/model/actor_kind.h"
 #include "core/model/error.h"
+#include "core/model/joint_params.h"
 #include "core/model/kinematic_tree.h"
 
 namespace superdex {
@@ -51,6 +55,8 @@ struct ArticulatedLinkDesc {
   double mass = 1.0;                                         ///< [kg], >= 0
   Eigen::Vector3d centerOfMass = Eigen::Vector3d::Zero();    ///< link frame [m]
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Identity();     ///< about the centre of mass, link frame [kg·m²]
+  /// Limits, damping and a drive of the joint's coordinate (Revolute and Prismatic joints).
+  JointParams jointParams;
 };
 
 struct ArticulatedActorDesc {
@@ -77,6 +83,9 @@ class ArticulatedKind : public ActorKind {
   /// The joint velocities u (tangent layout) of a state: M u = Σ_l A_lᵀ [m_l ċ_l; L_l], exact for
   /// a state the kind wrote (its link velocities are then A_l u).
   Eigen::VectorXd JointVelocities(const KindState& s) const;
+  /// The drive forces (tangent layout; 0 where no drive) of state s at time t [s]:
+  /// F = −k_p (x − x*(t)) − k_d (ẋ − v*(t)), capped at the force limit [N·m or N].
+  Eigen::VectorXd DriveForces(const KindState& s, double t) const;
 
   std::string KindName() const override { return "articulated"; }
   std::unique_ptr<ActorKind> Clone() const override;
@@ -126,6 +135,7 @@ class ArticulatedKind : public ActorKind {
     Eigen::Vector3d com = Eigen::Vector3d::Zero();          ///< link frame
     Eigen::Matrix3d secondMoment = Eigen::Matrix3d::Zero(); ///< J = ∫ X Xᵀ dm about the com
     double radius = 0.0;                                    ///< RMS radius √(tr J / m)
+    JointParams joint;
   };
   ArticulatedKind() = default;
   int LinkOffset(int l) const { return tree_.NumCoordinates() + 12 * l; }
@@ -139,6 +149,9 @@ class ArticulatedKind : public ActorKind {
   void GeneralizedMomentum(const KinematicFrames& frames, const Eigen::VectorXd& q,
                            const Eigen::VectorXd& linkMomenta, Eigen::MatrixXd* M,
                            Eigen::VectorXd* p) const;
+  /// Σ of the joints' limit, damping and drive terms at q (derivatives into g and H's diagonal).
+  double JointTerms(const KindStageData& stage, const Eigen::VectorXd& q, int order,
+                    Eigen::VectorXd* g, Eigen::MatrixXd* H) const;
   /// Link momenta [m ċ; L] (6 per link) of the link velocities in (q, v).
   Eigen::VectorXd LinkMomenta(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const;
 

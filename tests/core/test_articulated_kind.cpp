@@ -3,8 +3,18 @@
 //
 // Expectations:
 //   - the stage energy's gradient and exact Hessian in the joints' tangent step equal central
-//     differences of Φ(q ⊕ δ) on a tree of every joint type (relative 1e-7 and 1e-5), and the
-//     projected Hessian is positive semi-definite;
+//     differences of Φ(q ⊕ δ) on a tree of every joint type (relative 1e-7 and 1e-5), with a
+//     joint beyond its limit, damped and driven along a moving target, and one driven past its
+//     force limit; the projected Hessian is positive semi-definite;
+//   - a lower limit holds a pendulum at its balance k (x_lim − x) = m g L_c sin x, within 1e-7 rad
+//     (the penalty's compliance: 2.4e-4 rad from the limit at k = 1e4 N·m/rad);
+//   - a PD drive with k_d = 2√(k_p I) (critical damping, I the link's inertia about the joint)
+//     follows x* − (x* − x₀)(1 + t/τ) e^{−t/τ}, τ = √(I/k_p), within 1e-3 rad over 1 s (BDF2,
+//     Δt = 1e-3 s); with a force limit F_max it starts at the constant acceleration F_max/I
+//     (x − x₀ = F_max t²/(2I) within 1 % at 0.05 s); a drive holding a pendulum horizontal reports
+//     the gravity torque m g L_c (1e-6 relative);
+//   - viscous damping c on a small-amplitude pendulum decays its amplitude by e^{−c t/(2I)}
+//     (within 0.5 % over 4 s);
 //   - a compound pendulum (a sphere of radius r = 0.05 m and mass 1 kg whose centre hangs L = 1 m
 //     below a revolute pivot; inertia about its centre 2/5 m r²) swings with the period of the
 //     equivalent simple pendulum of length L_eq = L + k²/L, k² = 2/5 r²:
@@ -98,6 +108,18 @@ TEST_CASE("an articulated kind's stage energy has the exact gradient and Hessian
     link.inertia = Eigen::Vector3d(0.02, 0.03, 0.04).asDiagonal();
     desc.links.push_back(link);
   }
+  // Joint terms on the two 1-dof joints: the revolute one beyond a limit, damped and driven; the
+  // prismatic one driven past its force limit.
+  JointParams& hinge = desc.links[1].jointParams;
+  hinge.upperLimit = -2.0;
+  hinge.damping = 3.0;
+  hinge.driveStiffness = 50.0;
+  hinge.driveDamping = 2.0;
+  hinge.driveTargetPosition = {{0.0, 0.1}, {1.0, 0.7}};
+  JointParams& slider = desc.links[3].jointParams;
+  slider.driveStiffness = 400.0;
+  slider.driveForceLimit = 1.0;
+  slider.driveTargetPosition = {{0.0, 3.0}};
   Error error;
   auto kind = ArticulatedKind::Build(desc, &error);
   REQUIRE(kind);
@@ -106,6 +128,8 @@ TEST_CASE("an articulated kind's stage energy has the exact gradient and Hessian
   kind->Retract(kind->InitialState().x, test::UniformVector(m, rng), &q);
   KindStageData stage;
   stage.dt = 0.01;
+  stage.time = 0.3;
+  stage.q0 = q + 0.05 * test::UniformVector(q.size(), rng);
   stage.gravity = Eigen::Vector3d(0, 0, -9.81);
   Eigen::VectorXd qTarget;  // the links' targets: another configuration, moved off the manifold
   kind->Retract(q, 0.3 * test::UniformVector(m, rng), &qTarget);
@@ -290,6 +314,138 @@ TEST_CASE("an articulated description names the link and the rule it breaks",
     CHECK_FALSE(ArticulatedKind::Build(desc, &error));
     CHECK_THAT(error.message, Catch::Contains("earlier link"));
   }
+}
+
+}  // namespace
+}  // namespace superdex
+
+namespace superdex {
+namespace {
+
+/// A scene of one articulated actor; the kind in the scene, its handle and the scene.
+struct OneArticulation {
+  explicit OneArticulation(const ArticulatedActorDesc& desc, SceneSettings settings = {})
+      : scene(settings) {
+    Error error;
+    handle = scene.AddActor(ArticulatedKind::Build(desc, &error), &error);
+    REQUIRE(error.ok());
+    kind = dynamic_cast<const ArticulatedKind*>(&scene.Kind(handle));
+    REQUIRE(kind);
+  }
+  double Position(int k = 0) const { return kind->JointPositions(scene.KindStateOf(handle).x)[k]; }
+  Scene scene;
+  ActorHandle handle;
+  const ArticulatedKind* kind = nullptr;
+};
+
+/// A link of mass 1 kg whose centre lies L_c = 0.5 m from a revolute joint about y at the origin
+/// (a sphere of radius 0.05 m): inertia about the joint I = m L_c² + 2/5 m r².
+ArticulatedLinkDesc Arm() {
+  ArticulatedLinkDesc link = Bob(JointType::Revolute, -1, Eigen::Vector3d::Zero(), 0.5);
+  return link;
+}
+constexpr double kArmInertia = 0.25 + 0.4 * 0.05 * 0.05;
+
+TEST_CASE("a joint limit holds a pendulum at the penalty's balance", "[core][articulated]") {
+  ArticulatedActorDesc desc;
+  desc.links.push_back(Arm());
+  desc.links[0].jointParams.lowerLimit = 0.5;
+  desc.links[0].jointParams.limitStiffness = 1e4;
+  desc.links[0].jointParams.damping = 2.0;
+  desc.jointPositions = Eigen::VectorXd::Constant(1, 0.5);
+  OneArticulation a(desc);
+  CHECK(Run(&a.scene, 1e-2, 3.0, [] {}));
+  // Balance: k (0.5 − x) = m g L_c sin x, by Newton.
+  const double k = 1e4, mgl = 9.81 * 0.5;
+  double x = 0.5;
+  for (int i = 0; i < 20; ++i) x -= (k * (0.5 - x) - mgl * std::sin(x)) / (-k - mgl * std::cos(x));
+  INFO("rests at " << a.Position() << " rad, balance " << x << " rad");
+  CHECK(std::abs(a.Position() - x) <= 1e-7);
+  CHECK(0.5 - x == Approx(mgl * std::sin(0.5) / k).epsilon(1e-2));
+}
+
+TEST_CASE("a critically damped PD drive settles with its time constant", "[core][articulated]") {
+  const double kp = 100.0, tau = std::sqrt(kArmInertia / kp);
+  SceneSettings settings;
+  settings.gravity.setZero();
+  ArticulatedActorDesc desc;
+  desc.links.push_back(Arm());
+  JointParams& drive = desc.links[0].jointParams;
+  drive.driveStiffness = kp;
+  drive.driveDamping = 2.0 * std::sqrt(kp * kArmInertia);
+  drive.driveTargetPosition = {{0.0, 1.0}};
+  OneArticulation a(desc, settings);
+  double t = 0.0, err = 0.0;
+  CHECK(Run(&a.scene, 1e-3, 1.0, [&] {
+    t += 1e-3;
+    const double expected = 1.0 - (1.0 + t / tau) * std::exp(-t / tau);
+    err = std::max(err, std::abs(a.Position() - expected));
+  }));
+  INFO("largest deviation " << err << " rad, tau " << tau << " s");
+  CHECK(err <= 1e-3);
+}
+
+TEST_CASE("a drive's force limit caps its acceleration", "[core][articulated]") {
+  SceneSettings settings;
+  settings.gravity.setZero();
+  ArticulatedActorDesc desc;
+  desc.links.push_back(Arm());
+  JointParams& drive = desc.links[0].jointParams;
+  drive.driveStiffness = 1e4;
+  drive.driveDamping = 10.0;
+  drive.driveForceLimit = 0.5;
+  drive.driveTargetPosition = {{0.0, 1.0}};
+  OneArticulation a(desc, settings);
+  CHECK(Run(&a.scene, 1e-3, 0.05, [] {}));
+  const double expected = 0.5 / kArmInertia * 0.05 * 0.05 / 2.0;
+  CHECK(a.Position() == Approx(expected).epsilon(1e-2));
+  CHECK(a.kind->DriveForces(a.scene.KindStateOf(a.handle), a.scene.Time())[0] ==
+        Approx(0.5).epsilon(1e-12));
+}
+
+TEST_CASE("a drive holding a pendulum horizontal reports the gravity torque",
+          "[core][articulated]") {
+  ArticulatedActorDesc desc;
+  desc.links.push_back(Arm());
+  JointParams& drive = desc.links[0].jointParams;
+  drive.driveStiffness = 1e3;
+  drive.driveDamping = 20.0;
+  drive.driveTargetPosition = {{0.0, 0.5 * kPi}};
+  desc.jointPositions = Eigen::VectorXd::Constant(1, 0.5 * kPi);
+  OneArticulation a(desc);
+  CHECK(Run(&a.scene, 1e-2, 3.0, [] {}));
+  const double x = a.Position();
+  const double F = a.kind->DriveForces(a.scene.KindStateOf(a.handle), a.scene.Time())[0];
+  CHECK(F == Approx(9.81 * 0.5 * std::sin(x)).epsilon(1e-6));
+  CHECK(0.5 * kPi - x == Approx(9.81 * 0.5 / 1e3).epsilon(1e-3));
+}
+
+TEST_CASE("joint damping decays a small swing at the viscous rate", "[core][articulated]") {
+  const double c = 0.02;
+  ArticulatedActorDesc desc;
+  desc.links.push_back(Arm());
+  desc.links[0].jointParams.damping = c;
+  desc.jointPositions = Eigen::VectorXd::Constant(1, 0.01);
+  SceneSettings settings;
+  settings.integrator = IntegrationMethod::SymplecticDIRK22;
+  OneArticulation a(desc, settings);
+  // Peaks of |x|: the amplitude, sampled at the extremes.
+  std::vector<std::pair<double, double>> peaks;
+  double t = 0.0, x1 = a.Position(), x2 = x1;
+  CHECK(Run(&a.scene, 1e-3, 4.5, [&] {
+    t += 1e-3;
+    const double x = a.Position();
+    if (std::abs(x1) >= std::abs(x2) && std::abs(x1) > std::abs(x) && t > 0.1)
+      peaks.emplace_back(t - 1e-3, std::abs(x1));
+    x2 = x1;
+    x1 = x;
+  }));
+  REQUIRE(peaks.size() >= 4);
+  const auto& [t0, a0] = peaks.front();
+  const auto& [tn, an] = peaks.back();
+  const double expected = std::exp(-c * (tn - t0) / (2.0 * kArmInertia));
+  INFO(peaks.size() << " peaks from " << t0 << " s to " << tn << " s");
+  CHECK(an / a0 == Approx(expected).epsilon(5e-3));
 }
 
 }  // namespace
