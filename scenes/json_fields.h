@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <climits>
 #include <cmath>
 #include <nlohmann/json.hpp>
@@ -203,6 +204,23 @@ void ReadFields(const json& j, const std::string& path, const Table& table, Clas
       static_assert(sizeof(T) == 0, "no scene-file reader for this field type");
     }
   });
+}
+
+/// "orientation" [x, y, z, w] or "euler_deg" [x, y, z] (intrinsic z-y'-x''; at most one; absent:
+/// the identity).
+inline Eigen::Quaterniond ReadOrientation(const json& j, const std::string& path) {
+  if (j.contains("orientation") && j.contains("euler_deg"))
+    Throw(path, "give at most one of \"orientation\" and \"euler_deg\"");
+  if (j.contains("euler_deg")) {
+    const Eigen::Vector3d e = Vector<3>(j, path, "euler_deg", Eigen::Vector3d::Zero()) * M_PI / 180.0;
+    return Eigen::AngleAxisd(e.z(), Eigen::Vector3d::UnitZ()) *
+           Eigen::AngleAxisd(e.y(), Eigen::Vector3d::UnitY()) *
+           Eigen::AngleAxisd(e.x(), Eigen::Vector3d::UnitX());
+  }
+  const Eigen::Vector4d q = Vector<4>(j, path, "orientation", Eigen::Vector4d(0, 0, 0, 1));
+  if (!(q.norm() > 0)) Throw(Join(path, "orientation"), "must be a non-zero quaternion [x, y, z, w]");
+  // As given: the actor normalizes it once when it is built, as for a description from Python.
+  return Eigen::Quaterniond(q[3], q[0], q[1], q[2]);
 }
 
 }  // namespace superdex::scene_json

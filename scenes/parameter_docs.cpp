@@ -4,6 +4,7 @@
 #include "core/model/collider_params.h"
 #include "core/model/contact_params.h"
 #include "core/model/eval_params.h"
+#include "core/model/joint_params.h"
 #include "core/model/soft_body.h"
 #include "core/sensitivity/sensitivity.h"
 #include "optim/newton_solver.h"
@@ -38,6 +39,11 @@ void PrintParameterMarkdown(std::ostream& out) {
           "(`RigidActorDesc.contact`, `SoftActorDesc.contact`, `Actor.contact_params`). "
           "Source: `core/model/contact_params.h`.",
           kContactParamsFields);
+  Section(out, "JointParams",
+          "Scene file: `actors[i].links[j].joint_params` (articulated actors; Revolute and "
+          "Prismatic joints). Limits absent: none; drive targets are keyframes, not table rows "
+          "(docs/scene-format.md). Source: `core/model/joint_params.h`.",
+          kJointParamsFields);
   Section(out, "SoftMaterial",
           "Scene file: `actors[i].material` (soft actors). Python: `superdex.SoftMaterial` "
           "(`SoftActorDesc.material`). Source: `core/model/soft_body.h`.",

@@ -13,6 +13,7 @@ std::string Name(const SceneFile& file, int i) { return "'" + file.actorNames[i]
 
 // The smallest half extent of actor i [m]; +∞ for a plane.
 double HalfExtent(const Scene& scene, int i) {
+  if (scene.IsKind({i})) return INFINITY;  // no shape of its own
   if (scene.IsSoft({i})) {
     const Aabb b = scene.SoftModel({i}).rest.Bounds();
     return 0.5 * (b.max - b.min).minCoeff();
@@ -33,7 +34,15 @@ std::string CheckActor(const SceneFile& file, int i) {
   const Eigen::Vector3d g = scene.Settings().gravity;
   double kinetic = 0.0, gravity = 0.0;
   bool finite = true;
-  if (scene.IsSoft({i})) {
+  if (scene.IsKind({i})) {
+    const ActorKind& kind = scene.Kind({i});
+    const KindState& s = scene.KindStateOf({i});
+    finite = s.x.allFinite() && s.v.allFinite();
+    if (finite) {
+      kinetic = kind.KineticEnergy(s);
+      gravity = kind.GravityEnergy(s, g);
+    }
+  } else if (scene.IsSoft({i})) {
     const SoftBodyModel& m = scene.SoftModel({i});
     const SoftBodyState& s = scene.SoftState({i});
     finite = s.x.allFinite() && s.v.allFinite();

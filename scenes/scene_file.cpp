@@ -14,6 +14,7 @@
 #include "scenes/grid_copies.h"
 #include "scenes/json_fields.h"
 #include "scenes/json_text.h"
+#include "scenes/articulated_spec.h"
 #include "scenes/soft_mesh_spec.h"
 
 namespace superdex {
@@ -68,21 +69,6 @@ RigidShape ReadShape(const json& j, const std::string& path, const std::string& 
     Throw(Join(path, "type"), "unknown value \"" + type + "\" (expected one of: sphere, box, plane, mesh)");
   }
   return s;
-}
-
-Eigen::Quaterniond ReadOrientation(const json& j, const std::string& path) {
-  if (j.contains("orientation") && j.contains("euler_deg"))
-    Throw(path, "give at most one of \"orientation\" and \"euler_deg\"");
-  if (j.contains("euler_deg")) {
-    const Eigen::Vector3d e = Vector<3>(j, path, "euler_deg", Eigen::Vector3d::Zero()) * M_PI / 180.0;
-    return Eigen::AngleAxisd(e.z(), Eigen::Vector3d::UnitZ()) *
-           Eigen::AngleAxisd(e.y(), Eigen::Vector3d::UnitY()) *
-           Eigen::AngleAxisd(e.x(), Eigen::Vector3d::UnitX());
-  }
-  const Eigen::Vector4d q = Vector<4>(j, path, "orientation", Eigen::Vector4d(0, 0, 0, 1));
-  if (!(q.norm() > 0)) Throw(Join(path, "orientation"), "must be a non-zero quaternion [x, y, z, w]");
-  // As given: the actor normalizes it once when it is built, as for a description from Python.
-  return Eigen::Quaterniond(q[3], q[0], q[1], q[2]);
 }
 
 GridSdfParams ReadGridSdf(const json& g, const std::string& gp) {
@@ -190,7 +176,7 @@ RigidActorDesc ReadRigidDesc(const json& a, const std::string& path, const std::
                "applied_torque"});
   const std::string type = String(a, path, "type", std::string("rigid"));
   if (type != "rigid")
-    Throw(Join(path, "type"), "unknown value \"" + type + "\" (supported: rigid, soft)");
+    Throw(Join(path, "type"), "unknown value \"" + type + "\" (supported: rigid, soft, articulated)");
   RigidActorDesc d;
   d.name = String(a, path, "name");
   d.kinematic = Bool(a, path, "kinematic", false);
@@ -274,6 +260,19 @@ void ReadActors(const json& actors, const std::string& baseDir, SceneFile* out) 
       const std::string name = String(a, path, "name");
       if (!names.insert(name).second) Throw(Join(path, "name"), "duplicate actor name \"" + name + "\"");
       ReadSoftActor(a, path, baseDir, parent, out);
+      continue;
+    }
+    if (a.is_object() && a.contains("type") && a.at("type") == "articulated") {
+      const ActorHandle parent = ReadParent(a, path, *out);
+      const ArticulatedActorDesc d = ReadArticulatedDesc(a, path);
+      if (!names.insert(d.name).second) Throw(Join(path, "name"), "duplicate actor name \"" + d.name + "\"");
+      Error err;
+      std::unique_ptr<ArticulatedKind> kind = ArticulatedKind::Build(d, &err);
+      if (!kind) throw LoadError{path + ": " + err.message};
+      const std::string layer = String(a, path, "contact_layer", std::string("default"));
+      if (!out->scene->AddActor(std::move(kind), &err, layer, parent).IsValid())
+        throw LoadError{path + ": " + err.message};
+      out->actorNames.push_back(d.name);
       continue;
     }
     const RigidActorDesc d = ReadRigidDesc(a, path, baseDir);

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/contact/contact_report.h"
+#include "core/model/articulated_kind.h"
 #include "scenes/version.h"
 
 namespace superdex {
@@ -29,6 +30,33 @@ double Single(double v) {
 
 void Push(json* flat, const Eigen::Vector3d& v) {
   for (int k = 0; k < 3; ++k) flat->push_back(Single(v[k]));
+}
+
+json Numbers(const Eigen::VectorXd& v) { return json(std::vector<double>(v.data(), v.data() + v.size())); }
+
+json Quaternion(const Eigen::Matrix3d& R) {
+  const Eigen::Quaterniond q(R);
+  return json::array({q.x(), q.y(), q.z(), q.w()});
+}
+
+// An articulated actor's frame: its centre of mass and velocity, each link's frame (its origin
+// and rotation), the joint coordinates, the joints' velocities (tangent layout) and the drives'
+// forces.
+json ArticulatedFrameJson(const Scene& scene, ActorHandle h, const ArticulatedKind& kind) {
+  const KindState& s = scene.KindStateOf(h);
+  json links = json::array();
+  for (int l = 0; l < kind.NumLinks(); ++l) {
+    const RigidPose pose = kind.LinkPose(s.x, l);
+    links.push_back({{"p", Vec(pose.p)}, {"q", Quaternion(pose.R)}});
+  }
+  const RigidPose root = kind.LinkPose(s.x, 0);
+  return {{"p", Vec(kind.CenterOfMass(s))},
+          {"q", Quaternion(root.R)},
+          {"v", Vec(kind.CenterOfMassVelocity(s))},
+          {"links", links},
+          {"joint_positions", Numbers(kind.JointPositions(s.x))},
+          {"joint_velocities", Numbers(kind.JointVelocities(s))},
+          {"drive_forces", Numbers(kind.DriveForces(s, scene.Time()))}};
 }
 
 json RigidShapeJson(const RigidBodyModel& m) {
@@ -141,6 +169,19 @@ std::string TrajectoryWriter::Header(const Scene& scene, const std::vector<std::
                         {"surface", SoftSurfaceJson(m, &surfaceNodes_[i])}});
       continue;
     }
+    if (const auto* art = dynamic_cast<const ArticulatedKind*>(&scene.Kind({i}))) {
+      json links = json::array();
+      double mass = 0.0;
+      for (int l = 0; l < art->NumLinks(); ++l) {
+        links.push_back({{"name", art->LinkName(l)},
+                         {"joint", ToString(art->Tree().Joint(l).type)},
+                         {"mass", art->LinkMass(l)}});
+        mass += art->LinkMass(l);
+      }
+      actors.push_back({{"name", names[i]}, {"type", "articulated"}, {"dynamic", true},
+                        {"mass", mass}, {"links", links}});
+      continue;
+    }
     const RigidBodyModel& m = scene.Model({i});
     json a = {{"name", names[i]}, {"type", "rigid"}, {"dynamic", m.dynamic},
               {"mass", m.mass}, {"shape", RigidShapeJson(m)}};
@@ -213,6 +254,10 @@ bool TrajectoryWriter::WriteFrame(Scene& scene, long long step, const StepReport
       actors.push_back({{"p", Vec(scene.CenterOfMass({i}))},
                         {"v", Vec(scene.CenterOfMassVelocity({i}))},
                         {"surface", surface}});
+      continue;
+    }
+    if (const auto* art = dynamic_cast<const ArticulatedKind*>(&scene.Kind({i}))) {
+      actors.push_back(ArticulatedFrameJson(scene, {i}, *art));
       continue;
     }
     const RigidBodyState& s = scene.State({i});

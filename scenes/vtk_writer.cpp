@@ -1,5 +1,7 @@
 #include "scenes/vtk_writer.h"
 
+#include "core/model/articulated_kind.h"
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -82,6 +84,20 @@ bool WriteVtkFrame(Scene& scene, const std::string& path, Error* error) {
         s.traction.push_back(t[f]);
         s.referenceArea.push_back(m.faceArea[f]);
         s.actor.push_back(i);
+      }
+      continue;
+    }
+    if (const auto* art = dynamic_cast<const ArticulatedKind*>(&scene.Kind(h))) {
+      // Links have no shapes yet: each massive link is drawn as a sphere of its RMS radius about
+      // its centre of mass.
+      const Eigen::VectorXd& q = scene.KindStateOf(h).x;
+      for (int l = 0; l < art->NumLinks(); ++l) {
+        if (!(art->LinkRadius(l) > 0.0)) continue;
+        const RigidPose pose = art->LinkPose(q, l);
+        RigidBodyState st;
+        st.R = pose.R;
+        st.p = q.segment<3>(art->Tree().NumCoordinates() + 12 * l);
+        s.AddRigid(MakeIcosphere(art->LinkRadius(l), 2), Eigen::Vector3d::Zero(), st, i);
       }
       continue;
     }

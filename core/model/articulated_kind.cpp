@@ -50,7 +50,7 @@ bool IsRotationAt(const Eigen::VectorXd& q, int offset) {
          R.determinant() > 0.0;
 }
 
-std::string LinkName(const ArticulatedActorDesc& desc, int l) {
+std::string LinkLabel(const ArticulatedActorDesc& desc, int l) {
   std::ostringstream s;
   s << "link " << l;
   if (!desc.links[l].name.empty()) s << " ('" << desc.links[l].name << "')";
@@ -95,20 +95,21 @@ std::unique_ptr<ArticulatedKind> ArticulatedKind::Build(const ArticulatedActorDe
   for (int l = 0; l < kind->NumLinks(); ++l) {
     const ArticulatedLinkDesc& d = desc.links[l];
     if (std::string m = ValidateMass(d); !m.empty()) {
-      Fail(error, who + LinkName(desc, l) + ": " + m);
+      Fail(error, who + LinkLabel(desc, l) + ": " + m);
       return nullptr;
     }
     if (std::string m = superdex::Validate(d.jointParams, "joint_params."); !m.empty()) {
-      Fail(error, who + LinkName(desc, l) + ": " + m);
+      Fail(error, who + LinkLabel(desc, l) + ": " + m);
       return nullptr;
     }
     const JointType type = d.joint.type;
     if (d.jointParams.Active() && type != JointType::Revolute && type != JointType::Prismatic) {
-      Fail(error, who + LinkName(desc, l) + ": joint_params: limits, damping and drives are for " +
+      Fail(error, who + LinkLabel(desc, l) + ": joint_params: limits, damping and drives are for " +
                       "Revolute and Prismatic joints, the joint is " + ToString(type));
       return nullptr;
     }
     Link link;
+    link.name = d.name;
     link.joint = d.jointParams;
     link.mass = d.mass;
     link.com = d.centerOfMass;
@@ -129,7 +130,7 @@ std::unique_ptr<ArticulatedKind> ArticulatedKind::Build(const ArticulatedActorDe
     const JointType type = tree.Joint(l).type;
     const int o = tree.CoordinateOffset(l) + (type == JointType::Free ? 3 : 0);
     if ((type == JointType::Spherical || type == JointType::Free) && !IsRotationAt(qJ, o))
-      sizes << "joint_positions: the rotation of " << LinkName(desc, l) << "'s joint is not a "
+      sizes << "joint_positions: the rotation of " << LinkLabel(desc, l) << "'s joint is not a "
             << "rotation matrix";
   }
   if (!sizes.str().empty()) {
@@ -149,7 +150,7 @@ std::unique_ptr<ArticulatedKind> ArticulatedKind::Build(const ArticulatedActorDe
     if (!(M(k, k) > 1e-12 * std::max(M.diagonal().maxCoeff(), 1e-300))) {
       int owner = 0;
       while (owner + 1 < kind->NumLinks() && tree.TangentOffset(owner + 1) <= k) ++owner;
-      Fail(error, who + LinkName(desc, owner) + ": its joint moves no mass (every link it " +
+      Fail(error, who + LinkLabel(desc, owner) + ": its joint moves no mass (every link it " +
                       "carries has mass 0)");
       return nullptr;
     }

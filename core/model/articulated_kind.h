@@ -80,6 +80,10 @@ class ArticulatedKind : public ActorKind {
     return q.head(tree_.NumCoordinates());
   }
   RigidPose LinkPose(const Eigen::VectorXd& q, int l) const;
+  /// Link l's mass [kg], name and RMS radius √(tr J / m) [m] (0 for a massless link).
+  double LinkMass(int l) const { return links_[l].mass; }
+  const std::string& LinkName(int l) const { return links_[l].name; }
+  double LinkRadius(int l) const { return links_[l].radius; }
   /// The joint velocities u (tangent layout) of a state: M u = Σ_l A_lᵀ [m_l ċ_l; L_l], exact for
   /// a state the kind wrote (its link velocities are then A_l u).
   Eigen::VectorXd JointVelocities(const KindState& s) const;
@@ -136,6 +140,7 @@ class ArticulatedKind : public ActorKind {
     Eigen::Matrix3d secondMoment = Eigen::Matrix3d::Zero(); ///< J = ∫ X Xᵀ dm about the com
     double radius = 0.0;                                    ///< RMS radius √(tr J / m)
     JointParams joint;
+    std::string name;
   };
   ArticulatedKind() = default;
   int LinkOffset(int l) const { return tree_.NumCoordinates() + 12 * l; }

@@ -1,0 +1,173 @@
+// Articulated actors in scene files (scenes/articulated_spec.h, docs/scene-format.md).
+//
+// Expectations:
+//   - a pendulum written as a scene file follows the same trajectory, bit for bit, as the same
+//     pendulum built in C++ (ArticulatedKind::Build): the reader sets the joint type, origin, axis,
+//     mass properties, initial angle and velocity and the joint parameters as given;
+//   - every joint type reads its initial state (a free root's position, orientation and
+//     velocities; a spherical joint's orientation) into the tree's layout;
+//   - the shipped swinging arm runs with every stage converged, its trajectory carrying the link
+//     frames, joint positions, velocities and drive forces;
+//   - bad fields are refused with the JSON path and the rule (eleven cases).
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <string>
+
+#include "core/model/articulated_kind.h"
+#include "scenes/runner.h"
+#include "scenes/scene_file.h"
+
+using namespace superdex;
+
+namespace {
+
+const char* kPendulum = R"({
+  "settings": {"dt": 0.005, "duration": 0.5, "integrator": "BDF2"},
+  "actors": [
+    {"name": "pendulum", "type": "articulated", "links": [
+      {"name": "bob", "joint": "Revolute", "axis": [0, 2, 0],
+       "origin": {"position": [0, 0, 1], "euler_deg": [0, 0, 30]},
+       "mass": 2.0, "center_of_mass": [0, 0, -0.8], "inertia": [0.01, 0.02, 0.03],
+       "position": 0.4, "velocity": -0.5,
+       "joint_params": {"damping": 0.1, "upper_limit": 0.9, "limit_stiffness": 5000,
+                        "drive_stiffness": 3, "drive_target_position": [[0, 0.1], [1, 0.3]]}}
+    ]}
+  ]
+})";
+
+std::string Replace(std::string s, const std::string& from, const std::string& to) {
+  const size_t at = s.find(from);
+  REQUIRE(at != std::string::npos);
+  return s.replace(at, from.size(), to);
+}
+
+std::string LoadError(const std::string& text) {
+  SceneFile f;
+  Error e;
+  return LoadSceneText(text, ".", &f, &e) ? "<loaded>" : e.message;
+}
+
+}  // namespace
+
+TEST_CASE("an articulated actor read from a scene file is the one built in C++",
+          "[scenes][articulated]") {
+  SceneFile f;
+  Error e;
+  REQUIRE(LoadSceneText(kPendulum, ".", &f, &e));
+  ArticulatedActorDesc d;
+  ArticulatedLinkDesc link;
+  link.name = "bob";
+  link.joint.type = JointType::Revolute;
+  link.joint.axis = Eigen::Vector3d::UnitY();
+  link.joint.origin.p = Eigen::Vector3d(0, 0, 1);
+  link.joint.origin.R = Eigen::AngleAxisd(30.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  link.mass = 2.0;
+  link.centerOfMass = Eigen::Vector3d(0, 0, -0.8);
+  link.inertia = Eigen::Vector3d(0.01, 0.02, 0.03).asDiagonal();
+  link.jointParams.damping = 0.1;
+  link.jointParams.upperLimit = 0.9;
+  link.jointParams.limitStiffness = 5000;
+  link.jointParams.driveStiffness = 3;
+  link.jointParams.driveTargetPosition = {{0, 0.1}, {1, 0.3}};
+  d.name = "pendulum";
+  d.links.push_back(link);
+  d.jointPositions = Eigen::VectorXd::Constant(1, 0.4);
+  d.jointVelocities = Eigen::VectorXd::Constant(1, -0.5);
+  SceneSettings settings;
+  settings.integrator = IntegrationMethod::BDF2;
+  Scene built(settings);
+  const ActorHandle h = built.AddActor(ArticulatedKind::Build(d, &e), &e);
+  REQUIRE(e.ok());
+  for (int i = 0; i < 100; ++i) {
+    StepReport r1, r2;
+    REQUIRE(f.scene->Step(0.005, &r1, &e));
+    REQUIRE(built.Step(0.005, &r2, &e));
+    REQUIRE(r1.status == StageStatus::Converged);
+  }
+  CHECK(f.scene->KindStateOf({0}).x == built.KindStateOf(h).x);
+  CHECK(f.scene->KindStateOf({0}).v == built.KindStateOf(h).v);
+}
+
+TEST_CASE("a scene file sets every joint type's initial state", "[scenes][articulated]") {
+  const char* text = R"({
+    "settings": {"dt": 0.01, "duration": 0.01, "gravity": [0, 0, 0]},
+    "actors": [{"name": "chain", "type": "articulated", "links": [
+      {"name": "base", "joint": "Free", "mass": 1, "inertia": [0.1, 0.1, 0.1],
+       "position": [1, 2, 3], "euler_deg": [0, 0, 90], "velocity": [0.5, 0, 0],
+       "angular_velocity": [0, 0, 2]},
+      {"name": "ball", "parent": "base", "joint": "Spherical", "origin": {"position": [0, 0, -1]},
+       "mass": 1, "inertia": [0.1, 0.1, 0.1], "euler_deg": [90, 0, 0]},
+      {"name": "slide", "parent": "ball", "joint": "Prismatic", "axis": [1, 0, 0],
+       "mass": 1, "inertia": [0.1, 0.1, 0.1], "position": 0.25},
+      {"name": "weld", "parent": "slide", "joint": "Fixed", "mass": 0, "inertia": [0, 0, 0]}
+    ]}]
+  })";
+  SceneFile f;
+  Error e;
+  REQUIRE(LoadSceneText(text, ".", &f, &e));
+  const auto& kind = dynamic_cast<const ArticulatedKind&>(f.scene->Kind({0}));
+  const KindState& s = f.scene->KindStateOf({0});
+  const RigidPose base = kind.LinkPose(s.x, 0);
+  CHECK((base.p - Eigen::Vector3d(1, 2, 3)).norm() <= 1e-15);
+  CHECK((base.R * Eigen::Vector3d::UnitX() - Eigen::Vector3d::UnitY()).norm() <= 1e-15);
+  const RigidPose ball = kind.LinkPose(s.x, 1);
+  CHECK((ball.R * Eigen::Vector3d::UnitY() - Eigen::Vector3d::UnitZ()).norm() <= 1e-15);
+  const RigidPose slide = kind.LinkPose(s.x, 2);
+  CHECK((slide.p - (ball.p + 0.25 * ball.R * Eigen::Vector3d::UnitX())).norm() <= 1e-15);
+  const Eigen::VectorXd u = kind.JointVelocities(s);
+  CHECK((u.head<6>() - (Eigen::VectorXd(6) << 0.5, 0, 0, 0, 0, 2).finished()).norm() <= 1e-12);
+  CHECK(u.tail<4>().norm() <= 1e-12);
+}
+
+TEST_CASE("the shipped swinging arm runs converged and reports its joints",
+          "[scenes][articulated][shipped]") {
+  SceneFile f;
+  Error e;
+  REQUIRE(LoadSceneFile(std::string(SUPERDEX_SOURCE_DIR) + "/scenes/data/swinging_arm.json", &f, &e));
+  const std::string out = std::string(SUPERDEX_BINARY_DIR) + "/swinging_arm_test.jsonl";
+  RunOptions o;
+  o.out = out;
+  o.vtk = "";
+  RunSummary s;
+  REQUIRE(RunScene(&f, o, &s, &e));
+  CHECK(s.stopped + s.diverged == 0);
+  std::ifstream in(out);
+  std::string header, frame;
+  std::getline(in, header);
+  std::getline(in, frame);
+  CHECK(header.find(R"("type":"articulated")") != std::string::npos);
+  for (const char* key : {"\"links\"", "\"joint_positions\"", "\"joint_velocities\"", "\"drive_forces\""})
+    CHECK(frame.find(key) != std::string::npos);
+}
+
+TEST_CASE("bad articulated fields name the JSON path and the rule",
+          "[scenes][articulated][bad_input]") {
+  CHECK(LoadError(Replace(kPendulum, R"("joint": "Revolute")", R"("joint": "Hinge")")) ==
+        "actors[0].links[0].joint: unknown value \"Hinge\" (expected one of: Fixed, Revolute, "
+        "Prismatic, Spherical, Free)");
+  CHECK(LoadError(Replace(kPendulum, R"("axis": [0, 2, 0])", R"("axis": [0, 0, 0])")) ==
+        "actors[0].links[0].axis: must be a non-zero vector");
+  CHECK(LoadError(Replace(kPendulum, R"("axis": [0, 2, 0],)", "")) ==
+        "actors[0].links[0].axis: missing required field");
+  CHECK(LoadError(Replace(kPendulum, R"("mass": 2.0)", R"("mass": -2.0)")) ==
+        "actors[0]: articulation 'pendulum': link 0 ('bob'): mass must be finite and >= 0");
+  CHECK(LoadError(Replace(kPendulum, "[0.01, 0.02, 0.03]", "[0.01, 0.02, 0.5]")).find(
+            "link 0 ('bob'): inertia must be a physical inertia tensor") != std::string::npos);
+  CHECK(LoadError(Replace(kPendulum, R"("damping": 0.1)", R"("damping": -0.1)")) ==
+        "actors[0]: articulation 'pendulum': link 0 ('bob'): joint_params.damping: must be >= 0, "
+        "got -0.1");
+  CHECK(LoadError(Replace(kPendulum, R"("upper_limit": 0.9)", R"("upper_limit": 0.9, "lower_limit": 1.0)")) ==
+        "actors[0]: articulation 'pendulum': link 0 ('bob'): joint_params.upper_limit: must be >= "
+        "lower_limit (1), got 0.9");
+  CHECK(LoadError(Replace(kPendulum, "[[0, 0.1], [1, 0.3]]", "[[1, 0.1], [0, 0.3]]")) ==
+        "actors[0]: articulation 'pendulum': link 0 ('bob'): joint_params.drive_target_position: "
+        "keyframe times must increase");
+  CHECK(LoadError(Replace(kPendulum, R"("velocity": -0.5)", R"("angular_velocity": [0, 0, 1])")) ==
+        "actors[0].links[0].angular_velocity: a Revolute joint has no rotation");
+  CHECK(LoadError(Replace(kPendulum, R"("joint": "Revolute")", R"("joint": "Revolute", "parent": "arm")")) ==
+        "actors[0].links[0].parent: no earlier link named \"arm\"");
+  CHECK(LoadError(Replace(kPendulum, R"("mass": 2.0)", R"("mass": 2.0, "colour": "red")")) ==
+        "actors[0].links[0].colour: unknown field");
+}
