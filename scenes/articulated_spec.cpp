@@ -1,7 +1,10 @@
 // Reading an articulated actor of a scene file (articulated_spec.h).
 #include "scenes/articulated_spec.h"
 
+#include <filesystem>
 #include <vector>
+
+#include "scenes/urdf_reader.h"
 
 namespace superdex::scene_json {
 namespace {
@@ -21,6 +24,14 @@ ScalarKeyframes ReadScalarKeyframes(const json& obj, const std::string& path, co
     out.push_back({f[0].get<double>(), f[1].get<double>()});
   });
   return out;
+}
+
+JointParams ReadJointParams(const json& p, const std::string& pp) {
+  JointParams params;
+  ReadFields(p, pp, kJointParamsFields, &params, {"drive_target_position", "drive_target_velocity"});
+  params.driveTargetPosition = ReadScalarKeyframes(p, pp, "drive_target_position");
+  params.driveTargetVelocity = ReadScalarKeyframes(p, pp, "drive_target_velocity");
+  return params;
 }
 
 // "inertia": [Ixx, Iyy, Izz] (principal, in the link frame) or [[...], [...], [...]].
@@ -106,20 +117,58 @@ ArticulatedLinkDesc ReadLink(const json& l, const std::string& path,
   d.mass = Number(l, path, "mass");
   d.centerOfMass = Point(l, path, "center_of_mass", Eigen::Vector3d::Zero());
   d.inertia = ReadInertia(l, path);
-  if (l.contains("joint_params")) {
-    const json& p = l.at("joint_params");
-    const std::string pp = Join(path, "joint_params");
-    ReadFields(p, pp, kJointParamsFields, &d.jointParams,
-               {"drive_target_position", "drive_target_velocity"});
-    d.jointParams.driveTargetPosition = ReadScalarKeyframes(p, pp, "drive_target_position");
-    d.jointParams.driveTargetVelocity = ReadScalarKeyframes(p, pp, "drive_target_velocity");
+  if (l.contains("joint_params"))
+    d.jointParams = ReadJointParams(l.at("joint_params"), Join(path, "joint_params"));
+  return d;
+}
+
+// {"joint name": number, ...}
+std::map<std::string, double> ReadNamedNumbers(const json& a, const std::string& path,
+                                               const char* key) {
+  std::map<std::string, double> out;
+  if (!a.contains(key)) return out;
+  const json& m = a.at(key);
+  if (!m.is_object()) Throw(Join(path, key), "must be an object {\"joint name\": number, ...}");
+  for (auto it = m.begin(); it != m.end(); ++it) out[it.key()] = Number(m, Join(path, key), it.key().c_str());
+  return out;
+}
+
+ArticulatedActorDesc ReadUrdfActor(const json& a, const std::string& path,
+                                   const std::string& baseDir) {
+  CheckObject(a, path,
+              {"name", "type", "urdf", "base", "position", "euler_deg", "orientation",
+               "joint_positions", "joint_velocities", "joint_params", "contact_layer", "parent"});
+  UrdfPlacement placement;
+  const std::string base = String(a, path, "base", std::string("fixed"));
+  if (base != "fixed" && base != "free")
+    Throw(Join(path, "base"), "must be \"fixed\" or \"free\", got \"" + base + "\"");
+  placement.freeBase = base == "free";
+  placement.base.p = Point(a, path, "position", Eigen::Vector3d::Zero());
+  placement.base.R = ReadOrientation(a, path).normalized().toRotationMatrix();
+  placement.jointPositions = ReadNamedNumbers(a, path, "joint_positions");
+  placement.jointVelocities = ReadNamedNumbers(a, path, "joint_velocities");
+  if (a.contains("joint_params")) {
+    const json& m = a.at("joint_params");
+    const std::string mp = Join(path, "joint_params");
+    if (!m.is_object()) Throw(mp, "must be an object {\"joint name\": {...}, ...}");
+    for (auto it = m.begin(); it != m.end(); ++it)
+      placement.jointParams[it.key()] = ReadJointParams(it.value(), Join(mp, it.key()));
   }
+  const std::string file = String(a, path, "urdf");
+  const std::filesystem::path full = std::filesystem::path(baseDir) / file;
+  ArticulatedActorDesc d;
+  Error error;
+  if (!ReadUrdfFile(full.string(), placement, &d, &error))
+    Throw(Join(path, "urdf"), error.message);
+  d.name = String(a, path, "name");
   return d;
 }
 
 }  // namespace
 
-ArticulatedActorDesc ReadArticulatedDesc(const json& a, const std::string& path) {
+ArticulatedActorDesc ReadArticulatedDesc(const json& a, const std::string& path,
+                                         const std::string& baseDir) {
+  if (a.contains("urdf")) return ReadUrdfActor(a, path, baseDir);
   CheckObject(a, path, {"name", "type", "links", "contact_layer", "parent"});
   ArticulatedActorDesc d;
   d.name = String(a, path, "name");

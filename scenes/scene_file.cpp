@@ -264,7 +264,7 @@ void ReadActors(const json& actors, const std::string& baseDir, SceneFile* out) 
     }
     if (a.is_object() && a.contains("type") && a.at("type") == "articulated") {
       const ActorHandle parent = ReadParent(a, path, *out);
-      const ArticulatedActorDesc d = ReadArticulatedDesc(a, path);
+      const ArticulatedActorDesc d = ReadArticulatedDesc(a, path, baseDir);
       if (!names.insert(d.name).second) Throw(Join(path, "name"), "duplicate actor name \"" + d.name + "\"");
       Error err;
       std::unique_ptr<ArticulatedKind> kind = ArticulatedKind::Build(d, &err);
