@@ -473,6 +473,28 @@ void ArticulatedKind::DirkStepEnd(const KindState& start, const Eigen::VectorXd&
   WriteVelocity(end->x, frames, M.ldlt().solve(p), &end->v);
 }
 
+void ArticulatedKind::PredictStage(const KindState& current, const KindState* previous,
+                                   double hPrevious, double tau,
+                                   const Eigen::VectorXd& /*stageStart*/, double /*stageDt*/,
+                                   Eigen::VectorXd* q) const {
+  Eigen::VectorXd u = JointVelocities(current);
+  if (previous && hPrevious > 0.0) u += 0.5 * tau * (u - JointVelocities(*previous)) / hPrevious;
+  Retract(current.x, tau * u, q);
+}
+
+double ArticulatedKind::ForceChange(const KindState& current, const KindState& previous,
+                                    double hPrevious, const KindState& before,
+                                    double hBefore) const {
+  double change = 0.0;
+  for (int l = 0; l < NumLinks(); ++l) {
+    const int o = LinkOffset(l);
+    const Eigen::VectorXd a = (current.v.segment<12>(o) - previous.v.segment<12>(o)) / hPrevious -
+                              (previous.v.segment<12>(o) - before.v.segment<12>(o)) / hBefore;
+    change = std::max(change, a.head<3>().norm() + links_[l].radius * a.tail<9>().norm());
+  }
+  return change;
+}
+
 double ArticulatedKind::KineticEnergy(const KindState& s) const {
   double T = 0.0;
   for (int l = 0; l < NumLinks(); ++l) {

@@ -117,13 +117,16 @@ class ArticulatedKind : public ActorKind {
   void DirkStepEnd(const KindState& start, const Eigen::VectorXd& lastStage, bool stifflyAccurate,
                    const std::vector<KindSlope>& slopes, const std::vector<double>& hb,
                    KindState* end) const override;
-  /// The prediction and the closed-form free stage are not written for trees yet: stages start
-  /// cold.
-  StageShortcuts Shortcuts() const override {
-    StageShortcuts s;
-    s.warmStart = false;
-    return s;
-  }
+  /// The warm start's prediction: the tree moved from q_n by the tangent step
+  /// δ = τ (u_n + ½ τ a), u the joint velocities, a = (u_n − u_{n−1})/h_{n−1} (0 without history),
+  /// τ the stage's time after t_n.
+  void PredictStage(const KindState& current, const KindState* previous, double hPrevious,
+                    double tau, const Eigen::VectorXd& stageStart, double stageDt,
+                    Eigen::VectorXd* q) const override;
+  /// Over the links, the change of |c̈| + ρ ‖R̈‖ (ρ the link's RMS radius) over the last two steps
+  /// [m/s²]: the material points' acceleration change.
+  double ForceChange(const KindState& current, const KindState& previous, double hPrevious,
+                     const KindState& before, double hBefore) const override;
 
   double KineticEnergy(const KindState& s) const override;
   double GravityEnergy(const KindState& s, const Eigen::Vector3d& gravity) const override;
