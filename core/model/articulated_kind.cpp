@@ -422,6 +422,15 @@ void ArticulatedKind::DirkStageSlope(const Eigen::VectorXd& x, const KindState& 
   Eigen::VectorXd p;
   GeneralizedMomentum(frames, x, LinkMomenta(x, raw), &M, &p);
   WriteVelocity(x, frames, M.ldlt().solve(p), &out->slope.x);
+  // A 1-dof joint's coordinate keeps its own stage rate (x − x⁰)/Δt_i, as a vector kind's: its
+  // damping and drive read the stage's joint velocity from x⁰, and with the projected rate
+  // instead (off by O(Δt) where x⁰'s links lie off the tree) a damped arm fell to first order
+  // under DIRK22 and SymplecticDIRK22.
+  for (int l = 0; l < NumLinks(); ++l) {
+    const JointType type = tree_.Joint(l).type;
+    if (type == JointType::Revolute || type == JointType::Prismatic)
+      out->slope.x[tree_.CoordinateOffset(l)] = raw[tree_.CoordinateOffset(l)];
+  }
   out->slope.v = (out->slope.x - start.v) / dt;
   // (3) Each link's force and torque about the world origin at the stage from its tangent slope
   // K = (V − v⁰)/Δt_i: m K_c and c × m K_c + axial(K_R J Qᵀ − Q J K_Rᵀ), the rates of its world

@@ -25,7 +25,9 @@
 // converge quadratically.
 // DIRK stages follow the rigid body's three rules generalized to the tree: (1) a stage's link
 // velocities are replaced by the tangent velocity u with the same generalized momentum,
-// M(Q) u = Σ_l A_lᵀ [m_l V_c; L_l(V_R)]; (2) the step ends at the last stage (stiffly accurate
+// M(Q) u = Σ_l A_lᵀ [m_l V_c; L_l(V_R)] (a spherical or free joint's rotation rate with them; a
+// 1-dof joint's coordinate keeps its stage rate (x − x⁰)/Δt_i, which its damping and drive
+// read); (2) the step ends at the last stage (stiffly accurate
 // methods), else at the joint coordinates x_n + h Σ b_i V_i (rotations to their nearest) and their
 // forward kinematics; (3) each link's linear momentum P_l and angular momentum about the world
 // origin c_l × P_l + L_l are integrated with the rates its tangent slopes K_i give, and the end
