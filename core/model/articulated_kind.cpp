@@ -137,15 +137,14 @@ std::unique_ptr<ArticulatedKind> ArticulatedKind::Build(const ArticulatedActorDe
     Fail(error, who + sizes.str());
     return nullptr;
   }
-  KindState& s = kind->initial_;
-  s.x.setZero(kind->NumDofs());
-  s.x.head(nc) = qJ;
-  KinematicFrames frames;
-  kind->WriteLinks(&s.x, &frames);
+  kind->initial_ = kind->StateAt(qJ, u);
   // Every tangent dof must move mass: M positive definite.
+  KinematicFrames frames;
+  tree.Evaluate(qJ, &frames);
   Eigen::MatrixXd M;
   Eigen::VectorXd p;
-  kind->GeneralizedMomentum(frames, s.x, Eigen::VectorXd::Zero(6 * kind->NumLinks()), &M, &p);
+  kind->GeneralizedMomentum(frames, kind->initial_.x, Eigen::VectorXd::Zero(6 * kind->NumLinks()),
+                            &M, &p);
   for (int k = 0; k < m; ++k) {
     if (!(M(k, k) > 1e-12 * std::max(M.diagonal().maxCoeff(), 1e-300))) {
       int owner = 0;
@@ -155,9 +154,18 @@ std::unique_ptr<ArticulatedKind> ArticulatedKind::Build(const ArticulatedActorDe
       return nullptr;
     }
   }
-  kind->WriteVelocity(s.x, frames, u, &s.v);
   kind->name = desc.name;
   return kind;
+}
+
+KindState ArticulatedKind::StateAt(const Eigen::VectorXd& qJ, const Eigen::VectorXd& u) const {
+  KindState s;
+  s.x.setZero(NumDofs());
+  s.x.head(tree_.NumCoordinates()) = qJ;
+  KinematicFrames frames;
+  WriteLinks(&s.x, &frames);
+  WriteVelocity(s.x, frames, u, &s.v);
+  return s;
 }
 
 std::unique_ptr<ActorKind> ArticulatedKind::Clone() const {

@@ -89,6 +89,9 @@ class ArticulatedKind : public ActorKind {
   /// The joint velocities u (tangent layout) of a state: M u = Σ_l A_lᵀ [m_l ċ_l; L_l], exact for
   /// a state the kind wrote (its link velocities are then A_l u).
   Eigen::VectorXd JointVelocities(const KindState& s) const;
+  /// The state of joint coordinates qJ (NumCoordinates, rotations valid) moving with joint
+  /// velocities u (NumTangentDofs): the links' poses and velocities written from them.
+  KindState StateAt(const Eigen::VectorXd& qJ, const Eigen::VectorXd& u) const;
   /// The drive forces (tangent layout; 0 where no drive) of state s at time t [s]:
   /// F = −k_p (x − x*(t)) − k_d (ẋ − v*(t)), capped at the force limit [N·m or N].
   Eigen::VectorXd DriveForces(const KindState& s, double t) const;

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "bindings.h"
+#include "core/model/articulated_kind.h"
 #include "core/scene.h"
 
 namespace superdex::python {
@@ -15,22 +16,40 @@ struct Actor {
   int index = -1;
   ActorHandle Handle() const { return {index}; }
   bool IsSoft() const { return scene->IsSoft(Handle()); }
-  const std::string& Name() const {
-    return IsSoft() ? scene->SoftModel(Handle()).name : scene->Model(Handle()).name;
+  /// An actor of the generic layer (an articulated one), neither rigid nor soft.
+  bool IsKind() const { return scene->IsKind(Handle()); }
+  const ArticulatedKind* AsArticulated() const {
+    return dynamic_cast<const ArticulatedKind*>(&scene->Kind(Handle()));
   }
-  /// The rigid state; TypeError naming `field` for a soft actor.
+  const std::string& Name() const { return scene->ActorName(Handle()); }
+  /// The rigid state; TypeError naming `field` for a soft or articulated actor.
   RigidBodyState RigidState(const char* field) const {
     if (IsSoft())
       throw py::type_error(std::string(field) + ": '" + Name() +
                            "' is a soft actor; rotation, orientation and angular_velocity are "
                            "defined for rigid actors only (see node_positions)");
+    if (IsKind())
+      throw py::type_error(std::string(field) + ": '" + Name() + "' is an " +
+                           scene->Kind(Handle()).KindName() + " actor; rotation, orientation "
+                           "and angular_velocity are defined for rigid actors only (see "
+                           "joint_positions, link_positions)");
     return scene->State(Handle());
   }
-  /// The soft model; TypeError naming `field` for a rigid actor.
+  /// The articulated kind; TypeError naming `field` for another actor.
+  const ArticulatedKind& Articulated(const char* field) const {
+    const ArticulatedKind* k = AsArticulated();
+    if (!k)
+      throw py::type_error(std::string(field) + ": '" + Name() +
+                           "' is not an articulated actor; " + field +
+                           " is defined for articulated actors only");
+    return *k;
+  }
+  /// The soft model; TypeError naming `field` for another actor.
   const SoftBodyModel& Soft(const char* field) const {
     if (!IsSoft())
-      throw py::type_error(std::string(field) + ": '" + Name() +
-                           "' is a rigid actor; " + field + " is defined for soft actors only");
+      throw py::type_error(std::string(field) + ": '" + Name() + "' is " +
+                           (IsKind() ? "an " + scene->Kind(Handle()).KindName() : std::string("a rigid")) +
+                           " actor; " + field + " is defined for soft actors only");
     return scene->SoftModel(Handle());
   }
   const SoftBodyState& SoftState(const char* field) const {

@@ -55,6 +55,10 @@ void Shift(const Eigen::Vector3d& d, Eigen::VectorXd* x) {
 /// rigid actor's p or v; a soft actor's nodes all shifted by the same amount.
 void SetCentre(Actor& a, const char* field, const Eigen::Vector3d& value, bool velocity) {
   const Eigen::Vector3d to = Finite3(value, field);
+  if (a.IsKind())
+    throw py::type_error(std::string(field) + ": '" + a.Name() + "' is an " +
+                         a.scene->Kind(a.Handle()).KindName() + " actor; set joint_positions " +
+                         "and joint_velocities");
   if (!a.IsSoft())
     return EditRigid(a, field, [&](RigidBodyState* s) { (velocity ? s->v : s->p) = to; });
   const Eigen::Vector3d now = velocity ? a.scene->CenterOfMassVelocity(a.Handle())
@@ -141,30 +145,114 @@ void DefSoftProperties(py::class_<Actor>& actor) {
           "smallest det F over the tets at the current state (<= 0: an inverted tet; soft actors)");
 }
 
+/// The joint coordinates and velocities of an articulated actor's state, set together.
+void SetJoints(Actor& a, const char* field, const Eigen::VectorXd* qJ, const Eigen::VectorXd* u) {
+  const ArticulatedKind& k = a.Articulated(field);
+  const KindState& now = a.scene->KindStateOf(a.Handle());
+  const Eigen::VectorXd q = qJ ? *qJ : k.JointPositions(now.x);
+  const Eigen::VectorXd v = u ? *u : k.JointVelocities(now);
+  const Eigen::Index want = qJ ? k.Tree().NumCoordinates() : k.NumTangentDofs();
+  const Eigen::Index got = qJ ? qJ->size() : u->size();
+  if (got != want || !(qJ ? *qJ : *u).allFinite())
+    throw py::value_error(std::string(field) + ": must have " + std::to_string(want) +
+                          " finite entries, got " + std::to_string(got));
+  Error e;
+  if (!a.scene->SetKindState(a.Handle(), k.StateAt(q, v), &e))
+    throw py::value_error(std::string(field) + ": " + e.message);
+}
+
+// The articulated actors' properties of Actor (TypeError on another actor).
+void DefArticulatedProperties(py::class_<Actor>& actor) {
+  actor
+      .def_property_readonly("is_articulated", [](const Actor& a) { return a.AsArticulated() != nullptr; })
+      .def_property(
+          "joint_positions",
+          [](const Actor& a) {
+            return a.Articulated("joint_positions").JointPositions(a.scene->KindStateOf(a.Handle()).x);
+          },
+          [](Actor& a, const Eigen::VectorXd& q) { SetJoints(a, "joint_positions", &q, nullptr); },
+          "joint coordinates (articulated actors; the tree's layout: an angle [rad] or offset [m] "
+          "per 1-dof joint, 9 entries of a spherical joint's rotation matrix, 12 of a free "
+          "joint's position and rotation; assigning restarts the integrator's history)")
+      .def_property(
+          "joint_velocities",
+          [](const Actor& a) {
+            return a.Articulated("joint_velocities").JointVelocities(a.scene->KindStateOf(a.Handle()));
+          },
+          [](Actor& a, const Eigen::VectorXd& u) { SetJoints(a, "joint_velocities", nullptr, &u); },
+          "one rate per joint dof [rad/s or m/s] (articulated actors)")
+      .def_property_readonly(
+          "drive_forces",
+          [](const Actor& a) {
+            return a.Articulated("drive_forces").DriveForces(a.scene->KindStateOf(a.Handle()), a.scene->Time());
+          },
+          "drive force or torque per joint dof at the current state [N or N·m], 0 where no drive "
+          "(articulated actors)")
+      .def_property_readonly(
+          "link_names",
+          [](const Actor& a) {
+            const ArticulatedKind& k = a.Articulated("link_names");
+            std::vector<std::string> names;
+            for (int l = 0; l < k.NumLinks(); ++l) names.push_back(k.LinkName(l));
+            return names;
+          })
+      .def_property_readonly(
+          "link_positions",
+          [](const Actor& a) {
+            const ArticulatedKind& k = a.Articulated("link_positions");
+            std::vector<Eigen::Vector3d> p;
+            for (int l = 0; l < k.NumLinks(); ++l) p.push_back(k.LinkPose(a.scene->KindStateOf(a.Handle()).x, l).p);
+            return RowsToArray(p);
+          },
+          "(L, 3) each link frame's origin [m] (articulated actors)")
+      .def_property_readonly(
+          "link_orientations",
+          [](const Actor& a) {
+            const ArticulatedKind& k = a.Articulated("link_orientations");
+            std::vector<Eigen::Vector4d> q;
+            for (int l = 0; l < k.NumLinks(); ++l)
+              q.push_back(Quaternion(k.LinkPose(a.scene->KindStateOf(a.Handle()).x, l).R));
+            return RowsToArray(q);
+          },
+          "(L, 4) each link frame's quaternion [x, y, z, w] (articulated actors)");
+}
+
+/// An actor's mass [kg]: a rigid body's, a soft body's lumped total, an articulation's links'.
+double MassOf(const Actor& a) {
+  if (a.IsSoft()) return a.scene->SoftModel(a.Handle()).mass;
+  if (const ArticulatedKind* k = a.AsArticulated()) {
+    double m = 0.0;
+    for (int l = 0; l < k->NumLinks(); ++l) m += k->LinkMass(l);
+    return m;
+  }
+  return a.scene->Model(a.Handle()).mass;
+}
+
 }  // namespace
 
 void BindActor(py::module_& m) {
   py::class_<Actor> actor(m, "Actor",
-                    "A handle to an actor of a Scene, rigid or soft (is_soft). Rigid-only\n"
-                    "properties (rotation, orientation, angular_velocity) raise TypeError on a soft\n"
-                    "actor, soft-only ones (node_positions, ...) on a rigid actor.");
+                    "A handle to an actor of a Scene: rigid, soft (is_soft) or articulated\n"
+                    "(is_articulated). Rigid-only properties (rotation, orientation,\n"
+                    "angular_velocity) raise TypeError on the others, soft-only ones\n"
+                    "(node_positions, ...) and articulated-only ones (joint_positions, ...) on the\n"
+                    "others.");
   actor.def_property_readonly("index", [](const Actor& a) { return a.index; })
       .def_property_readonly("name", [](const Actor& a) { return a.Name(); })
       .def_property_readonly("is_soft", &Actor::IsSoft)
-      .def_property_readonly(
-          "mass",
-          [](const Actor& a) {
-            return a.IsSoft() ? a.scene->SoftModel(a.Handle()).mass
-                              : a.scene->Model(a.Handle()).mass;
-          },
-          "[kg]")
+      .def_property_readonly("mass", &MassOf, "[kg]")
       .def_property_readonly(
           "dynamic",
-          [](const Actor& a) { return a.IsSoft() || a.scene->Model(a.Handle()).dynamic; },
-          "False for a static or kinematic rigid actor; soft actors are always dynamic")
+          [](const Actor& a) {
+            return a.IsSoft() || a.IsKind() || a.scene->Model(a.Handle()).dynamic;
+          },
+          "False for a static or kinematic rigid actor; soft and articulated actors are always "
+          "dynamic")
       .def_property_readonly(
           "kinematic",
-          [](const Actor& a) { return !a.IsSoft() && a.scene->Model(a.Handle()).kinematic; },
+          [](const Actor& a) {
+            return !a.IsSoft() && !a.IsKind() && a.scene->Model(a.Handle()).kinematic;
+          },
           "True for a rigid actor whose motion is prescribed (RigidActorDesc.kinematic)")
       .def_property_readonly("contact_layer",
                              [](const Actor& a) { return a.scene->ContactLayer(a.Handle()); })
@@ -220,9 +308,11 @@ void BindActor(py::module_& m) {
           },
           "world angular velocity [rad/s] (rigid actors)");
   DefSoftProperties(actor);
+  DefArticulatedProperties(actor);
   actor.def("__repr__", [](const Actor& a) {
     return "<superdex.Actor " + std::to_string(a.index) + " '" + a.Name() + "'" +
-           (a.IsSoft() ? " soft" : "") + ">";
+           (a.IsSoft() ? " soft" : a.IsKind() ? " " + a.scene->Kind(a.Handle()).KindName() : "") +
+           ">";
   });
 }
 

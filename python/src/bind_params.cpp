@@ -12,6 +12,8 @@
 #include "core/model/contact_params.h"
 #include "core/model/enums.h"
 #include "core/model/eval_params.h"
+#include "core/model/joint_params.h"
+#include "core/model/kinematic_tree.h"
 #include "core/model/soft_body.h"
 #include "energies/contact_dissipation.h"
 #include "optim/newton_solver.h"
@@ -35,6 +37,8 @@ template <>
 constexpr bool kPythonEnum<GridSdfResolutionMode> = true;
 template <>
 constexpr bool kPythonEnum<SurfaceIntegral> = true;
+template <>
+constexpr bool kPythonEnum<JointType> = true;
 
 template <typename E>
 void BindEnum(py::module_& m, const char* name, const char* doc) {
@@ -190,9 +194,11 @@ struct ActorContactParams {
 };
 
 template <typename Class, typename Table>
-void BindParamsClass(py::module_& m, const char* name, const char* doc, const Table& table) {
+py::class_<Class> BindParamsClass(py::module_& m, const char* name, const char* doc,
+                                  const Table& table) {
   py::class_<Class> c(m, name, doc);
   BindFields(c, table);
+  return c;
 }
 
 }  // namespace
@@ -266,6 +272,20 @@ void BindParams(py::module_& m) {
                                  "Grid SDF construction for Sdf colliders (RigidActorDesc.grid_sdf, "
                                  "SoftActorDesc.grid_sdf).",
                                  kGridSdfFields);
+  BindEnum<JointType>(m, "JointType", "Joint types of an articulated actor's links");
+  auto joint = BindParamsClass<JointParams>(
+      m, "JointParams",
+      Keep(std::string("Limits, damping and a PD drive of a Revolute or Prismatic joint "
+                       "(ArticulatedLinkDesc.joint_params; units rad or m, N·m or N). Limits "
+                       "default to -inf and inf (none), the force limit to inf.") + validated),
+      kJointParamsFields);
+  joint
+      .def_readwrite("drive_target_position", &JointParams::driveTargetPosition,
+                     "the drive's target x*(t): keyframes [(t [s], x), ...], piecewise linear; "
+                     "empty: 0")
+      .def_readwrite("drive_target_velocity", &JointParams::driveTargetVelocity,
+                     "its target velocity v*(t): keyframes [(t, v), ...]; empty: the target "
+                     "position path's slope");
   BindParamsClass<SoftMaterial>(
       m, "SoftMaterial",
       Keep(std::string("Bulk material of a soft actor (stable neo-Hookean).") + validated),

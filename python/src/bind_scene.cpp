@@ -69,9 +69,10 @@ py::dict Run(Scene& s, double duration, double dt, int every,
   auto record = [&]() {
     T(frame) = s.Time();
     for (int a = 0; a < A; ++a) {
-      // Soft actors: centre of mass and its velocity; no orientation or angular velocity (NaN).
+      // Soft and articulated actors: centre of mass and its velocity; no orientation or angular
+      // velocity (NaN).
       const ActorHandle h{a};
-      const bool soft = s.IsSoft(h);
+      const bool soft = s.IsSoft(h) || s.IsKind(h);  // no single orientation
       const Eigen::Vector3d pa = s.CenterOfMass(h), va = s.CenterOfMassVelocity(h);
       const Eigen::Vector4d qa =
           soft ? Eigen::Vector4d::Constant(NAN) : Quaternion(s.State(h).R);
@@ -323,6 +324,7 @@ void BindSceneClass(py::module_& m) {
           py::arg("name"));
   BindContactFilter(scene);
   BindSceneStateMethods(scene);
+  BindArticulatedMethods(scene);
 }
 
 void BindSceneFile(py::module_& m) {

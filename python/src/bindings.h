@@ -29,7 +29,9 @@ void BindStepReport(py::module_& m);
 void BindActorContactParams(py::module_& m);  // Actor.contact_params, live
 void BindActor(py::module_& m);
 void BindSceneState(py::module_& m);  // SceneState
+void BindArticulatedDescs(py::module_& m);  // ArticulatedLinkDesc, ArticulatedActorDesc, read_urdf
 void BindSceneClass(py::module_& m);  // Scene, with contact filtering and its state
+void BindArticulatedMethods(py::class_<Scene>& scene);  // Scene.add_articulated_actor
 void BindSceneStateMethods(py::class_<Scene>& scene);  // get_state, set_state, clone
 void BindSceneFile(py::module_& m);  // SceneFile, load_scene
 void BindForwardSensitivity(py::module_& m);

@@ -20,6 +20,7 @@ PYBIND11_MODULE(_superdex, m) {
   BindActorContactParams(m);
   BindActor(m);
   BindSceneState(m);
+  BindArticulatedDescs(m);
   BindSceneClass(m);
   BindSceneFile(m);
   BindForwardSensitivity(m);

@@ -1,0 +1,107 @@
+"""Articulated actors through the Python API: descriptions, URDF, joint state, errors, physics."""
+import math
+import os
+
+import numpy as np
+import pytest
+import superdex as sd
+
+DATA = os.path.join(os.path.dirname(__file__), "..", "..", "scenes", "data")
+G = 9.81
+
+
+def pendulum_desc(angle, length=1.0, radius=0.05):
+    """A 1 kg sphere of `radius` hanging `length` below a revolute pivot about y, at `angle`."""
+    link = sd.ArticulatedLinkDesc("bob", sd.JointType.Revolute, mass=1.0,
+                                  center_of_mass=[0, 0, -length],
+                                  inertia=0.4 * radius**2 * np.eye(3), axis=[0, 1, 0])
+    link.origin_position = [0, 0, 1]
+    d = sd.ArticulatedActorDesc("pendulum", [link])
+    d.joint_positions = [angle]
+    return d
+
+
+def elliptic_k(k):
+    a, b = 1.0, math.sqrt(1 - k * k)
+    for _ in range(40):
+        a, b = 0.5 * (a + b), math.sqrt(a * b)
+    return math.pi / (2 * a)
+
+
+def test_a_pendulum_returns_after_one_period():
+    # The compound pendulum's period 4 sqrt(L_eq/g) K(sin(theta0/2)), L_eq = L + k^2/L.
+    theta0, L, r = 0.8, 1.0, 0.05
+    period = 4 * math.sqrt((L + 0.4 * r * r / L) / G) * elliptic_k(math.sin(theta0 / 2))
+    scene = sd.Scene(sd.SceneSettings(integrator=sd.IntegrationMethod.SymplecticDIRK22))
+    arm = scene.add_articulated_actor(pendulum_desc(theta0))
+    assert arm.is_articulated and not arm.is_soft and arm.dynamic
+    dt = 1e-3
+    steps = round(period / dt)
+    for _ in range(steps):
+        scene.step(dt)
+    # After a whole period, to within half a step dt/2 (and the method's 1e-5 of the period), the
+    # bob is back at rest at theta0: |theta_dot| <= (g/L) sin(theta0) (dt/2 + 2e-5 s) = 3.7e-3
+    # rad/s, |theta - theta0| of second order in that time (1e-6 rad).
+    assert abs(arm.joint_velocities[0]) < 4e-3
+    assert abs(arm.joint_positions[0] - theta0) < 1e-5
+
+
+def test_joint_state_links_and_rigid_only_properties():
+    scene = sd.Scene()
+    arm = scene.add_articulated_actor(pendulum_desc(0.0))
+    assert arm.link_names == ["bob"]
+    assert arm.link_positions.shape == (1, 3) and np.allclose(arm.link_positions[0], [0, 0, 1])
+    assert arm.mass == 1.0
+    arm.joint_positions = [math.pi / 2]  # the bob swung up about +y: its centre at x = -1
+    assert np.allclose(arm.position, [-1, 0, 1], atol=1e-12)
+    arm.joint_velocities = [2.0]
+    assert arm.joint_velocities[0] == pytest.approx(2.0)
+    with pytest.raises(TypeError, match=r"^rotation: 'pendulum' is an articulated actor"):
+        arm.rotation
+    with pytest.raises(TypeError, match=r"^position: 'pendulum' is an articulated actor"):
+        arm.position = [0, 0, 0]
+    with pytest.raises(ValueError, match=r"^joint_positions: must have 1 finite entries"):
+        arm.joint_positions = [0.0, 1.0]
+    assert "articulated" in repr(arm)
+
+
+def test_a_urdf_arm_with_a_drive_runs_and_reports_its_forces():
+    p = sd.JointParams()
+    p.drive_stiffness = 200
+    p.drive_damping = 20
+    p.drive_target_position = [(0.0, 0.0), (1.0, -0.6)]
+    desc = sd.read_urdf(os.path.join(DATA, "robots", "three_link_arm.urdf"), position=[0, 0, 1.5],
+                        joint_params={"shoulder": p}, joint_positions={"elbow": 0.2})
+    assert [l.name for l in desc.links] == ["base", "upper", "fore", "hand"]
+    assert desc.links[2].joint_params.lower_limit == -2.5
+    assert desc.joint_positions[1] == 0.2  # shoulder, elbow, wrist (the base is fixed)
+    scene = sd.Scene()
+    arm = scene.add_articulated_actor(desc)
+    out = scene.run(0.2, 2e-3)
+    assert np.isnan(out["q"]).all()  # no single orientation: NaN, as for soft actors
+    assert out["p"].shape[1:] == (1, 3)
+    forces = arm.drive_forces
+    assert forces.shape == (3,) and forces[0] != 0 and forces[1] == 0 and forces[2] == 0
+
+
+def test_bad_articulated_input_names_the_link_or_file():
+    d = pendulum_desc(0.0)
+    d.links[0].mass = -1.0
+    with pytest.raises(ValueError, match=r"link 0 \('bob'\): mass must be finite and >= 0"):
+        sd.Scene().add_articulated_actor(d)
+    with pytest.raises(ValueError, match=r"cannot open the URDF file"):
+        sd.read_urdf("/nonexistent/robot.urdf")
+    with pytest.raises(ValueError, match=r'^base: must be "fixed" or "free"'):
+        sd.read_urdf(os.path.join(DATA, "robots", "three_link_arm.urdf"), base="floating")
+    p = sd.JointParams()
+    with pytest.raises(ValueError, match=r"damping: must be >= 0"):
+        p.damping = -1
+
+
+def test_a_scene_file_with_an_articulated_actor_loads_and_runs():
+    f = sd.load_scene(os.path.join(DATA, "swinging_arm.json"))
+    arm = f.scene.actors[0]
+    assert arm.name == "arm" and arm.is_articulated
+    q0 = arm.joint_positions.copy()
+    f.scene.run(0.1, f.dt)
+    assert not np.allclose(arm.joint_positions, q0)
