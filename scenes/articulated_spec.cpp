@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "core/model/rigid_math.h"
 #include "scenes/urdf_reader.h"
 
 namespace superdex::scene_json {
@@ -72,9 +73,8 @@ void ReadJointState(const json& l, const std::string& path, JointType type, Eige
   q->setZero(JointCoordinates(type));
   u->setZero(JointTangentDofs(type));
   if (!turning) return;
-  const Eigen::Matrix3d R = ReadOrientation(l, path).normalized().toRotationMatrix();
-  const int r = type == JointType::Free ? 3 : 0;
-  Eigen::Map<Eigen::Matrix3d>(q->data() + r) = R;
+  const int r = JointRotationOffset(type);
+  Matrix3At(q, r) = ReadOrientation(l, path).normalized().toRotationMatrix();
   u->segment<3>(r) = Vector<3>(l, path, "angular_velocity", Eigen::Vector3d::Zero());
   if (type == JointType::Free) {
     q->head<3>() = Point(l, path, "position", Eigen::Vector3d::Zero());

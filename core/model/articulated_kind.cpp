@@ -20,14 +20,6 @@ namespace {
 
 using Vector6 = Eigen::Matrix<double, 6, 1>;
 
-Eigen::Matrix3d MatrixAt(const Eigen::VectorXd& x, int offset) {
-  return Eigen::Map<const Eigen::Matrix3d>(x.data() + offset);
-}
-
-void SetMatrix(const Eigen::Matrix3d& A, int offset, Eigen::VectorXd* x) {
-  Eigen::Map<Eigen::Matrix3d>(x->data() + offset) = A;
-}
-
 /// The stage's working memory: forward kinematics and the dense blocks of the chain.
 struct ArticulatedScratch : KindScratch {
   KinematicFrames frames;
@@ -45,7 +37,7 @@ void ProjectChartHessian(PsdProjection projection, Eigen::Matrix<double, 6, 6>* 
 
 /// Whether the 3 × 3 block at `offset` of q is a rotation (to 1e-9).
 bool IsRotationAt(const Eigen::VectorXd& q, int offset) {
-  const Eigen::Matrix3d R = MatrixAt(q, offset);
+  const Eigen::Matrix3d R = Matrix3At(q, offset);
   return R.allFinite() && (R.transpose() * R - Eigen::Matrix3d::Identity()).norm() <= 1e-9 &&
          R.determinant() > 0.0;
 }
@@ -127,9 +119,8 @@ std::unique_ptr<ArticulatedKind> ArticulatedKind::Build(const ArticulatedActorDe
   else if (u.size() != m || !u.allFinite())
     sizes << "joint_velocities: must have " << m << " finite entries, has " << u.size();
   for (int l = 0; sizes.str().empty() && l < kind->NumLinks(); ++l) {
-    const JointType type = tree.Joint(l).type;
-    const int o = tree.CoordinateOffset(l) + (type == JointType::Free ? 3 : 0);
-    if ((type == JointType::Spherical || type == JointType::Free) && !IsRotationAt(qJ, o))
+    const int o = tree.RotationCoordinate(l);
+    if (o >= 0 && !IsRotationAt(qJ, o))
       sizes << "joint_positions: the rotation of " << LinkLabel(desc, l) << "'s joint is not a "
             << "rotation matrix";
   }
@@ -183,7 +174,7 @@ void ArticulatedKind::WriteLinks(Eigen::VectorXd* q, KinematicFrames* frames) co
   for (int l = 0; l < NumLinks(); ++l) {
     const RigidPose& pose = frames->link[l];
     q->segment<3>(LinkOffset(l)) = pose.p + pose.R * links_[l].com;
-    SetMatrix(pose.R, LinkOffset(l) + 3, q);
+    Matrix3At(q, LinkOffset(l) + 3) = pose.R;
   }
 }
 
@@ -191,27 +182,17 @@ void ArticulatedKind::WriteVelocity(const Eigen::VectorXd& q, const KinematicFra
                                     const Eigen::VectorXd& u, Eigen::VectorXd* v) const {
   v->setZero(NumDofs());
   for (int l = 0; l < NumLinks(); ++l) {
+    // The joint's own rates: a 1-dof joint's and a free joint's translation are u's entries, a
+    // rotation R_rel ← exp([δφ]×) R_rel moves at [u_φ]× R_rel.
     const int o = tree_.CoordinateOffset(l), t = tree_.TangentOffset(l);
-    switch (tree_.Joint(l).type) {
-      case JointType::Fixed: break;
-      case JointType::Revolute:
-      case JointType::Prismatic: (*v)[o] = u[t]; break;
-      case JointType::Spherical:
-        SetMatrix(Skew(u.segment<3>(t)) * MatrixAt(q, o), o, v);
-        break;
-      case JointType::Free:
-        v->segment<3>(o) = u.segment<3>(t);
-        SetMatrix(Skew(u.segment<3>(t + 3)) * MatrixAt(q, o + 3), o + 3, v);
-        break;
-    }
-    Eigen::Vector3d dc = Eigen::Vector3d::Zero(), w = Eigen::Vector3d::Zero();
-    const Eigen::Vector3d c = q.segment<3>(LinkOffset(l));
-    for (int k : tree_.AncestorDofs(l)) {
-      dc += (frames.twist[k].w.cross(c) + frames.twist[k].v) * u[k];
-      w += frames.twist[k].w * u[k];
-    }
+    const int r = tree_.RotationCoordinate(l);
+    const int before = r >= 0 ? r - o : JointCoordinates(tree_.Joint(l).type);
+    v->segment(o, before) = u.segment(t, before);  // the same layout in q and δ up to a rotation
+    if (r >= 0) Matrix3At(v, r) = Skew(u.segment<3>(tree_.RotationTangent(l))) * Matrix3At(q, r);
+    Eigen::Vector3d dc, w;
+    tree_.LinkChartStep(frames, l, q.segment<3>(LinkOffset(l)), u, &dc, &w);
     v->segment<3>(LinkOffset(l)) = dc;
-    SetMatrix(Skew(w) * MatrixAt(q, LinkOffset(l) + 3), LinkOffset(l) + 3, v);
+    Matrix3At(v, LinkOffset(l) + 3) = Skew(w) * Matrix3At(q, LinkOffset(l) + 3);
   }
 }
 
@@ -229,7 +210,7 @@ void ArticulatedKind::GeneralizedMomentum(const KinematicFrames& frames, const E
     tree_.LinkChartJacobian(frames, l, c, &A);
     Eigen::Matrix<double, 6, 6> D = Eigen::Matrix<double, 6, 6>::Zero();
     D.topLeftCorner<3, 3>() = link.mass * Eigen::Matrix3d::Identity();
-    D.bottomRightCorner<3, 3>() = WorldInertia(MatrixAt(q, LinkOffset(l) + 3), link.secondMoment);
+    D.bottomRightCorner<3, 3>() = WorldInertia(Matrix3At(q, LinkOffset(l) + 3), link.secondMoment);
     M->noalias() += A.transpose() * D * A;
     p->noalias() += A.transpose() * linkMomenta.segment<6>(6 * l);
   }
@@ -242,7 +223,7 @@ Eigen::VectorXd ArticulatedKind::LinkMomenta(const Eigen::VectorXd& q,
     const int o = LinkOffset(l);
     P.segment<3>(6 * l) = links_[l].mass * v.segment<3>(o);
     P.segment<3>(6 * l + 3) =
-        SpinMomentum(MatrixAt(q, o + 3), MatrixAt(v, o + 3), links_[l].secondMoment);
+        SpinMomentum(Matrix3At(q, o + 3), Matrix3At(v, o + 3), links_[l].secondMoment);
   }
   return P;
 }
@@ -273,7 +254,7 @@ double ArticulatedKind::StageEnergy(const KindStageData& stage, const Eigen::Vec
     const int o = LinkOffset(l);
     const RigidInertiaTerm e =
         RigidInertia(link.mass, link.secondMoment, c, pose.R, stage.qHat.segment<3>(o),
-                     MatrixAt(stage.qHat, o + 3), order >= 1);
+                     Matrix3At(stage.qHat, o + 3), order >= 1);
     value += w * e.value - link.mass * stage.gravity.dot(c);
     if (order < 1) continue;
     Vector6 load = w * e.gradient;  // the link's chart gradient (f, τ) [N, N·m]
@@ -383,24 +364,16 @@ void ArticulatedKind::TangentBetween(const Eigen::VectorXd& from, const Eigen::V
 void ArticulatedKind::AddResidualJacobianCorrection(
     const Eigen::VectorXd& /*q*/, const Eigen::VectorXd& residual,
     std::vector<Eigen::Triplet<double>>* J) const {
-  for (int l = 0; l < NumLinks(); ++l) {
-    const int t = tree_.TangentOffset(l);
-    if (tree_.Joint(l).type == JointType::Spherical)
+  for (int l = 0; l < NumLinks(); ++l)
+    if (const int t = tree_.RotationTangent(l); t >= 0)
       AppendSpinTrivialization(residual.segment<3>(t), t, J);
-    if (tree_.Joint(l).type == JointType::Free)
-      AppendSpinTrivialization(residual.segment<3>(t + 3), t + 3, J);
-  }
 }
 
 Eigen::MatrixXd ArticulatedKind::ChartTangentMap(const Eigen::VectorXd& delta) const {
   Eigen::MatrixXd T = Eigen::MatrixXd::Identity(delta.size(), delta.size());
-  for (int l = 0; l < NumLinks(); ++l) {
-    const int t = tree_.TangentOffset(l);
-    if (tree_.Joint(l).type == JointType::Spherical)
+  for (int l = 0; l < NumLinks(); ++l)
+    if (const int t = tree_.RotationTangent(l); t >= 0)
       T.block<3, 3>(t, t) = LeftJacobianSo3(delta.segment<3>(t));
-    if (tree_.Joint(l).type == JointType::Free)
-      T.block<3, 3>(t + 3, t + 3) = LeftJacobianSo3(delta.segment<3>(t + 3));
-  }
   return T;
 }
 
@@ -410,11 +383,8 @@ double ArticulatedKind::StepLength(const Eigen::VectorXd& q, const Eigen::Vector
   double length = 0.0;
   for (int l = 0; l < NumLinks(); ++l) {
     const Eigen::Vector3d c = frames.link[l].p + frames.link[l].R * links_[l].com;
-    Eigen::Vector3d dc = Eigen::Vector3d::Zero(), dphi = Eigen::Vector3d::Zero();
-    for (int k : tree_.AncestorDofs(l)) {
-      dc += (frames.twist[k].w.cross(c) + frames.twist[k].v) * delta[k];
-      dphi += frames.twist[k].w * delta[k];
-    }
+    Eigen::Vector3d dc, dphi;
+    tree_.LinkChartStep(frames, l, c, delta, &dc, &dphi);
     length = std::max({length, dc.lpNorm<Eigen::Infinity>(), dphi.norm() * links_[l].radius});
   }
   return length;
@@ -448,8 +418,8 @@ void ArticulatedKind::DirkStageSlope(const Eigen::VectorXd& x, const KindState& 
   for (int l = 0; l < NumLinks(); ++l) {
     const int o = LinkOffset(l);
     const Eigen::Vector3d f = links_[l].mass * out->slope.v.segment<3>(o);
-    const Eigen::Matrix3d KR = MatrixAt(out->slope.v, o + 3);
-    const Eigen::Matrix3d Q = MatrixAt(x, o + 3);
+    const Eigen::Matrix3d KR = Matrix3At(out->slope.v, o + 3);
+    const Eigen::Matrix3d Q = Matrix3At(x, o + 3);
     const Eigen::Matrix3d& J = links_[l].secondMoment;
     out->extra.segment<3>(6 * l) = f;
     out->extra.segment<3>(6 * l + 3) = Eigen::Vector3d(x.segment<3>(o)).cross(f) +
@@ -471,12 +441,9 @@ void ArticulatedKind::DirkStepEnd(const KindState& start, const Eigen::VectorXd&
   if (stifflyAccurate) {
     end->x.head(nc) = lastStage.head(nc);
   } else {
-    for (int l = 0; l < NumLinks(); ++l) {
-      const JointType type = tree_.Joint(l).type;
-      const int o = tree_.CoordinateOffset(l) + (type == JointType::Free ? 3 : 0);
-      if (type == JointType::Spherical || type == JointType::Free)
-        SetMatrix(NearestRotation(MatrixAt(end->x, o)), o, &end->x);
-    }
+    for (int l = 0; l < NumLinks(); ++l)
+      if (const int r = tree_.RotationCoordinate(l); r >= 0)
+        Matrix3At(&end->x, r) = NearestRotation(Matrix3At(end->x, r));
   }
   KinematicFrames frames;
   WriteLinks(&end->x, &frames);
@@ -516,7 +483,7 @@ double ArticulatedKind::KineticEnergy(const KindState& s) const {
   double T = 0.0;
   for (int l = 0; l < NumLinks(); ++l) {
     const int o = LinkOffset(l);
-    const Eigen::Matrix3d Rdot = MatrixAt(s.v, o + 3);
+    const Eigen::Matrix3d Rdot = Matrix3At(s.v, o + 3);
     T += 0.5 * links_[l].mass * s.v.segment<3>(o).squaredNorm() +
          0.5 * (Rdot * links_[l].secondMoment * Rdot.transpose()).trace();
   }
@@ -542,7 +509,7 @@ Eigen::Vector3d ArticulatedKind::AngularMomentum(const KindState& s) const {
     const int o = LinkOffset(l);
     const Eigen::Vector3d c = s.x.segment<3>(o);
     L += links_[l].mass * c.cross(Eigen::Vector3d(s.v.segment<3>(o))) +
-         SpinMomentum(MatrixAt(s.x, o + 3), MatrixAt(s.v, o + 3), links_[l].secondMoment);
+         SpinMomentum(Matrix3At(s.x, o + 3), Matrix3At(s.v, o + 3), links_[l].secondMoment);
   }
   return L;
 }

@@ -13,12 +13,7 @@ namespace superdex {
 namespace {
 
 Eigen::Matrix3d RotationAt(const Eigen::Ref<const Eigen::VectorXd>& q, int offset) {
-  return Eigen::Map<const Eigen::Matrix3d>(q.data() + offset);
-}
-
-template <typename Vector>
-void SetRotation(const Eigen::Matrix3d& R, int offset, Vector* q) {
-  Eigen::Map<Eigen::Matrix3d>(q->data() + offset) = R;
+  return Matrix3At(q, offset);
 }
 
 RigidPose Compose(const RigidPose& a, const RigidPose& b) {
@@ -57,6 +52,10 @@ int JointTangentDofs(JointType type) {
     case JointType::Free: return 6;
   }
   return 0;
+}
+
+int JointRotationOffset(JointType type) {
+  return type == JointType::Spherical ? 0 : type == JointType::Free ? 3 : -1;
 }
 
 KinematicTree::KinematicTree(std::vector<KinematicJoint> joints) : joints_(std::move(joints)) {
@@ -115,9 +114,7 @@ std::string KinematicTree::Validate() const {
 Eigen::VectorXd KinematicTree::ZeroConfiguration() const {
   Eigen::VectorXd q = Eigen::VectorXd::Zero(numCoordinates_);
   for (int l = 0; l < NumLinks(); ++l) {
-    const int o = coordinateOffset_[l];
-    if (joints_[l].type == JointType::Spherical) SetRotation(Eigen::Matrix3d::Identity(), o, &q);
-    if (joints_[l].type == JointType::Free) SetRotation(Eigen::Matrix3d::Identity(), o + 3, &q);
+    if (RotationCoordinate(l) >= 0) Matrix3At(&q, RotationCoordinate(l)).setIdentity();
   }
   return q;
 }
@@ -131,11 +128,11 @@ void KinematicTree::Retract(ConstRef q, ConstRef delta, Eigen::Ref<Eigen::Vector
       case JointType::Revolute:
       case JointType::Prismatic: out[o] += delta[t]; break;
       case JointType::Spherical:
-        SetRotation(ExpSo3(delta.segment<3>(t)) * RotationAt(q, o), o, &out);
+        Matrix3At(&out, o) = ExpSo3(delta.segment<3>(t)) * RotationAt(q, o);
         break;
       case JointType::Free:
         out.segment<3>(o) += delta.segment<3>(t);
-        SetRotation(ExpSo3(delta.segment<3>(t + 3)) * RotationAt(q, o + 3), o + 3, &out);
+        Matrix3At(&out, o + 3) = ExpSo3(delta.segment<3>(t + 3)) * RotationAt(q, o + 3);
         break;
     }
   }
@@ -239,6 +236,17 @@ void KinematicTree::LinkChartJacobian(const KinematicFrames& frames, int l,
   for (int k : ancestorDofs_[l]) {
     A->block<3, 1>(0, k) = frames.twist[k].w.cross(c) + frames.twist[k].v;
     A->block<3, 1>(3, k) = frames.twist[k].w;
+  }
+}
+
+void KinematicTree::LinkChartStep(const KinematicFrames& frames, int l, const Eigen::Vector3d& c,
+                                  const Eigen::VectorXd& delta, Eigen::Vector3d* dc,
+                                  Eigen::Vector3d* dphi) const {
+  dc->setZero();
+  dphi->setZero();
+  for (int k : ancestorDofs_[l]) {
+    *dc += (frames.twist[k].w.cross(c) + frames.twist[k].v) * delta[k];
+    *dphi += frames.twist[k].w * delta[k];
   }
 }
 

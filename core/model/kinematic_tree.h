@@ -61,6 +61,9 @@ struct KinematicJoint {
 /// The number of configuration entries and tangent dofs of a joint type.
 int JointCoordinates(JointType type);
 int JointTangentDofs(JointType type);
+/// Where a joint's rotation starts among its coordinates and among its tangent dofs (the same
+/// place in both: 0 for Spherical, 3 for Free, after the translation); −1 without one.
+int JointRotationOffset(JointType type);
 
 /// The world twist of one tangent dof: ∂x/∂δ = ω × x + v.
 struct JointTwist {
@@ -92,6 +95,15 @@ class KinematicTree {
   /// Link l's joint entries in q and in δ.
   int CoordinateOffset(int l) const { return coordinateOffset_[l]; }
   int TangentOffset(int l) const { return tangentOffset_[l]; }
+  /// Link l's joint rotation (JointRotationOffset) in q and in δ; −1 without one.
+  int RotationCoordinate(int l) const {
+    const int r = JointRotationOffset(joints_[l].type);
+    return r < 0 ? -1 : coordinateOffset_[l] + r;
+  }
+  int RotationTangent(int l) const {
+    const int r = JointRotationOffset(joints_[l].type);
+    return r < 0 ? -1 : tangentOffset_[l] + r;
+  }
   /// The tangent dofs that move link l (its joint's and its ancestors'), root first; and the
   /// exponential group of a tangent dof (groups are numbered root first along every path).
   const std::vector<int>& AncestorDofs(int l) const { return ancestorDofs_[l]; }
@@ -121,6 +133,11 @@ class KinematicTree {
   /// A (6 × NumTangentDofs): the rigid chart [δc; δφ] of link l about the world point c per δ.
   void LinkChartJacobian(const KinematicFrames& frames, int l, const Eigen::Vector3d& c,
                          Eigen::MatrixXd* A) const;
+  /// A δ without forming A: the chart's move (δc, δφ) of link l about the world point c for the
+  /// tangent step (or rate) δ.
+  void LinkChartStep(const KinematicFrames& frames, int l, const Eigen::Vector3d& c,
+                     const Eigen::VectorXd& delta, Eigen::Vector3d* dc,
+                     Eigen::Vector3d* dphi) const;
   /// Adds Σ_jk (f·∂²c/∂δ_j∂δ_k + τ·∂²φ/∂δ_j∂δ_k) into *H for link l's chart about c.
   void AddLinkChartCurvature(const KinematicFrames& frames, int l, const Eigen::Vector3d& c,
                              const Eigen::Vector3d& f, const Eigen::Vector3d& tau,

@@ -13,6 +13,16 @@ inline Eigen::Matrix3d Skew(const Eigen::Vector3d& v) {
   S(2, 0) = -v.y(); S(2, 1) = v.x();  S(2, 2) = 0.0;
   return S;
 }
+/// The 3 × 3 matrix stored column-major at x[offset .. offset + 8] of a state vector (a rotation
+/// or its rate), read or written in place.
+template <typename Vector>
+Eigen::Map<const Eigen::Matrix3d> Matrix3At(const Vector& x, int offset) {
+  return Eigen::Map<const Eigen::Matrix3d>(x.data() + offset);
+}
+template <typename Vector>
+Eigen::Map<Eigen::Matrix3d> Matrix3At(Vector* x, int offset) {
+  return Eigen::Map<Eigen::Matrix3d>(x->data() + offset);
+}
 /// Axial vector of the skew part of A: a with [a]× = ½(A − Aᵀ).
 Eigen::Vector3d Axial(const Eigen::Matrix3d& A);
 /// exp([θ]×) by Rodrigues' formula (series near θ = 0).
