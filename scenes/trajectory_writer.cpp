@@ -45,13 +45,11 @@ json Quaternion(const Eigen::Matrix3d& R) {
 json ArticulatedFrameJson(const Scene& scene, ActorHandle h, const ArticulatedKind& kind) {
   const KindState& s = scene.KindStateOf(h);
   json links = json::array();
-  for (int l = 0; l < kind.NumLinks(); ++l) {
-    const RigidPose pose = kind.LinkPose(s.x, l);
+  const std::vector<RigidPose> poses = kind.LinkPoses(s.x);
+  for (const RigidPose& pose : poses)
     links.push_back({{"p", Vec(pose.p)}, {"q", Quaternion(pose.R)}});
-  }
-  const RigidPose root = kind.LinkPose(s.x, 0);
   return {{"p", Vec(kind.CenterOfMass(s))},
-          {"q", Quaternion(root.R)},
+          {"q", Quaternion(poses[0].R)},
           {"v", Vec(kind.CenterOfMassVelocity(s))},
           {"links", links},
           {"joint_positions", Numbers(kind.JointPositions(s.x))},

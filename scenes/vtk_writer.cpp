@@ -91,12 +91,12 @@ bool WriteVtkFrame(Scene& scene, const std::string& path, Error* error) {
       // Links have no shapes yet: each massive link is drawn as a sphere of its RMS radius about
       // its centre of mass.
       const Eigen::VectorXd& q = scene.KindStateOf(h).x;
+      const std::vector<RigidPose> poses = art->LinkPoses(q);
       for (int l = 0; l < art->NumLinks(); ++l) {
         if (!(art->LinkRadius(l) > 0.0)) continue;
-        const RigidPose pose = art->LinkPose(q, l);
         RigidBodyState st;
-        st.R = pose.R;
-        st.p = q.segment<3>(art->Tree().NumCoordinates() + 12 * l);
+        st.R = poses[l].R;
+        st.p = art->LinkCenter(q, l);
         s.AddRigid(MakeIcosphere(art->LinkRadius(l), 2), Eigen::Vector3d::Zero(), st, i);
       }
       continue;

@@ -163,10 +163,10 @@ std::unique_ptr<ActorKind> ArticulatedKind::Clone() const {
   return std::unique_ptr<ActorKind>(new ArticulatedKind(*this));
 }
 
-RigidPose ArticulatedKind::LinkPose(const Eigen::VectorXd& q, int l) const {
+std::vector<RigidPose> ArticulatedKind::LinkPoses(const Eigen::VectorXd& q) const {
   KinematicFrames frames;
   tree_.Evaluate(q.head(tree_.NumCoordinates()), &frames);
-  return frames.link[l];
+  return std::move(frames.link);
 }
 
 void ArticulatedKind::WriteLinks(Eigen::VectorXd* q, KinematicFrames* frames) const {

@@ -77,11 +77,15 @@ class ArticulatedKind : public ActorKind {
 
   const KinematicTree& Tree() const { return tree_; }
   int NumLinks() const { return tree_.NumLinks(); }
-  /// The joint coordinates q_J of a configuration, and link l's world pose (its frame).
+  /// The joint coordinates q_J of a configuration, every link's world pose (its frame; one
+  /// forward kinematics of q_J), and link l's centre of mass as q holds it [m].
   Eigen::VectorXd JointPositions(const Eigen::VectorXd& q) const {
     return q.head(tree_.NumCoordinates());
   }
-  RigidPose LinkPose(const Eigen::VectorXd& q, int l) const;
+  std::vector<RigidPose> LinkPoses(const Eigen::VectorXd& q) const;
+  Eigen::Vector3d LinkCenter(const Eigen::VectorXd& q, int l) const {
+    return q.segment<3>(LinkOffset(l));
+  }
   /// Link l's mass [kg], name and RMS radius √(tr J / m) [m] (0 for a massless link).
   double LinkMass(int l) const { return links_[l].mass; }
   const std::string& LinkName(int l) const { return links_[l].name; }

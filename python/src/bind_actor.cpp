@@ -201,7 +201,8 @@ void DefArticulatedProperties(py::class_<Actor>& actor) {
           [](const Actor& a) {
             const ArticulatedKind& k = a.Articulated("link_positions");
             std::vector<Eigen::Vector3d> p;
-            for (int l = 0; l < k.NumLinks(); ++l) p.push_back(k.LinkPose(a.scene->KindStateOf(a.Handle()).x, l).p);
+            for (const RigidPose& pose : k.LinkPoses(a.scene->KindStateOf(a.Handle()).x))
+              p.push_back(pose.p);
             return RowsToArray(p);
           },
           "(L, 3) each link frame's origin [m] (articulated actors)")
@@ -210,8 +211,8 @@ void DefArticulatedProperties(py::class_<Actor>& actor) {
           [](const Actor& a) {
             const ArticulatedKind& k = a.Articulated("link_orientations");
             std::vector<Eigen::Vector4d> q;
-            for (int l = 0; l < k.NumLinks(); ++l)
-              q.push_back(Quaternion(k.LinkPose(a.scene->KindStateOf(a.Handle()).x, l).R));
+            for (const RigidPose& pose : k.LinkPoses(a.scene->KindStateOf(a.Handle()).x))
+              q.push_back(Quaternion(pose.R));
             return RowsToArray(q);
           },
           "(L, 4) each link frame's quaternion [x, y, z, w] (articulated actors)");

@@ -109,12 +109,13 @@ TEST_CASE("a scene file sets every joint type's initial state", "[scenes][articu
   REQUIRE(LoadSceneText(text, ".", &f, &e));
   const auto& kind = dynamic_cast<const ArticulatedKind&>(f.scene->Kind({0}));
   const KindState& s = f.scene->KindStateOf({0});
-  const RigidPose base = kind.LinkPose(s.x, 0);
+  const std::vector<RigidPose> poses = kind.LinkPoses(s.x);
+  const RigidPose& base = poses[0];
   CHECK((base.p - Eigen::Vector3d(1, 2, 3)).norm() <= 1e-15);
   CHECK((base.R * Eigen::Vector3d::UnitX() - Eigen::Vector3d::UnitY()).norm() <= 1e-15);
-  const RigidPose ball = kind.LinkPose(s.x, 1);
+  const RigidPose& ball = poses[1];
   CHECK((ball.R * Eigen::Vector3d::UnitY() - Eigen::Vector3d::UnitZ()).norm() <= 1e-15);
-  const RigidPose slide = kind.LinkPose(s.x, 2);
+  const RigidPose& slide = poses[2];
   CHECK((slide.p - (ball.p + 0.25 * ball.R * Eigen::Vector3d::UnitX())).norm() <= 1e-15);
   const Eigen::VectorXd u = kind.JointVelocities(s);
   CHECK((u.head<6>() - (Eigen::VectorXd(6) << 0.5, 0, 0, 0, 0, 2).finished()).norm() <= 1e-12);

@@ -75,9 +75,11 @@ TEST_CASE("a URDF arm follows the same arm written link by link", "[scenes][urdf
     const Eigen::VectorXd qa = a.JointPositions(fromUrdf.scene->KindStateOf({0}).x);
     const Eigen::VectorXd qb = b.JointPositions(byLinks.scene->KindStateOf({0}).x);
     worst = std::max(worst, (qa - qb).cwiseAbs().maxCoeff());
+    const std::vector<RigidPose> posesA = a.LinkPoses(fromUrdf.scene->KindStateOf({0}).x);
+    const std::vector<RigidPose> posesB = b.LinkPoses(byLinks.scene->KindStateOf({0}).x);
     for (int l = 0; l < 3; ++l) {
-      const RigidPose pa = a.LinkPose(fromUrdf.scene->KindStateOf({0}).x, l + 1);
-      const RigidPose pb = b.LinkPose(byLinks.scene->KindStateOf({0}).x, l);
+      const RigidPose& pa = posesA[l + 1];
+      const RigidPose& pb = posesB[l];
       worst = std::max(worst, (pa.p - pb.p).norm() + (pa.R - pb.R).norm());
     }
   }
