@@ -171,7 +171,38 @@ ActorHandle Scene::AddActor(std::unique_ptr<ActorKind> actor, Error* error,
   if (!UniqueName(actor->name, error)) return {};
   if (std::string m = ValidateKindLayout(*actor, settings_.gravity); !m.empty())
     return Fail(error, m), ActorHandle();
-  return Register(std::move(actor), contactLayer, parent);
+  if (const FrameAttachment* at = actor->Attachment()) {
+    // Attached to a frame of the actor it is nested under.
+    const std::string name = "actor (" + actor->KindName() + ")";
+    if (!parent.IsValid())
+      return Fail(error, name + ": an attached actor needs its carrier as parent"), ActorHandle();
+    if (actors_[parent.index].carrier >= 0 ||
+        !(at->frame >= 0 && at->frame < Kind(parent).NumCarriedFrames()))
+      return Fail(error, name + ": attachment frame " + std::to_string(at->frame) +
+                             " is not a frame of its parent '" + ActorName(parent) + "'"),
+             ActorHandle();
+  }
+  const bool attached = actor->Attachment() != nullptr;
+  const ActorHandle h = Register(std::move(actor), contactLayer, parent);
+  if (attached) {
+    actors_[h.index].carrier = parent.index;
+    SyncAttachedStates();
+  }
+  return h;
+}
+
+void Scene::SyncAttachedStates() {
+  auto sync = [&](std::vector<VectorState>* states) {
+    for (size_t a = 0; a < actors_.size(); ++a) {
+      const int c = actors_[a].carrier;
+      if (c < 0 || static_cast<size_t>(c) >= states->size()) continue;
+      const FrameAttachment& at = *kinds_[a]->Attachment();
+      AttachedConfiguration(*kinds_[c], at, (*states)[c].x, &(*states)[a].x);
+      AttachedConfiguration(*kinds_[c], at, (*states)[c].v, &(*states)[a].v);
+    }
+  };
+  sync(&step_.vectorStates);
+  for (std::vector<VectorState>& h : step_.vectorHistory) sync(&h);
 }
 
 std::vector<ActorHandle> Scene::ActorsWhere(bool ActorRef::*flag) const {
@@ -289,11 +320,24 @@ void Scene::Prepare() {
   // Every actor's free tangent dofs, in creation order.
   kindPtrs_.clear();
   kindStageDof_.resize(kinds_.size());
+  attached_.clear();
   for (size_t k = 0; k < kinds_.size(); ++k) {
     kindPtrs_.push_back(kinds_[k].get());
     kindStageDof_[k].resize(kinds_[k]->NumTangentDofs());
+    const bool own = actors_[k].carrier < 0;  // an attached actor has no unknowns of its own
     for (int i = 0; i < kinds_[k]->NumTangentDofs(); ++i)
-      kindStageDof_[k][i] = kinds_[k]->IsPrescribed(i) ? -1 : numDofs_++;
+      kindStageDof_[k][i] = own && !kinds_[k]->IsPrescribed(i) ? numDofs_++ : -1;
+    if (!own) attached_.push_back({static_cast<int>(k), actors_[k].carrier});
+  }
+  // The contact's numbering: an attached actor's [δp, δθ] after the unknowns, where its
+  // carrier has some.
+  numContactDofs_ = numDofs_;
+  kindContactDof_.clear();
+  if (!attached_.empty()) {
+    kindContactDof_ = kindStageDof_;
+    for (const KindStage::Attached& a : attached_)
+      if (kinds_[a.carrier]->HasFreeDof())
+        for (int& d : kindContactDof_[a.actor]) d = numContactDofs_++;
   }
   std::vector<int> kindActor(kinds_.size());
   for (int i = 0; i < NumActors(); ++i) kindActor[i] = i;
@@ -328,6 +372,17 @@ void Scene::MakeStage(double dt, double t, const std::vector<VectorState>& start
     kinds_[k]->PrepareStage(&d);
     ks.q0[k] = d.q0;
     ks.qLast[k] = d.qLast;
+  }
+  ks.attached = attached_;
+  ks.contactDof = kindContactDof_;
+  ks.numContactDofs = numContactDofs_;
+  for (const KindStage::Attached& a : attached_) {  // the carriers' stage start and x_n
+    const FrameAttachment& at = *kinds_[a.actor]->Attachment();
+    AttachedConfiguration(*kinds_[a.carrier], at, ks.q0[a.carrier], &ks.q0[a.actor]);
+    AttachedConfiguration(*kinds_[a.carrier], at, ks.qLast[a.carrier], &ks.qLast[a.actor]);
+    ks.data[a.actor].q0 = ks.q0[a.actor];
+    ks.data[a.actor].qLast = ks.qLast[a.actor];
+    ks.data[a.actor].qHat = ks.q0[a.actor];
   }
 }
 
@@ -391,6 +446,7 @@ bool Scene::Step(double h, StepReport* report, Error* error, StageRecorder* reco
   else
     StepDirk(step_, h, bdf3Startup ? IntegrationMethod::DIRK33 : method, *this, &buffers_, &w);
   EndStep(h, &w, &step_);
+  if (!attached_.empty()) SyncAttachedStates();
   rep.time = step_.time;
   const bool supplied = recorder_ && recorder_->Supplies();
   recorder_ = nullptr;
@@ -420,7 +476,7 @@ ContactStats Scene::ContactState() {
 KindView Scene::CurrentKindView(const std::vector<Eigen::VectorXd>& x) const {
   KindView kinds;
   kinds.q = &x;
-  kinds.stageDof = &kindStageDof_;
+  kinds.stageDof = attached_.empty() ? &kindStageDof_ : &kindContactDof_;
   return kinds;
 }
 

@@ -18,6 +18,7 @@
 #include "core/dynamics/step_state.h"
 #include "core/dynamics/time_stepper.h"
 #include "core/model/actor_kind.h"
+#include "core/model/articulated_kind.h"
 #include "core/model/enums.h"
 #include "core/model/error.h"
 #include "core/model/eval_params.h"
@@ -50,6 +51,17 @@ class Scene : private StageHost {
   ActorHandle AddActor(std::unique_ptr<ActorKind> actor, Error* error,
                        const std::string& contactLayer = "default",
                        ActorHandle parent = ActorHandle());
+
+  /// Adds an articulated actor (core/model/articulated_kind.h) and, nested under it, one attached
+  /// actor per link shape (BuildLinkShapes), each colliding and a collider with its own
+  /// parameters; contact between the shapes of a link and of its parent link (and among one
+  /// link's shapes) is disabled (DisableAdjacentContact; a later actor-contact setting overrides
+  /// it). Returns the articulation's handle, or an invalid one with *error (nothing added).
+  ActorHandle AddArticulatedActor(const ArticulatedActorDesc& desc, Error* error,
+                                  const std::string& contactLayer = "default",
+                                  ActorHandle parent = ActorHandle());
+  /// The attached actors of an actor (its link shapes), in creation order.
+  std::vector<ActorHandle> AttachedActors(ActorHandle carrier) const;
 
   // --- Contact filtering (spec: "Contact Filtering"): false, with *error, for a bad handle.
   /// Actor::SetContactLayer: an arbitrary string.
@@ -187,6 +199,7 @@ class Scene : private StageHost {
     bool rigid = false;  ///< a rigid actor (a RigidKind)
     bool soft = false;   ///< a soft actor (a SoftKind)
     int desc = -1;       ///< a rigid (soft) actor's index into rigidDescs_ (softDescs_)
+    int carrier = -1;    ///< an attached actor's carrier (ActorKind::Attachment), else −1
   };
   const RigidKind& RigidOf(ActorHandle a) const { return static_cast<const RigidKind&>(Kind(a)); }
   std::vector<ActorHandle> ActorsWhere(bool ActorRef::*flag) const;  // in creation order
@@ -208,6 +221,8 @@ class Scene : private StageHost {
   int FilledStateBlocks() const;  // 1 + the history blocks that hold a state
 
   void ClearHistory();
+  /// Writes every attached actor's state (now and in the history) from its carrier's.
+  void SyncAttachedStates();
   bool ValidParent(ActorHandle parent, Error* error) const;  // no parent, or an existing actor
   bool UniqueName(const std::string& name, Error* error) const;  // empty, or no actor's yet
   // Enters an actor into the kinds, the actor list and the filter.
@@ -232,6 +247,10 @@ class Scene : private StageHost {
   std::vector<std::shared_ptr<ActorKind>> kinds_;
   std::vector<const ActorKind*> kindPtrs_;           // for the pipeline and the stage
   std::vector<std::vector<int>> kindStageDof_;       // per kind: stage dof of each local dof
+  // With attached actors: the contact's numbering (KindStage::contactDof), the attached actors.
+  std::vector<std::vector<int>> kindContactDof_;
+  int numContactDofs_ = 0;
+  std::vector<KindStage::Attached> attached_;
   std::vector<ActorRef> actors_;
   StepState step_;  // what a step advances (vectorStates: the actors' vector states)
   StepBuffers buffers_;  // Step's storage kept from step to step (core/dynamics/step_state.h)

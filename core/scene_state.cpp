@@ -41,8 +41,12 @@ bool Scene::SetKindState(ActorHandle a, const KindState& state, Error* error) {
                            (actors_[a.index].soft ? " (3 per node)" : ""));
   if (!state.x.allFinite() || !state.v.allFinite())
     return Fail(error, "state: x and v must be finite");
+  if (actors_[a.index].carrier >= 0)
+    return Fail(error, "actor: '" + ActorName(a) +
+                           "' is attached to its carrier: its state follows the carrier's");
   step_.vectorStates[a.index] = state;
   ClearHistory();
+  SyncAttachedStates();
   return true;
 }
 
@@ -125,6 +129,7 @@ void Scene::VisitStateLayout(int blocks, Visit&& visit) const {
   for (int b = 0; b < blocks; ++b)
     for (int i = 0; i < NumActors(); ++i) {
       if (actors_[i].rigid && !RigidOf({i}).Model().dynamic) continue;
+      if (actors_[i].carrier >= 0) continue;  // follows its carrier
       visit(b, offset, i);
       offset += BlockSize(i);
     }
@@ -177,6 +182,7 @@ void Scene::UnpackState(const Eigen::VectorXd& s) {
     st.x = s.segment(o, n);
     st.v = s.segment(o + n, n);
   });
+  SyncAttachedStates();
 }
 
 void Scene::HoldStatic(int a, const RigidBodyState& state) {

@@ -22,7 +22,10 @@ SceneStageProblem::SceneStageProblem(int numDofs, double dt, ContactPipeline* co
       dissipation_(dissipation),
       stage_(x && stage.Size() > 0 ? &stage : nullptr),
       x_(stage_ ? x : nullptr) {
-  if (stage_) trial_ = *x_;
+  if (stage_) {
+    SyncAttached(*stage_, x_);
+    trial_ = *x_;
+  }
   context_ = ContextOf(dissipation_, dt_);
   if (stage_) {  // the kinds' loads at the stage's time
     const KindStage& ks = *stage_;
@@ -48,8 +51,14 @@ KindView KindViewOf(const KindStage& stage, const std::vector<Eigen::VectorXd>& 
   kinds.q = &x;
   kinds.qLast = &stage.qLast;
   kinds.q0 = &stage.q0;
-  kinds.stageDof = &stage.stageDof;
+  kinds.stageDof = stage.attached.empty() ? &stage.stageDof : &stage.contactDof;
   return kinds;
+}
+
+void SyncAttached(const KindStage& stage, std::vector<Eigen::VectorXd>* x) {
+  for (const KindStage::Attached& a : stage.attached)
+    AttachedConfiguration(*(*stage.kinds)[a.carrier], *(*stage.kinds)[a.actor]->Attachment(),
+                          (*x)[a.carrier], &(*x)[a.actor]);
 }
 
 DissipationContext ContextOf(const StageDissipation& dissipation, double dt) {
@@ -80,15 +89,18 @@ void SceneStageProblem::Retract(const Eigen::VectorXd& d, std::vector<Eigen::Vec
   if (!stage_) return;
   for (size_t k = 0; k < stage_->Size(); ++k)
     (*stage_->kinds)[k]->Retract((*x_)[k], KindLocal(k, d), &(*out)[k]);
+  SyncAttached(*stage_, out);
 }
 
 double SceneStageProblem::EvaluateAt(const std::vector<Eigen::VectorXd>& x, int order,
                                      PsdProjection projection, Eigen::VectorXd* gPot,
                                      Eigen::VectorXd* rDiss, ContactStats* stats) {
   double value = 0.0;
-  if (order >= 1) {
-    gPot->setZero(numDofs_);
-    if (rDiss != gPot) rDiss->setZero(numDofs_);
+  const bool attached = stage_ && !stage_->attached.empty();
+  if (order >= 1) {  // with attached actors, at the contact's numbering until reduced
+    const int n = attached ? stage_->numContactDofs : numDofs_;
+    gPot->setZero(n);
+    if (rDiss != gPot) rDiss->setZero(n);
   }
   triplets_.clear();
   ws_->blocks.clear();
@@ -103,7 +115,95 @@ double SceneStageProblem::EvaluateAt(const std::vector<Eigen::VectorXd>& x, int 
   const KindView kinds = KindViewOf(*stage_, x);
   value += contact_->Evaluate(order, projection, gPot, &triplets_, &ws_->blocks, stats,
                               dissipation_.enabled ? &context_ : nullptr, rDiss, &kinds);
+  if (attached && order >= 1) ReduceAttached(x, order, projection, gPot, rDiss);
   return value;
+}
+
+void SceneStageProblem::ReduceAttached(const std::vector<Eigen::VectorXd>& x, int order,
+                                       PsdProjection projection, Eigen::VectorXd* gPot,
+                                       Eigen::VectorXd* rDiss) {
+  const KindStage& ks = *stage_;
+  const size_t na = ks.attached.size();
+  // Each body's chart Jacobian about its origin, one evaluation per carrier; its total chart
+  // gradient (the potential's, with the dissipation's where that is a potential too).
+  std::vector<Eigen::MatrixXd>& A = ws_->frameJacobians;
+  std::vector<FramePoint>& points = ws_->framePoints;
+  std::vector<Eigen::Matrix<double, 6, 1>>& loads = ws_->frameLoads;
+  A.resize(na);
+  loads.resize(na);
+  std::vector<Eigen::MatrixXd> carrierA;
+  std::vector<Eigen::Triplet<double>> curvature;
+  for (size_t i = 0; i < na; ++i) {
+    const int body = ks.attached[i].actor;
+    const int first = ks.contactDof[body][0];
+    loads[i].setZero();
+    if (first < 0) continue;
+    loads[i] = gPot->segment<6>(first);
+    if (rDiss != gPot) loads[i] += rDiss->segment<6>(first);
+  }
+  for (size_t i = 0; i < na; ++i) {
+    const int carrier = ks.attached[i].carrier;
+    if (i > 0 && ks.attached[i - 1].carrier == carrier) continue;  // done with its run
+    size_t end = i;
+    points.clear();
+    for (; end < na && ks.attached[end].carrier == carrier; ++end) {
+      const ActorKind& body = *(*ks.kinds)[ks.attached[end].actor];
+      points.push_back({body.Attachment()->frame, x[ks.attached[end].actor].head<3>()});
+    }
+    const ActorKind& kind = *(*ks.kinds)[carrier];
+    kind.CarriedFrameJacobians(x[carrier], points, &carrierA);
+    for (size_t j = i; j < end; ++j) A[j] = carrierA[j - i];
+    if (order < 2 || projection != PsdProjection::None) continue;
+    // The exact Hessian's curvature of the carrier's chart (its tangent dofs' entries, all of
+    // them, so that the pattern stays put).
+    const int m = kind.NumTangentDofs();
+    Eigen::MatrixXd C = Eigen::MatrixXd::Zero(m, m);
+    std::vector<Eigen::Matrix<double, 6, 1>> runLoads(loads.begin() + i, loads.begin() + end);
+    kind.AddCarriedFrameCurvature(x[carrier], points, runLoads, &C);
+    const std::vector<int>& dof = ks.stageDof[carrier];
+    for (int r = 0; r < m; ++r)
+      for (int c = 0; c < m; ++c)
+        if (dof[r] >= 0 && dof[c] >= 0) curvature.emplace_back(dof[r], dof[c], C(r, c));
+  }
+  auto reduce = [&](Eigen::VectorXd* v) {
+    for (size_t i = 0; i < na; ++i) {
+      const int first = ks.contactDof[ks.attached[i].actor][0];
+      if (first < 0) continue;
+      const Eigen::VectorXd r = A[i].transpose() * v->segment<6>(first);
+      const std::vector<int>& dof = ks.stageDof[ks.attached[i].carrier];
+      for (size_t j = 0; j < dof.size(); ++j)
+        if (dof[j] >= 0) (*v)[dof[j]] += r[static_cast<Eigen::Index>(j)];
+    }
+    v->conservativeResize(numDofs_);
+  };
+  reduce(gPot);
+  if (rDiss != gPot) reduce(rDiss);
+  if (order < 2) return;
+  // H = Pᵀ H_ext P, P = [I; A] (N × n), then the curvature.
+  const int N = ks.numContactDofs;
+  ws_->extendedAssembly.Assemble(triplets_, ws_->blocks, ws_->blockPosition, N, &ws_->extended);
+  std::vector<Eigen::Triplet<double>> p;
+  for (int r = 0; r < numDofs_; ++r) p.emplace_back(r, r, 1.0);
+  for (size_t i = 0; i < na; ++i) {
+    const int first = ks.contactDof[ks.attached[i].actor][0];
+    if (first < 0) continue;
+    const std::vector<int>& dof = ks.stageDof[ks.attached[i].carrier];
+    for (int k = 0; k < 6; ++k)
+      for (size_t j = 0; j < dof.size(); ++j)
+        if (dof[j] >= 0 && A[i](k, static_cast<Eigen::Index>(j)) != 0.0)
+          p.emplace_back(first + k, dof[j], A[i](k, static_cast<Eigen::Index>(j)));
+  }
+  ws_->reduction.resize(N, numDofs_);
+  ws_->reduction.setFromTriplets(p.begin(), p.end());
+  const Eigen::SparseMatrix<double> H =
+      Eigen::SparseMatrix<double>(ws_->reduction.transpose()) * ws_->extended * ws_->reduction;
+  triplets_.clear();
+  ws_->blocks.clear();
+  ws_->blockPosition = 0;
+  for (int c = 0; c < H.outerSize(); ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(H, c); it; ++it)
+      triplets_.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), it.value());
+  triplets_.insert(triplets_.end(), curvature.begin(), curvature.end());
 }
 
 double SceneStageProblem::EvaluateKindTerms(const std::vector<Eigen::VectorXd>& x, int order,
@@ -305,6 +405,15 @@ bool SceneStageProblem::LastSplit(StageSplit* split) {
   value = ws_->kindValue;
   split->joins.clear();
   if (contact_ && !contact_->SplitLastEvaluation(&value, &split->joins)) return false;
+  // An attached body's pairs are its carrier's.
+  if (kinds) for (const KindStage::Attached& a : kinds->attached) {
+    value[a.carrier] += value[a.actor];
+    value[a.actor] = 0.0;
+    for (std::pair<int, int>& j : split->joins) {
+      if (j.first == a.actor) j.first = a.carrier;
+      if (j.second == a.actor) j.second = a.carrier;
+    }
+  }
   split->share.assign(value.begin(), value.end());
   return true;
 }
@@ -328,6 +437,8 @@ bool SceneStageProblem::LimitStep(Eigen::VectorXd* d) {
   Retract(*d, &trial_);
   const KindView now = KindViewOf(*stage_, *x_), next = KindViewOf(*stage_, trial_);
   contact_->StepLimits(now, next, &kindLimits);
+  for (const KindStage::Attached& a : stage_->attached)  // an attached body's moves its carrier
+    kindLimits[a.carrier] = std::min(kindLimits[a.carrier], kindLimits[a.actor]);
   bool changed = false;
   for (size_t k = 0; k < stage_->Size(); ++k) {
     if (kindLimits[k] >= 1.0) continue;

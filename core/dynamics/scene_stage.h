@@ -34,16 +34,34 @@ struct StageDissipation {
 /// The actors of a stage (core/model/actor_kind.h): the kinds, and per actor the stage offsets of
 /// its local dofs (−1 for a prescribed dof), its stage data and copies of its x⁰ and x_n (contact
 /// view). The stage's iterate x holds each actor's configuration q, in the same order.
+///
+/// Attached actors (ActorKind::Attachment: a link's collision body) have no stage unknowns of
+/// their own (stageDof −1); their configurations in x follow their carriers' (SyncAttached). The
+/// contact pipeline sees each one's [δp, δθ] at six virtual dofs numDofs … numContactDofs − 1
+/// (contactDof), and the stage reduces what it assembles there into the carrier's dofs with the
+/// chart Jacobian A (ActorKind::CarriedFrameJacobians) and, in the exact Hessian, the chart's
+/// curvature (ActorKind::AddCarriedFrameCurvature):
+///   g = g_real + Aᵀ g_body,   H = Pᵀ H_ext P + Σ_bodies curvature(g_body),   P = [I; A].
 struct KindStage {
   const std::vector<const ActorKind*>* kinds = nullptr;
   std::vector<std::vector<int>> stageDof;
   std::vector<KindStageData> data;
   std::vector<Eigen::VectorXd> q0, qLast;
+  /// An attached actor and its carrier (indices into the kinds; a carrier comes first).
+  struct Attached {
+    int actor = -1, carrier = -1;
+  };
+  std::vector<Attached> attached;
+  std::vector<std::vector<int>> contactDof;  ///< with attached actors only: the contact's numbering
+  int numContactDofs = 0;                    ///< with attached actors only
   size_t Size() const { return data.size(); }
 };
 
 /// The contact view of a stage at the iterate x; empty (q null) without actors.
 KindView KindViewOf(const KindStage& stage, const std::vector<Eigen::VectorXd>& x);
+
+/// Writes each attached actor's configuration in *x from its carrier's (AttachedConfiguration).
+void SyncAttached(const KindStage& stage, std::vector<Eigen::VectorXd>* x);
 
 /// The pipeline's dissipation data for a stage of step dt [s] (ContactPipeline::Evaluate).
 DissipationContext ContextOf(const StageDissipation& dissipation, double dt);
@@ -66,6 +84,13 @@ struct StageWorkspace {
   std::vector<Eigen::Triplet<double>> kindHessian; ///< a kind's local Jacobian corrections
   TripletAssembly hessianAssembly;   ///< Evaluate's Hessians (pattern kept between iterations)
   TripletAssembly jacobianAssembly;  ///< EvaluateResidual's Jacobians
+  // Attached actors' reduction (ReduceAttached).
+  TripletAssembly extendedAssembly;           ///< the contact's extended Hessian
+  Eigen::SparseMatrix<double> extended;       ///< H_ext
+  Eigen::SparseMatrix<double> reduction;      ///< P
+  std::vector<Eigen::MatrixXd> frameJacobians;
+  std::vector<FramePoint> framePoints;
+  std::vector<Eigen::Matrix<double, 6, 1>> frameLoads;
 };
 
 
@@ -152,8 +177,17 @@ class SceneStageProblem : public StageProblem {
   /// EvaluateResidual's work at the given configuration.
   void ResidualAndJacobian(const std::vector<Eigen::VectorXd>& x, Eigen::VectorXd* r,
                            Eigen::SparseMatrix<double>* J, ContactStats* stats);
-  /// The vector states at s ⊕ d into *out.
+  /// The vector states at s ⊕ d into *out (attached actors' from their carriers').
   void Retract(const Eigen::VectorXd& d, std::vector<Eigen::VectorXd>* out) const;
+  /// Attached actors: EvaluateAt's extended gradient *gPot, residual *rDiss (may alias) and
+  /// triplets (order 2) at the contact's numbering, reduced to the stage dofs (KindStage). The
+  /// exact Hessian (projection None) takes the carriers' chart curvature of the bodies' total
+  /// chart loads; the projected model leaves it out (the carrier's Gauss–Newton rule). In the
+  /// residual modes the reduced residual Aᵀ r_body is exact, and the Jacobian's curvature of the
+  /// dissipative load is the symmetric (potential) form: an approximation of that term, which
+  /// changes Newton's rate only.
+  void ReduceAttached(const std::vector<Eigen::VectorXd>& x, int order, PsdProjection projection,
+                      Eigen::VectorXd* gPot, Eigen::VectorXd* rDiss);
   /// All terms at the vector states x: value; order >= 1: potential gradient into *gPot and
   /// dissipative residual into *rDiss (may alias); order 2: triplets_.
   double EvaluateAt(const std::vector<Eigen::VectorXd>& x, int order,

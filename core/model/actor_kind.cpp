@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/model/rigid_math.h"
+
 namespace superdex {
 
 bool ActorKind::HasFreeDof() const {
@@ -39,6 +41,15 @@ Eigen::MatrixXd ActorKind::CenterOfMassJacobian(const KindState& s) const {
     moved.x[i] = s.x[i];
   }
   return C;
+}
+
+void AttachedConfiguration(const ActorKind& carrier, const FrameAttachment& attachment,
+                           const Eigen::VectorXd& carrierQ, Eigen::VectorXd* q) {
+  const int off = carrier.CarriedFrameOffset(attachment.frame);
+  const Eigen::Matrix3d Rf = Matrix3At(carrierQ, off + 3);
+  q->resize(12);
+  q->head<3>() = carrierQ.segment<3>(off) + Rf * attachment.offset;
+  Matrix3At(q, 3) = Rf * attachment.rotation;
 }
 
 std::string ValidateKindLayout(const ActorKind& kind, const Eigen::Vector3d& gravity) {

@@ -130,6 +130,33 @@ struct KindFrame {
   Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, kMaxFrameDofs> F;
 };
 
+/// A point fixed to a frame a kind carries (ActorKind::NumCarriedFrames): the frame and the
+/// point's world position at the configuration in question [m].
+struct FramePoint {
+  int frame = -1;
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+};
+
+/// An attached actor's place on its carrier (ActorKind::Attachment): a rigid body fixed to the
+/// carrier's frame `frame` (p_f, R_f), its pose p = p_f + R_f o, R = R_f R_o (body → world).
+struct FrameAttachment {
+  int frame = -1;
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();          ///< o, in the frame [m]
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();    ///< R_o, body → frame
+};
+
+/// The collider frame of a body whose pose is the kind's own: [δp_B, δθ_B] its tangent dofs
+/// 0 .. 2 and 3 .. 5 (a rigid or attached body).
+inline KindFrame OwnPoseFrame(const RigidPose& pose) {
+  KindFrame f;
+  f.pose = pose;
+  f.rigid = true;
+  f.blocks = 2;
+  f.dof[0] = 0;
+  f.dof[1] = 3;
+  return f;
+}
+
 /// A DIRK stage's slope (V_i, K_i) of one actor, with the kind's own per-stage data (a rigid
 /// body's stage torque) for its step end.
 struct KindSlope {
@@ -362,6 +389,34 @@ class ActorKind {
   /// a's position is q's entries 3a .. 3a+2, its tangent dofs the same. Null: none.
   virtual const SoftBodyModel* TetCollider() const { return nullptr; }
 
+  // --- Carried frames and attached actors (an articulation's links and their collision bodies).
+  /// Rigid frames the configuration holds: frame f's origin and rotation (frame → world) are
+  /// the 12 entries [p, vec R] of q at CarriedFrameOffset(f), a pose linear in q, so that an
+  /// affine combination of states is that of the frame's material points (an articulation's
+  /// link: its centre of mass and rotation). Default: none.
+  virtual int NumCarriedFrames() const { return 0; }
+  virtual int CarriedFrameOffset(int /*f*/) const { return -1; }
+  /// The chart Jacobians at q (one evaluation for all the points): (*A)[i] (6 × m) maps the
+  /// tangent step δ to the move [δp; δθ] of the rigid chart (p + δp, exp([δθ]×) R) of frame
+  /// points[i].frame about the world point points[i].point, which moves with the frame.
+  virtual void CarriedFrameJacobians(const Eigen::VectorXd& /*q*/,
+                                     const std::vector<FramePoint>& /*points*/,
+                                     std::vector<Eigen::MatrixXd>* /*A*/) const {}
+  /// Adds Σ_i (f_i·∂²p_i/∂δ∂δ + τ_i·∂²θ_i/∂δ∂δ) at δ = 0 into *H (m × m, local tangent dofs):
+  /// the second-order part of chart loads [f_i; τ_i] = loads[i] [N; N·m] (the chart gradients
+  /// of an energy of the frames' poses) carried into the tangent step.
+  virtual void AddCarriedFrameCurvature(const Eigen::VectorXd& /*q*/,
+                                        const std::vector<FramePoint>& /*points*/,
+                                        const std::vector<Eigen::Matrix<double, 6, 1>>& /*loads*/,
+                                        Eigen::MatrixXd* /*H*/) const {}
+  /// An attached actor (a link's collision body): a rigid body fixed to a frame of its carrier,
+  /// the actor it is nested under (Scene::AddActor checks the frame exists). Its configuration
+  /// [p, vec R] (12 entries, 6 tangent dofs [δp, δθ]) is written from its carrier's
+  /// (AttachedConfiguration) wherever the carrier's changes; it has no stage unknowns, mass or
+  /// energy of its own: the contact on it reaches the carrier's tangent dofs through the chart
+  /// Jacobian (core/dynamics/scene_stage.h). Null: not attached.
+  virtual const FrameAttachment* Attachment() const { return nullptr; }
+
   // --- Sensitivities (core/sensitivity/; defaults: a vector kind whose q are lengths).
   /// The groups of coordinates the step linearization moves together at state s. Default: one
   /// group of every entry of q and v (each a direction of length 1) and every free tangent dof.
@@ -385,6 +440,11 @@ class ActorKind {
   ContactParams contact;
   std::string name;
 };
+
+/// The attached body's [p, vec R] from its carrier's configuration (or, the map being linear,
+/// its velocity [ṗ, vec Ṙ] from the carrier's velocity): p_f + R_f o, R_f R_o.
+void AttachedConfiguration(const ActorKind& carrier, const FrameAttachment& attachment,
+                           const Eigen::VectorXd& carrierQ, Eigen::VectorXd* q);
 
 /// Empty when an actor of `kind` can be added to a scene with this gravity [m/s²]; else why not
 /// (the kind's own Validate and contact parameters, its state sizes, a stage load's size, and

@@ -69,6 +69,28 @@ std::string ValidateMass(const ArticulatedLinkDesc& link) {
 
 }  // namespace
 
+bool BuildLinkShapes(const ArticulatedActorDesc& desc, std::vector<LinkShape>* shapes,
+                     Error* error) {
+  shapes->clear();
+  for (int l = 0; l < static_cast<int>(desc.links.size()); ++l) {
+    const ArticulatedLinkDesc& link = desc.links[l];
+    for (size_t j = 0; j < link.shapes.size(); ++j) {
+      LinkShapeDesc shape = link.shapes[j];
+      if (shape.name.empty()) {
+        shape.name = desc.name + "/" + (link.name.empty() ? "link" + std::to_string(l) : link.name);
+        if (j > 0) shape.name += "#" + std::to_string(j);
+      }
+      const std::string prefix = "articulation '" + desc.name + "': " + LinkLabel(desc, l) +
+                                 ": shapes[" + std::to_string(j) + "].";
+      std::unique_ptr<AttachedBodyKind> kind =
+          AttachedBodyKind::Build(shape, l, link.centerOfMass, prefix, error);
+      if (!kind) return false;
+      shapes->push_back({l, std::move(kind)});
+    }
+  }
+  return true;
+}
+
 std::unique_ptr<ArticulatedKind> ArticulatedKind::Build(const ArticulatedActorDesc& desc,
                                                         Error* error) {
   const std::string who = "articulation '" + desc.name + "': ";
@@ -528,6 +550,26 @@ Eigen::Vector3d ArticulatedKind::CenterOfMassVelocity(const KindState& s) const 
   double mass = 0.0;
   for (const Link& link : links_) mass += link.mass;
   return mass > 0.0 ? Eigen::Vector3d(LinearMomentum(s) / mass) : Eigen::Vector3d::Zero();
+}
+
+void ArticulatedKind::CarriedFrameJacobians(const Eigen::VectorXd& q,
+                                            const std::vector<FramePoint>& points,
+                                            std::vector<Eigen::MatrixXd>* A) const {
+  KinematicFrames frames;
+  tree_.Evaluate(q.head(tree_.NumCoordinates()), &frames);
+  A->resize(points.size());
+  for (size_t i = 0; i < points.size(); ++i)
+    tree_.LinkChartJacobian(frames, points[i].frame, points[i].point, &(*A)[i]);
+}
+
+void ArticulatedKind::AddCarriedFrameCurvature(
+    const Eigen::VectorXd& q, const std::vector<FramePoint>& points,
+    const std::vector<Eigen::Matrix<double, 6, 1>>& loads, Eigen::MatrixXd* H) const {
+  KinematicFrames frames;
+  tree_.Evaluate(q.head(tree_.NumCoordinates()), &frames);
+  for (size_t i = 0; i < points.size(); ++i)
+    tree_.AddLinkChartCurvature(frames, points[i].frame, points[i].point, loads[i].head<3>(),
+                                loads[i].tail<3>(), H);
 }
 
 Aabb ArticulatedKind::Bounds(const Eigen::VectorXd& q) const {

@@ -44,6 +44,7 @@
 #include <vector>
 
 #include "core/model/actor_kind.h"
+#include "core/model/attached_body_kind.h"
 #include "core/model/error.h"
 #include "core/model/joint_params.h"
 #include "core/model/kinematic_tree.h"
@@ -59,6 +60,9 @@ struct ArticulatedLinkDesc {
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Identity();     ///< about the centre of mass, link frame [kg·m²]
   /// Limits, damping and a drive of the joint's coordinate (Revolute and Prismatic joints).
   JointParams jointParams;
+  /// Collision shapes (none: the link does not collide), each an attached actor of the
+  /// articulation (BuildLinkShapes, Scene::AddArticulatedActor).
+  std::vector<LinkShapeDesc> shapes;
 };
 
 struct ArticulatedActorDesc {
@@ -69,6 +73,21 @@ struct ArticulatedActorDesc {
   /// Joint velocities as a tangent step rate (KinematicTree tangent layout) [rad/s, m/s]; empty: 0.
   Eigen::VectorXd jointVelocities;
 };
+
+class ArticulatedKind;
+
+/// One collision shape of an articulation as its attached actor: the link and the kind.
+struct LinkShape {
+  int link = -1;
+  std::unique_ptr<AttachedBodyKind> kind;
+};
+
+/// The attached actors of every link's shapes, in link order, each on its link's frame (the
+/// link's centre of mass, ArticulatedKind::NumCarriedFrames), named after `desc.name` and the
+/// link ("arm/finger", "arm/finger#1" for a link's second shape) unless the shape has a name;
+/// false, with *error naming the link, the shape and the rule, on bad input.
+bool BuildLinkShapes(const ArticulatedActorDesc& desc, std::vector<LinkShape>* shapes,
+                     Error* error);
 
 class ArticulatedKind : public ActorKind {
  public:
@@ -136,6 +155,17 @@ class ArticulatedKind : public ActorKind {
   /// [m/s²]: the material points' acceleration change.
   double ForceChange(const KindState& current, const KindState& previous, double hPrevious,
                      const KindState& before, double hBefore) const override;
+
+  /// Carried frames: the links, each at its centre of mass c_l with its rotation R_l (the
+  /// links' entries of q); their chart Jacobians and curvature from one forward kinematics of
+  /// q's joint coordinates (KinematicTree::LinkChartJacobian, AddLinkChartCurvature).
+  int NumCarriedFrames() const override { return NumLinks(); }
+  int CarriedFrameOffset(int l) const override { return LinkOffset(l); }
+  void CarriedFrameJacobians(const Eigen::VectorXd& q, const std::vector<FramePoint>& points,
+                             std::vector<Eigen::MatrixXd>* A) const override;
+  void AddCarriedFrameCurvature(const Eigen::VectorXd& q, const std::vector<FramePoint>& points,
+                                const std::vector<Eigen::Matrix<double, 6, 1>>& loads,
+                                Eigen::MatrixXd* H) const override;
 
   double KineticEnergy(const KindState& s) const override;
   double GravityEnergy(const KindState& s, const Eigen::Vector3d& gravity) const override;

@@ -220,12 +220,24 @@ void RigidKind::EndPrescribed(double t, KindState* s) const {
   PackInto(k.v, k.Rdot, &s->v);
 }
 
-void RigidKind::Retract(const Eigen::VectorXd& q, const Eigen::VectorXd& delta,
-                        Eigen::VectorXd* out) const {
+void RigidChartRetract(const Eigen::VectorXd& q, const Eigen::VectorXd& delta,
+                       Eigen::VectorXd* out) {
   out->resize(12);
   out->head<3>() = q.head<3>() + delta.head<3>();
   const Eigen::Matrix3d R = ExpSo3(delta.segment<3>(3)) * RotationOf(q);
   out->tail<9>() = Eigen::Map<const Eigen::Matrix<double, 9, 1>>(R.data());
+}
+
+void RigidChartBetween(const Eigen::VectorXd& from, const Eigen::VectorXd& to,
+                       Eigen::VectorXd* delta) {
+  delta->resize(6);
+  delta->head<3>() = to.head<3>() - from.head<3>();
+  delta->tail<3>() = LogSo3(RotationOf(to) * RotationOf(from).transpose());
+}
+
+void RigidKind::Retract(const Eigen::VectorXd& q, const Eigen::VectorXd& delta,
+                        Eigen::VectorXd* out) const {
+  RigidChartRetract(q, delta, out);
 }
 
 void RigidKind::AddResidualJacobianCorrection(const Eigen::VectorXd& /*q*/,
@@ -303,9 +315,7 @@ void RigidKind::PredictStage(const KindState& current, const KindState* previous
 
 void RigidKind::TangentBetween(const Eigen::VectorXd& from, const Eigen::VectorXd& to,
                                Eigen::VectorXd* delta) const {
-  delta->resize(6);
-  delta->head<3>() = to.head<3>() - from.head<3>();
-  delta->tail<3>() = LogSo3(RotationOf(to) * RotationOf(from).transpose());
+  RigidChartBetween(from, to, delta);
 }
 
 double RigidKind::ForceChange(const KindState& current, const KindState& previous,
@@ -413,13 +423,7 @@ const RigidCollider* RigidKind::Collider() const {
 }
 
 KindFrame RigidKind::ColliderFrame(const Eigen::VectorXd& q) const {
-  KindFrame f;
-  f.pose = PoseOf(q);
-  f.rigid = true;
-  f.blocks = 2;
-  f.dof[0] = 0;
-  f.dof[1] = 3;
-  return f;
+  return OwnPoseFrame(PoseOf(q));
 }
 
 }  // namespace superdex

@@ -88,6 +88,13 @@ double RigidForceChange(const RigidBodyModel& m, const RigidBodyState& current,
                         const RigidBodyState& previous, double hPrevious,
                         const RigidBodyState& before, double hBefore);
 
+/// A rigid pose's chart on q = [p, vec R]: q ⊕ [δp, δθ] = [p + δp, vec(exp([δθ]×) R)], and the
+/// step between two poses, [p_to − p_from, Log(R_to R_fromᵀ)] (rigid and attached bodies).
+void RigidChartRetract(const Eigen::VectorXd& q, const Eigen::VectorXd& delta,
+                       Eigen::VectorXd* out);
+void RigidChartBetween(const Eigen::VectorXd& from, const Eigen::VectorXd& to,
+                       Eigen::VectorXd* delta);
+
 class RigidKind : public ActorKind {
  public:
   /// A body built by BuildRigidBody (the same model and initial state as Scene::AddRigidActor).
