@@ -12,7 +12,10 @@
 //     height a free rigid box of the same shape and mass settles to (within 1e-5 m: the free box
 //     still rocks on its faces' one-way triangulations, 1.3e-6 m apart measured);
 //   - attached actors follow their carriers: their configuration is the link frame's, and they
-//     are refused a state of their own.
+//     are refused a state of their own;
+//   - adjacent links whose shapes overlap at their joint exert no force on each other (no active
+//     pair, joints at rest after 10 steps); enabling their pair afterwards (the spec's actor-
+//     contact override) brings the force back (both passes active, the joints set moving).
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -236,6 +239,67 @@ TEST_CASE("links in contact: attached actors follow their carrier", "[core][arti
   arm.links[0].shapes[0].shape.halfExtents.x() = -1.0;
   CHECK_FALSE(scene.AddArticulatedActor(arm, &e).IsValid());
   CHECK(e.message.find("link 0 ('link'): shapes[0].") != std::string::npos);
+}
+
+}  // namespace superdex
+
+namespace superdex {
+
+TEST_CASE("links in contact: adjacent links overlap without force until their pair is enabled",
+          "[core][articulated][attached]") {
+  // Two links in a row about z (no gravity); the second link's box reaches 2 cm back over the
+  // first's, which ends at their joint, and sits 1.5 cm to its side: they overlap there by
+  // 2 cm along the links and 5 mm across, so that the pair pushes them apart across the links
+  // (a torque on both joints).
+  SceneSettings settings;
+  settings.gravity = Eigen::Vector3d::Zero();
+  settings.eval.explicitNormals = true;
+  Scene scene(settings);
+  ArticulatedActorDesc arm;
+  arm.name = "arm";
+  for (int l = 0; l < 2; ++l) {
+    ArticulatedLinkDesc link;
+    link.name = l == 0 ? "a" : "b";
+    link.joint.type = JointType::Revolute;
+    link.joint.parent = l - 1;
+    link.joint.origin.p = l == 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(0.1, 0, 0);
+    link.joint.axis = Eigen::Vector3d::UnitZ();
+    link.mass = 0.2;
+    link.centerOfMass = Eigen::Vector3d(0.05, 0, 0);
+    link.inertia = Eigen::Vector3d(1e-5, 2e-4, 2e-4).asDiagonal();
+    link.shapes.push_back(BoxShape(Eigen::Vector3d(0.05, 0.01, 0.01),
+                                   Eigen::Vector3d(l == 0 ? 0.05 : 0.03, l == 0 ? 0.0 : 0.015, 0)));
+    arm.links.push_back(link);
+  }
+  Error e;
+  const ActorHandle h = scene.AddArticulatedActor(arm, &e);
+  REQUIRE(h.IsValid());
+  const std::vector<ActorHandle> bodies = scene.AttachedActors(h);
+  REQUIRE(bodies.size() == 2);
+  CHECK_FALSE(scene.ContactAllowed(bodies[0], bodies[1]));
+  CHECK_FALSE(scene.ContactAllowed(bodies[1], bodies[0]));
+  auto jointSpeed = [&] {
+    const auto& kind = static_cast<const ArticulatedKind&>(scene.Kind(h));
+    return kind.JointVelocities(scene.KindStateOf(h)).norm();
+  };
+  for (int i = 0; i < 10; ++i) {
+    StepReport r;
+    REQUIRE(scene.Step(1e-2, &r, &e));
+    REQUIRE(r.status == StageStatus::Converged);
+    CHECK(r.contact.activePairs == 0);
+  }
+  CHECK(jointSpeed() == 0.0);
+  // The spec's override: an actor-contact setting after creation brings the pair back.
+  REQUIRE(scene.EnableActorContactSymmetric(bodies[0], bodies[1], true, IncludeNestedActors::No,
+                                            &e));
+  CHECK(scene.ContactAllowed(bodies[0], bodies[1]));
+  StepReport r;
+  REQUIRE(scene.Step(1e-2, &r, &e));
+  CHECK(r.contact.activePairs == 2);
+  CHECK(jointSpeed() > 1e-3);
+  // Disabling the articulation with its nested actors against itself removes them again.
+  REQUIRE(scene.EnableActorContactSymmetric(h, h, false, IncludeNestedActors::Yes, &e));
+  CHECK_FALSE(scene.ContactAllowed(bodies[0], bodies[1]));
 }
 
 }  // namespace superdex
