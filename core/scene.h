@@ -62,6 +62,12 @@ class Scene : private StageHost {
                                   ActorHandle parent = ActorHandle());
   /// The attached actors of an actor (its link shapes), in creation order.
   std::vector<ActorHandle> AttachedActors(ActorHandle carrier) const;
+  /// Whether a is an attached actor (ActorKind::Attachment; a link's shape).
+  bool IsAttached(ActorHandle a) const { return actors_[a.index].carrier >= 0; }
+  /// The rigid body of a rigid actor or of an attached one (its shape, samples and field), null
+  /// for other actors; and its state (an attached body's pose and velocity, its carrier's).
+  const RigidBodyModel* BodyModel(ActorHandle a) const;
+  RigidBodyState BodyState(ActorHandle a) const;
 
   // --- Contact filtering (spec: "Contact Filtering"): false, with *error, for a bad handle.
   /// Actor::SetContactLayer: an arbitrary string.

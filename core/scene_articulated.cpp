@@ -46,4 +46,14 @@ std::vector<ActorHandle> Scene::AttachedActors(ActorHandle carrier) const {
   return out;
 }
 
+const RigidBodyModel* Scene::BodyModel(ActorHandle a) const {
+  if (actors_[a.index].rigid) return &Model(a);
+  if (IsAttached(a)) return &static_cast<const AttachedBodyKind&>(Kind(a)).Model();
+  return nullptr;
+}
+
+RigidBodyState Scene::BodyState(ActorHandle a) const {
+  return RigidKind::Unpack(KindStateOf(a));
+}
+
 }  // namespace superdex

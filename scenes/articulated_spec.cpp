@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/model/rigid_math.h"
+#include "scenes/shape_spec.h"
 #include "scenes/urdf_reader.h"
 
 namespace superdex::scene_json {
@@ -82,12 +83,33 @@ void ReadJointState(const json& l, const std::string& path, JointType type, Eige
   }
 }
 
+// A link's collision shape: {"name", "shape", "position", "euler_deg" | "orientation" (in the
+// link frame), "contact", "collider_type", "boundary_element_type", "surface_integral",
+// "grid_sdf"}.
+LinkShapeDesc ReadLinkShape(const json& j, const std::string& path, const std::string& baseDir) {
+  CheckObject(j, path,
+              {"name", "shape", "position", "euler_deg", "orientation", "contact",
+               "collider_type", "boundary_element_type", "surface_integral", "grid_sdf"});
+  LinkShapeDesc d;
+  d.name = String(j, path, "name", std::string());
+  if (!j.contains("shape")) Throw(Join(path, "shape"), "missing required field");
+  d.shape = ReadShape(j.at("shape"), Join(path, "shape"), baseDir);
+  d.position = Point(j, path, "position", Eigen::Vector3d::Zero());
+  d.orientation = ReadOrientation(j, path);
+  if (j.contains("contact")) d.contact = ReadContact(j.at("contact"), Join(path, "contact"));
+  d.colliderType = Enum(j, path, "collider_type", ColliderType::Auto);
+  d.boundaryElementType = Enum(j, path, "boundary_element_type", ActorBoundaryElementType::P1Q3);
+  d.surfaceIntegral = Enum(j, path, "surface_integral", SurfaceIntegral::Quadrature);
+  if (j.contains("grid_sdf")) d.gridSdf = ReadGridSdf(j.at("grid_sdf"), Join(path, "grid_sdf"));
+  return d;
+}
+
 ArticulatedLinkDesc ReadLink(const json& l, const std::string& path,
-                             const std::vector<std::string>& earlier) {
+                             const std::vector<std::string>& earlier, const std::string& baseDir) {
   CheckObject(l, path,
               {"name", "parent", "joint", "origin", "axis", "mass", "center_of_mass", "inertia",
                "position", "velocity", "euler_deg", "orientation", "angular_velocity",
-               "joint_params"});
+               "joint_params", "shapes"});
   ArticulatedLinkDesc d;
   d.name = String(l, path, "name");
   if (l.contains("parent")) {
@@ -119,6 +141,11 @@ ArticulatedLinkDesc ReadLink(const json& l, const std::string& path,
   d.inertia = ReadInertia(l, path);
   if (l.contains("joint_params"))
     d.jointParams = ReadJointParams(l.at("joint_params"), Join(path, "joint_params"));
+  if (l.contains("shapes"))
+    ForEachItem(l, path, "shapes", "must be an array of shapes",
+                [&](const json& j, const std::string& jp) {
+                  d.shapes.push_back(ReadLinkShape(j, jp, baseDir));
+                });
   return d;
 }
 
@@ -137,7 +164,9 @@ ArticulatedActorDesc ReadUrdfActor(const json& a, const std::string& path,
                                    const std::string& baseDir) {
   CheckObject(a, path,
               {"name", "type", "urdf", "base", "position", "euler_deg", "orientation",
-               "joint_positions", "joint_velocities", "joint_params", "contact_layer", "parent"});
+               "joint_positions", "joint_velocities", "joint_params", "contact_layer", "parent",
+               "collisions", "contact", "collider_type", "boundary_element_type",
+               "sample_spacing"});
   UrdfPlacement placement;
   const std::string base = String(a, path, "base", std::string("fixed"));
   if (base != "fixed" && base != "free")
@@ -145,6 +174,12 @@ ArticulatedActorDesc ReadUrdfActor(const json& a, const std::string& path,
   placement.freeBase = base == "free";
   placement.base.p = Point(a, path, "position", Eigen::Vector3d::Zero());
   placement.base.R = ReadOrientation(a, path).normalized().toRotationMatrix();
+  placement.collisions = Bool(a, path, "collisions", true);
+  if (a.contains("contact")) placement.contact = ReadContact(a.at("contact"), Join(path, "contact"));
+  placement.colliderType = Enum(a, path, "collider_type", ColliderType::Auto);
+  placement.boundaryElementType =
+      Enum(a, path, "boundary_element_type", ActorBoundaryElementType::P1Q3);
+  placement.sampleSpacing = Length(a, path, "sample_spacing", 0.01);
   placement.jointPositions = ReadNamedNumbers(a, path, "joint_positions");
   placement.jointVelocities = ReadNamedNumbers(a, path, "joint_velocities");
   if (a.contains("joint_params")) {
@@ -176,7 +211,7 @@ ArticulatedActorDesc ReadArticulatedDesc(const json& a, const std::string& path,
   std::vector<std::string> names;
   std::vector<Eigen::VectorXd> q, u;
   ForEachItem(a, path, "links", "must be an array of links", [&](const json& l, const std::string& lp) {
-    d.links.push_back(ReadLink(l, lp, names));
+    d.links.push_back(ReadLink(l, lp, names, baseDir));
     for (const std::string& n : names)
       if (n == d.links.back().name) Throw(Join(lp, "name"), "duplicate link name \"" + n + "\"");
     names.push_back(d.links.back().name);

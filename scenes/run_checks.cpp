@@ -13,12 +13,12 @@ std::string Name(const SceneFile& file, int i) { return "'" + file.actorNames[i]
 
 // The smallest half extent of actor i [m]; +∞ for a plane.
 double HalfExtent(const Scene& scene, int i) {
-  if (scene.IsKind({i})) return INFINITY;  // no shape of its own
   if (scene.IsSoft({i})) {
     const Aabb b = scene.SoftModel({i}).rest.Bounds();
     return 0.5 * (b.max - b.min).minCoeff();
   }
-  const RigidBodyModel& m = scene.Model({i});
+  if (!scene.BodyModel({i})) return INFINITY;  // no shape of its own
+  const RigidBodyModel& m = *scene.BodyModel({i});
   switch (m.shape.kind) {
     case RigidShapeKind::Sphere: return m.shape.radius;
     case RigidShapeKind::Box: return m.shape.halfExtents.minCoeff();

@@ -15,70 +15,13 @@
 #include "scenes/json_fields.h"
 #include "scenes/json_text.h"
 #include "scenes/articulated_spec.h"
+#include "scenes/shape_spec.h"
 #include "scenes/soft_mesh_spec.h"
 
 namespace superdex {
 namespace {
 
 using namespace scene_json;
-
-ContactParams ReadContact(const json& j, const std::string& path) {
-  ContactParams c;
-  ReadFields(j, path, kContactParamsFields, &c);
-  return c;
-}
-
-RigidShape ReadShape(const json& j, const std::string& path, const std::string& baseDir) {
-  RigidShape s;
-  if (!j.is_object()) Throw(path, std::string("must be an object, got ") + TypeName(j));
-  const std::string type = String(j, path, "type");
-  if (type == "sphere") {
-    CheckObject(j, path, {"type", "radius", "surface_resolution"});
-    s.kind = RigidShapeKind::Sphere;
-    s.radius = Length(j, path, "radius");
-    s.surfaceResolution = Integer(j, path, "surface_resolution", 3, 0, 7);
-  } else if (type == "box") {
-    CheckObject(j, path, {"type", "half_extents", "size", "surface_resolution"});
-    s.kind = RigidShapeKind::Box;
-    if (j.contains("size") == j.contains("half_extents"))
-      Throw(path, "give exactly one of \"size\" and \"half_extents\"");
-    const bool full = j.contains("size");
-    const Eigen::Vector3d e = Point(j, path, full ? "size" : "half_extents", Eigen::Vector3d::Zero());
-    if (!(e.minCoeff() > 0)) Throw(Join(path, full ? "size" : "half_extents"), "must be > 0");
-    s.halfExtents = full ? 0.5 * e : e;
-    s.surfaceResolution = Integer(j, path, "surface_resolution", 2, 1, 64);
-  } else if (type == "plane") {
-    CheckObject(j, path, {"type", "normal"});
-    s.kind = RigidShapeKind::Plane;
-    s.planeNormal = Vector<3>(j, path, "normal", Eigen::Vector3d::UnitZ());
-    if (!(s.planeNormal.norm() > 0)) Throw(Join(path, "normal"), "must be a non-zero vector");
-  } else if (type == "mesh") {
-    CheckObject(j, path, {"type", "file", "scale"});
-    s.kind = RigidShapeKind::Mesh;
-    std::string file = String(j, path, "file");
-    if (!file.empty() && file[0] != '/' && !baseDir.empty()) file = baseDir + "/" + file;
-    auto mesh = std::make_shared<TriangleMesh>();
-    std::string err;
-    if (!ReadMeshFile(file, mesh.get(), &err)) Throw(Join(path, "file"), err);
-    const double scale = Positive(j, path, "scale", 1.0);
-    for (auto& v : mesh->vertices) v *= scale;
-    CheckCoordinates(mesh->vertices, Join(path, j.contains("scale") ? "scale" : "file"));
-    s.mesh = mesh;
-    s.meshSource = file;
-  } else {
-    Throw(Join(path, "type"), "unknown value \"" + type + "\" (expected one of: sphere, box, plane, mesh)");
-  }
-  return s;
-}
-
-GridSdfParams ReadGridSdf(const json& g, const std::string& gp) {
-  GridSdfParams d;
-  ReadFields(g, gp, kGridSdfFields, &d);
-  if (std::string m = Validate(d, gp + "."); !m.empty()) throw LoadError{m};
-  if (d.boundaryPaddingDist > limits::kMaxLength)
-    Throw(Join(gp, "boundary_padding_dist"), TooLarge(d.boundaryPaddingDist));
-  return d;
-}
 
 void ReadSoftActor(const json& a, const std::string& path, const std::string& baseDir,
                    ActorHandle parent, SceneFile* out) {
@@ -267,12 +210,16 @@ void ReadActors(const json& actors, const std::string& baseDir, SceneFile* out) 
       const ArticulatedActorDesc d = ReadArticulatedDesc(a, path, baseDir);
       if (!names.insert(d.name).second) Throw(Join(path, "name"), "duplicate actor name \"" + d.name + "\"");
       Error err;
-      std::unique_ptr<ArticulatedKind> kind = ArticulatedKind::Build(d, &err);
-      if (!kind) throw LoadError{path + ": " + err.message};
       const std::string layer = String(a, path, "contact_layer", std::string("default"));
-      if (!out->scene->AddActor(std::move(kind), &err, layer, parent).IsValid())
+      const int before = out->scene->NumActors();
+      if (!out->scene->AddArticulatedActor(d, &err, layer, parent).IsValid())
         throw LoadError{path + ": " + err.message};
-      out->actorNames.push_back(d.name);
+      for (int k = before; k < out->scene->NumActors(); ++k) {  // with its links' shapes
+        const std::string& name = out->scene->ActorName({k});
+        if (k > before && !names.insert(name).second)
+          Throw(path, "its shape's actor name \"" + name + "\" is another actor's");
+        out->actorNames.push_back(name);
+      }
       continue;
     }
     const RigidActorDesc d = ReadRigidDesc(a, path, baseDir);

@@ -180,10 +180,12 @@ std::string TrajectoryWriter::Header(const Scene& scene, const std::vector<std::
                         {"mass", mass}, {"links", links}});
       continue;
     }
-    const RigidBodyModel& m = scene.Model({i});
-    json a = {{"name", names[i]}, {"type", "rigid"}, {"dynamic", m.dynamic},
-              {"mass", m.mass}, {"shape", RigidShapeJson(m)}};
+    const RigidBodyModel& m = *scene.BodyModel({i});
+    const bool attached = scene.IsAttached({i});
+    json a = {{"name", names[i]}, {"type", "rigid"}, {"dynamic", attached || m.dynamic},
+              {"mass", attached ? 0.0 : m.mass}, {"shape", RigidShapeJson(m)}};
     if (m.kinematic) a["kinematic"] = true;
+    if (attached) a["attached_to"] = names[scene.Parent({i}).index];  // a link's shape
     actors.push_back(std::move(a));
   }
   h["actors"] = actors;
@@ -258,7 +260,7 @@ bool TrajectoryWriter::WriteFrame(Scene& scene, long long step, const StepReport
       actors.push_back(ArticulatedFrameJson(scene, {i}, *art));
       continue;
     }
-    const RigidBodyState& s = scene.State({i});
+    const RigidBodyState s = scene.BodyState({i});
     const Eigen::Quaterniond q(s.R);
     actors.push_back({{"p", Vec(s.p)},
                       {"q", json::array({q.x(), q.y(), q.z(), q.w()})},

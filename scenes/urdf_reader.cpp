@@ -5,10 +5,14 @@
 #include <urdf_parser/urdf_parser.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <mutex>
 #include <sstream>
+
+#include "geometry/mesh_io.h"
 
 namespace superdex {
 namespace {
@@ -94,6 +98,84 @@ bool ReadJoint(const urdf::Joint& j, ArticulatedLinkDesc* d, std::string* proble
   return true;
 }
 
+/// Sample divisions along an edge of length `edge` [m] at spacing at most `spacing` [m].
+int Divisions(double edge, double spacing) {
+  return std::clamp(static_cast<int>(std::ceil(edge / spacing - 1e-9)), 1, 64);
+}
+
+/// One <collision>'s geometry as a shape; false with *problem.
+bool ReadGeometry(const urdf::Geometry& g, const UrdfPlacement& placement, RigidShape* shape,
+                  std::string* problem) {
+  switch (g.type) {
+    case urdf::Geometry::SPHERE:
+      shape->kind = RigidShapeKind::Sphere;
+      shape->radius = static_cast<const urdf::Sphere&>(g).radius;
+      shape->surfaceResolution = 3;
+      if (!(shape->radius > 0.0)) return *problem = "<sphere> radius must be > 0", false;
+      return true;
+    case urdf::Geometry::BOX: {
+      const urdf::Vector3& dim = static_cast<const urdf::Box&>(g).dim;
+      shape->kind = RigidShapeKind::Box;
+      shape->halfExtents = 0.5 * Eigen::Vector3d(dim.x, dim.y, dim.z);
+      if (!(shape->halfExtents.minCoeff() > 0.0)) return *problem = "<box> size must be > 0", false;
+      shape->surfaceResolution = Divisions(2.0 * shape->halfExtents.maxCoeff(), placement.sampleSpacing);
+      return true;
+    }
+    case urdf::Geometry::CYLINDER: {
+      const auto& c = static_cast<const urdf::Cylinder&>(g);
+      if (!(c.radius > 0.0 && c.length > 0.0))
+        return *problem = "<cylinder> radius and length must be > 0", false;
+      // Along z, as URDF's (the mesh maker's is along x).
+      auto mesh = std::make_shared<TriangleMesh>(MakeCylinderMesh(
+          c.radius, 0.5 * c.length, 24, Divisions(c.length, placement.sampleSpacing)));
+      for (Eigen::Vector3d& v : mesh->vertices) v = Eigen::Vector3d(v.y(), v.z(), v.x());
+      shape->kind = RigidShapeKind::Mesh;
+      shape->mesh = mesh;
+      shape->meshSource = "<cylinder>";
+      return true;
+    }
+    case urdf::Geometry::MESH: {
+      const auto& m = static_cast<const urdf::Mesh&>(g);
+      if (m.filename.rfind("package://", 0) == 0)
+        return *problem = "<mesh> '" + m.filename + "': package:// URIs are not resolved (give a "
+                          "path relative to the URDF file)", false;
+      std::string file = m.filename.rfind("file://", 0) == 0 ? m.filename.substr(7) : m.filename;
+      if (!file.empty() && file[0] != '/' && !placement.meshDirectory.empty())
+        file = (std::filesystem::path(placement.meshDirectory) / file).string();
+      auto mesh = std::make_shared<TriangleMesh>();
+      std::string err;
+      if (!ReadMeshFile(file, mesh.get(), &err)) return *problem = "<mesh> " + err, false;
+      const Eigen::Vector3d scale(m.scale.x, m.scale.y, m.scale.z);
+      if (!(scale.minCoeff() > 0.0)) return *problem = "<mesh> scale must be > 0", false;
+      for (Eigen::Vector3d& v : mesh->vertices) v = v.cwiseProduct(scale);
+      shape->kind = RigidShapeKind::Mesh;
+      shape->mesh = mesh;
+      shape->meshSource = file;
+      return true;
+    }
+  }
+  return *problem = "a <collision> geometry of unknown type", false;
+}
+
+/// Link `link`'s <collision> elements as its shapes; false with *problem.
+bool ReadCollisions(const urdf::Link& link, const UrdfPlacement& placement,
+                    ArticulatedLinkDesc* d, std::string* problem) {
+  if (!placement.collisions) return true;
+  for (const urdf::CollisionSharedPtr& c : link.collision_array) {
+    if (!c || !c->geometry) continue;
+    LinkShapeDesc shape;
+    if (!ReadGeometry(*c->geometry, placement, &shape.shape, problem)) return false;
+    const RigidPose at = PoseOf(c->origin);
+    shape.position = at.p;
+    shape.orientation = Eigen::Quaterniond(at.R);
+    shape.contact = placement.contact;
+    shape.colliderType = placement.colliderType;
+    shape.boundaryElementType = placement.boundaryElementType;
+    d->shapes.push_back(std::move(shape));
+  }
+  return true;
+}
+
 bool Fail(Error* error, const std::string& source, const std::string& what,
           const std::string& problem) {
   if (error) error->message = source + ": " + what + ": " + problem;
@@ -132,7 +214,8 @@ bool ReadUrdf(const std::string& text, const std::string& source, const UrdfPlac
     const urdf::Link& link = *order[k];
     ArticulatedLinkDesc l;
     std::string problem;
-    if (!ReadInertial(link, &l, &problem)) return Fail(error, source, "link '" + link.name + "'", problem);
+    if (!ReadInertial(link, &l, &problem) || !ReadCollisions(link, placement, &l, &problem))
+      return Fail(error, source, "link '" + link.name + "'", problem);
     if (k == 0) {
       l.joint.type = placement.freeBase ? JointType::Free : JointType::Fixed;
       l.joint.origin = placement.base;
@@ -180,7 +263,10 @@ bool ReadUrdfFile(const std::string& path, const UrdfPlacement& placement,
   }
   std::stringstream text;
   text << in.rdbuf();
-  return ReadUrdf(text.str(), path, placement, out, error);
+  UrdfPlacement withMeshes = placement;
+  if (withMeshes.meshDirectory.empty())
+    withMeshes.meshDirectory = std::filesystem::path(path).parent_path().string();
+  return ReadUrdf(text.str(), path, withMeshes, out, error);
 }
 
 }  // namespace superdex

@@ -88,8 +88,9 @@ bool WriteVtkFrame(Scene& scene, const std::string& path, Error* error) {
       continue;
     }
     if (const auto* art = dynamic_cast<const ArticulatedKind*>(&scene.Kind(h))) {
-      // Links have no shapes yet: each massive link is drawn as a sphere of its RMS radius about
-      // its centre of mass.
+      // The links' shapes are actors of their own; without any, each massive link is drawn as
+      // a sphere of its RMS radius about its centre of mass.
+      if (!scene.AttachedActors(h).empty()) continue;
       const Eigen::VectorXd& q = scene.KindStateOf(h).x;
       const std::vector<RigidPose> poses = art->LinkPoses(q);
       for (int l = 0; l < art->NumLinks(); ++l) {
@@ -101,8 +102,8 @@ bool WriteVtkFrame(Scene& scene, const std::string& path, Error* error) {
       }
       continue;
     }
-    const RigidBodyModel& m = scene.Model(h);
-    const RigidBodyState& st = scene.State(h);
+    const RigidBodyModel& m = *scene.BodyModel(h);
+    const RigidBodyState st = scene.BodyState(h);
     switch (m.shape.kind) {
       case RigidShapeKind::Sphere:
         s.AddRigid(MakeIcosphere(m.shape.radius, 3), Eigen::Vector3d::Zero(), st, i);

@@ -8,7 +8,10 @@
 //     velocities; a spherical joint's orientation) into the tree's layout;
 //   - the shipped swinging arm runs with every stage converged, its trajectory carrying the link
 //     frames, joint positions, velocities and drive forces;
-//   - bad fields are refused with the JSON path and the rule (eleven cases).
+//   - bad fields are refused with the JSON path and the rule (eleven cases);
+//   - links' "shapes" become attached actors named after the articulation and the link (or their
+//     own name), nested under it, at their pose in the link frame, with their contact role; their
+//     bad fields are named (four cases).
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -171,4 +174,44 @@ TEST_CASE("bad articulated fields name the JSON path and the rule",
         "actors[0].links[0].parent: no earlier link named \"arm\"");
   CHECK(LoadError(Replace(kPendulum, R"("mass": 2.0)", R"("mass": 2.0, "colour": "red")")) ==
         "actors[0].links[0].colour: unknown field");
+}
+
+TEST_CASE("a scene file gives links collision shapes as attached actors",
+          "[scenes][articulated][attached]") {
+  const std::string withShape = Replace(
+      kPendulum, R"("position": 0.4, "velocity": -0.5,)",
+      R"("position": 0.4, "velocity": -0.5,
+       "shapes": [{"shape": {"type": "sphere", "radius": 0.1}, "position": [0, 0, -0.8],
+                   "contact": {"coulomb_friction_coefficient": 0.2}, "collider_type": "Sphere"},
+                  {"name": "rod", "shape": {"type": "box", "half_extents": [0.01, 0.01, 0.35]},
+                   "position": [0, 0, -0.4], "euler_deg": [0, 0, 45]}],)");
+  SceneFile f;
+  Error e;
+  REQUIRE(LoadSceneText(withShape, "", &f, &e));
+  REQUIRE(f.scene->NumActors() == 3);
+  REQUIRE(f.actorNames.size() == 3);
+  CHECK(f.actorNames[1] == "pendulum/bob");
+  CHECK(f.actorNames[2] == "rod");
+  const ActorHandle bob{1};
+  CHECK(f.scene->IsAttached(bob));
+  CHECK(f.scene->Parent(bob).index == 0);
+  const RigidBodyModel& m = *f.scene->BodyModel(bob);
+  CHECK(m.shape.kind == RigidShapeKind::Sphere);
+  CHECK(m.collider.type == ColliderType::Sphere);
+  CHECK(m.contact.coulombFrictionCoefficient == 0.2);
+  // The sphere sits at the bob's centre of mass.
+  const auto& kind = static_cast<const ArticulatedKind&>(f.scene->Kind({0}));
+  CHECK((f.scene->BodyState(bob).p - kind.LinkCenter(f.scene->KindStateOf({0}).x, 0)).norm() <
+        1e-15);
+  // The shapes' own fields are checked where they are.
+  CHECK(LoadError(Replace(withShape, R"("radius": 0.1)", R"("radius": -0.1)")) ==
+        "actors[0].links[0].shapes[0].shape.radius: must be > 0, got -0.1");
+  CHECK(LoadError(Replace(withShape, R"("collider_type": "Sphere")", R"("collider_type": "Round")"))
+            .rfind("actors[0].links[0].shapes[0].collider_type: unknown value \"Round\"", 0) == 0);
+  CHECK(LoadError(Replace(withShape, R"("name": "rod")", R"("name": "pendulum")")) ==
+        "actors[0]: articulation 'pendulum': shape name 'pendulum' is not unique");
+  CHECK(LoadError(Replace(withShape, R"({"type": "sphere", "radius": 0.1})",
+                          R"({"type": "plane"})")) ==
+        "actors[0]: articulation 'pendulum': link 0 ('bob'): shapes[0].shape: a plane is a "
+        "static actor's shape, not a link's");
 }

@@ -8,13 +8,21 @@
 //     centre of mass at the origin's position (1e-15); a free base gives a Free root joint at the
 //     placement's pose; joint positions and velocities by name land in the tree's layout;
 //   - bad URDFs and placements are refused naming the file, the element and the problem (nine
-//     cases).
+//     cases);
+//   - <collision> boxes, spheres, cylinders (closed meshes along z) and mesh files become their
+//     links' shapes at their origins, with the placement's contact role; a missing mesh, a
+//     package:// URI and a zero box size are named (three cases);
+//   - the shipped robot scenes' expectations hold: the gripper lifts its box by 10 cm less the
+//     lift drive's sag (within 1 mm), the arm pushes its box to the finger's stop (within 4 mm),
+//     every stage converged.
 #include <catch2/catch.hpp>
 
 #include <cmath>
 #include <string>
 
 #include "core/model/articulated_kind.h"
+#include "core/scene.h"
+#include "scenes/runner.h"
 #include "scenes/scene_file.h"
 #include "scenes/urdf_reader.h"
 
@@ -172,4 +180,90 @@ TEST_CASE("a URDF in a scene file: bad placements are named", "[scenes][urdf][ba
         "got -1");
   CHECK(load(Replace(scene, "three_link_arm.urdf", "missing.urdf")) ==
         "actors[0].urdf: " + dir + "/robots/missing.urdf: cannot open the URDF file");
+}
+
+TEST_CASE("a URDF's collision geometry becomes its links' shapes", "[scenes][urdf][attached]") {
+  const std::string withShapes = Replace(
+      Replace(kTwoLinks, "</inertial>\n  </link>\n  <link name=\"arm\">",
+              "</inertial>\n    <collision><geometry><sphere radius=\"0.05\"/></geometry></collision>\n"
+              "  </link>\n  <link name=\"arm\">"),
+      "</inertial>\n  </link>\n  <joint",
+      "</inertial>\n"
+      "    <collision><origin xyz=\"0.1 0 0\" rpy=\"0 0 0.5\"/><geometry><box size=\"0.2 0.04 0.02\"/></geometry></collision>\n"
+      "    <collision><geometry><cylinder radius=\"0.01\" length=\"0.1\"/></geometry></collision>\n"
+      "  </link>\n  <joint");
+  UrdfPlacement p;
+  p.contact.coulombFrictionCoefficient = 0.3;
+  ArticulatedActorDesc d;
+  Error e;
+  REQUIRE(ReadUrdf(withShapes, "two.urdf", p, &d, &e));
+  REQUIRE(d.links.size() == 2);
+  REQUIRE(d.links[0].shapes.size() == 1);
+  CHECK(d.links[0].shapes[0].shape.kind == RigidShapeKind::Sphere);
+  CHECK(d.links[0].shapes[0].shape.radius == 0.05);
+  REQUIRE(d.links[1].shapes.size() == 2);
+  const LinkShapeDesc& box = d.links[1].shapes[0];
+  CHECK(box.shape.kind == RigidShapeKind::Box);
+  CHECK((box.shape.halfExtents - Eigen::Vector3d(0.1, 0.02, 0.01)).norm() < 1e-15);
+  CHECK(box.shape.surfaceResolution == 20);  // 0.2 m at 1 cm
+  CHECK((box.position - Eigen::Vector3d(0.1, 0, 0)).norm() < 1e-15);
+  CHECK(std::abs(box.orientation.angularDistance(
+            Eigen::Quaterniond(Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ())))) < 1e-12);
+  CHECK(box.contact.coulombFrictionCoefficient == 0.3);
+  // A cylinder is a closed mesh along z: its bounds are its radius and half length.
+  const LinkShapeDesc& cyl = d.links[1].shapes[1];
+  REQUIRE(cyl.shape.kind == RigidShapeKind::Mesh);
+  Eigen::Vector3d lo = cyl.shape.mesh->vertices[0], hi = lo;
+  for (const Eigen::Vector3d& v : cyl.shape.mesh->vertices) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  CHECK((hi - Eigen::Vector3d(0.01, 0.01, 0.05)).norm() < 1e-12);
+  CHECK((lo + Eigen::Vector3d(0.01, 0.01, 0.05)).norm() < 1e-12);
+  // The shapes become attached actors of the articulation.
+  Scene scene;
+  const ActorHandle h = scene.AddArticulatedActor(d, &e);
+  INFO(e.message);
+  REQUIRE(h.IsValid());
+  CHECK(scene.AttachedActors(h).size() == 3);
+  CHECK(scene.ActorName(scene.AttachedActors(h)[2]) == "two/arm#1");
+  // Ignored on request.
+  p.collisions = false;
+  REQUIRE(ReadUrdf(withShapes, "two.urdf", p, &d, &e));
+  CHECK(d.links[1].shapes.empty());
+  // Mesh files: relative to the URDF's folder; a missing file and package:// URIs are named.
+  const std::string mesh = Replace(kTwoLinks, "</inertial>\n  </link>\n  <joint",
+                                   "</inertial>\n    <collision><geometry><mesh filename=\"FILE\"/>"
+                                   "</geometry></collision>\n  </link>\n  <joint");
+  CHECK(UrdfError(Replace(mesh, "FILE", "package://robot/meshes/a.stl")) ==
+        "two.urdf: link 'arm': <mesh> 'package://robot/meshes/a.stl': package:// URIs are not "
+        "resolved (give a path relative to the URDF file)");
+  const std::string missing = UrdfError(Replace(mesh, "FILE", "meshes/none.obj"));
+  CHECK(missing.rfind("two.urdf: link 'arm': <mesh> ", 0) == 0);
+  CHECK(missing.find("none.obj") != std::string::npos);
+  UrdfPlacement inRobots;
+  inRobots.meshDirectory = std::string(SUPERDEX_SOURCE_DIR) + "/scenes/data/robots";
+  REQUIRE(ReadUrdf(Replace(mesh, "FILE", "meshes/gripper_palm.obj"), "two.urdf", inRobots, &d, &e));
+  CHECK(d.links[1].shapes.at(0).shape.mesh->NumFaces() == 20);
+  CHECK(UrdfError(Replace(withShapes, "<box size=\"0.2 0.04 0.02\"/>", "<box size=\"0.2 0 0.02\"/>")) ==
+        "two.urdf: link 'arm': <box> size must be > 0");
+}
+
+TEST_CASE("the shipped robot scenes: a gripper lifts a box, an arm pushes one",
+          "[scenes][urdf][attached][shipped]") {
+  // Their expectations (the scene files' "expect") hold: the runner's checks.
+  for (const char* name : {"gripper_lift.json", "arm_push.json"}) {
+    DYNAMIC_SECTION(name) {
+      SceneFile f;
+      Error e;
+      REQUIRE(LoadSceneFile(std::string(SUPERDEX_SOURCE_DIR) + "/scenes/data/" + name, &f, &e));
+      RunOptions options;
+      options.out = "";
+      RunSummary r;
+      REQUIRE(RunScene(&f, options, &r, &e));
+      for (const std::string& m : r.expectationFailures) UNSCOPED_INFO(m);
+      CHECK(r.expectationFailures.empty());
+      CHECK(r.converged == r.steps);
+    }
+  }
 }
