@@ -22,12 +22,14 @@ struct Actor {
     return dynamic_cast<const ArticulatedKind*>(&scene->Kind(Handle()));
   }
   const std::string& Name() const { return scene->ActorName(Handle()); }
-  /// The rigid state; TypeError naming `field` for a soft or articulated actor.
+  /// The rigid state (an attached actor's: its carrier's link pose); TypeError naming `field`
+  /// for a soft or articulated actor.
   RigidBodyState RigidState(const char* field) const {
     if (IsSoft())
       throw py::type_error(std::string(field) + ": '" + Name() +
                            "' is a soft actor; rotation, orientation and angular_velocity are "
                            "defined for rigid actors only (see node_positions)");
+    if (scene->IsAttached(Handle())) return scene->BodyState(Handle());  // a link's shape
     if (IsKind())
       throw py::type_error(std::string(field) + ": '" + Name() + "' is an " +
                            scene->Kind(Handle()).KindName() + " actor; rotation, orientation "

@@ -22,6 +22,9 @@ Eigen::Vector3d Finite3(const Eigen::Vector3d& v, const char* field) {
 /// ValueError naming `field` for a static actor or a refused state.
 template <typename Edit>
 void EditRigid(Actor& a, const char* field, Edit&& edit) {
+  if (a.scene->IsAttached(a.Handle()))
+    throw py::value_error(std::string(field) + ": '" + a.Name() +
+                          "' is a link's shape: it follows its articulation's joints");
   RigidBodyState s = a.RigidState(field);
   if (a.scene->Model(a.Handle()).kinematic)
     throw py::value_error(std::string(field) + ": '" + a.Name() +
@@ -221,6 +224,7 @@ void DefArticulatedProperties(py::class_<Actor>& actor) {
 /// An actor's mass [kg]: a rigid body's, a soft body's lumped total, an articulation's links'.
 double MassOf(const Actor& a) {
   if (a.IsSoft()) return a.scene->SoftModel(a.Handle()).mass;
+  if (a.scene->IsAttached(a.Handle())) return 0.0;  // its link's mass is its articulation's
   if (const ArticulatedKind* k = a.AsArticulated()) {
     double m = 0.0;
     for (int l = 0; l < k->NumLinks(); ++l) m += k->LinkMass(l);
@@ -241,6 +245,10 @@ void BindActor(py::module_& m) {
   actor.def_property_readonly("index", [](const Actor& a) { return a.index; })
       .def_property_readonly("name", [](const Actor& a) { return a.Name(); })
       .def_property_readonly("is_soft", &Actor::IsSoft)
+      .def_property_readonly(
+          "is_attached", [](const Actor& a) { return a.scene->IsAttached(a.Handle()); },
+          "True for a link's collision shape (an actor nested under its articulation, moving "
+          "with the link; mass 0, its state read-only)")
       .def_property_readonly("mass", &MassOf, "[kg]")
       .def_property_readonly(
           "dynamic",

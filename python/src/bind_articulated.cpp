@@ -2,6 +2,7 @@
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <map>
 #include <optional>
 #include <string>
@@ -13,6 +14,31 @@
 
 namespace superdex::python {
 void BindArticulatedDescs(py::module_& m) {
+  py::class_<LinkShapeDesc> shape(
+      m, "LinkShapeDesc",
+      "A collision shape of a link: a RigidShape (sphere, box or mesh) at position /\n"
+      "orientation in the link frame, with its own contact parameters, collider type,\n"
+      "boundary element type and surface integral. Each becomes an actor nested under its\n"
+      "articulation (name: '<articulation>/<link>', '#k' for a link's k-th shape, unless given).");
+  shape
+      .def(py::init([](const RigidShape& s, const Eigen::Vector3d& position, const std::string& name) {
+             LinkShapeDesc d;
+             d.shape = s;
+             d.position = position;
+             d.name = name;
+             return d;
+           }),
+           py::arg("shape"), py::arg("position") = Eigen::Vector3d::Zero(), py::arg("name") = "")
+      .def_readwrite("name", &LinkShapeDesc::name)
+      .def_readwrite("shape", &LinkShapeDesc::shape)
+      .def_readwrite("position", &LinkShapeDesc::position, "shape frame origin, link frame [m]");
+  DefOrientation(shape, "quaternion [x, y, z, w] of the shape frame in the link frame");
+  shape.def_readwrite("contact", &LinkShapeDesc::contact, "ContactParams")
+      .def_readwrite("collider_type", &LinkShapeDesc::colliderType)
+      .def_readwrite("boundary_element_type", &LinkShapeDesc::boundaryElementType)
+      .def_readwrite("surface_integral", &LinkShapeDesc::surfaceIntegral)
+      .def_readwrite("grid_sdf", &LinkShapeDesc::gridSdf, "GridSdfParams for an Sdf collider");
+
   py::class_<ArticulatedLinkDesc> link(
       m, "ArticulatedLinkDesc",
       "One link of an articulated actor: its joint to its parent (parent -1: the world) and its\n"
@@ -64,7 +90,10 @@ void BindArticulatedDescs(py::module_& m) {
       .def_readwrite("center_of_mass", &ArticulatedLinkDesc::centerOfMass, "link frame [m]")
       .def_readwrite("inertia", &ArticulatedLinkDesc::inertia,
                      "3 x 3 inertia tensor about the centre of mass, link frame [kg m^2]")
-      .def_readwrite("joint_params", &ArticulatedLinkDesc::jointParams, "JointParams");
+      .def_readwrite("joint_params", &ArticulatedLinkDesc::jointParams, "JointParams")
+      .def_readwrite("shapes", &ArticulatedLinkDesc::shapes,
+                     "list of LinkShapeDesc (a copy; assign the whole list): the link's collision "
+                     "shapes");
 
   py::class_<ArticulatedActorDesc>(
       m, "ArticulatedActorDesc",
@@ -87,7 +116,8 @@ void BindArticulatedDescs(py::module_& m) {
       [](const std::string& path, const std::string& base, const Eigen::Vector3d& position,
          const Eigen::Vector4d& orientation, const std::map<std::string, double>& positions,
          const std::map<std::string, double>& velocities,
-         const std::map<std::string, JointParams>& params) {
+         const std::map<std::string, JointParams>& params, bool collisions,
+         const ContactParams& contact, double sampleSpacing) {
         if (base != "fixed" && base != "free")
           throw py::value_error("base: must be \"fixed\" or \"free\", got \"" + base + "\"");
         if (!(orientation.allFinite() && orientation.norm() > 0))
@@ -99,6 +129,11 @@ void BindArticulatedDescs(py::module_& m) {
         placement.jointPositions = positions;
         placement.jointVelocities = velocities;
         placement.jointParams = params;
+        placement.collisions = collisions;
+        placement.contact = contact;
+        if (!(std::isfinite(sampleSpacing) && sampleSpacing > 0))
+          throw py::value_error("sample_spacing: must be > 0");
+        placement.sampleSpacing = sampleSpacing;
         ArticulatedActorDesc d;
         Error e;
         if (!ReadUrdfFile(path, placement, &d, &e)) throw py::value_error(e.message);
@@ -109,9 +144,13 @@ void BindArticulatedDescs(py::module_& m) {
       py::arg("joint_positions") = std::map<std::string, double>(),
       py::arg("joint_velocities") = std::map<std::string, double>(),
       py::arg("joint_params") = std::map<std::string, JointParams>(),
+      py::arg("collisions") = true, py::arg("contact") = ContactParams(),
+      py::arg("sample_spacing") = 0.01,
       "A URDF robot as an ArticulatedActorDesc (docs/articulated.md, 'URDF'): its root fixed\n"
       "or free at position / orientation [x, y, z, w]; initial values and JointParams by URDF\n"
-      "joint name. Raises ValueError naming the file, the element and the problem.");
+      "joint name; its <collision> geometry as the links' shapes (collisions=False: none), all\n"
+      "with `contact`, boxes and cylinders sampled at most sample_spacing [m] apart. Raises\n"
+      "ValueError naming the file, the element and the problem.");
 }
 
 void BindArticulatedMethods(py::class_<Scene>& scene) {
@@ -120,16 +159,16 @@ void BindArticulatedMethods(py::class_<Scene>& scene) {
       [](Scene& s, const ArticulatedActorDesc& d, const std::string& layer,
          std::optional<Actor> parent) {
         Error e;
-        std::unique_ptr<ArticulatedKind> kind = ArticulatedKind::Build(d, &e);
-        if (!kind) throw py::value_error(e.message);
         const ActorHandle h =
-            s.AddActor(std::move(kind), &e, layer, parent ? parent->Handle() : ActorHandle());
+            s.AddArticulatedActor(d, &e, layer, parent ? parent->Handle() : ActorHandle());
         if (!h.IsValid()) throw py::value_error(e.message);
         return Actor{&s, h.index};
       },
       py::arg("desc"), py::arg("contact_layer") = "default", py::arg("parent") = py::none(),
       py::keep_alive<0, 1>(),
-      "Adds an articulated actor; raises ValueError naming the link, the field and the rule.");
+      "Adds an articulated actor and, nested under it, an actor per link shape (contact between\n"
+      "adjacent links' shapes disabled; scene.enable_actor_contact_symmetric overrides it);\n"
+      "raises ValueError naming the link, the field and the rule.");
 }
 
 }  // namespace superdex::python

@@ -105,3 +105,41 @@ def test_a_scene_file_with_an_articulated_actor_loads_and_runs():
     q0 = arm.joint_positions.copy()
     f.scene.run(0.1, f.dt)
     assert not np.allclose(arm.joint_positions, q0)
+
+
+def test_a_link_shape_rests_on_the_ground_with_its_links_weight():
+    # A box link on a vertical slider, dropped onto a plane: the ground carries its weight
+    # through the shape, an actor nested under the articulation that moves with the link
+    # (Backward Euler damps the landing's bounce out within the 3 s).
+    scene = sd.Scene(sd.SceneSettings(integrator=sd.IntegrationMethod.BackwardEuler))
+    ground = sd.RigidActorDesc("ground", sd.RigidShape.plane(), dynamic=False)
+    scene.add_rigid_actor(ground)
+    link = sd.ArticulatedLinkDesc("block", sd.JointType.Prismatic, mass=1.0,
+                                  inertia=np.eye(3) / 600.0, axis=[0, 0, 1])
+    shape = sd.LinkShapeDesc(sd.RigidShape.box([0.1, 0.1, 0.1], surface_resolution=4))
+    shape.contact.penalty_coefficient = 1e6
+    link.shapes = [shape]
+    desc = sd.ArticulatedActorDesc("slider", [link])
+    desc.joint_positions = [0.06]
+    slider = scene.add_articulated_actor(desc)
+    body = scene.actor("slider/block")
+    assert body.is_attached and not slider.is_attached
+    assert body.mass == 0.0
+    for _ in range(300):
+        scene.step(0.01)
+    pairs = scene.contact_pairs()
+    assert len(pairs) == 1
+    assert abs(abs(pairs[0]["normal_force"][2]) - G) < 1e-6 * G
+    # The shape follows the link: its centre is the link's.
+    assert np.allclose(body.position, slider.link_positions[0], atol=1e-12)
+    with pytest.raises(TypeError):
+        body.position = [0, 0, 1]
+
+
+def test_read_urdf_gives_the_links_collision_shapes():
+    desc = sd.read_urdf(os.path.join(DATA, "robots", "two_finger_gripper.urdf"))
+    kinds = [[s.shape.kind for s in l.shapes] for l in desc.links]
+    assert kinds == [[], ["mesh"], ["box"], ["box"]]
+    assert np.allclose(desc.links[2].shapes[0].position, [0, 0, -0.03])
+    assert all(not l.shapes for l in sd.read_urdf(
+        os.path.join(DATA, "robots", "two_finger_gripper.urdf"), collisions=False).links)
