@@ -34,6 +34,26 @@ bool SphereSdf::EvaluateBelow(const Eigen::Vector3d& X, double bound, SdfSample*
   return true;
 }
 
+SdfSample CapsuleSdf::Evaluate(const Eigen::Vector3d& X) const { return EvaluateFully(*this, X); }
+
+bool CapsuleSdf::EvaluateBelow(const Eigen::Vector3d& X, double bound, SdfSample* s) const {
+  const bool side = std::abs(X.z()) < halfLength;
+  const Eigen::Vector3d d(X.x(), X.y(), X.z() - std::clamp(X.z(), -halfLength, halfLength));
+  const double r = d.norm();
+  s->value = r - radius;
+  if (s->value >= bound) return false;
+  if (r > 0.0) {
+    s->gradient = d / r;
+    Eigen::Matrix3d P = Eigen::Matrix3d::Identity();
+    if (side) P(2, 2) = 0.0;
+    s->hessian = (P - s->gradient * s->gradient.transpose()) / r;
+  } else {
+    s->gradient = Eigen::Vector3d::UnitX();  // on the segment: any radial direction
+    s->hessian.setZero();
+  }
+  return true;
+}
+
 SdfSample BoxSdf::Evaluate(const Eigen::Vector3d& X) const { return EvaluateFully(*this, X); }
 
 bool BoxSdf::EvaluateBelow(const Eigen::Vector3d& X, double bound, SdfSample* out) const {

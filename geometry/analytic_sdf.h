@@ -42,6 +42,23 @@ struct BoxSdf {
   }
 };
 
+/// Capsule of radius r about the segment from −h ẑ to +h ẑ (h the half length of its straight
+/// part): Φ(X) = |X − c(X)| − r, c(X) = clamp(X_z, −h, h) ẑ the closest point of the segment;
+/// ∇Φ = n = (X − c)/|X − c|; ∇∇Φ = (P − n nᵀ)/|X − c| with P = I − ẑ ẑᵀ beside the straight
+/// part (|X_z| < h) and P = I about the end caps. On the segment itself the gradient is taken as
+/// +x and the Hessian as zero.
+struct CapsuleSdf {
+  double radius = 0.5;
+  double halfLength = 0.5;
+  SdfSample Evaluate(const Eigen::Vector3d& X) const;
+  double Value(const Eigen::Vector3d& X) const {  ///< Φ only
+    const double z = std::clamp(X.z(), -halfLength, halfLength);
+    return Eigen::Vector3d(X.x(), X.y(), X.z() - z).norm() - radius;
+  }
+  /// Fills s->value; the gradient and Hessian too and returns true unless Φ >= bound.
+  bool EvaluateBelow(const Eigen::Vector3d& X, double bound, SdfSample* s) const;
+};
+
 /// Half space {X : n·X <= offset} with unit normal n: Φ = n·X - offset, ∇Φ = n, ∇∇Φ = 0.
 struct PlaneSdf {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();

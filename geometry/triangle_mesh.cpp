@@ -184,6 +184,45 @@ TriangleMesh MakeCylinderMesh(double radius, double halfLength, int segments, in
   return m;
 }
 
+TriangleMesh MakeCapsuleMesh(double radius, double halfLength, int segments, int capRings,
+                             int rows) {
+  TriangleMesh m;
+  const int n = std::max(3, segments), k = std::max(1, capRings), r = std::max(1, rows);
+  // The profile (ρ, z) from the bottom pole to the top one, poles excluded: the bottom cap's
+  // latitudes up to its equator, the side rows, the top cap's latitudes.
+  std::vector<std::pair<double, double>> ring;
+  for (int j = 1; j <= k; ++j) {
+    const double t = -0.5 * M_PI + 0.5 * M_PI * j / k;
+    ring.emplace_back(radius * std::cos(t), -halfLength + radius * std::sin(t));
+  }
+  for (int j = 1; j <= r; ++j) ring.emplace_back(radius, -halfLength + 2.0 * halfLength * j / r);
+  for (int j = 1; j < k; ++j) {
+    const double t = 0.5 * M_PI * j / k;
+    ring.emplace_back(radius * std::cos(t), halfLength + radius * std::sin(t));
+  }
+  for (const auto& [rho, z] : ring)
+    for (int i = 0; i < n; ++i) {
+      const double a = 2.0 * M_PI * i / n;
+      m.vertices.emplace_back(rho * std::cos(a), rho * std::sin(a), z);
+    }
+  const int rings = static_cast<int>(ring.size());
+  for (int j = 0; j + 1 < rings; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int a = j * n + i, b = j * n + (i + 1) % n, c = a + n, d = b + n;
+      m.faces.emplace_back(a, b, d);  // outward: the angle increases counter-clockwise about +z
+      m.faces.emplace_back(a, d, c);
+    }
+  const int p0 = m.NumVertices();
+  m.vertices.emplace_back(0.0, 0.0, -halfLength - radius);
+  m.vertices.emplace_back(0.0, 0.0, halfLength + radius);
+  const int top = (rings - 1) * n;
+  for (int i = 0; i < n; ++i) {
+    m.faces.emplace_back(p0, (i + 1) % n, i);                  // bottom pole, normal −z
+    m.faces.emplace_back(p0 + 1, top + i, top + (i + 1) % n);  // top pole, normal +z
+  }
+  return m;
+}
+
 // ---------------------------------------------------------------------------------------------
 // OBJ reading
 

@@ -48,6 +48,13 @@ TriangleMesh MakePlanePatch(double size, int divisions);
 /// (>= 3), `rings` side rows (>= 1), fan-triangulated caps; outward oriented.
 TriangleMesh MakeCylinderMesh(double radius, double halfLength, int segments, int rings);
 
+/// Closed capsule along z centred at the origin: radius [m], half length of the straight part
+/// [m]; `segments` around (>= 3), `capRings` latitude rings per end cap (>= 1, the last on the
+/// cap's equator), `rows` side rows (>= 1); poles as fans; outward oriented. Its vertices lie on
+/// the capsule.
+TriangleMesh MakeCapsuleMesh(double radius, double halfLength, int segments, int capRings,
+                             int rows);
+
 /// Reads vertices ("v") and faces ("f", polygons fan-triangulated, "v/vt/vn" forms and negative
 /// indices accepted) from a Wavefront OBJ file. Returns false and fills *error (naming the file,
 /// the line and the problem) on failure.

@@ -166,7 +166,7 @@ ArticulatedActorDesc ReadUrdfActor(const json& a, const std::string& path,
               {"name", "type", "urdf", "base", "position", "euler_deg", "orientation",
                "joint_positions", "joint_velocities", "joint_params", "contact_layer", "parent",
                "collisions", "contact", "collider_type", "boundary_element_type",
-               "sample_spacing"});
+               "sample_spacing", "cylinders"});
   UrdfPlacement placement;
   const std::string base = String(a, path, "base", std::string("fixed"));
   if (base != "fixed" && base != "free")
@@ -180,6 +180,10 @@ ArticulatedActorDesc ReadUrdfActor(const json& a, const std::string& path,
   placement.boundaryElementType =
       Enum(a, path, "boundary_element_type", ActorBoundaryElementType::P1Q3);
   placement.sampleSpacing = Length(a, path, "sample_spacing", 0.01);
+  const std::string cylinders = String(a, path, "cylinders", std::string("mesh"));
+  if (cylinders != "mesh" && cylinders != "capsule")
+    Throw(Join(path, "cylinders"), "must be \"mesh\" or \"capsule\", got \"" + cylinders + "\"");
+  placement.cylindersAsCapsules = cylinders == "capsule";
   placement.jointPositions = ReadNamedNumbers(a, path, "joint_positions");
   placement.jointVelocities = ReadNamedNumbers(a, path, "joint_velocities");
   if (a.contains("joint_params")) {

@@ -22,6 +22,7 @@ double HalfExtent(const Scene& scene, int i) {
   switch (m.shape.kind) {
     case RigidShapeKind::Sphere: return m.shape.radius;
     case RigidShapeKind::Box: return m.shape.halfExtents.minCoeff();
+    case RigidShapeKind::Capsule: return m.shape.radius;
     case RigidShapeKind::Mesh: return 0.5 * (m.localBounds.max - m.localBounds.min).minCoeff();
     case RigidShapeKind::Plane: break;
   }

@@ -73,6 +73,10 @@ bool RigidShapeJson(const RigidActorDesc& d, const Beside& beside, json* out, Er
     case RigidShapeKind::Plane:
       *out = {{"type", "plane"}, {"normal", Vec(s.planeNormal)}};
       return true;
+    case RigidShapeKind::Capsule:
+      *out = {{"type", "capsule"}, {"radius", s.radius}, {"half_length", s.halfLength},
+              {"surface_resolution", s.surfaceResolution}};
+      return true;
     case RigidShapeKind::Mesh: {
       const std::string file = beside.Name(d.name, "obj");
       std::string message;

@@ -33,6 +33,15 @@ RigidShape ReadShape(const json& j, const std::string& path, const std::string& 
     if (!(e.minCoeff() > 0)) Throw(Join(path, full ? "size" : "half_extents"), "must be > 0");
     s.halfExtents = full ? 0.5 * e : e;
     s.surfaceResolution = Integer(j, path, "surface_resolution", 2, 1, 64);
+  } else if (type == "capsule") {
+    CheckObject(j, path, {"type", "radius", "half_length", "length", "surface_resolution"});
+    s.kind = RigidShapeKind::Capsule;
+    s.radius = Length(j, path, "radius");
+    if (j.contains("length") == j.contains("half_length"))
+      Throw(path, "give exactly one of \"length\" and \"half_length\" (of the straight part)");
+    s.halfLength = j.contains("length") ? 0.5 * Length(j, path, "length")
+                                        : Length(j, path, "half_length");
+    s.surfaceResolution = Integer(j, path, "surface_resolution", 8, 1, 32);
   } else if (type == "plane") {
     CheckObject(j, path, {"type", "normal"});
     s.kind = RigidShapeKind::Plane;
@@ -52,7 +61,7 @@ RigidShape ReadShape(const json& j, const std::string& path, const std::string& 
     s.mesh = mesh;
     s.meshSource = file;
   } else {
-    Throw(Join(path, "type"), "unknown value \"" + type + "\" (expected one of: sphere, box, plane, mesh)");
+    Throw(Join(path, "type"), "unknown value \"" + type + "\" (expected one of: sphere, box, capsule, plane, mesh)");
   }
   return s;
 }

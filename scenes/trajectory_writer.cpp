@@ -57,20 +57,30 @@ json ArticulatedFrameJson(const Scene& scene, ActorHandle h, const ArticulatedKi
           {"drive_forces", Numbers(kind.DriveForces(s, scene.Time()))}};
 }
 
+// A capsule drawn: 24 around, 6 rings per cap, 8 side rows.
+TriangleMesh DrawnCapsule(const RigidShape& s) {
+  return MakeCapsuleMesh(s.radius, s.halfLength, 24, 6, 8);
+}
+
 json RigidShapeJson(const RigidBodyModel& m) {
   const RigidShape& s = m.shape;
   switch (s.kind) {
     case RigidShapeKind::Sphere: return {{"type", "sphere"}, {"radius", s.radius}};
     case RigidShapeKind::Box: return {{"type", "box"}, {"half_extents", Vec(s.halfExtents)}};
     case RigidShapeKind::Plane: return {{"type", "plane"}, {"normal", Vec(s.planeNormal)}};
-    case RigidShapeKind::Mesh: break;
+    case RigidShapeKind::Mesh:
+    case RigidShapeKind::Capsule: break;
   }
-  // Vertices in the body frame (origin at the centre of mass): world = p + R v.
+  // Vertices in the body frame (origin at the centre of mass): world = p + R v. A capsule as its
+  // triangulation.
+  const bool capsule = s.kind == RigidShapeKind::Capsule;
+  const TriangleMesh& mesh = capsule ? DrawnCapsule(s) : *s.mesh;
   json vertices = json::array(), faces = json::array();
-  for (const Eigen::Vector3d& v : s.mesh->vertices) Push(&vertices, v - m.shapeOffset);
-  for (const Eigen::Vector3i& f : s.mesh->faces)
+  for (const Eigen::Vector3d& v : mesh.vertices) Push(&vertices, v - m.shapeOffset);
+  for (const Eigen::Vector3i& f : mesh.faces)
     for (int k = 0; k < 3; ++k) faces.push_back(f[k]);
-  return {{"type", "mesh"}, {"source", s.meshSource}, {"vertices", vertices}, {"faces", faces}};
+  return {{"type", "mesh"}, {"source", capsule ? std::string("capsule") : s.meshSource},
+          {"vertices", vertices}, {"faces", faces}};
 }
 
 // The soft actor's boundary: the nodes its faces use (in first-use order) and the faces as

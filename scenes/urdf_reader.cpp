@@ -125,6 +125,19 @@ bool ReadGeometry(const urdf::Geometry& g, const UrdfPlacement& placement, Rigid
       const auto& c = static_cast<const urdf::Cylinder&>(g);
       if (!(c.radius > 0.0 && c.length > 0.0))
         return *problem = "<cylinder> radius and length must be > 0", false;
+      if (placement.cylindersAsCapsules) {
+        if (!(c.length > 2.0 * c.radius)) {
+          std::ostringstream s;
+          s << "<cylinder> length " << c.length << " is not longer than its diameter "
+            << 2.0 * c.radius << ": no capsule of that length (read cylinders as meshes)";
+          return *problem = s.str(), false;
+        }
+        shape->kind = RigidShapeKind::Capsule;
+        shape->radius = c.radius;
+        shape->halfLength = 0.5 * c.length - c.radius;
+        shape->surfaceResolution = 8;
+        return true;
+      }
       // Along z, as URDF's (the mesh maker's is along x).
       auto mesh = std::make_shared<TriangleMesh>(MakeCylinderMesh(
           c.radius, 0.5 * c.length, 24, Divisions(c.length, placement.sampleSpacing)));

@@ -25,6 +25,9 @@ struct UrdfPlacement {
   ColliderType colliderType = ColliderType::Auto;
   ActorBoundaryElementType boundaryElementType = ActorBoundaryElementType::P1Q3;
   double sampleSpacing = 0.01;
+  /// A <cylinder> as a closed triangle mesh of 24 segments (false), or as the capsule of its
+  /// radius and total length (true: its straight part the length less 2 r, which must be > 0).
+  bool cylindersAsCapsules = false;
   /// Where mesh files are found (relative <mesh filename>s); ReadUrdfFile: the file's folder.
   std::string meshDirectory;
 };
@@ -33,7 +36,7 @@ struct UrdfPlacement {
 /// articulated description: one link per URDF link, parents first; revolute (limits), continuous,
 /// prismatic (limits) and fixed joints with their origins and axes; <dynamics damping> as joint
 /// damping; <inertial> origin, mass and inertia (a link without one has mass 0); each
-/// <collision> (box, sphere, cylinder as a closed triangle mesh of 24 segments, mesh files
+/// <collision> (box, sphere, cylinder as a closed triangle mesh of 24 segments or a capsule, mesh files
 /// with their scale) as a shape of its link at its <origin> (placement.collisions); visual
 /// geometry is ignored. The root joins the world as `placement` says. False with *error
 /// "<source>: <element> '<name>': <problem>" for: XML that does not parse (the parser's

@@ -3,14 +3,15 @@
 namespace superdex {
 
 SUPERDEX_ENUM_NAMES(ColliderType,
-    {ColliderType::Auto, "Auto", "by actor and shape: analytic for sphere, box, plane"},
+    {ColliderType::Auto, "Auto", "by actor and shape: analytic for sphere, box, plane, capsule"},
     {ColliderType::None, "None", "no collider role (the actor may still collide)"},
     {ColliderType::Sphere, "Sphere"},
     {ColliderType::Box, "Box"},
     {ColliderType::Plane, "Plane"},
     {ColliderType::Mesh, "Mesh"},
     {ColliderType::Sdf, "Sdf"},
-    {ColliderType::PointCloud, "PointCloud"})
+    {ColliderType::PointCloud, "PointCloud"},
+    {ColliderType::Capsule, "Capsule", "analytic capsule field (superdex's; not in the spec)"})
 
 SUPERDEX_ENUM_NAMES(IntegrationMethod,
     {IntegrationMethod::BackwardEuler, "BackwardEuler", "order 1, L-stable"},

@@ -9,7 +9,8 @@
 namespace superdex {
 
 /// How an actor supplies distance fields (spec: "Collider Representations").
-enum class ColliderType { Auto, None, Sphere, Box, Plane, Mesh, Sdf, PointCloud };
+/// Capsule is superdex's, beyond the spec's values: the analytic field of a capsule shape.
+enum class ColliderType { Auto, None, Sphere, Box, Plane, Mesh, Sdf, PointCloud, Capsule };
 
 /// Time integrators (the reference engine's family). Every stage is an incremental-potential
 /// minimization in q with v = (q − q⁰)/Δt_i.

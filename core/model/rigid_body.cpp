@@ -27,6 +27,7 @@ std::string Num(double v) {
 
 constexpr EnumName<RigidShapeKind> kShapeKinds[] = {{RigidShapeKind::Sphere, "sphere"},
                                                     {RigidShapeKind::Box, "box"},
+                                                    {RigidShapeKind::Capsule, "capsule"},
                                                     {RigidShapeKind::Mesh, "mesh"},
                                                     {RigidShapeKind::Plane, "plane"}};
 
@@ -47,6 +48,44 @@ void SphereSamples(double r, int subdivisions, const TriangleQuadratureRule& rul
       const Eigen::Vector3d n = xf / len;
       const double jac = r * r / (len * len) * n.dot(nf);
       out->push_back({r * n, n, area * rule.weights[q] * jac});
+    }
+  }
+}
+
+// A capsule's triangulation (MakeCapsuleMesh): `surfaceResolution` rings per cap, six times that
+// around, side rows at about the around spacing.
+TriangleMesh CapsuleMesh(const RigidShape& s) {
+  const int around = 6 * s.surfaceResolution;
+  const double spacing = 2.0 * M_PI * s.radius / around;
+  const int rows = std::clamp(static_cast<int>(std::ceil(2.0 * s.halfLength / spacing)), 1, 1000);
+  return MakeCapsuleMesh(s.radius, s.halfLength, around, s.surfaceResolution, rows);
+}
+
+// Samples on a capsule: each quadrature point of its triangulation projected onto the capsule
+// from the closest point c of its axis segment, X = c + r n, with the projection's area scale,
+// (r/ρ) (n·n_f) beside the straight part (one direction stretched) and (r/ρ)² (n·n_f) on the
+// caps, ρ = |x_f − c| (as a sphere's samples).
+void CapsuleSamples(const RigidShape& shape, const TriangleQuadratureRule& rule,
+                    std::vector<SurfaceSample>* out) {
+  const double r = shape.radius, h = shape.halfLength;
+  const TriangleMesh mesh = CapsuleMesh(shape);
+  for (int f = 0; f < mesh.NumFaces(); ++f) {
+    const Eigen::Vector3i& t = mesh.faces[f];
+    const double area = mesh.FaceArea(f);
+    const Eigen::Vector3d nf = mesh.FaceNormal(f);
+    // A face lies beside the straight part or on a cap as a whole (rings at z = ±h).
+    const Eigen::Vector3d centroid =
+        (mesh.vertices[t[0]] + mesh.vertices[t[1]] + mesh.vertices[t[2]]) / 3.0;
+    const bool side = std::abs(centroid.z()) < h;
+    for (size_t q = 0; q < rule.weights.size(); ++q) {
+      const Eigen::Vector3d& b = rule.barycentric[q];
+      const Eigen::Vector3d xf =
+          b[0] * mesh.vertices[t[0]] + b[1] * mesh.vertices[t[1]] + b[2] * mesh.vertices[t[2]];
+      const Eigen::Vector3d c(0.0, 0.0, side ? xf.z() : std::copysign(h, centroid.z()));
+      const double rho = (xf - c).norm();
+      const Eigen::Vector3d n = (xf - c) / rho;
+      const double jac = (side ? r / rho : r * r / (rho * rho)) * n.dot(nf);
+      out->push_back({c + r * n, n, area * rule.weights[q] * jac});
     }
   }
 }
@@ -134,6 +173,7 @@ SdfSample RigidCollider::Evaluate(const Eigen::Vector3d& X) const {
   switch (type) {
     case ColliderType::Sphere: return sphere.Evaluate(X);
     case ColliderType::Box: return box.Evaluate(X);
+    case ColliderType::Capsule: return capsule.Evaluate(X);
     case ColliderType::Plane: return plane.Evaluate(X);
     case ColliderType::Mesh: return mesh->Evaluate(X);
     case ColliderType::Sdf: return grid->Evaluate(X);
@@ -149,6 +189,7 @@ double RigidCollider::Value(const Eigen::Vector3d& X) const {
   switch (type) {
     case ColliderType::Sphere: return sphere.Value(X);
     case ColliderType::Box: return box.Value(X);
+    case ColliderType::Capsule: return capsule.Value(X);
     case ColliderType::Plane: return plane.Value(X);
     default: return Evaluate(X).value;
   }
@@ -158,6 +199,7 @@ bool RigidCollider::EvaluateBelow(const Eigen::Vector3d& X, double bound, SdfSam
   switch (type) {
     case ColliderType::Sphere: return sphere.EvaluateBelow(X, bound, s);
     case ColliderType::Box: return box.EvaluateBelow(X, bound, s);
+    case ColliderType::Capsule: return capsule.EvaluateBelow(X, bound, s);
     case ColliderType::Plane: return plane.EvaluateBelow(X, bound, s);
     default:  // mesh and grid fields evaluate in full
       *s = Evaluate(X);
@@ -221,6 +263,28 @@ bool BuildMassProperties(const RigidActorDesc& d, const std::string& prefix, Rig
       J = (mass / 3.0) * h.cwiseProduct(h).asDiagonal();
       m->localBounds.Extend(-h);
       m->localBounds.Extend(h);
+      break;
+    }
+    case RigidShapeKind::Capsule: {
+      const double r = shape.radius, h = shape.halfLength;
+      if (!(std::isfinite(r) && r > 0)) return Fail(error, prefix + "shape.radius: must be > 0, got " + Num(r));
+      if (!(std::isfinite(h) && h > 0))
+        return Fail(error, prefix + "shape.half_length: must be > 0, got " + Num(h));
+      if (shape.surfaceResolution < 1 || shape.surfaceResolution > 32)
+        return Fail(error, prefix + "shape.surface_resolution: capsule cap rings must be in [1, 32], got " +
+                               Num(shape.surfaceResolution));
+      // The straight part (a cylinder) and the two caps (a sphere split at its equator, its
+      // halves moved to ±h): J = diag(a, a, b) with
+      //   a = m_c r²/4 + m_s r²/5,   b = m_c h²/3 + m_s (h² + 3 h r/4 + r²/5).
+      const double vc = M_PI * r * r * 2.0 * h, vs = 4.0 / 3.0 * M_PI * r * r * r;
+      m->volume = vc + vs;
+      mass = rho * m->volume;
+      const double mc = rho * vc, ms = rho * vs;
+      const double a = mc * r * r / 4.0 + ms * r * r / 5.0;
+      const double b = mc * h * h / 3.0 + ms * (h * h + 0.75 * h * r + r * r / 5.0);
+      J = Eigen::Vector3d(a, a, b).asDiagonal();
+      m->localBounds.Extend(-Eigen::Vector3d(r, r, h + r));
+      m->localBounds.Extend(Eigen::Vector3d(r, r, h + r));
       break;
     }
     case RigidShapeKind::Mesh: {
@@ -288,24 +352,27 @@ bool BuildColliderRole(const RigidActorDesc& d, const std::string& prefix, Rigid
     switch (shape.kind) {
       case RigidShapeKind::Sphere: want = ColliderType::Sphere; break;
       case RigidShapeKind::Box: want = ColliderType::Box; break;
+      case RigidShapeKind::Capsule: want = ColliderType::Capsule; break;
       case RigidShapeKind::Plane: want = ColliderType::Plane; break;
       case RigidShapeKind::Mesh: want = ColliderType::Sdf; break;  // spec: Sdf for rigid meshes
     }
   }
   if (want == ColliderType::PointCloud)
     return Fail(error, prefix + "collider_type: PointCloud is not supported yet (supported: "
-                                "Auto, None, Sphere, Box, Plane, Mesh, Sdf)");
+                                "Auto, None, Sphere, Box, Plane, Capsule, Mesh, Sdf)");
   const bool analytic = want == ColliderType::Sphere || want == ColliderType::Box ||
-                        want == ColliderType::Plane;
+                        want == ColliderType::Plane || want == ColliderType::Capsule;
   const bool match = want == ColliderType::None || !analytic ||
                      (want == ColliderType::Sphere && shape.kind == RigidShapeKind::Sphere) ||
                      (want == ColliderType::Box && shape.kind == RigidShapeKind::Box) ||
+                     (want == ColliderType::Capsule && shape.kind == RigidShapeKind::Capsule) ||
                      (want == ColliderType::Plane && shape.kind == RigidShapeKind::Plane);
   if (!match)
     return Fail(error, prefix + "collider_type: " + ToString(want) + " needs a " +
-                           (want == ColliderType::Sphere ? "sphere"
-                            : want == ColliderType::Box  ? "box"
-                                                         : "plane") +
+                           (want == ColliderType::Sphere    ? "sphere"
+                            : want == ColliderType::Box     ? "box"
+                            : want == ColliderType::Capsule ? "capsule"
+                                                            : "plane") +
                            " shape, got " + shapeName);
   if ((want == ColliderType::Mesh || want == ColliderType::Sdf) &&
       shape.kind == RigidShapeKind::Plane)
@@ -314,6 +381,8 @@ bool BuildColliderRole(const RigidActorDesc& d, const std::string& prefix, Rigid
   c.type = want;
   c.sphere.radius = shape.radius;
   c.box.halfExtents = shape.halfExtents;
+  c.capsule.radius = shape.radius;
+  c.capsule.halfLength = shape.halfLength;
   c.plane.normal = m->shape.planeNormal;
   c.plane.offset = 0.0;
   c.boundingRadius = shape.kind == RigidShapeKind::Plane
@@ -325,6 +394,8 @@ bool BuildColliderRole(const RigidActorDesc& d, const std::string& prefix, Rigid
     TriangleMesh mesh = shape.kind == RigidShapeKind::Mesh ? *shape.mesh
                         : shape.kind == RigidShapeKind::Sphere
                             ? MakeIcosphere(shape.radius, shape.surfaceResolution)
+                        : shape.kind == RigidShapeKind::Capsule
+                            ? CapsuleMesh(shape)
                             : MakeBoxMesh(shape.halfExtents, shape.surfaceResolution);
     for (Eigen::Vector3d& x : mesh.vertices) x -= com;
     std::string why;
@@ -347,6 +418,9 @@ bool BuildColliderRole(const RigidActorDesc& d, const std::string& prefix, Rigid
       } else if (shape.kind == RigidShapeKind::Box) {
         const BoxSdf bx{shape.halfExtents};
         phi = [bx](const Eigen::Vector3d& X) { return bx.Evaluate(X).value; };
+      } else if (shape.kind == RigidShapeKind::Capsule) {
+        const CapsuleSdf cp{shape.radius, shape.halfLength};
+        phi = [cp](const Eigen::Vector3d& X) { return cp.Value(X); };
       } else {
         phi = [exact](const Eigen::Vector3d& X) { return exact->Value(X); };
       }
@@ -438,6 +512,7 @@ bool BuildRigidBody(const RigidActorDesc& d, const std::string& prefix, RigidBod
         MeshSamples(MakeBoxMesh(shape.halfExtents, shape.surfaceResolution),
                     Eigen::Vector3d::Zero(), rule, &samples);
         break;
+      case RigidShapeKind::Capsule: CapsuleSamples(shape, rule, &samples); break;
       case RigidShapeKind::Mesh: MeshSamples(*shape.mesh, com, rule, &samples); break;
       case RigidShapeKind::Plane: break;
     }

@@ -30,21 +30,26 @@ struct RigidPose {
   Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
 };
 
-enum class RigidShapeKind { Sphere, Box, Mesh, Plane };
-EnumNames<RigidShapeKind> NamesOf(RigidShapeKind);  ///< "sphere", "box", "mesh", "plane"
+enum class RigidShapeKind { Sphere, Box, Mesh, Plane, Capsule };
+/// "sphere", "box", "mesh", "plane", "capsule"
+EnumNames<RigidShapeKind> NamesOf(RigidShapeKind);
 
-/// Geometry of a rigid actor in its own frame. Sphere and Box are centred at the frame origin.
+/// Geometry of a rigid actor in its own frame. Sphere, Box and Capsule are centred at the frame
+/// origin; a Capsule's straight part lies along z (URDF's cylinder axis).
 /// A Plane (static actors only) is the half space {X : n·X <= 0} of its frame. A Mesh is a closed,
 /// outward-oriented triangle mesh in the frame given by its file.
 struct RigidShape {
   RigidShapeKind kind = RigidShapeKind::Sphere;
-  double radius = 0.5;                                      ///< Sphere [m]
+  double radius = 0.5;                                      ///< Sphere, Capsule [m]
+  double halfLength = 0.5;  ///< Capsule: half the length of its straight part [m] (> 0)
   Eigen::Vector3d halfExtents = Eigen::Vector3d::Constant(0.5);  ///< Box [m]
   Eigen::Vector3d planeNormal = Eigen::Vector3d::UnitZ();   ///< Plane (unit after creation)
   std::shared_ptr<const TriangleMesh> mesh;                 ///< Mesh
   std::string meshSource;                                   ///< Mesh: its file, for messages
   /// Surface resolution of the colliding samples: icosphere subdivisions for a Sphere, grid
-  /// divisions per box edge for a Box; ignored for Mesh (its own faces) and Plane (no samples).
+  /// divisions per box edge for a Box, for a Capsule latitude rings per end cap (6 × that
+  /// around, side rows at about the same spacing); ignored for Mesh (its own faces) and Plane
+  /// (no samples).
   int surfaceResolution = 3;
 };
 
@@ -114,9 +119,10 @@ struct SurfaceSample {
 
 /// The analytic field of a rigid collider, in the body frame.
 struct RigidCollider {
-  ColliderType type = ColliderType::None;  ///< resolved: None, Sphere, Box, Plane, Mesh or Sdf
+  ColliderType type = ColliderType::None;  ///< resolved: None, Sphere, Box, Plane, Capsule, Mesh or Sdf
   SphereSdf sphere;
   BoxSdf box;
+  CapsuleSdf capsule;
   PlaneSdf plane;
   std::shared_ptr<const MeshSdf> mesh;     ///< Mesh: exact distance to the shape's mesh
   std::shared_ptr<const GridSdf> grid;     ///< Sdf: trilinear grid

@@ -60,6 +60,17 @@ void BindRigidShape(py::module_& m) {
           py::arg("size"), py::arg("surface_resolution") = 2,
           "A box of edge lengths size = [x, y, z] [m]; surface_resolution cells per edge.")
       .def_static(
+          "capsule",
+          [](double radius, double length, int resolution) {
+            RigidShape s = MakeShape(RigidShapeKind::Capsule, resolution);
+            s.radius = radius;
+            s.halfLength = 0.5 * length;
+            return Checked(s);
+          },
+          py::arg("radius"), py::arg("length"), py::arg("surface_resolution") = 8,
+          "A capsule along z: radius [m] about a straight part of the given length [m] (its total "
+          "length is length + 2 radius); surface_resolution latitude rings per end cap (1-32).")
+      .def_static(
           "plane",
           [](const Eigen::Vector3d& normal) {
             RigidShape s = MakeShape(RigidShapeKind::Plane);

@@ -44,8 +44,9 @@ def test_other_parameter_defaults():
 
 
 def test_enums_carry_the_spec_names():
+    # The spec's values, and Capsule: superdex's analytic capsule field (docs/parameters.md).
     assert set(sd.ColliderType.__members__) == {
-        "Auto", "None", "Sphere", "Box", "Plane", "Mesh", "Sdf", "PointCloud"}
+        "Auto", "None", "Sphere", "Box", "Plane", "Mesh", "Sdf", "PointCloud", "Capsule"}
     assert set(sd.ActorBoundaryElementType.__members__) == {
         "P1Q1", "P1Q3", "P1Q6", "ExperimentalP1Q7", "ExperimentalP1Q12", "ExperimentalP1Q16"}
     assert set(sd.IntegrationMethod.__members__) == {
@@ -235,3 +236,27 @@ def test_scene_settings_properties_are_the_docs_table_rows():
     assert s.solver.max_iterations == 3
     t = sd.SceneSettings(integrator=sd.IntegrationMethod.DIRK22, warm_start=False)
     assert t.integrator == sd.IntegrationMethod.DIRK22 and t.warm_start is False
+
+
+def test_a_capsule_shape_collides_with_its_analytic_field():
+    shape = sd.RigidShape.capsule(0.05, 0.2, surface_resolution=8)
+    assert shape.kind == "capsule"
+    with pytest.raises(ValueError, match=r"^shape.radius: must be > 0, got -0.05$"):
+        sd.RigidShape.capsule(-0.05, 0.2)
+    with pytest.raises(ValueError, match="half_length: must be > 0"):
+        sd.RigidShape.capsule(0.05, 0.0)
+    # Standing on an end cap it rests as a sphere of its radius and weight does on its own:
+    # the same hemisphere in contact (its centre 0.1 m below the capsule's).
+    heights = []
+    for name, s, lift in (("capsule", shape, 0.1), ("sphere", sd.RigidShape.sphere(0.05), 0.0)):
+        scene = sd.Scene(sd.SceneSettings(integrator=sd.IntegrationMethod.BackwardEuler))
+        scene.add_rigid_actor(sd.RigidActorDesc("ground", sd.RigidShape.plane(), dynamic=False))
+        d = sd.RigidActorDesc(name, s)
+        d.position = [0, 0, 0.0505 + lift]  # just clear of the ground
+        d.mass = 1.0
+        actor = scene.add_rigid_actor(d)
+        for _ in range(200):
+            scene.step(0.01)
+        heights.append(actor.position[2] - lift)
+    assert heights[1] < 0.05
+    assert abs(heights[0] - heights[1]) < 1e-5

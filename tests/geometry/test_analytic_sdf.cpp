@@ -227,3 +227,43 @@ TEST_CASE("sdf: value-only and bounded evaluations agree with the full one", "[g
   CHECK(below > 200);  // both branches exercised (3 fields × 2000 points)
   CHECK(beyond > 200);
 }
+
+TEST_CASE("sdf: capsule values, exactness and derivatives beside and about its caps",
+          "[geometry][sdf][capsule]") {
+  // Radius 0.1 about the segment z in [-0.3, 0.3].
+  const CapsuleSdf capsule{0.1, 0.3};
+  CHECK(capsule.Evaluate({0.5, 0, 0.2}).value == Approx(0.4));    // beside: |(x, y)| − r
+  CHECK(capsule.Evaluate({0, 0.05, -0.1}).value == Approx(-0.05));
+  CHECK(capsule.Evaluate({0, 0, 0.7}).value == Approx(0.3));      // above: |X − h ẑ| − r
+  CHECK(capsule.Evaluate({0.3, 0, -0.7}).value == Approx(0.4));   // |(0.3, 0, −0.4)| − r
+  const SdfSample axis = capsule.Evaluate({0, 0, 0.1});
+  CHECK(axis.value == -0.1);
+  CHECK(axis.gradient == Eigen::Vector3d::UnitX());
+  CHECK(axis.hessian == Eigen::Matrix3d::Zero());
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int beside = 0, caps = 0;
+  for (int i = 0; i < 400; ++i) {
+    const Eigen::Vector3d X(0.5 * u(rng), 0.5 * u(rng), u(rng));
+    const double rho = std::hypot(X.x(), X.y());
+    const double away = std::abs(X.z()) - 0.3;  // past the segment's end (> 0: a cap's region)
+    // The Hessian grows like 1/distance to the segment and jumps across |z| = h: keep the
+    // difference stencil off both.
+    if (rho < 0.05 && away < 0.05) continue;
+    if (std::abs(away) < 1e-3) continue;
+    CheckAgainstDifferences(capsule, X);
+    const SdfSample s = capsule.Evaluate(X);
+    // Exact: the projection lands on the surface.
+    CHECK(std::abs(capsule.Value(X - s.value * s.gradient)) <= 1e-15);
+    // Level sets: a cylinder beside (one curvature), a sphere about the caps (two).
+    CHECK(Rank(s.hessian, 1e-12) == (away < 0 ? 1 : 2));
+    (away < 0 ? beside : caps) += 1;
+    SdfSample b;
+    CHECK(capsule.EvaluateBelow(X, s.value + 1e-9, &b));
+    CHECK_FALSE(capsule.EvaluateBelow(X, s.value, &b));
+    CHECK(b.value == s.value);
+    CHECK(capsule.Value(X) == s.value);
+  }
+  CHECK(beside > 50);
+  CHECK(caps > 50);
+}

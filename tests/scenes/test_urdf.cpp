@@ -220,6 +220,16 @@ TEST_CASE("a URDF's collision geometry becomes its links' shapes", "[scenes][urd
   }
   CHECK((hi - Eigen::Vector3d(0.01, 0.01, 0.05)).norm() < 1e-12);
   CHECK((lo + Eigen::Vector3d(0.01, 0.01, 0.05)).norm() < 1e-12);
+  // Or as a capsule of the cylinder's radius and total length.
+  UrdfPlacement capsules = p;
+  capsules.cylindersAsCapsules = true;
+  REQUIRE(ReadUrdf(withShapes, "two.urdf", capsules, &d, &e));
+  CHECK(d.links[1].shapes[1].shape.kind == RigidShapeKind::Capsule);
+  CHECK(std::abs(d.links[1].shapes[1].shape.halfLength - 0.04) < 1e-15);
+  CHECK(UrdfError(Replace(withShapes, "length=\"0.1\"", "length=\"0.02\""), capsules) ==
+        "two.urdf: link 'arm': <cylinder> length 0.02 is not longer than its diameter 0.02: no "
+        "capsule of that length (read cylinders as meshes)");
+  REQUIRE(ReadUrdf(withShapes, "two.urdf", p, &d, &e));
   // The shapes become attached actors of the articulation.
   Scene scene;
   const ActorHandle h = scene.AddArticulatedActor(d, &e);
