@@ -4,6 +4,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "core/model/articulated_kind.h"
 #include "core/scene.h"
 #include "core/sensitivity/sensitivity.h"
 #include "scene_builders.h"
@@ -61,6 +62,84 @@ inline Scene PushedBox(IntegrationMethod method, DissipationMode mode) {
   box.appliedForce = {{0.0, Eigen::Vector3d(8, 0, 0)}};
   REQUIRE(scene.AddRigidActor(box, &error).IsValid());
   return scene;
+}
+
+// The box of SlidingBox as a link: a massless carriage on a vertical slider carries it on a
+// horizontal one (joints z, then x), its shape 0.5 mm into the ground, sliding along x at
+// 0.5 m/s; the ground carries its weight through its attached shape ("slider/block").
+inline Scene SlidingLink(IntegrationMethod method, DissipationMode mode) {
+  Scene scene(TightSettings(method, mode));
+  Error error;
+  RigidActorDesc ground = Ground(Eigen::Vector3d::UnitZ(), 1e7, 0.5, 1.0);
+  ground.contact.viscousFrictionCoefficient = 0.2;
+  REQUIRE(scene.AddRigidActor(ground, &error).IsValid());
+  const RigidActorDesc cube = Cube(1e7, 0.5, 1.0);
+  ArticulatedActorDesc d;
+  d.name = "slider";
+  ArticulatedLinkDesc carriage;
+  carriage.name = "carriage";
+  carriage.joint.type = JointType::Prismatic;
+  carriage.joint.axis = Eigen::Vector3d::UnitZ();
+  carriage.mass = 0.0;
+  carriage.inertia.setZero();
+  d.links.push_back(carriage);
+  ArticulatedLinkDesc block;
+  block.name = "block";
+  block.joint.type = JointType::Prismatic;
+  block.joint.parent = 0;
+  block.joint.axis = Eigen::Vector3d::UnitX();
+  block.mass = 1.0;
+  block.inertia = Eigen::Matrix3d::Identity() * (1.0 / 6.0) * 0.04;
+  LinkShapeDesc shape;
+  shape.shape = cube.shape;
+  shape.contact = cube.contact;
+  shape.contact.viscousFrictionCoefficient = 0.2;
+  block.shapes.push_back(shape);
+  d.links.push_back(block);
+  d.jointPositions = Eigen::Vector2d(0.1 - 5e-4, 0.0);
+  d.jointVelocities = Eigen::Vector2d(0.0, 0.5);
+  REQUIRE(scene.AddArticulatedActor(d, &error).IsValid());
+  return scene;
+}
+
+// The link of SlidingLink on a horizontal arm instead of the x slider: a revolute joint about z
+// carries it 0.3 m out (`rotate`), turning at 1.5 rad/s, so that it slides on a circle and its
+// contact reaches the joints through a chart that turns with them.
+inline Scene TurningLink(IntegrationMethod method, DissipationMode mode) {
+  Error error;
+  Scene turned(TightSettings(method, mode));
+  RigidActorDesc ground = Ground(Eigen::Vector3d::UnitZ(), 1e7, 0.5, 1.0);
+  ground.contact.viscousFrictionCoefficient = 0.2;
+  REQUIRE(turned.AddRigidActor(ground, &error).IsValid());
+  const RigidActorDesc cube = Cube(1e7, 0.5, 1.0);
+  ArticulatedActorDesc d;
+  d.name = "slider";
+  ArticulatedLinkDesc carriage;
+  carriage.name = "carriage";
+  carriage.joint.type = JointType::Prismatic;
+  carriage.joint.axis = Eigen::Vector3d::UnitZ();
+  carriage.mass = 0.0;
+  carriage.inertia.setZero();
+  d.links.push_back(carriage);
+  ArticulatedLinkDesc block;
+  block.name = "block";
+  block.joint.type = JointType::Revolute;
+  block.joint.parent = 0;
+  block.joint.axis = Eigen::Vector3d::UnitZ();
+  block.mass = 1.0;
+  block.centerOfMass = Eigen::Vector3d(0.3, 0, 0);
+  block.inertia = Eigen::Matrix3d::Identity() * (1.0 / 6.0) * 0.04;
+  LinkShapeDesc shape;
+  shape.shape = cube.shape;
+  shape.position = Eigen::Vector3d(0.3, 0, 0);
+  shape.contact = cube.contact;
+  shape.contact.viscousFrictionCoefficient = 0.2;
+  block.shapes.push_back(shape);
+  d.links.push_back(block);
+  d.jointPositions = Eigen::Vector2d(0.1 - 5e-4, 0.0);
+  d.jointVelocities = Eigen::Vector2d(0.0, 1.5);
+  REQUIRE(turned.AddArticulatedActor(d, &error).IsValid());
+  return turned;
 }
 
 // The box dropped from 2 cm, tilted, with normal damping: impact, bounce, settle.

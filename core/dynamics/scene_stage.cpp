@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/model/rigid_math.h"
 #include "optim/linear_solver.h"
 
 namespace superdex {
@@ -160,6 +161,16 @@ void SceneStageProblem::ReduceAttached(const std::vector<Eigen::VectorXd>& x, in
     Eigen::MatrixXd C = Eigen::MatrixXd::Zero(m, m);
     std::vector<Eigen::Matrix<double, 6, 1>> runLoads(loads.begin() + i, loads.begin() + end);
     kind.AddCarriedFrameCurvature(x[carrier], points, runLoads, &C);
+    // The residual modes' dissipative load r_d is no gradient: the curvature's symmetric form
+    // carries −½ Aᵀ[τ_d]×A of the chart's trivialization, which the true ∂(Aᵀ r_d)/∂δ has not
+    // (the pipeline's J_d is already the derivative along the retraction): add it back.
+    if (rDiss != gPot && !DissipationIsPotential())
+      for (size_t j = i; j < end; ++j) {
+        const int first = ks.contactDof[ks.attached[j].actor][0];
+        if (first < 0) continue;
+        const Eigen::MatrixXd Ar = carrierA[j - i].bottomRows<3>();
+        C += 0.5 * Ar.transpose() * Skew(rDiss->segment<3>(first + 3)) * Ar;
+      }
     const std::vector<int>& dof = ks.stageDof[carrier];
     for (int r = 0; r < m; ++r)
       for (int c = 0; c < m; ++c)

@@ -183,9 +183,9 @@ class SceneStageProblem : public StageProblem {
   /// triplets (order 2) at the contact's numbering, reduced to the stage dofs (KindStage). The
   /// exact Hessian (projection None) takes the carriers' chart curvature of the bodies' total
   /// chart loads; the projected model leaves it out (the carrier's Gauss–Newton rule). In the
-  /// residual modes the reduced residual Aᵀ r_body is exact, and the Jacobian's curvature of the
-  /// dissipative load is the symmetric (potential) form: an approximation of that term, which
-  /// changes Newton's rate only.
+  /// residual modes the dissipative load is no gradient: its curvature is the symmetric form plus
+  /// ½ Aᵀ[τ_d]×A on the rotation rows (the trivialization the symmetric form takes out), so that
+  /// J is the exact ∂(Aᵀ r)/∂δ there too.
   void ReduceAttached(const std::vector<Eigen::VectorXd>& x, int order, PsdProjection projection,
                       Eigen::VectorXd* gPot, Eigen::VectorXd* rDiss);
   /// All terms at the vector states x: value; order >= 1: potential gradient into *gPot and

@@ -101,6 +101,36 @@ TEST_CASE("Sensitivities of a sliding box match trajectory differences", "[sensi
   }
 }
 
+TEST_CASE("Sensitivities through a tree's link shape match trajectory differences",
+          "[sensitivity][articulated][attached]") {
+  // SlidingBox as a link on two sliders: its contact parameters reach the joints through the
+  // reduction (core/dynamics/scene_stage.h), the articulation's centre of mass is compared.
+  const std::vector<Probe> probes = {{"slider/block.coulomb_friction_coefficient", 1e-5},
+                                     {"slider/block.normal_viscous_damping_coefficient", 1e-5},
+                                     {"slider/block.viscous_friction_coefficient", 1e-5},
+                                     {"slider/block.penalty_coefficient", 1e-5}};
+  SECTION("BDF2, explicit normals") {
+    CheckAgainstTrajectoryDifferences(
+        [] { return SlidingLink(IntegrationMethod::BDF2, DissipationMode::ExplicitNormals); },
+        probes, "slider", 100, 2e-3);
+  }
+  SECTION("DIRK22, reconstructed load") {
+    CheckAgainstTrajectoryDifferences(
+        [] { return SlidingLink(IntegrationMethod::DIRK22, DissipationMode::ReconstructedLoad); },
+        probes, "slider", 100, 2e-3);
+  }
+  SECTION("turning on a revolute joint, BDF2, explicit normals") {
+    CheckAgainstTrajectoryDifferences(
+        [] { return TurningLink(IntegrationMethod::BDF2, DissipationMode::ExplicitNormals); },
+        probes, "slider", 100, 2e-3);
+  }
+  SECTION("turning on a revolute joint, DIRK22, reconstructed load") {
+    CheckAgainstTrajectoryDifferences(
+        [] { return TurningLink(IntegrationMethod::DIRK22, DissipationMode::ReconstructedLoad); },
+        probes, "slider", 100, 2e-3);
+  }
+}
+
 TEST_CASE("Sensitivities to a rigid body's mass match trajectory differences", "[sensitivity]") {
   // Pushed by an applied force, the box's path depends on its mass (x'' = F/m − μ g); sliding
   // under friction alone, only its resting penetration does.
