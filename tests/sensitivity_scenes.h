@@ -64,10 +64,12 @@ inline Scene PushedBox(IntegrationMethod method, DissipationMode mode) {
   return scene;
 }
 
-// The box of SlidingBox as a link: a massless carriage on a vertical slider carries it on a
-// horizontal one (joints z, then x), its shape 0.5 mm into the ground, sliding along x at
-// 0.5 m/s; the ground carries its weight through its attached shape ("slider/block").
-inline Scene SlidingLink(IntegrationMethod method, DissipationMode mode) {
+// The box of SlidingBox as a link "block" of an articulation "slider": a massless carriage on a
+// vertical slider carries it on a second joint (`second`, axis `axis`, the block's centre and
+// shape `out` along x in its frame, joint rate `rate`), its shape 0.5 mm into the ground; the
+// ground carries its weight through its attached shape ("slider/block").
+inline Scene LinkOnCarriage(IntegrationMethod method, DissipationMode mode, JointType second,
+                            const Eigen::Vector3d& axis, double out, double rate) {
   Scene scene(TightSettings(method, mode));
   Error error;
   RigidActorDesc ground = Ground(Eigen::Vector3d::UnitZ(), 1e7, 0.5, 1.0);
@@ -85,61 +87,34 @@ inline Scene SlidingLink(IntegrationMethod method, DissipationMode mode) {
   d.links.push_back(carriage);
   ArticulatedLinkDesc block;
   block.name = "block";
-  block.joint.type = JointType::Prismatic;
+  block.joint.type = second;
   block.joint.parent = 0;
-  block.joint.axis = Eigen::Vector3d::UnitX();
+  block.joint.axis = axis;
   block.mass = 1.0;
+  block.centerOfMass = Eigen::Vector3d(out, 0, 0);
   block.inertia = Eigen::Matrix3d::Identity() * (1.0 / 6.0) * 0.04;
   LinkShapeDesc shape;
   shape.shape = cube.shape;
+  shape.position = Eigen::Vector3d(out, 0, 0);
   shape.contact = cube.contact;
   shape.contact.viscousFrictionCoefficient = 0.2;
   block.shapes.push_back(shape);
   d.links.push_back(block);
   d.jointPositions = Eigen::Vector2d(0.1 - 5e-4, 0.0);
-  d.jointVelocities = Eigen::Vector2d(0.0, 0.5);
+  d.jointVelocities = Eigen::Vector2d(0.0, rate);
   REQUIRE(scene.AddArticulatedActor(d, &error).IsValid());
   return scene;
 }
 
-// The link of SlidingLink on a horizontal arm instead of the x slider: a revolute joint about z
-// carries it 0.3 m out (`rotate`), turning at 1.5 rad/s, so that it slides on a circle and its
+// Sliding along x at 0.5 m/s on a second prismatic joint.
+inline Scene SlidingLink(IntegrationMethod method, DissipationMode mode) {
+  return LinkOnCarriage(method, mode, JointType::Prismatic, Eigen::Vector3d::UnitX(), 0.0, 0.5);
+}
+
+// Turning at 1.5 rad/s on a revolute joint about z, 0.3 m out: it slides on a circle, and its
 // contact reaches the joints through a chart that turns with them.
 inline Scene TurningLink(IntegrationMethod method, DissipationMode mode) {
-  Error error;
-  Scene turned(TightSettings(method, mode));
-  RigidActorDesc ground = Ground(Eigen::Vector3d::UnitZ(), 1e7, 0.5, 1.0);
-  ground.contact.viscousFrictionCoefficient = 0.2;
-  REQUIRE(turned.AddRigidActor(ground, &error).IsValid());
-  const RigidActorDesc cube = Cube(1e7, 0.5, 1.0);
-  ArticulatedActorDesc d;
-  d.name = "slider";
-  ArticulatedLinkDesc carriage;
-  carriage.name = "carriage";
-  carriage.joint.type = JointType::Prismatic;
-  carriage.joint.axis = Eigen::Vector3d::UnitZ();
-  carriage.mass = 0.0;
-  carriage.inertia.setZero();
-  d.links.push_back(carriage);
-  ArticulatedLinkDesc block;
-  block.name = "block";
-  block.joint.type = JointType::Revolute;
-  block.joint.parent = 0;
-  block.joint.axis = Eigen::Vector3d::UnitZ();
-  block.mass = 1.0;
-  block.centerOfMass = Eigen::Vector3d(0.3, 0, 0);
-  block.inertia = Eigen::Matrix3d::Identity() * (1.0 / 6.0) * 0.04;
-  LinkShapeDesc shape;
-  shape.shape = cube.shape;
-  shape.position = Eigen::Vector3d(0.3, 0, 0);
-  shape.contact = cube.contact;
-  shape.contact.viscousFrictionCoefficient = 0.2;
-  block.shapes.push_back(shape);
-  d.links.push_back(block);
-  d.jointPositions = Eigen::Vector2d(0.1 - 5e-4, 0.0);
-  d.jointVelocities = Eigen::Vector2d(0.0, 1.5);
-  REQUIRE(turned.AddArticulatedActor(d, &error).IsValid());
-  return turned;
+  return LinkOnCarriage(method, mode, JointType::Revolute, Eigen::Vector3d::UnitZ(), 0.3, 1.5);
 }
 
 // The box dropped from 2 cm, tilted, with normal damping: impact, bounce, settle.
