@@ -314,12 +314,6 @@ bool StepLinearizer::Linearize(Scene* scenePtr, double dt,
                                const std::vector<SceneParameter>& parameters, StepReport* report,
                                Error* error) {
   Scene& scene = *scenePtr;
-  for (int a = 0; a < scene.NumActors(); ++a)
-    if (scene.IsAttached({a}))
-      return Fail(error, "adjoint: actor '" + scene.ActorName({a}) + "' is a link's shape: "
-                         "adjoint gradients through links in contact are not supported yet (their "
-                         "step partials disagree with trajectory differences); forward "
-                         "sensitivities are (ForwardSensitivity, fit --method lm)");
   std::vector<SceneParameter> model;
   for (size_t j = 0; j < parameters.size(); ++j) {
     if (parameters[j].IsInitialState()) continue;

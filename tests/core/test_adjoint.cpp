@@ -50,7 +50,9 @@ struct ComLoss {
   std::vector<Eigen::Vector3d> weights;
   explicit ComLoss(Scene& scene) {
     for (int i = 0; i < scene.NumActors(); ++i) {
-      if (!scene.IsSoft({i}) && !scene.Model({i}).dynamic) continue;
+      // Every actor with a state of its own: not a static rigid one, not a link's shape.
+      if (scene.IsAttached({i})) continue;
+      if (!scene.IsSoft({i}) && !scene.IsKind({i}) && !scene.Model({i}).dynamic) continue;
       actors.push_back({i});
       weights.emplace_back(1.0 + i, 0.5 - 0.3 * i, 2.0 + 0.1 * i);
     }
@@ -293,8 +295,8 @@ TEST_CASE("Adjoint gradients of a sliding and a bouncing box match trajectory di
   }
 }
 
-TEST_CASE("Adjoint gradients beside an articulated actor match trajectory differences; through "
-          "link shapes they are refused", "[adjoint][articulated][attached]") {
+TEST_CASE("Adjoint gradients beside and through an articulated actor match trajectory differences",
+          "[adjoint][articulated][attached]") {
   SECTION("a sliding box beside a swinging pendulum, BDF2, reconstructed load") {
     CheckAgainstTrajectoryDifferences(
         [] {
@@ -316,16 +318,22 @@ TEST_CASE("Adjoint gradients beside an articulated actor match trajectory differ
         },
         {{"cube.coulomb_friction_coefficient", 1e-5}, {"cube.velocity.x", 1e-6}}, 100, 2e-3, 1e-5);
   }
-  SECTION("a link sliding on the ground: refused by name") {
-    // Measured before the refusal: 0.55-1.28 relative to trajectory differences (the forward
-    // sensitivities of the same scenes agree within 1e-6, tests/core/test_sensitivity.cpp).
-    Scene scene = SlidingLink(IntegrationMethod::BDF2, DissipationMode::ExplicitNormals);
-    const std::vector<SceneParameter> p =
-        ParseParameters(scene, {"slider/block.coulomb_friction_coefficient"});
-    StepLinearizer linearizer;
-    Error error;
-    CHECK_FALSE(linearizer.Linearize(&scene, 2e-3, p, nullptr, &error));
-    CHECK(error.message.find("'slider/block' is a link's shape") != std::string::npos);
+  // Through link shapes: the link of tests/core/test_sensitivity.cpp turning on a revolute joint
+  // (its contact reaches the joints through a chart that turns with them), and sliding.
+  SECTION("a link turning on a revolute joint, DIRK22, reconstructed load") {
+    CheckAgainstTrajectoryDifferences(
+        [] { return TurningLink(IntegrationMethod::DIRK22, DissipationMode::ReconstructedLoad); },
+        {{"slider/block.coulomb_friction_coefficient", 1e-5},
+         {"slider/block.penalty_coefficient", 1e-5},
+         {"slider/block.normal_viscous_damping_coefficient", 1e-5}},
+        100, 2e-3, 1e-5);
+  }
+  SECTION("a link sliding on a prismatic joint, BDF2, explicit normals") {
+    CheckAgainstTrajectoryDifferences(
+        [] { return SlidingLink(IntegrationMethod::BDF2, DissipationMode::ExplicitNormals); },
+        {{"slider/block.coulomb_friction_coefficient", 1e-5},
+         {"slider/block.viscous_friction_coefficient", 1e-5}},
+        100, 2e-3, 1e-5);
   }
 }
 
