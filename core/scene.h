@@ -62,6 +62,10 @@ class Scene : private StageHost {
                                   ActorHandle parent = ActorHandle());
   /// The attached actors of an actor (its link shapes), in creation order.
   std::vector<ActorHandle> AttachedActors(ActorHandle carrier) const;
+  /// An articulated actor's link mass [kg] (its second moment scales with it) and joint
+  /// parameters (validated); false with *error naming the link and the rule.
+  bool SetLinkMass(ActorHandle a, int link, double mass, Error* error);
+  bool SetLinkJointParams(ActorHandle a, int link, const JointParams& params, Error* error);
   /// Whether a is an attached actor (ActorKind::Attachment; a link's shape).
   bool IsAttached(ActorHandle a) const { return actors_[a.index].carrier >= 0; }
   /// The rigid body of a rigid actor or of an attached one (its shape, samples and field), null

@@ -58,6 +58,45 @@ void Scene::ChangeKind(int a, Change&& change) {
   prepared_ = false;
 }
 
+namespace {
+// Actor a's articulated kind, or null with *error.
+const ArticulatedKind* ArticulatedOf(const Scene& scene, ActorHandle a, int link, Error* error) {
+  const auto* k = a.index >= 0 && a.index < scene.NumActors()
+                      ? dynamic_cast<const ArticulatedKind*>(&scene.Kind(a))
+                      : nullptr;
+  if (!k) return Fail(error, "actor: not an articulated actor"), nullptr;
+  if (link < 0 || link >= k->NumLinks())
+    return Fail(error, "link: no link " + std::to_string(link) + " in '" + scene.ActorName(a) +
+                           "'"),
+           nullptr;
+  return k;
+}
+}  // namespace
+
+bool Scene::SetLinkMass(ActorHandle a, int link, double mass, Error* error) {
+  const ArticulatedKind* k = ArticulatedOf(*this, a, link, error);
+  if (!k) return false;
+  ArticulatedKind trial = *k;  // validated on a copy first
+  if (std::string m = trial.SetLinkMass(link, mass); !m.empty())
+    return Fail(error, "link '" + k->LinkName(link) + "': " + m);
+  ChangeKind(a.index, [&](ActorKind& kind) {
+    static_cast<ArticulatedKind&>(kind).SetLinkMass(link, mass);
+  });
+  return true;
+}
+
+bool Scene::SetLinkJointParams(ActorHandle a, int link, const JointParams& params, Error* error) {
+  const ArticulatedKind* k = ArticulatedOf(*this, a, link, error);
+  if (!k) return false;
+  ArticulatedKind trial = *k;  // validated on a copy first
+  if (std::string m = trial.SetLinkJointParams(link, params); !m.empty())
+    return Fail(error, "link '" + k->LinkName(link) + "': " + m);
+  ChangeKind(a.index, [&](ActorKind& kind) {
+    static_cast<ArticulatedKind&>(kind).SetLinkJointParams(link, params);
+  });
+  return true;
+}
+
 bool Scene::SetContactParams(ActorHandle a, const ContactParams& params, Error* error) {
   if (!ValidHandle(*this, a, error)) return false;
   if (std::string m = Validate(params, "contact."); !m.empty()) return Fail(error, m);

@@ -552,6 +552,30 @@ Eigen::Vector3d ArticulatedKind::CenterOfMassVelocity(const KindState& s) const 
   return mass > 0.0 ? Eigen::Vector3d(LinearMomentum(s) / mass) : Eigen::Vector3d::Zero();
 }
 
+int ArticulatedKind::FindLink(const std::string& name) const {
+  for (int l = 0; l < NumLinks(); ++l)
+    if (links_[l].name == name) return l;
+  return -1;
+}
+
+std::string ArticulatedKind::SetLinkMass(int l, double mass) {
+  if (!(std::isfinite(mass) && mass > 0.0)) return "mass: must be > 0";
+  if (!(links_[l].mass > 0.0)) return "mass: the link is massless (its inertia is not given)";
+  links_[l].secondMoment *= mass / links_[l].mass;
+  links_[l].mass = mass;
+  return {};
+}
+
+std::string ArticulatedKind::SetLinkJointParams(int l, const JointParams& params) {
+  if (std::string m = superdex::Validate(params, "joint_params."); !m.empty()) return m;
+  const JointType type = tree_.Joint(l).type;
+  if (params.Active() && type != JointType::Revolute && type != JointType::Prismatic)
+    return std::string("joint_params: limits, damping and drives are for Revolute and Prismatic "
+                       "joints, the joint is ") + ToString(type);
+  links_[l].joint = params;
+  return {};
+}
+
 void ArticulatedKind::CarriedFrameJacobians(const Eigen::VectorXd& q,
                                             const std::vector<FramePoint>& points,
                                             std::vector<Eigen::MatrixXd>* A) const {

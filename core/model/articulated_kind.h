@@ -107,6 +107,14 @@ class ArticulatedKind : public ActorKind {
   }
   /// Link l's mass [kg], name and RMS radius √(tr J / m) [m] (0 for a massless link).
   double LinkMass(int l) const { return links_[l].mass; }
+  /// Link l's index by name (−1: none) and its joint's limits, damping and drive.
+  int FindLink(const std::string& name) const;
+  const JointParams& LinkJointParams(int l) const { return links_[l].joint; }
+  /// Replaces link l's mass [kg] (> 0, the link massive already): its second moment scales with
+  /// it (the same shape, uniformly denser). Empty, or why not.
+  std::string SetLinkMass(int l, double mass);
+  /// Replaces link l's joint parameters (validated as Build does). Empty, or why not.
+  std::string SetLinkJointParams(int l, const JointParams& params);
   const std::string& LinkName(int l) const { return links_[l].name; }
   double LinkRadius(int l) const { return links_[l].radius; }
   /// The joint velocities u (tangent layout) of a state: M u = Σ_l A_lᵀ [m_l ċ_l; L_l], exact for

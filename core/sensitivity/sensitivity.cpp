@@ -33,6 +33,9 @@ constexpr KindRow kKinds[] = {
     {SceneParameterKind::YoungsModulus, nullptr, &SoftMaterial::youngsModulus},
     {SceneParameterKind::Density, nullptr, &SoftMaterial::density},
     {SceneParameterKind::Mass, nullptr, nullptr, "mass"},
+    {SceneParameterKind::LinkMass, nullptr, nullptr, "link_mass"},
+    {SceneParameterKind::DriveStiffness, nullptr, nullptr, "drive_stiffness"},
+    {SceneParameterKind::DriveDamping, nullptr, nullptr, "drive_damping"},
     {SceneParameterKind::Position, nullptr, nullptr, "position"},
     {SceneParameterKind::Velocity, nullptr, nullptr, "velocity"},
     {SceneParameterKind::AngularVelocity, nullptr, nullptr, "angular_velocity"},
@@ -61,6 +64,10 @@ KindMotion MotionOf(SceneParameterKind k) {
 // Whether actor a's initial-state parameters are its kind's (ActorKind::MotionParameter): every
 // actor but a rigid one, whose parameters are read in its state's own form (p, v, Ṙ = [ω]× R).
 bool ThroughKind(const Scene& scene, ActorHandle a) { return scene.IsKind(a) || scene.IsSoft(a); }
+
+const ArticulatedKind* ArticulatedOf(const Scene& scene, ActorHandle a) {
+  return dynamic_cast<const ArticulatedKind*>(&scene.Kind(a));
+}
 
 // An initial-state parameter of a kind's actor: its value and direction over the actor's [q; v].
 bool KindMotionParameter(const Scene& scene, const SceneParameter& p, double* value,
@@ -101,6 +108,22 @@ bool ParseSceneParameter(const Scene& scene, const std::string& text, SceneParam
     return Fail(error, "parameter '" + text + "': unknown name '" + name + "'; one of " + all);
   }
   const bool soft = scene.IsSoft(p->actor), kind = scene.IsKind(p->actor);
+  if (p->IsLinkParameter()) {  // "ACTOR.NAME.LINK" of an articulated actor
+    const ArticulatedKind* tree = ArticulatedOf(scene, p->actor);
+    if (!tree)
+      return Fail(error, "parameter '" + text + "': " + name + " is an articulated actor's and '" +
+                             actor + "' is not one");
+    p->component = tree->FindLink(axis);
+    if (p->component < 0)
+      return Fail(error, "parameter '" + text + "': " + name + " needs a link of '" + actor +
+                             "' by name (" + name + ".LINK), got '" + axis + "'");
+    const JointType type = tree->Tree().Joint(p->component).type;
+    if (p->kind != SceneParameterKind::LinkMass && type != JointType::Revolute &&
+        type != JointType::Prismatic)
+      return Fail(error, "parameter '" + text + "': drives are for Revolute and Prismatic "
+                             "joints, link '" + axis + "''s is " + ToString(type));
+    return true;
+  }
   if (p->IsInitialState()) {
     if (axis != "x" && axis != "y" && axis != "z")
       return Fail(error, "parameter '" + text + "': " + name + " needs a component .x, .y or .z");
@@ -140,12 +163,14 @@ std::string SceneParameterNames() {
   std::string all;
   for (const KindRow& k : kKinds)
     all += std::string(all.empty() ? "" : ", ") + NameOf(k) +
-           (k.kind >= SceneParameterKind::Position ? ".x|y|z" : "");
+           (k.kind >= SceneParameterKind::Position ? ".x|y|z"
+            : k.kind >= SceneParameterKind::LinkMass ? ".LINK" : "");
   return all;
 }
 
 std::string ToString(const Scene& scene, const SceneParameter& p) {
   std::string s = scene.ActorName(p.actor) + "." + NameOf(RowOf(p.kind));
+  if (p.IsLinkParameter()) s += "." + ArticulatedOf(scene, p.actor)->LinkName(p.component);
   if (p.IsInitialState()) s += std::string(".") + char('x' + p.component);
   return s;
 }
@@ -158,6 +183,13 @@ double ParameterValue(const Scene& scene, const SceneParameter& p) {
     return scene.IsSoft(p.actor) ? scene.SoftModel(p.actor).material.density
                                  : scene.Model(p.actor).mass / scene.Model(p.actor).volume;
   if (p.kind == SceneParameterKind::Mass) return scene.Model(p.actor).mass;
+  if (p.IsLinkParameter()) {
+    const ArticulatedKind& tree = *ArticulatedOf(scene, p.actor);
+    const JointParams& j = tree.LinkJointParams(p.component);
+    return p.kind == SceneParameterKind::LinkMass       ? tree.LinkMass(p.component)
+           : p.kind == SceneParameterKind::DriveStiffness ? j.driveStiffness
+                                                          : j.driveDamping;
+  }
   if (ThroughKind(scene, p.actor)) {  // a soft actor's: the mean over its nodes
     double value = NAN;
     Eigen::VectorXd direction;
@@ -177,6 +209,13 @@ bool SetParameterValue(Scene* scene, const SceneParameter& p, double value, Erro
     return scene->SetContactParams(p.actor, c, error);
   }
   if (p.kind == SceneParameterKind::Mass) return scene->SetRigidMass(p.actor, value, error);
+  if (p.kind == SceneParameterKind::LinkMass)
+    return scene->SetLinkMass(p.actor, p.component, value, error);
+  if (p.IsLinkParameter()) {
+    JointParams j = ArticulatedOf(*scene, p.actor)->LinkJointParams(p.component);
+    (p.kind == SceneParameterKind::DriveStiffness ? j.driveStiffness : j.driveDamping) = value;
+    return scene->SetLinkJointParams(p.actor, p.component, j, error);
+  }
   if (p.kind == SceneParameterKind::Density && !scene->IsSoft(p.actor))
     return scene->SetRigidMass(p.actor, value * scene->Model(p.actor).volume, error);
   if (p.kind == SceneParameterKind::YoungsModulus || p.kind == SceneParameterKind::Density) {
@@ -247,6 +286,11 @@ bool CheckDifferentiable(Scene& scene, const SceneParameter& p, int index, Error
   if (!p.actor.IsValid() || p.actor.index >= scene.NumActors())
     return Fail(error, "parameter " + std::to_string(index) + ": invalid actor handle");
   const std::string name = ToString(scene, p);
+  if (p.IsLinkParameter()) {
+    if (!(ParameterValue(scene, p) > 0))
+      return Fail(error, name + ": differentiated at positive values only; start from a value > 0");
+    return true;
+  }
   if (!p.IsInitialState()) {
     if (!(ParameterValue(scene, p) > 0))
       return Fail(error, name + ": differentiated at positive values only (the pair value "

@@ -49,6 +49,9 @@ enum class SceneParameterKind {
   YoungsModulus,                 ///< soft actors: E [Pa]
   Density,                       ///< soft and dynamic rigid actors: ρ [kg/m³] (rigid: m / V)
   Mass,                          ///< dynamic rigid actors: m [kg] (J scales with it)
+  LinkMass,        ///< articulated actors: link_mass.LINK [kg] (its second moment scales with it)
+  DriveStiffness,  ///< articulated actors: drive_stiffness.LINK, its joint's k_p [N·m/rad, N/m]
+  DriveDamping,    ///< articulated actors: drive_damping.LINK, its joint's k_d [N·m·s/rad, N·s/m]
   Position,         ///< initial position, one component [m] (soft: every node; a kind: its
                     ///< ActorKind::MotionParameter)
   Velocity,         ///< initial velocity, one component [m/s] (soft: every node; a kind: ditto)
@@ -57,13 +60,17 @@ enum class SceneParameterKind {
 };
 
 /// One differentiable parameter: "ACTOR.NAME" with NAME one of SceneParameterNames(): the contact
-/// and material kinds by their field names (kContactParamsFields, kSoftMaterialFields), or
-/// position.x|y|z, velocity.x|y|z, angular_velocity.x|y|z (the initial state).
+/// and material kinds by their field names (kContactParamsFields, kSoftMaterialFields),
+/// link_mass.LINK, drive_stiffness.LINK, drive_damping.LINK (an articulated actor's link by
+/// name), or position.x|y|z, velocity.x|y|z, angular_velocity.x|y|z (the initial state).
 struct SceneParameter {
   ActorHandle actor;
   SceneParameterKind kind = SceneParameterKind::CoulombFrictionCoefficient;
-  int component = 0;  ///< x, y, z for the initial-state kinds
+  int component = 0;  ///< x, y, z for the initial-state kinds; the link for the link kinds
   bool IsInitialState() const { return kind >= SceneParameterKind::Position; }
+  bool IsLinkParameter() const {
+    return kind >= SceneParameterKind::LinkMass && kind <= SceneParameterKind::DriveDamping;
+  }
 };
 
 /// Parses "ACTOR.NAME" against the scene; false with a message naming the part that is wrong.

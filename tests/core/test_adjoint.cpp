@@ -318,6 +318,13 @@ TEST_CASE("Adjoint gradients beside and through an articulated actor match traje
         },
         {{"cube.coulomb_friction_coefficient", 1e-5}, {"cube.velocity.x", 1e-6}}, 100, 2e-3, 1e-5);
   }
+  SECTION("a driven pendulum: its link mass and drive gains, BDF2") {
+    CheckAgainstTrajectoryDifferences([] { return DrivenPendulum(IntegrationMethod::BDF2); },
+                                      {{"pendulum.link_mass.bob", 1e-5},
+                                       {"pendulum.drive_stiffness.bob", 1e-5},
+                                       {"pendulum.drive_damping.bob", 1e-5}},
+                                      200, 2e-3, 1e-5);
+  }
   // Through link shapes: the link of tests/core/test_sensitivity.cpp turning on a revolute joint
   // (its contact reaches the joints through a chart that turns with them), and sliding.
   SECTION("a link turning on a revolute joint, DIRK22, reconstructed load") {

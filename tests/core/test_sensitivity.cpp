@@ -131,6 +131,22 @@ TEST_CASE("Sensitivities through a tree's link shape match trajectory difference
   }
 }
 
+TEST_CASE("Sensitivities to a link's mass and its drive's gains match trajectory differences",
+          "[sensitivity][articulated]") {
+  const std::vector<Probe> probes = {{"pendulum.link_mass.bob", 1e-5},
+                                     {"pendulum.drive_stiffness.bob", 1e-5},
+                                     {"pendulum.drive_damping.bob", 1e-5}};
+  SECTION("BDF2") {
+    CheckAgainstTrajectoryDifferences([] { return DrivenPendulum(IntegrationMethod::BDF2); },
+                                      probes, "pendulum", 200, 2e-3);
+  }
+  SECTION("SymplecticDIRK22") {
+    CheckAgainstTrajectoryDifferences(
+        [] { return DrivenPendulum(IntegrationMethod::SymplecticDIRK22); }, probes, "pendulum",
+        200, 2e-3);
+  }
+}
+
 TEST_CASE("Sensitivities to a rigid body's mass match trajectory differences", "[sensitivity]") {
   // Pushed by an applied force, the box's path depends on its mass (x'' = F/m − μ g); sliding
   // under friction alone, only its resting penetration does.
@@ -292,6 +308,24 @@ TEST_CASE("Sensitivity parameters: parsing and refusals", "[sensitivity]") {
   ForwardSensitivity sens;
   CHECK_FALSE(sens.Begin(&scene, {p}, &error));
   CHECK(error.message.find("positive values only") != std::string::npos);
+  // An articulated actor's link parameters: by link name, set through the scene.
+  Scene tree = DrivenPendulum(IntegrationMethod::BDF2);
+  REQUIRE(ParseSceneParameter(tree, "pendulum.drive_stiffness.bob", &p, &error));
+  CHECK(ToString(tree, p) == "pendulum.drive_stiffness.bob");
+  CHECK(ParameterValue(tree, p) == 20.0);
+  REQUIRE(SetParameterValue(&tree, p, 30.0, &error));
+  CHECK(ParameterValue(tree, p) == 30.0);
+  CHECK_FALSE(SetParameterValue(&tree, p, -1.0, &error));
+  CHECK(error.message == "link 'bob': joint_params.drive_stiffness: must be >= 0, got -1");
+  REQUIRE(ParseSceneParameter(tree, "pendulum.link_mass.bob", &p, &error));
+  REQUIRE(SetParameterValue(&tree, p, 2.0, &error));
+  CHECK(ParameterValue(tree, p) == 2.0);
+  CHECK_FALSE(ParseSceneParameter(tree, "pendulum.link_mass.arm", &p, &error));
+  CHECK(error.message == "parameter 'pendulum.link_mass.arm': link_mass needs a link of "
+                         "'pendulum' by name (link_mass.LINK), got 'arm'");
+  CHECK_FALSE(ParseSceneParameter(scene, "cube.drive_damping.bob", &p, &error));
+  CHECK(error.message == "parameter 'cube.drive_damping.bob': drive_damping is an articulated "
+                         "actor's and 'cube' is not one");
 }
 
 TEST_CASE("Sensitivities do not depend on the number of threads", "[sensitivity]") {
