@@ -326,7 +326,8 @@ void PrintSummary(const SceneFile& file, const RunSummary& s, std::ostream& os) 
   const double change = s.finalEnergy - s.initialEnergy;
   os << "energy            " << s.initialEnergy << " J -> " << s.finalEnergy << " J (change "
      << change << " J, " << 100.0 * change / std::max(std::abs(s.initialEnergy), 1e-300)
-     << " %; friction and damping dissipate, the rest is integration error)\n";
+     << " %; friction and damping dissipate, joint drives and kinematic actors do work, the rest "
+        "is integration error)\n";
   if (!s.trajectoryPath.empty()) os << "trajectory        " << s.trajectoryPath << "\n";
   if (!s.viewerPage.empty())
     os << "viewer page       " << s.viewerPage << " (open it in a browser)\n";
