@@ -171,7 +171,8 @@ ActorHandle Scene::AddActor(std::unique_ptr<ActorKind> actor, Error* error,
   if (!UniqueName(actor->name, error)) return {};
   if (std::string m = ValidateKindLayout(*actor, settings_.gravity); !m.empty())
     return Fail(error, m), ActorHandle();
-  if (const FrameAttachment* at = actor->Attachment()) {
+  const FrameAttachment* at = actor->Attachment();
+  if (at) {
     // Attached to a frame of the actor it is nested under.
     const std::string name = "actor (" + actor->KindName() + ")";
     if (!parent.IsValid())
@@ -182,9 +183,8 @@ ActorHandle Scene::AddActor(std::unique_ptr<ActorKind> actor, Error* error,
                              " is not a frame of its parent '" + ActorName(parent) + "'"),
              ActorHandle();
   }
-  const bool attached = actor->Attachment() != nullptr;
   const ActorHandle h = Register(std::move(actor), contactLayer, parent);
-  if (attached) {
+  if (at) {  // the kind is kept by the scene: at still points into it
     actors_[h.index].carrier = parent.index;
     SyncAttachedStates();
   }

@@ -224,6 +224,10 @@ class Scene : private StageHost {
   // and keep theirs); the scene prepares again.
   template <typename Change>
   void ChangeKind(int a, Change&& change);
+  // Applies edit(kind) (returning "" or why not) to articulated actor a's link: checked on a copy
+  // of its kind, then on the kind through ChangeKind; false with *error naming the link.
+  template <typename Edit>
+  bool EditLink(ActorHandle a, int link, Error* error, Edit&& edit);
   // A static rigid actor a is held at `state` from now on (its kind copied first if it changes).
   void HoldStatic(int a, const RigidBodyState& state);
   std::vector<int> RigidDescs() const;  // per actor: its index into rigidDescs_, −1 if not rigid

@@ -73,28 +73,24 @@ const ArticulatedKind* ArticulatedOf(const Scene& scene, ActorHandle a, int link
 }
 }  // namespace
 
-bool Scene::SetLinkMass(ActorHandle a, int link, double mass, Error* error) {
+template <typename Edit>
+bool Scene::EditLink(ActorHandle a, int link, Error* error, Edit&& edit) {
   const ArticulatedKind* k = ArticulatedOf(*this, a, link, error);
   if (!k) return false;
   ArticulatedKind trial = *k;  // validated on a copy first
-  if (std::string m = trial.SetLinkMass(link, mass); !m.empty())
+  if (std::string m = edit(trial); !m.empty())
     return Fail(error, "link '" + k->LinkName(link) + "': " + m);
-  ChangeKind(a.index, [&](ActorKind& kind) {
-    static_cast<ArticulatedKind&>(kind).SetLinkMass(link, mass);
-  });
+  ChangeKind(a.index, [&](ActorKind& kind) { edit(static_cast<ArticulatedKind&>(kind)); });
   return true;
 }
 
+bool Scene::SetLinkMass(ActorHandle a, int link, double mass, Error* error) {
+  return EditLink(a, link, error, [&](ArticulatedKind& k) { return k.SetLinkMass(link, mass); });
+}
+
 bool Scene::SetLinkJointParams(ActorHandle a, int link, const JointParams& params, Error* error) {
-  const ArticulatedKind* k = ArticulatedOf(*this, a, link, error);
-  if (!k) return false;
-  ArticulatedKind trial = *k;  // validated on a copy first
-  if (std::string m = trial.SetLinkJointParams(link, params); !m.empty())
-    return Fail(error, "link '" + k->LinkName(link) + "': " + m);
-  ChangeKind(a.index, [&](ActorKind& kind) {
-    static_cast<ArticulatedKind&>(kind).SetLinkJointParams(link, params);
-  });
-  return true;
+  return EditLink(a, link, error,
+                  [&](ArticulatedKind& k) { return k.SetLinkJointParams(link, params); });
 }
 
 bool Scene::SetContactParams(ActorHandle a, const ContactParams& params, Error* error) {

@@ -54,6 +54,11 @@ TriangleMesh MakeCylinderMesh(double radius, double halfLength, int segments, in
 /// the capsule.
 TriangleMesh MakeCapsuleMesh(double radius, double halfLength, int segments, int capRings,
                              int rows);
+/// The capsule as the writers draw it (VTK frames, the trajectory's header): 24 around, 6 rings
+/// per cap, 8 side rows.
+inline TriangleMesh MakeCapsuleDrawing(double radius, double halfLength) {
+  return MakeCapsuleMesh(radius, halfLength, 24, 6, 8);
+}
 
 /// Reads vertices ("v") and faces ("f", polygons fan-triangulated, "v/vt/vn" forms and negative
 /// indices accepted) from a Wavefront OBJ file. Returns false and fills *error (naming the file,

@@ -214,10 +214,10 @@ void ReadActors(const json& actors, const std::string& baseDir, SceneFile* out) 
       const int before = out->scene->NumActors();
       if (!out->scene->AddArticulatedActor(d, &err, layer, parent).IsValid())
         throw LoadError{path + ": " + err.message};
-      for (int k = before; k < out->scene->NumActors(); ++k) {  // with its links' shapes
+      // With its links' shapes (AddArticulatedActor refused names other actors have).
+      for (int k = before; k < out->scene->NumActors(); ++k) {
         const std::string& name = out->scene->ActorName({k});
-        if (k > before && !names.insert(name).second)
-          Throw(path, "its shape's actor name \"" + name + "\" is another actor's");
+        names.insert(name);
         out->actorNames.push_back(name);
       }
       continue;

@@ -57,11 +57,6 @@ json ArticulatedFrameJson(const Scene& scene, ActorHandle h, const ArticulatedKi
           {"drive_forces", Numbers(kind.DriveForces(s, scene.Time()))}};
 }
 
-// A capsule drawn: 24 around, 6 rings per cap, 8 side rows.
-TriangleMesh DrawnCapsule(const RigidShape& s) {
-  return MakeCapsuleMesh(s.radius, s.halfLength, 24, 6, 8);
-}
-
 json RigidShapeJson(const RigidBodyModel& m) {
   const RigidShape& s = m.shape;
   switch (s.kind) {
@@ -74,7 +69,9 @@ json RigidShapeJson(const RigidBodyModel& m) {
   // Vertices in the body frame (origin at the centre of mass): world = p + R v. A capsule as its
   // triangulation.
   const bool capsule = s.kind == RigidShapeKind::Capsule;
-  const TriangleMesh& mesh = capsule ? DrawnCapsule(s) : *s.mesh;
+  TriangleMesh drawn;
+  if (capsule) drawn = MakeCapsuleDrawing(s.radius, s.halfLength);
+  const TriangleMesh& mesh = capsule ? drawn : *s.mesh;
   json vertices = json::array(), faces = json::array();
   for (const Eigen::Vector3d& v : mesh.vertices) Push(&vertices, v - m.shapeOffset);
   for (const Eigen::Vector3i& f : mesh.faces)

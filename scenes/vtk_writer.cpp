@@ -112,7 +112,7 @@ bool WriteVtkFrame(Scene& scene, const std::string& path, Error* error) {
         s.AddRigid(MakeBoxMesh(m.shape.halfExtents, 1), Eigen::Vector3d::Zero(), st, i);
         break;
       case RigidShapeKind::Capsule:
-        s.AddRigid(MakeCapsuleMesh(m.shape.radius, m.shape.halfLength, 24, 6, 8),
+        s.AddRigid(MakeCapsuleDrawing(m.shape.radius, m.shape.halfLength),
                    Eigen::Vector3d::Zero(), st, i);
         break;
       case RigidShapeKind::Mesh: s.AddRigid(*m.shape.mesh, m.shapeOffset, st, i); break;

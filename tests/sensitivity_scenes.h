@@ -106,18 +106,17 @@ inline Scene LinkOnCarriage(IntegrationMethod method, DissipationMode mode, Join
   return scene;
 }
 
-// A driven, damped pendulum "pendulum" (link "bob": 1 kg, 0.5 m below a revolute pivot about y,
-// joint damping 0.3 N·m·s/rad, PD drive k_p = 20 N·m/rad, k_d = 2 N·m·s/rad towards 0.4 rad)
-// released at 0.1 rad with 1 rad/s, no contact.
-inline Scene DrivenPendulum(IntegrationMethod method) {
-  Scene scene(TightSettings(method, DissipationMode::ExplicitNormals));
+// A driven, damped pendulum "pendulum" (link "bob": 1 kg, 0.5 m below a revolute pivot about y at
+// `pivot`, joint damping 0.3 N·m·s/rad, PD drive k_p = 20 N·m/rad, k_d = 2 N·m·s/rad towards
+// 0.4 rad) released at 0.1 rad with 1 rad/s.
+inline ArticulatedActorDesc DrivenPendulumDesc(const Eigen::Vector3d& pivot) {
   ArticulatedActorDesc d;
   d.name = "pendulum";
   ArticulatedLinkDesc bob;
   bob.name = "bob";
   bob.joint.type = JointType::Revolute;
   bob.joint.axis = Eigen::Vector3d::UnitY();
-  bob.joint.origin.p = Eigen::Vector3d(0, 0, 1);
+  bob.joint.origin.p = pivot;
   bob.mass = 1.0;
   bob.centerOfMass = Eigen::Vector3d(0, 0, -0.5);
   bob.inertia = Eigen::Matrix3d::Identity() * 1e-3;
@@ -128,8 +127,14 @@ inline Scene DrivenPendulum(IntegrationMethod method) {
   d.links.push_back(bob);
   d.jointPositions = Eigen::VectorXd::Constant(1, 0.1);
   d.jointVelocities = Eigen::VectorXd::Constant(1, 1.0);
+  return d;
+}
+
+// The driven pendulum alone, its pivot 1 m up; no contact.
+inline Scene DrivenPendulum(IntegrationMethod method) {
+  Scene scene(TightSettings(method, DissipationMode::ExplicitNormals));
   Error error;
-  REQUIRE(scene.AddArticulatedActor(d, &error).IsValid());
+  REQUIRE(scene.AddArticulatedActor(DrivenPendulumDesc(Eigen::Vector3d(0, 0, 1)), &error).IsValid());
   return scene;
 }
 

@@ -134,13 +134,14 @@ void SceneStageProblem::ReduceAttached(const std::vector<Eigen::VectorXd>& x, in
   loads.resize(na);
   std::vector<Eigen::MatrixXd> carrierA;
   std::vector<Eigen::Triplet<double>> curvature;
+  // Each body's first contact dof (−1: its carrier has no unknowns, nothing to reduce).
+  std::vector<int> first(na);
   for (size_t i = 0; i < na; ++i) {
-    const int body = ks.attached[i].actor;
-    const int first = ks.contactDof[body][0];
+    first[i] = ks.contactDof[ks.attached[i].actor][0];
     loads[i].setZero();
-    if (first < 0) continue;
-    loads[i] = gPot->segment<6>(first);
-    if (rDiss != gPot) loads[i] += rDiss->segment<6>(first);
+    if (first[i] < 0) continue;
+    loads[i] = gPot->segment<6>(first[i]);
+    if (rDiss != gPot) loads[i] += rDiss->segment<6>(first[i]);
   }
   for (size_t i = 0; i < na; ++i) {
     const int carrier = ks.attached[i].carrier;
@@ -166,10 +167,9 @@ void SceneStageProblem::ReduceAttached(const std::vector<Eigen::VectorXd>& x, in
     // (the pipeline's J_d is already the derivative along the retraction): add it back.
     if (rDiss != gPot && !DissipationIsPotential())
       for (size_t j = i; j < end; ++j) {
-        const int first = ks.contactDof[ks.attached[j].actor][0];
-        if (first < 0) continue;
+        if (first[j] < 0) continue;
         const Eigen::MatrixXd Ar = carrierA[j - i].bottomRows<3>();
-        C += 0.5 * Ar.transpose() * Skew(rDiss->segment<3>(first + 3)) * Ar;
+        C += 0.5 * Ar.transpose() * Skew(rDiss->segment<3>(first[j] + 3)) * Ar;
       }
     const std::vector<int>& dof = ks.stageDof[carrier];
     for (int r = 0; r < m; ++r)
@@ -178,9 +178,8 @@ void SceneStageProblem::ReduceAttached(const std::vector<Eigen::VectorXd>& x, in
   }
   auto reduce = [&](Eigen::VectorXd* v) {
     for (size_t i = 0; i < na; ++i) {
-      const int first = ks.contactDof[ks.attached[i].actor][0];
-      if (first < 0) continue;
-      const Eigen::VectorXd r = A[i].transpose() * v->segment<6>(first);
+      if (first[i] < 0) continue;
+      const Eigen::VectorXd r = A[i].transpose() * v->segment<6>(first[i]);
       const std::vector<int>& dof = ks.stageDof[ks.attached[i].carrier];
       for (size_t j = 0; j < dof.size(); ++j)
         if (dof[j] >= 0) (*v)[dof[j]] += r[static_cast<Eigen::Index>(j)];
@@ -196,13 +195,12 @@ void SceneStageProblem::ReduceAttached(const std::vector<Eigen::VectorXd>& x, in
   std::vector<Eigen::Triplet<double>> p;
   for (int r = 0; r < numDofs_; ++r) p.emplace_back(r, r, 1.0);
   for (size_t i = 0; i < na; ++i) {
-    const int first = ks.contactDof[ks.attached[i].actor][0];
-    if (first < 0) continue;
+    if (first[i] < 0) continue;
     const std::vector<int>& dof = ks.stageDof[ks.attached[i].carrier];
     for (int k = 0; k < 6; ++k)
       for (size_t j = 0; j < dof.size(); ++j)
         if (dof[j] >= 0 && A[i](k, static_cast<Eigen::Index>(j)) != 0.0)
-          p.emplace_back(first + k, dof[j], A[i](k, static_cast<Eigen::Index>(j)));
+          p.emplace_back(first[i] + k, dof[j], A[i](k, static_cast<Eigen::Index>(j)));
   }
   ws_->reduction.resize(N, numDofs_);
   ws_->reduction.setFromTriplets(p.begin(), p.end());

@@ -297,23 +297,12 @@ TEST_CASE("Adjoint gradients of a sliding and a bouncing box match trajectory di
 
 TEST_CASE("Adjoint gradients beside and through an articulated actor match trajectory differences",
           "[adjoint][articulated][attached]") {
-  SECTION("a sliding box beside a swinging pendulum, BDF2, reconstructed load") {
+  SECTION("a sliding box beside a driven pendulum, BDF2, reconstructed load") {
     CheckAgainstTrajectoryDifferences(
         [] {
           Scene s = SlidingBox(IntegrationMethod::BDF2, DissipationMode::ReconstructedLoad);
-          ArticulatedActorDesc d;
-          d.name = "pendulum";
-          ArticulatedLinkDesc bob;
-          bob.name = "bob";
-          bob.joint.type = JointType::Revolute;
-          bob.joint.axis = Eigen::Vector3d::UnitY();
-          bob.joint.origin.p = Eigen::Vector3d(5, 0, 2);
-          bob.centerOfMass = Eigen::Vector3d(0, 0, -1);
-          bob.inertia = Eigen::Matrix3d::Identity() * 1e-3;
-          d.links.push_back(bob);
-          d.jointPositions = Eigen::VectorXd::Constant(1, 0.5);
           Error e;
-          REQUIRE(s.AddArticulatedActor(d, &e).IsValid());
+          REQUIRE(s.AddArticulatedActor(DrivenPendulumDesc(Eigen::Vector3d(5, 0, 2)), &e).IsValid());
           return s;
         },
         {{"cube.coulomb_friction_coefficient", 1e-5}, {"cube.velocity.x", 1e-6}}, 100, 2e-3, 1e-5);
