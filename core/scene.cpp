@@ -171,20 +171,21 @@ ActorHandle Scene::AddActor(std::unique_ptr<ActorKind> actor, Error* error,
   if (!UniqueName(actor->name, error)) return {};
   if (std::string m = ValidateKindLayout(*actor, settings_.gravity); !m.empty())
     return Fail(error, m), ActorHandle();
-  const FrameAttachment* at = actor->Attachment();
-  if (at) {
-    // Attached to a frame of the actor it is nested under.
+  const bool carried = actor->IsCarried();
+  if (carried) {
+    // Carried by frames of the actor it is nested under.
     const std::string name = "actor (" + actor->KindName() + ")";
     if (!parent.IsValid())
       return Fail(error, name + ": an attached actor needs its carrier as parent"), ActorHandle();
-    if (actors_[parent.index].carrier >= 0 ||
-        !(at->frame >= 0 && at->frame < Kind(parent).NumCarriedFrames()))
-      return Fail(error, name + ": attachment frame " + std::to_string(at->frame) +
-                             " is not a frame of its parent '" + ActorName(parent) + "'"),
-             ActorHandle();
+    for (const CarriedPart& p : *actor->CarriedParts())
+      if (actors_[parent.index].carrier >= 0 ||
+          !(p.frame >= 0 && p.frame < Kind(parent).NumCarriedFrames()))
+        return Fail(error, name + ": attachment frame " + std::to_string(p.frame) +
+                               " is not a frame of its parent '" + ActorName(parent) + "'"),
+               ActorHandle();
   }
   const ActorHandle h = Register(std::move(actor), contactLayer, parent);
-  if (at) {  // the kind is kept by the scene: at still points into it
+  if (carried) {
     actors_[h.index].carrier = parent.index;
     SyncAttachedStates();
   }
@@ -196,9 +197,9 @@ void Scene::SyncAttachedStates() {
     for (size_t a = 0; a < actors_.size(); ++a) {
       const int c = actors_[a].carrier;
       if (c < 0 || static_cast<size_t>(c) >= states->size()) continue;
-      const FrameAttachment& at = *kinds_[a]->Attachment();
-      AttachedConfiguration(*kinds_[c], at, (*states)[c].x, &(*states)[a].x);
-      AttachedConfiguration(*kinds_[c], at, (*states)[c].v, &(*states)[a].v);
+      const std::vector<CarriedPart>& parts = *kinds_[a]->CarriedParts();
+      AttachedConfiguration(*kinds_[c], parts, (*states)[c].x, &(*states)[a].x);
+      AttachedConfiguration(*kinds_[c], parts, (*states)[c].v, &(*states)[a].v);
     }
   };
   sync(&step_.vectorStates);
@@ -324,20 +325,27 @@ void Scene::Prepare() {
   for (size_t k = 0; k < kinds_.size(); ++k) {
     kindPtrs_.push_back(kinds_[k].get());
     kindStageDof_[k].resize(kinds_[k]->NumTangentDofs());
-    const bool own = actors_[k].carrier < 0;  // an attached actor has no unknowns of its own
+    // A carried part's dofs are no unknowns (they follow the carrier's).
+    std::vector<char> carried(kindStageDof_[k].size(), 0);
+    if (actors_[k].carrier >= 0) {
+      for (const CarriedPart& p : *kinds_[k]->CarriedParts())
+        std::fill_n(carried.begin() + p.dof, p.Size(), 1);
+      attached_.push_back({static_cast<int>(k), actors_[k].carrier});
+    }
     for (int i = 0; i < kinds_[k]->NumTangentDofs(); ++i)
-      kindStageDof_[k][i] = own && !kinds_[k]->IsPrescribed(i) ? numDofs_++ : -1;
-    if (!own) attached_.push_back({static_cast<int>(k), actors_[k].carrier});
+      kindStageDof_[k][i] = !carried[i] && !kinds_[k]->IsPrescribed(i) ? numDofs_++ : -1;
   }
-  // The contact's numbering: an attached actor's [δp, δθ] after the unknowns, where its
-  // carrier has some.
+  // The contact's numbering: the carried parts' dofs after the unknowns, where the carrier has
+  // some.
   numContactDofs_ = numDofs_;
   kindContactDof_.clear();
   if (!attached_.empty()) {
     kindContactDof_ = kindStageDof_;
     for (const KindStage::Attached& a : attached_)
       if (kinds_[a.carrier]->HasFreeDof())
-        for (int& d : kindContactDof_[a.actor]) d = numContactDofs_++;
+        for (const CarriedPart& p : *kinds_[a.actor]->CarriedParts())
+          for (int i = p.dof; i < p.dof + p.Size(); ++i)
+            kindContactDof_[a.actor][i] = numContactDofs_++;
   }
   std::vector<int> kindActor(kinds_.size());
   for (int i = 0; i < NumActors(); ++i) kindActor[i] = i;
@@ -369,21 +377,23 @@ void Scene::MakeStage(double dt, double t, const std::vector<VectorState>& start
     d.qHat = start[k].x + dt * start[k].v;
     d.q0 = start[k].x;
     d.qLast = last[k];
-    kinds_[k]->PrepareStage(&d);
-    ks.q0[k] = d.q0;
-    ks.qLast[k] = d.qLast;
+  }
+  for (const KindStage::Attached& a : attached_) {  // the carried parts' from the carrier's
+    const std::vector<CarriedPart>& parts = *kinds_[a.actor]->CarriedParts();
+    const KindStageData& c = ks.data[a.carrier];
+    KindStageData& d = ks.data[a.actor];
+    AttachedConfiguration(*kinds_[a.carrier], parts, c.qHat, &d.qHat);
+    AttachedConfiguration(*kinds_[a.carrier], parts, c.q0, &d.q0);
+    AttachedConfiguration(*kinds_[a.carrier], parts, c.qLast, &d.qLast);
+  }
+  for (size_t k = 0; k < kinds_.size(); ++k) {
+    kinds_[k]->PrepareStage(&ks.data[k]);
+    ks.q0[k] = ks.data[k].q0;
+    ks.qLast[k] = ks.data[k].qLast;
   }
   ks.attached = attached_;
   ks.contactDof = kindContactDof_;
   ks.numContactDofs = numContactDofs_;
-  for (const KindStage::Attached& a : attached_) {  // the carriers' stage start and x_n
-    const FrameAttachment& at = *kinds_[a.actor]->Attachment();
-    AttachedConfiguration(*kinds_[a.carrier], at, ks.q0[a.carrier], &ks.q0[a.actor]);
-    AttachedConfiguration(*kinds_[a.carrier], at, ks.qLast[a.carrier], &ks.qLast[a.actor]);
-    ks.data[a.actor].q0 = ks.q0[a.actor];
-    ks.data[a.actor].qLast = ks.qLast[a.actor];
-    ks.data[a.actor].qHat = ks.q0[a.actor];
-  }
 }
 
 void Scene::ApplyConstraints(double t, std::vector<Eigen::VectorXd>* x) const {

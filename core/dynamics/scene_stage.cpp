@@ -58,7 +58,7 @@ KindView KindViewOf(const KindStage& stage, const std::vector<Eigen::VectorXd>& 
 
 void SyncAttached(const KindStage& stage, std::vector<Eigen::VectorXd>* x) {
   for (const KindStage::Attached& a : stage.attached)
-    AttachedConfiguration(*(*stage.kinds)[a.carrier], *(*stage.kinds)[a.actor]->Attachment(),
+    AttachedConfiguration(*(*stage.kinds)[a.carrier], *(*stage.kinds)[a.actor]->CarriedParts(),
                           (*x)[a.carrier], &(*x)[a.actor]);
 }
 
@@ -124,33 +124,37 @@ void SceneStageProblem::ReduceAttached(const std::vector<Eigen::VectorXd>& x, in
                                        PsdProjection projection, Eigen::VectorXd* gPot,
                                        Eigen::VectorXd* rDiss) {
   const KindStage& ks = *stage_;
-  const size_t na = ks.attached.size();
-  // Each body's chart Jacobian about its origin, one evaluation per carrier; its total chart
-  // gradient (the potential's, with the dissipation's where that is a potential too).
+  // The carried parts in the attached actors' order, each with its first contact dof (−1: its
+  // carrier has no unknowns, nothing to reduce) and its total chart gradient (the potential's,
+  // with the dissipation's where that is a potential too; a point takes no torque).
+  std::vector<StagePart>& parts = ws_->parts;
+  parts.clear();
+  for (const KindStage::Attached& a : ks.attached)
+    for (const CarriedPart& p : *(*ks.kinds)[a.actor]->CarriedParts())
+      parts.push_back({a.actor, a.carrier, &p, ks.contactDof[a.actor][p.dof]});
+  const size_t np = parts.size();
   std::vector<Eigen::MatrixXd>& A = ws_->frameJacobians;
   std::vector<FramePoint>& points = ws_->framePoints;
   std::vector<Eigen::Matrix<double, 6, 1>>& loads = ws_->frameLoads;
-  A.resize(na);
-  loads.resize(na);
+  A.resize(np);
+  loads.resize(np);
   std::vector<Eigen::MatrixXd> carrierA;
   std::vector<Eigen::Triplet<double>> curvature;
-  // Each body's first contact dof (−1: its carrier has no unknowns, nothing to reduce).
-  std::vector<int> first(na);
-  for (size_t i = 0; i < na; ++i) {
-    first[i] = ks.contactDof[ks.attached[i].actor][0];
+  for (size_t i = 0; i < np; ++i) {
     loads[i].setZero();
-    if (first[i] < 0) continue;
-    loads[i] = gPot->segment<6>(first[i]);
-    if (rDiss != gPot) loads[i] += rDiss->segment<6>(first[i]);
+    const int first = parts[i].first, size = parts[i].part->Size();
+    if (first < 0) continue;
+    loads[i].head(size) = gPot->segment(first, size);
+    if (rDiss != gPot) loads[i].head(size) += rDiss->segment(first, size);
   }
-  for (size_t i = 0; i < na; ++i) {
-    const int carrier = ks.attached[i].carrier;
-    if (i > 0 && ks.attached[i - 1].carrier == carrier) continue;  // done with its run
+  for (size_t i = 0; i < np; ++i) {
+    const int carrier = parts[i].carrier;
+    if (i > 0 && parts[i - 1].carrier == carrier) continue;  // done with its run
     size_t end = i;
     points.clear();
-    for (; end < na && ks.attached[end].carrier == carrier; ++end) {
-      const ActorKind& body = *(*ks.kinds)[ks.attached[end].actor];
-      points.push_back({body.Attachment()->frame, x[ks.attached[end].actor].head<3>()});
+    for (; end < np && parts[end].carrier == carrier; ++end) {
+      const CarriedPart& p = *parts[end].part;
+      points.push_back({p.frame, x[parts[end].actor].segment<3>(p.entry)});
     }
     const ActorKind& kind = *(*ks.kinds)[carrier];
     kind.CarriedFrameJacobians(x[carrier], points, &carrierA);
@@ -167,9 +171,9 @@ void SceneStageProblem::ReduceAttached(const std::vector<Eigen::VectorXd>& x, in
     // (the pipeline's J_d is already the derivative along the retraction): add it back.
     if (rDiss != gPot && !DissipationIsPotential())
       for (size_t j = i; j < end; ++j) {
-        if (first[j] < 0) continue;
+        if (parts[j].first < 0 || parts[j].part->kind != CarriedPart::Kind::Pose) continue;
         const Eigen::MatrixXd Ar = carrierA[j - i].bottomRows<3>();
-        C += 0.5 * Ar.transpose() * Skew(rDiss->segment<3>(first[j] + 3)) * Ar;
+        C += 0.5 * Ar.transpose() * Skew(rDiss->segment<3>(parts[j].first + 3)) * Ar;
       }
     const std::vector<int>& dof = ks.stageDof[carrier];
     for (int r = 0; r < m; ++r)
@@ -177,10 +181,11 @@ void SceneStageProblem::ReduceAttached(const std::vector<Eigen::VectorXd>& x, in
         if (dof[r] >= 0 && dof[c] >= 0) curvature.emplace_back(dof[r], dof[c], C(r, c));
   }
   auto reduce = [&](Eigen::VectorXd* v) {
-    for (size_t i = 0; i < na; ++i) {
-      if (first[i] < 0) continue;
-      const Eigen::VectorXd r = A[i].transpose() * v->segment<6>(first[i]);
-      const std::vector<int>& dof = ks.stageDof[ks.attached[i].carrier];
+    for (size_t i = 0; i < np; ++i) {
+      const int first = parts[i].first, size = parts[i].part->Size();
+      if (first < 0) continue;
+      const Eigen::VectorXd r = A[i].topRows(size).transpose() * v->segment(first, size);
+      const std::vector<int>& dof = ks.stageDof[parts[i].carrier];
       for (size_t j = 0; j < dof.size(); ++j)
         if (dof[j] >= 0) (*v)[dof[j]] += r[static_cast<Eigen::Index>(j)];
     }
@@ -194,13 +199,14 @@ void SceneStageProblem::ReduceAttached(const std::vector<Eigen::VectorXd>& x, in
   ws_->extendedAssembly.Assemble(triplets_, ws_->blocks, ws_->blockPosition, N, &ws_->extended);
   std::vector<Eigen::Triplet<double>> p;
   for (int r = 0; r < numDofs_; ++r) p.emplace_back(r, r, 1.0);
-  for (size_t i = 0; i < na; ++i) {
-    if (first[i] < 0) continue;
-    const std::vector<int>& dof = ks.stageDof[ks.attached[i].carrier];
-    for (int k = 0; k < 6; ++k)
+  for (size_t i = 0; i < np; ++i) {
+    const int first = parts[i].first;
+    if (first < 0) continue;
+    const std::vector<int>& dof = ks.stageDof[parts[i].carrier];
+    for (int k = 0; k < parts[i].part->Size(); ++k)
       for (size_t j = 0; j < dof.size(); ++j)
         if (dof[j] >= 0 && A[i](k, static_cast<Eigen::Index>(j)) != 0.0)
-          p.emplace_back(first[i] + k, dof[j], A[i](k, static_cast<Eigen::Index>(j)));
+          p.emplace_back(first + k, dof[j], A[i](k, static_cast<Eigen::Index>(j)));
   }
   ws_->reduction.resize(N, numDofs_);
   ws_->reduction.setFromTriplets(p.begin(), p.end());
@@ -225,7 +231,9 @@ double SceneStageProblem::EvaluateKindTerms(const std::vector<Eigen::VectorXd>& 
   kindValue.assign(ks.Size(), 0.0);
   for (size_t k = 0; k < ks.Size(); ++k) {
     const ActorKind& kind = *(*ks.kinds)[k];
-    const std::vector<int>& dof = ks.stageDof[k];
+    // With attached actors the vectors are at the contact's numbering (a carried part's dofs
+    // there, reduced with the contact's by ReduceAttached).
+    const std::vector<int>& dof = ks.attached.empty() ? ks.stageDof[k] : ks.contactDof[k];
     if (order >= 1) g.setZero(kind.NumTangentDofs());
     // The kind appends its local entries to triplets_; they are renumbered in place below.
     const size_t first = triplets_.size();

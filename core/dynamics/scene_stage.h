@@ -35,13 +35,14 @@ struct StageDissipation {
 /// its local dofs (−1 for a prescribed dof), its stage data and copies of its x⁰ and x_n (contact
 /// view). The stage's iterate x holds each actor's configuration q, in the same order.
 ///
-/// Attached actors (ActorKind::Attachment: a link's collision body) have no stage unknowns of
-/// their own (stageDof −1); their configurations in x follow their carriers' (SyncAttached). The
-/// contact pipeline sees each one's [δp, δθ] at six virtual dofs numDofs … numContactDofs − 1
+/// Attached actors (ActorKind::CarriedParts: a link's collision body, a soft skin's bound nodes)
+/// have carried parts whose dofs are no stage unknowns (stageDof −1); their entries in x follow
+/// their carriers' (SyncAttached). The contact pipeline and the kinds' own terms see the parts'
+/// dofs ([δx] of a point, [δp, δθ] of a pose) at virtual dofs numDofs … numContactDofs − 1
 /// (contactDof), and the stage reduces what it assembles there into the carrier's dofs with the
-/// chart Jacobian A (ActorKind::CarriedFrameJacobians) and, in the exact Hessian, the chart's
-/// curvature (ActorKind::AddCarriedFrameCurvature):
-///   g = g_real + Aᵀ g_body,   H = Pᵀ H_ext P + Σ_bodies curvature(g_body),   P = [I; A].
+/// chart Jacobian A (ActorKind::CarriedFrameJacobians; a point's rows are its δp's) and, in the
+/// exact Hessian, the chart's curvature (ActorKind::AddCarriedFrameCurvature):
+///   g = g_real + Aᵀ g_part,   H = Pᵀ H_ext P + Σ_parts curvature(g_part),   P = [I; A].
 struct KindStage {
   const std::vector<const ActorKind*>* kinds = nullptr;
   std::vector<std::vector<int>> stageDof;
@@ -66,6 +67,15 @@ void SyncAttached(const KindStage& stage, std::vector<Eigen::VectorXd>* x);
 /// The pipeline's dissipation data for a stage of step dt [s] (ContactPipeline::Evaluate).
 DissipationContext ContextOf(const StageDissipation& dissipation, double dt);
 
+/// A carried part of an attached actor in a stage (SceneStageProblem::ReduceAttached): the actor,
+/// its carrier, the part and its first dof at the contact's numbering (−1: the carrier has no
+/// unknowns).
+struct StagePart {
+  int actor = -1, carrier = -1;
+  const CarriedPart* part = nullptr;
+  int first = -1;
+};
+
 /// Buffers that one stage hands to the next (no allocation after the first stage of a scene).
 /// Problems that share it must be used one after the other (a solve ends before the next
 /// problem's begins), as the stage solves are.
@@ -88,6 +98,7 @@ struct StageWorkspace {
   TripletAssembly extendedAssembly;           ///< the contact's extended Hessian
   Eigen::SparseMatrix<double> extended;       ///< H_ext
   Eigen::SparseMatrix<double> reduction;      ///< P
+  std::vector<StagePart> parts;
   std::vector<Eigen::MatrixXd> frameJacobians;
   std::vector<FramePoint> framePoints;
   std::vector<Eigen::Matrix<double, 6, 1>> frameLoads;

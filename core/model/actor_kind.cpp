@@ -43,14 +43,50 @@ Eigen::MatrixXd ActorKind::CenterOfMassJacobian(const KindState& s) const {
   return C;
 }
 
-void AttachedConfiguration(const ActorKind& carrier, const FrameAttachment& attachment,
-                           const Eigen::VectorXd& carrierQ, Eigen::VectorXd* q) {
-  const int off = carrier.CarriedFrameOffset(attachment.frame);
-  const Eigen::Matrix3d Rf = Matrix3At(carrierQ, off + 3);
-  q->resize(12);
-  q->head<3>() = carrierQ.segment<3>(off) + Rf * attachment.offset;
-  Matrix3At(q, 3) = Rf * attachment.rotation;
+bool ActorKind::IsCarried() const {
+  const std::vector<CarriedPart>* parts = CarriedParts();
+  return parts && !parts->empty();
 }
+
+bool ActorKind::FullyCarried() const {
+  if (!IsCarried()) return false;
+  int dofs = 0;
+  for (const CarriedPart& p : *CarriedParts()) dofs += p.Size();
+  return dofs == NumTangentDofs();
+}
+
+void AttachedConfiguration(const ActorKind& carrier, const std::vector<CarriedPart>& parts,
+                           const Eigen::VectorXd& carrierQ, Eigen::VectorXd* q) {
+  for (const CarriedPart& p : parts) {
+    const int off = carrier.CarriedFrameOffset(p.frame);
+    const Eigen::Matrix3d Rf = Matrix3At(carrierQ, off + 3);
+    q->segment<3>(p.entry) = carrierQ.segment<3>(off) + Rf * p.offset;
+    if (p.kind == CarriedPart::Kind::Pose) Matrix3At(q, p.entry + 3) = Rf * p.rotation;
+  }
+}
+
+namespace {
+
+// Empty when the carried parts lie inside q and δ, apart, and on no prescribed dof.
+std::string ValidateCarriedParts(const ActorKind& kind, const std::string& name) {
+  if (!kind.CarriedParts()) return {};
+  const int n = kind.NumDofs(), m = kind.NumTangentDofs();
+  std::vector<char> used(static_cast<size_t>(m), 0);
+  for (const CarriedPart& p : *kind.CarriedParts()) {
+    const int entries = p.kind == CarriedPart::Kind::Point ? 3 : 12;
+    if (p.entry < 0 || p.entry + entries > n || p.dof < 0 || p.dof + p.Size() > m)
+      return name + ": a carried part lies outside q or δ";
+    for (int i = p.dof; i < p.dof + p.Size(); ++i) {
+      if (used[i]) return name + ": carried parts overlap at tangent dof " + std::to_string(i);
+      if (kind.IsPrescribed(i))
+        return name + ": carried part on prescribed tangent dof " + std::to_string(i);
+      used[i] = 1;
+    }
+  }
+  return {};
+}
+
+}  // namespace
 
 std::string ValidateKindLayout(const ActorKind& kind, const Eigen::Vector3d& gravity) {
   const std::string name = "actor (" + kind.KindName() + ")";
@@ -64,6 +100,7 @@ std::string ValidateKindLayout(const ActorKind& kind, const Eigen::Vector3d& gra
   if (!s.x.allFinite() || !s.v.allFinite()) return name + ": the initial state must be finite";
   const int m = kind.NumTangentDofs();
   if (m <= 0 || m > n) return name + ": NumTangentDofs must be in [1, NumDofs]";
+  if (std::string e = ValidateCarriedParts(kind, name); !e.empty()) return e;
   {  // A stage load at the first stage's time: m finite entries.
     KindStageData stage;
     stage.dt = 1.0;

@@ -137,12 +137,23 @@ struct FramePoint {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
 };
 
-/// An attached actor's place on its carrier (ActorKind::Attachment): a rigid body fixed to the
-/// carrier's frame `frame` (p_f, R_f), its pose p = p_f + R_f o, R = R_f R_o (body → world).
-struct FrameAttachment {
+/// A part of an actor's configuration carried by a frame of its carrier (ActorKind::
+/// CarriedParts), the frame (p_f, R_f) at the carrier's configuration:
+///   Point: a material point of the frame, x = p_f + R_f o (3 entries of q at `entry`, 3 tangent
+///          dofs δx at `dof`; a soft skin's node bound to a link);
+///   Pose:  a rigid body fixed to the frame, p = p_f + R_f o, R = R_f R_o (body → world; the 12
+///          entries [p, vec R] at `entry`, 6 tangent dofs [δp, δθ] at `dof`; a link's shape).
+/// Both are linear in the carrier's [p_f, vec R_f], so they follow its velocity by the same map.
+struct CarriedPart {
+  enum class Kind { Point, Pose };
+  Kind kind = Kind::Pose;
   int frame = -1;
-  Eigen::Vector3d offset = Eigen::Vector3d::Zero();          ///< o, in the frame [m]
-  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();    ///< R_o, body → frame
+  int entry = 0;                                          ///< first entry of q
+  int dof = 0;                                            ///< first local tangent dof
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();       ///< o, in the frame [m]
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity(); ///< R_o, body → frame (Pose)
+  /// Its tangent dofs: 3 (Point) or 6 (Pose).
+  int Size() const { return kind == Kind::Point ? 3 : 6; }
 };
 
 /// The collider frame of a body whose pose is the kind's own: [δp_B, δθ_B] its tangent dofs
@@ -409,13 +420,19 @@ class ActorKind {
                                         const std::vector<FramePoint>& /*points*/,
                                         const std::vector<Eigen::Matrix<double, 6, 1>>& /*loads*/,
                                         Eigen::MatrixXd* /*H*/) const {}
-  /// An attached actor (a link's collision body): a rigid body fixed to a frame of its carrier,
-  /// the actor it is nested under (Scene::AddActor checks the frame exists). Its configuration
-  /// [p, vec R] (12 entries, 6 tangent dofs [δp, δθ]) is written from its carrier's
-  /// (AttachedConfiguration) wherever the carrier's changes; it has no stage unknowns, mass or
-  /// energy of its own: the contact on it reaches the carrier's tangent dofs through the chart
-  /// Jacobian (core/dynamics/scene_stage.h). Null: not attached.
-  virtual const FrameAttachment* Attachment() const { return nullptr; }
+  /// Carried parts: the parts of the configuration that a frame of the actor's carrier (the
+  /// actor it is nested under; Scene::AddActor checks the frames exist) holds, a link's collision
+  /// body (one Pose part: all of it) or a soft skin's nodes bound to links (Point parts). Their
+  /// entries of q (and v) are written from the carrier's (AttachedConfiguration) wherever the
+  /// carrier's change; their tangent dofs are no stage unknowns: what the stage assembles on them
+  /// (contact, and the actor's own energy) reaches the carrier's tangent dofs through the chart
+  /// Jacobian (core/dynamics/scene_stage.h). Parts do not overlap and are not prescribed. Null or
+  /// empty: none (the actor is not attached).
+  virtual const std::vector<CarriedPart>* CarriedParts() const { return nullptr; }
+  /// Whether the actor has carried parts, and whether they cover every tangent dof (the actor is
+  /// then no more than its carrier's: an attached body).
+  bool IsCarried() const;
+  bool FullyCarried() const;
 
   // --- Sensitivities (core/sensitivity/; defaults: a vector kind whose q are lengths).
   /// The groups of coordinates the step linearization moves together at state s. Default: one
@@ -441,9 +458,10 @@ class ActorKind {
   std::string name;
 };
 
-/// The attached body's [p, vec R] from its carrier's configuration (or, the map being linear,
-/// its velocity [ṗ, vec Ṙ] from the carrier's velocity): p_f + R_f o, R_f R_o.
-void AttachedConfiguration(const ActorKind& carrier, const FrameAttachment& attachment,
+/// Writes the carried parts' entries of q from the carrier's configuration carrierQ (or, the map
+/// being linear, their velocities from the carrier's velocity): p_f + R_f o, and R_f R_o for a
+/// Pose. q keeps its other entries.
+void AttachedConfiguration(const ActorKind& carrier, const std::vector<CarriedPart>& parts,
                            const Eigen::VectorXd& carrierQ, Eigen::VectorXd* q);
 
 /// Empty when an actor of `kind` can be added to a scene with this gravity [m/s²]; else why not

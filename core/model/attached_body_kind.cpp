@@ -31,9 +31,12 @@ std::unique_ptr<AttachedBodyKind> AttachedBodyKind::Build(const LinkShapeDesc& s
   if (!BuildRigidBody(d, prefix, &k->model_, &unused, error)) return nullptr;
   // The body frame's origin is the shape's centroid (shapeOffset in the shape frame).
   const Eigen::Matrix3d Ro = shape.orientation.normalized().toRotationMatrix();
-  k->attachment_.frame = frame;
-  k->attachment_.rotation = Ro;
-  k->attachment_.offset = shape.position + Ro * k->model_.shapeOffset - frameOrigin;
+  CarriedPart part;
+  part.kind = CarriedPart::Kind::Pose;
+  part.frame = frame;
+  part.rotation = Ro;
+  part.offset = shape.position + Ro * k->model_.shapeOffset - frameOrigin;
+  k->attachment_.assign(1, part);
   k->contact = k->model_.contact;
   k->name = shape.name;
   return k;

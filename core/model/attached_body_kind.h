@@ -12,6 +12,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/model/actor_kind.h"
 #include "core/model/error.h"
@@ -60,7 +61,8 @@ class AttachedBodyKind : public ActorKind {
   void TangentBetween(const Eigen::VectorXd& from, const Eigen::VectorXd& to,
                       Eigen::VectorXd* delta) const override;
   int DofBlockSize() const override { return 6; }
-  const FrameAttachment* Attachment() const override { return &attachment_; }
+  /// One Pose part: the whole body, on its link's frame.
+  const std::vector<CarriedPart>* CarriedParts() const override { return &attachment_; }
 
   /// No mass: zero energies and momenta; the centre of mass reported is the body origin.
   double KineticEnergy(const KindState&) const override { return 0.0; }
@@ -89,7 +91,7 @@ class AttachedBodyKind : public ActorKind {
  private:
   AttachedBodyKind() = default;
   RigidBodyModel model_;
-  FrameAttachment attachment_;
+  std::vector<CarriedPart> attachment_;  ///< one Pose part at entry 0, dof 0
 };
 
 }  // namespace superdex
