@@ -157,10 +157,18 @@ ActorHandle Scene::AddSoftActor(const SoftActorDesc& desc, Error* error, ActorHa
   // A soft actor is the generic layer's SoftKind.
   std::shared_ptr<SoftKind> kind = SoftKind::Build(desc, error);
   if (!kind) return {};
+  if (!desc.skin.empty()) {  // a soft skin on its skeleton's links
+    std::vector<CarriedPart> parts;
+    if (!SkinParts(desc, *kind, parent, &parts, error)) return {};
+    kind->SetCarriedParts(std::move(parts));
+    if (!CheckCarried(*kind, parent, error)) return {};
+  }
   softDescs_.push_back(desc);
+  const bool carried = kind->IsCarried();
   const ActorHandle h = Register(std::move(kind), desc.contactLayer, parent);
   actors_[h.index].soft = true;
   actors_[h.index].desc = static_cast<int>(softDescs_.size()) - 1;
+  if (carried) AttachToCarrier(h, parent);
   return h;
 }
 
@@ -172,23 +180,9 @@ ActorHandle Scene::AddActor(std::unique_ptr<ActorKind> actor, Error* error,
   if (std::string m = ValidateKindLayout(*actor, settings_.gravity); !m.empty())
     return Fail(error, m), ActorHandle();
   const bool carried = actor->IsCarried();
-  if (carried) {
-    // Carried by frames of the actor it is nested under.
-    const std::string name = "actor (" + actor->KindName() + ")";
-    if (!parent.IsValid())
-      return Fail(error, name + ": an attached actor needs its carrier as parent"), ActorHandle();
-    for (const CarriedPart& p : *actor->CarriedParts())
-      if (actors_[parent.index].carrier >= 0 ||
-          !(p.frame >= 0 && p.frame < Kind(parent).NumCarriedFrames()))
-        return Fail(error, name + ": attachment frame " + std::to_string(p.frame) +
-                               " is not a frame of its parent '" + ActorName(parent) + "'"),
-               ActorHandle();
-  }
+  if (carried && !CheckCarried(*actor, parent, error)) return {};
   const ActorHandle h = Register(std::move(actor), contactLayer, parent);
-  if (carried) {
-    actors_[h.index].carrier = parent.index;
-    SyncAttachedStates();
-  }
+  if (carried) AttachToCarrier(h, parent);
   return h;
 }
 

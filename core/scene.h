@@ -43,7 +43,11 @@ class Scene : private StageHost {
   /// another actor has). A valid `parent` nests the actor under it (IncludeNestedActors::Yes).
   ActorHandle AddRigidActor(const RigidActorDesc& desc, Error* error,
                             ActorHandle parent = ActorHandle());
-  /// Adds a soft (tet FEM) actor; returns an invalid handle and fills *error on bad input.
+  /// Adds a soft (tet FEM) actor; returns an invalid handle and fills *error on bad input. With
+  /// skin bindings (SoftActorDesc::skin) it is a soft-skinned actor: `parent` must be its
+  /// skeleton, an articulated actor, whose links then carry the bound nodes at the skeleton's
+  /// current configuration; contact between the skin and the shapes and skins of the links it
+  /// binds and their adjacent links is disabled (DisableAdjacentContact).
   ActorHandle AddSoftActor(const SoftActorDesc& desc, Error* error,
                            ActorHandle parent = ActorHandle());
   /// Adds an actor of any kind of the generic actor layer (core/model/actor_kind.h); returns an
@@ -66,8 +70,13 @@ class Scene : private StageHost {
   /// parameters (validated); false with *error naming the link and the rule.
   bool SetLinkMass(ActorHandle a, int link, double mass, Error* error);
   bool SetLinkJointParams(ActorHandle a, int link, const JointParams& params, Error* error);
-  /// Whether a is an attached actor (ActorKind::Attachment; a link's shape).
-  bool IsAttached(ActorHandle a) const { return actors_[a.index].carrier >= 0; }
+  /// Whether a is an attached actor wholly carried by its carrier (ActorKind::FullyCarried; a
+  /// link's shape); a soft skin has unknowns of its own and is not.
+  bool IsAttached(ActorHandle a) const {
+    return actors_[a.index].carrier >= 0 && kinds_[a.index]->FullyCarried();
+  }
+  /// The actor that carries parts of a (a link shape's or a skin's articulation; invalid: none).
+  ActorHandle Carrier(ActorHandle a) const { return {actors_[a.index].carrier}; }
   /// The rigid body of a rigid actor or of an attached one (its shape, samples and field), null
   /// for other actors; and its state (an attached body's pose and velocity, its carrier's).
   const RigidBodyModel* BodyModel(ActorHandle a) const;
@@ -239,6 +248,15 @@ class Scene : private StageHost {
   void SyncAttachedStates();
   bool ValidParent(ActorHandle parent, Error* error) const;  // no parent, or an existing actor
   bool UniqueName(const std::string& name, Error* error) const;  // empty, or no actor's yet
+  // Carried actors (ActorKind::CarriedParts): whether `parent` can carry kind's parts, and, once
+  // registered as h, h's carrier, its state from the carrier's and its adjacency with the
+  // carrier's other actors on the same or adjacent frames (core/scene_skin.cpp).
+  bool CheckCarried(const ActorKind& kind, ActorHandle parent, Error* error) const;
+  void AttachToCarrier(ActorHandle h, ActorHandle parent);
+  // A soft skin's carried parts: its bindings resolved on skeleton's links at its current
+  // configuration; false with *error naming the binding's field and the rule.
+  bool SkinParts(const SoftActorDesc& desc, const SoftKind& kind, ActorHandle skeleton,
+                 std::vector<CarriedPart>* parts, Error* error) const;
   // Enters an actor into the kinds, the actor list and the filter.
   ActorHandle Register(std::shared_ptr<ActorKind> k, const std::string& layer, ActorHandle parent);
   void Prepare();

@@ -22,20 +22,11 @@ ActorHandle Scene::AddArticulatedActor(const ArticulatedActorDesc& desc, Error* 
              ActorHandle();
   const ActorHandle h = AddActor(std::move(kind), error, contactLayer, parent);
   if (!h.IsValid()) return h;
-  std::vector<std::pair<int, ActorHandle>> bodies;  // (link, actor)
-  for (LinkShape& s : shapes) {
-    const ActorHandle b = AddActor(std::move(s.kind), error, contactLayer, h);
-    if (!b.IsValid()) return b;  // checked by BuildLinkShapes: not reached
-    bodies.push_back({s.link, b});
-  }
-  // Adjacent links' shapes, and one link's shapes among themselves, do not touch.
-  const KinematicTree& t = static_cast<const ArticulatedKind&>(Kind(h)).Tree();
-  for (size_t i = 0; i < bodies.size(); ++i)
-    for (size_t j = i + 1; j < bodies.size(); ++j) {
-      const int li = bodies[i].first, lj = bodies[j].first;
-      if (li == lj || t.Joint(li).parent == lj || t.Joint(lj).parent == li)
-        DisableAdjacentContact(bodies[i].second, bodies[j].second);
-    }
+  // Each shape is carried by its link; adjacent links' shapes, and one link's shapes among
+  // themselves, do not touch (Scene::AttachToCarrier).
+  for (LinkShape& s : shapes)
+    if (!AddActor(std::move(s.kind), error, contactLayer, h).IsValid())
+      return {};  // checked by BuildLinkShapes: not reached
   return h;
 }
 

@@ -41,7 +41,7 @@ bool Scene::SetKindState(ActorHandle a, const KindState& state, Error* error) {
                            (actors_[a.index].soft ? " (3 per node)" : ""));
   if (!state.x.allFinite() || !state.v.allFinite())
     return Fail(error, "state: x and v must be finite");
-  if (actors_[a.index].carrier >= 0)
+  if (IsAttached(a))
     return Fail(error, "actor: '" + ActorName(a) +
                            "' is attached to its carrier: its state follows the carrier's");
   step_.vectorStates[a.index] = state;
@@ -164,7 +164,7 @@ void Scene::VisitStateLayout(int blocks, Visit&& visit) const {
   for (int b = 0; b < blocks; ++b)
     for (int i = 0; i < NumActors(); ++i) {
       if (actors_[i].rigid && !RigidOf({i}).Model().dynamic) continue;
-      if (actors_[i].carrier >= 0) continue;  // follows its carrier
+      if (IsAttached({i})) continue;  // follows its carrier
       visit(b, offset, i);
       offset += BlockSize(i);
     }

@@ -407,6 +407,9 @@ class ActorKind {
   /// link: its centre of mass and rotation). Default: none.
   virtual int NumCarriedFrames() const { return 0; }
   virtual int CarriedFrameOffset(int /*f*/) const { return -1; }
+  /// The frame that frame f hangs from (an articulation's parent link; −1: none). Actors carried
+  /// by the same or adjacent frames do not touch by default (Scene::AddActor).
+  virtual int CarriedFrameParent(int /*f*/) const { return -1; }
   /// The chart Jacobians at q (one evaluation for all the points): (*A)[i] (6 × m) maps the
   /// tangent step δ to the move [δp; δθ] of the rigid chart (p + δp, exp([δθ]×) R) of frame
   /// points[i].frame about the world point points[i].point, which moves with the frame.

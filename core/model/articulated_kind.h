@@ -169,6 +169,7 @@ class ArticulatedKind : public ActorKind {
   /// q's joint coordinates (KinematicTree::LinkChartJacobian, AddLinkChartCurvature).
   int NumCarriedFrames() const override { return NumLinks(); }
   int CarriedFrameOffset(int l) const override { return LinkOffset(l); }
+  int CarriedFrameParent(int l) const override { return tree_.Joint(l).parent; }
   void CarriedFrameJacobians(const Eigen::VectorXd& q, const std::vector<FramePoint>& points,
                              std::vector<Eigen::MatrixXd>* A) const override;
   void AddCarriedFrameCurvature(const Eigen::VectorXd& q, const std::vector<FramePoint>& points,

@@ -56,6 +56,23 @@ struct NodeConstraint {
   Eigen::Vector3d Displacement(double t) const;
 };
 
+/// A soft skin's binding to a link of its skeleton (the articulated actor the soft actor is nested
+/// under, Scene::AddSoftActor): the nodes it selects move with that link's rigid transform
+/// (eliminated dofs, core/model/actor_kind.h CarriedPart), the union of
+///   the listed nodes,
+///   the nodes inside the box [boxMin, boxMax] of the link frame, where boxMin < boxMax [m], and
+///   the nodes within `shapeDistance` of the link's collision shapes (Φ <= shapeDistance, each
+///   shape's field; < 0: not used) [m],
+/// at the configuration the skin is added in. A binding that selects no node is an error.
+struct SkinBinding {
+  std::string link;
+  std::vector<int> nodes;
+  bool hasBox = false;
+  Eigen::Vector3d boxMin = Eigen::Vector3d::Zero();  ///< [m], link frame
+  Eigen::Vector3d boxMax = Eigen::Vector3d::Zero();  ///< [m], link frame
+  double shapeDistance = -1.0;                        ///< [m]; < 0: not used
+};
+
 /// What a user gives to create a soft actor. The tet mesh is the rest shape (in its own frame);
 /// position and orientation place it in the world; every node starts with `linearVelocity`.
 struct SoftActorDesc {
@@ -75,6 +92,9 @@ struct SoftActorDesc {
   ActorBoundaryElementType boundaryElementType = ActorBoundaryElementType::P1Q3;
   std::string contactLayer = "default";
   std::vector<NodeConstraint> constraints;
+  /// A soft-skinned actor's bindings to the links of its skeleton (its parent, an articulated
+  /// actor); empty: a free soft body. Bound nodes may not be pinned or driven.
+  std::vector<SkinBinding> skin;
 };
 
 /// One colliding quadrature sample on a boundary face: y = Σ_a b_a x_{face[a]}.

@@ -8,7 +8,7 @@
 // y = Σ_a b_a x_a (a Nodes map on the face's three nodes), the colliding normal the deformed unit
 // face normal, which moves with the nodes (KindSample::faceNormal). With colliderType Sdf it is
 // a collider too: its reference grid SDF pulled back through the deformed tets (TetCollider,
-// core/contact/tet_field.h).
+// core/contact/tet_field.h). A soft skin's nodes bound to links are carried parts (SetCarriedParts).
 #pragma once
 
 #include <memory>
@@ -30,6 +30,14 @@ class SoftKind : public ActorKind {
   /// Replaces Young's modulus E [Pa] and density ρ [kg/m³] (validated by the caller): the Lamé
   /// parameters and the lumped masses follow; Poisson's ratio and stiffness damping are kept.
   void SetMaterial(double youngsModulus, double density);
+
+  /// A soft skin: its nodes bound to links of its skeleton (CarriedPart::Kind::Point parts at
+  /// their entries and dofs, Scene::AddSoftActor). Their inertia, gravity, elasticity, damping
+  /// and contact reach the skeleton's joints through the links' chart Jacobians.
+  void SetCarriedParts(std::vector<CarriedPart> parts) { parts_ = std::move(parts); }
+  const std::vector<CarriedPart>* CarriedParts() const override {
+    return parts_.empty() ? nullptr : &parts_;
+  }
 
   std::string KindName() const override { return "soft"; }
   std::unique_ptr<ActorKind> Clone() const override;
@@ -86,6 +94,7 @@ class SoftKind : public ActorKind {
  private:
   SoftBodyModel model_;
   SoftBodyState initial_;
+  std::vector<CarriedPart> parts_;  ///< a skin's bound nodes
 };
 
 }  // namespace superdex

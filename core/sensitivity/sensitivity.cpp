@@ -286,6 +286,10 @@ bool CheckDifferentiable(Scene& scene, const SceneParameter& p, int index, Error
   if (!p.actor.IsValid() || p.actor.index >= scene.NumActors())
     return Fail(error, "parameter " + std::to_string(index) + ": invalid actor handle");
   const std::string name = ToString(scene, p);
+  for (int a = 0; a < scene.NumActors(); ++a)
+    if (scene.Carrier({a}).IsValid() && !scene.IsAttached({a}))
+      return Fail(error, name + ": actor '" + scene.ActorName({a}) + "' is a soft skin; "
+                         "sensitivities through soft-skinned actors are not supported yet");
   if (p.IsLinkParameter()) {
     if (!(ParameterValue(scene, p) > 0))
       return Fail(error, name + ": differentiated at positive values only; start from a value > 0");

@@ -32,8 +32,7 @@
 #include "core/model/articulated_kind.h"
 #include "core/model/rigid_math.h"
 #include "core/scene.h"
-#include "derivative_check.h"
-#include "optim/finite_difference.h"
+#include "stage_derivative_recorder.h"
 
 namespace superdex {
 namespace {
@@ -57,57 +56,6 @@ void AddGround(Scene* scene) {
   Error e;
   REQUIRE(scene->AddRigidActor(g, &e).IsValid());
 }
-
-// Takes the first stage a step solves and checks its derivatives at a point near its solution.
-class DerivativeRecorder : public StageRecorder {
- public:
-  void BeginStep() override {}
-  bool Supplies() const override { return false; }
-  void Supply(const StageInputs&, const StageDissipation&, std::vector<Eigen::VectorXd>*) override {}
-  bool Records() const override { return true; }
-  void Record(const StageInputs& inputs, const StageDissipation& dissipation,
-              const std::vector<Eigen::VectorXd>& solution) override {
-    if (checked) return;
-    checked = true;
-    std::vector<Eigen::VectorXd> x = solution;
-    SceneStageProblem problem = inputs.Problem(dissipation, &x);
-    potential = problem.IsPotential();
-    const int n = problem.NumDofs();
-    Eigen::VectorXd away(n);
-    for (int i = 0; i < n; ++i) away[i] = 1e-4 * std::sin(1.0 + 2.0 * i);
-    problem.Commit(away);
-    dofs = n;
-    if (!potential) {  // the residual modes: J against differences of the residual
-      Eigen::VectorXd r;
-      Eigen::SparseMatrix<double> J;
-      problem.EvaluateResidual(&r, &J);
-      active = problem.LastContactStats().activeSamples;
-      const Eigen::MatrixXd Jfd = FiniteDifferenceJacobian(
-          [&](const Eigen::VectorXd& d) {
-            Eigen::VectorXd rd;
-            problem.Residual(d, &rd);
-            return rd;
-          },
-          Eigen::VectorXd::Zero(n), 1e-7);
-      residualError = (Eigen::MatrixXd(J) - Jfd).norm() / Jfd.norm();
-      return;
-    }
-    Eigen::VectorXd g;
-    Eigen::SparseMatrix<double> H, Hp;
-    problem.Evaluate(&g, &H, PsdProjection::None);
-    active = problem.LastContactStats().activeSamples;
-    result = test::CheckDerivatives([&](const Eigen::VectorXd& d) { return problem.Value(d); }, g,
-                                    Eigen::MatrixXd(H), 1e-6);
-    Eigen::VectorXd gp;
-    problem.Evaluate(&gp, &Hp, PsdProjection::Clamp);
-    minProjected =
-        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Eigen::MatrixXd(Hp)).eigenvalues().minCoeff();
-  }
-  bool checked = false, potential = false;
-  int active = 0, dofs = 0;
-  double minProjected = 0.0, residualError = 0.0;
-  test::DerivativeCheck result;
-};
 
 }  // namespace
 
@@ -174,22 +122,12 @@ TEST_CASE("links in contact: the stage's gradient and Hessian through the joints
   ball.contact.penaltyCoefficient = 1e6;
   ball.contact.viscousFrictionCoefficient = 0.2;
   REQUIRE(scene.AddRigidActor(ball, &e).IsValid());
-  DerivativeRecorder rec;
+  test::StageDerivativeRecorder rec;
   StepReport r;
   REQUIRE(scene.Step(1e-3, &r, &e, &rec));
   REQUIRE(rec.checked);
   CHECK(rec.dofs == 2 + 6);
-  CHECK(rec.potential == explicitNormals);
-  CHECK(rec.active > 0);
-  if (explicitNormals) {
-    INFO("gradient " << rec.result.gradientError << ", Hessian " << rec.result.hessianError);
-    CHECK(rec.result.gradientError < 1e-6);
-    CHECK(rec.result.hessianError < 1e-5);
-    CHECK(rec.minProjected > -1e-8);
-  } else {
-    INFO("residual Jacobian " << rec.residualError);
-    CHECK(rec.residualError < 5e-9);
-  }
+  rec.CheckAccuracy(explicitNormals);
 }
 
 TEST_CASE("links in contact: a link on a vertical slider rests where a free box rests",
