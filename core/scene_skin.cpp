@@ -87,9 +87,9 @@ bool Scene::SkinParts(const SoftActorDesc& desc, const SoftKind& kind, ActorHand
     if (l < 0)
       return Fail(error, field + ".link: no link named \"" + b.link + "\" in '" +
                              ActorName(skeleton) + "'");
-    if (b.hasBox && !(b.boxMin.allFinite() && b.boxMax.allFinite() &&
-                      (b.boxMin.array() < b.boxMax.array()).all()))
-      return Fail(error, field + ".box_min: must be finite and < box_max in every component");
+    if (b.hasRegion && !(b.regionMin.allFinite() && b.regionMax.allFinite() &&
+                      (b.regionMin.array() < b.regionMax.array()).all()))
+      return Fail(error, field + ".region: min must be finite and < max in every component");
     if (std::isnan(b.shapeDistance) || std::isinf(b.shapeDistance))
       return Fail(error, field + ".shape_distance: must be finite (< 0: not used)");
     std::vector<int> shapes;  // the link's shapes with a field
@@ -112,8 +112,8 @@ bool Scene::SkinParts(const SoftActorDesc& desc, const SoftKind& kind, ActorHand
     for (int a = 0; a < n; ++a) {
       const Eigen::Vector3d X = x.segment<3>(3 * a);
       const Eigen::Vector3d XL = linkPose[l].R.transpose() * (X - linkPose[l].p);
-      if (b.hasBox && (XL.array() >= b.boxMin.array()).all() &&
-          (XL.array() <= b.boxMax.array()).all())
+      if (b.hasRegion && (XL.array() >= b.regionMin.array()).all() &&
+          (XL.array() <= b.regionMax.array()).all())
         selected[a] = 1;
       for (int j : shapes)
         if (NearShape(*kinds_[j], step_.vectorStates[j].x, X, b.shapeDistance)) selected[a] = 1;
@@ -132,7 +132,7 @@ bool Scene::SkinParts(const SoftActorDesc& desc, const SoftKind& kind, ActorHand
       ++count;
     }
     if (count == 0)
-      return Fail(error, field + ": binds no node (its nodes, box and shape distance select none)");
+      return Fail(error, field + ": binds no node (its nodes, region and shape distance select none)");
   }
   parts->clear();
   for (int a = 0; a < n; ++a) {

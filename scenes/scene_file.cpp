@@ -28,7 +28,7 @@ void ReadSoftActor(const json& a, const std::string& path, const std::string& ba
   CheckObject(a, path,
               {"name", "type", "mesh", "material", "position", "orientation", "euler_deg",
                "velocity", "contact", "collider_type", "boundary_element_type", "contact_layer",
-               "parent", "constraints", "grid_sdf"});
+               "parent", "constraints", "grid_sdf", "skin"});
   SoftActorDesc d;
   d.name = String(a, path, "name");
   if (!a.contains("mesh")) Throw(Join(path, "mesh"), "missing required field");
@@ -50,6 +50,7 @@ void ReadSoftActor(const json& a, const std::string& path, const std::string& ba
   if (a.contains("constraints"))
     d.constraints = ReadConstraints(a.at("constraints"), Join(path, "constraints"), *d.mesh,
                                     d.position, d.orientation);
+  if (a.contains("skin")) d.skin = ReadSkin(a.at("skin"), Join(path, "skin"), *d.mesh);
   Error err;
   if (!out->scene->AddSoftActor(d, &err, parent).IsValid()) throw LoadError{path + "." + err.message};
   out->actorNames.push_back(d.name);

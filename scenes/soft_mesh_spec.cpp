@@ -143,6 +143,58 @@ std::shared_ptr<TetMesh> ReadTetMeshSpec(const json& j, const std::string& path,
 
 // "constraints": [{"nodes": [i, ...] | "region": {"min": [..], "max": [..]} (world coordinates at
 // creation), "path": [[t, dx, dy, dz], ...] (omitted: pinned)}, ...]
+namespace {
+
+// The node indices of field "nodes" of object c, each a node of the mesh.
+std::vector<int> ReadNodes(const json& c, const std::string& p, const TetMesh& mesh) {
+  std::vector<int> nodes;
+  auto readNode = [&](const json& v, const std::string& np) {
+    if (!v.is_number_integer()) Throw(np, "must be a node index (an integer)");
+    // Checked before narrowing: a huge index must not wrap to an existing node.
+    if (v.is_number_unsigned() ? v.get<unsigned long long>() >= unsigned(mesh.NumVertices())
+                               : (v.get<long long>() < 0 ||
+                                  v.get<long long>() >= mesh.NumVertices()))
+      Throw(np, "node " + v.dump() + " does not exist (the mesh has " +
+                    std::to_string(mesh.NumVertices()) + " nodes)");
+    nodes.push_back(v.get<int>());
+  };
+  ForEachItem(c, p, "nodes", "must be an array of node indices", readNode);
+  return nodes;
+}
+
+}  // namespace
+
+std::vector<SkinBinding> ReadSkin(const json& list, const std::string& path, const TetMesh& mesh) {
+  if (!list.is_array() || list.empty()) Throw(path, "must be a non-empty array of bindings");
+  std::vector<SkinBinding> out;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string p = path + "[" + std::to_string(i) + "]";
+    const json& c = list[i];
+    CheckObject(c, p, {"link", "nodes", "region", "shape_distance"});
+    SkinBinding b;
+    if (!c.contains("link")) Throw(Join(p, "link"), "missing required field");
+    b.link = String(c, p, "link");
+    if (!c.contains("nodes") && !c.contains("region") && !c.contains("shape_distance"))
+      Throw(p, "give at least one of \"nodes\", \"region\" and \"shape_distance\"");
+    if (c.contains("nodes")) b.nodes = ReadNodes(c, p, mesh);
+    if (c.contains("region")) {
+      const json& r = c.at("region");
+      const std::string rp = Join(p, "region");
+      CheckObject(r, rp, {"min", "max"});
+      if (!r.contains("min") || !r.contains("max")) Throw(rp, "needs \"min\" and \"max\"");
+      b.hasRegion = true;
+      b.regionMin = Vector<3>(r, rp, "min", Eigen::Vector3d::Zero());
+      b.regionMax = Vector<3>(r, rp, "max", Eigen::Vector3d::Zero());
+    }
+    if (c.contains("shape_distance")) {
+      b.shapeDistance = Number(c, p, "shape_distance", -1.0);
+      if (!(b.shapeDistance >= 0.0)) Throw(Join(p, "shape_distance"), "must be >= 0 [m]");
+    }
+    out.push_back(b);
+  }
+  return out;
+}
+
 std::vector<NodeConstraint> ReadConstraints(const json& list, const std::string& path,
                                             const TetMesh& mesh, const Eigen::Vector3d& position,
                                             const Eigen::Quaterniond& orientation) {
@@ -157,17 +209,7 @@ std::vector<NodeConstraint> ReadConstraints(const json& list, const std::string&
     if (c.contains("nodes") == c.contains("region"))
       Throw(p, "give exactly one of \"nodes\" and \"region\"");
     if (c.contains("nodes")) {
-      auto readNode = [&](const json& v, const std::string& np) {
-        if (!v.is_number_integer()) Throw(np, "must be a node index (an integer)");
-        // Checked before narrowing: a huge index must not wrap to an existing node.
-        if (v.is_number_unsigned() ? v.get<unsigned long long>() >= unsigned(mesh.NumVertices())
-                                   : (v.get<long long>() < 0 ||
-                                      v.get<long long>() >= mesh.NumVertices()))
-          Throw(np, "node " + v.dump() + " does not exist (the mesh has " +
-                        std::to_string(mesh.NumVertices()) + " nodes)");
-        k.nodes.push_back(v.get<int>());
-      };
-      ForEachItem(c, p, "nodes", "must be an array of node indices", readNode);
+      k.nodes = ReadNodes(c, p, mesh);
     } else {
       const json& r = c.at("region");
       const std::string rp = Join(p, "region");

@@ -1,4 +1,4 @@
-// A soft actor's "mesh" and "constraints" in a scene file (docs/scene-format.md). Internal to
+// A soft actor's "mesh", "constraints" and "skin" in a scene file (docs/scene-format.md). Internal to
 // scenes/: errors are thrown as LoadError "<json path>: <rule>".
 #pragma once
 
@@ -22,5 +22,9 @@ std::shared_ptr<TetMesh> ReadTetMeshSpec(const json& j, const std::string& path,
 std::vector<NodeConstraint> ReadConstraints(const json& list, const std::string& path,
                                             const TetMesh& mesh, const Eigen::Vector3d& position,
                                             const Eigen::Quaterniond& orientation);
+
+/// [{"link": NAME, "nodes": [...], "region": {"min", "max"} (link frame), "shape_distance": d},
+/// ...]: a soft skin's bindings (SoftActorDesc::skin), each with at least one selector.
+std::vector<SkinBinding> ReadSkin(const json& list, const std::string& path, const TetMesh& mesh);
 
 }  // namespace superdex::scene_json

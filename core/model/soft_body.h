@@ -60,16 +60,17 @@ struct NodeConstraint {
 /// under, Scene::AddSoftActor): the nodes it selects move with that link's rigid transform
 /// (eliminated dofs, core/model/actor_kind.h CarriedPart), the union of
 ///   the listed nodes,
-///   the nodes inside the box [boxMin, boxMax] of the link frame, where boxMin < boxMax [m], and
+///   the nodes inside the region, the box [regionMin, regionMax] of the link frame (the link's
+///   joint frame, as URDF's), where regionMin < regionMax [m], and
 ///   the nodes within `shapeDistance` of the link's collision shapes (Φ <= shapeDistance, each
 ///   shape's field; < 0: not used) [m],
 /// at the configuration the skin is added in. A binding that selects no node is an error.
 struct SkinBinding {
   std::string link;
   std::vector<int> nodes;
-  bool hasBox = false;
-  Eigen::Vector3d boxMin = Eigen::Vector3d::Zero();  ///< [m], link frame
-  Eigen::Vector3d boxMax = Eigen::Vector3d::Zero();  ///< [m], link frame
+  bool hasRegion = false;
+  Eigen::Vector3d regionMin = Eigen::Vector3d::Zero();  ///< [m], link frame
+  Eigen::Vector3d regionMax = Eigen::Vector3d::Zero();  ///< [m], link frame
   double shapeDistance = -1.0;                        ///< [m]; < 0: not used
 };
 

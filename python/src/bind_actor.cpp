@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <optional>
 
 #include "actor.h"
 #include "bindings.h"
@@ -249,6 +250,15 @@ void BindActor(py::module_& m) {
           "is_attached", [](const Actor& a) { return a.scene->IsAttached(a.Handle()); },
           "True for a link's collision shape (an actor nested under its articulation, moving "
           "with the link; mass 0, its state read-only)")
+      .def_property_readonly(
+          "carrier",
+          [](const Actor& a) -> std::optional<Actor> {
+            const ActorHandle c = a.scene->Carrier(a.Handle());
+            if (!c.IsValid()) return std::nullopt;
+            return Actor{a.scene, c.index};
+          },
+          "The articulated actor whose links carry this actor (a link shape's, or a soft "
+          "skin's skeleton), or None")
       .def_property_readonly("mass", &MassOf, "[kg]")
       .def_property_readonly(
           "dynamic",

@@ -232,7 +232,9 @@ void BindSceneClass(py::module_& m) {
       .def("add_soft_actor", &AddActor<SoftActorDesc>, py::arg("desc"),
            py::arg("parent") = py::none(), py::keep_alive<0, 1>(),
           "Adds a soft (tet FEM) actor (nested under `parent` if given); raises ValueError\n"
-          "naming the field and the rule on bad input. The mesh is copied.")
+          "naming the field and the rule on bad input. The mesh is copied. With desc.skin it\n"
+          "is a soft-skinned actor: `parent` is its skeleton (an articulated actor), whose\n"
+          "links carry the bound nodes from its current configuration on.")
       .def_property_readonly("actors",
                              [](Scene& s) {
                                std::vector<Actor> out;

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <memory>
+#include <optional>
 
 #include "bindings.h"
 #include "core/model/soft_body.h"
@@ -156,6 +157,54 @@ void BindSoftActorDesc(py::module_& m) {
                ")";
       });
 
+  py::class_<SkinBinding>(
+      m, "SkinBinding",
+      "A soft skin's binding to a link of its skeleton (the articulated actor given as the soft\n"
+      "actor's parent): the nodes it selects move with the link (eliminated dofs), the union\n"
+      "of the listed nodes, those inside the region (min, max) of the link frame [m], and those\n"
+      "within shape_distance [m] of the link's collision shapes (< 0: not used), at the\n"
+      "configuration the skin is added in. Validated by Scene.add_soft_actor.")
+      .def(py::init([](const std::string& link, const std::vector<int>& nodes,
+                       const std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>>& region,
+                       double shapeDistance) {
+             SkinBinding b;
+             b.link = link;
+             b.nodes = nodes;
+             if (region) {
+               b.hasRegion = true;
+               b.regionMin = region->first;
+               b.regionMax = region->second;
+             }
+             b.shapeDistance = shapeDistance;
+             return b;
+           }),
+           py::arg("link"), py::arg("nodes") = std::vector<int>(), py::arg("region") = py::none(),
+           py::arg("shape_distance") = -1.0)
+      .def_readwrite("link", &SkinBinding::link, "the link's name")
+      .def_readwrite("nodes", &SkinBinding::nodes, "node indices (a copy: assign a whole list)")
+      .def_property(
+          "region",
+          [](const SkinBinding& b) -> std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>> {
+            if (!b.hasRegion) return std::nullopt;
+            return std::make_pair(b.regionMin, b.regionMax);
+          },
+          [](SkinBinding& b, const std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>>& r) {
+            b.hasRegion = r.has_value();
+            if (r) {
+              b.regionMin = r->first;
+              b.regionMax = r->second;
+            }
+          },
+          "(min, max) of a box in the link frame [m], or None")
+      .def_readwrite("shape_distance", &SkinBinding::shapeDistance,
+                     "bind the nodes within this distance of the link's shapes [m]; < 0: not used")
+      .def("__repr__", [](const SkinBinding& b) {
+        return "SkinBinding('" + b.link + "', " + std::to_string(b.nodes.size()) + " nodes" +
+               (b.hasRegion ? ", region" : "") +
+               (b.shapeDistance >= 0 ? ", shape_distance " + std::to_string(b.shapeDistance) : "") +
+               ")";
+      });
+
   py::class_<SoftActorDesc> desc(
       m, "SoftActorDesc",
       "What a soft (tet FEM) actor is made from. The tet mesh is the rest shape in its own\n"
@@ -192,7 +241,11 @@ void BindSoftActorDesc(py::module_& m) {
                      "surface quadrature per boundary face. Default P1Q3.")
       .def_readwrite("contact_layer", &SoftActorDesc::contactLayer)
       .def_readwrite("constraints", &SoftActorDesc::constraints,
-                     "list of NodeConstraint (a copy: assign a whole list)");
+                     "list of NodeConstraint (a copy: assign a whole list)")
+      .def_readwrite("skin", &SoftActorDesc::skin,
+                     "list of SkinBinding (a copy: assign a whole list); non-empty: a "
+                     "soft-skinned actor, added with its skeleton (an articulated actor) as "
+                     "parent");
 }
 
 }  // namespace superdex::python

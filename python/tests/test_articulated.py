@@ -143,3 +143,57 @@ def test_read_urdf_gives_the_links_collision_shapes():
     assert np.allclose(desc.links[2].shapes[0].position, [0, 0, -0.03])
     assert all(not l.shapes for l in sd.read_urdf(
         os.path.join(DATA, "robots", "two_finger_gripper.urdf"), collisions=False).links)
+
+
+def carriage_with_skin(scene, z_star=0.3):
+    """A 0.2 kg vertical carriage driven to z_star (k_p 2000 N/m, critically damped) with a soft
+    cube hanging from it, the cube's top layer bound to the carriage."""
+    p = sd.JointParams()
+    p.drive_stiffness = 2000.0
+    p.drive_damping = 2 * math.sqrt(2000.0 * 0.3)
+    p.drive_target_position = [(0.0, z_star)]
+    link = sd.ArticulatedLinkDesc("carriage", sd.JointType.Prismatic, mass=0.2,
+                                  inertia=1e-4 * np.eye(3), axis=[0, 0, 1])
+    link.joint_params = p
+    d = sd.ArticulatedActorDesc("rig", [link])
+    d.joint_positions = [z_star]
+    rig = scene.add_articulated_actor(d)
+    cube = sd.SoftActorDesc("skin", sd.make_tet_box([0.03] * 3, [3] * 3),
+                            sd.SoftMaterial(youngs_modulus=2e4, density=500, stiffness_damping=0.01))
+    cube.position = [0, 0, z_star - 0.03]
+    cube.skin = [sd.SkinBinding("carriage", region=([-1, -1, -1e-3], [1, 1, 1e-3]))]
+    return rig, scene.add_soft_actor(cube, parent=rig)
+
+
+def test_a_soft_skin_hangs_from_its_driven_carriage():
+    # At rest the drive carries the carriage's and the skin's weight: k_p (z* - z) = (m_c + m_s) g.
+    scene = sd.Scene(sd.SceneSettings(integrator=sd.IntegrationMethod.BackwardEuler))
+    rig, skin = carriage_with_skin(scene)
+    assert skin.is_soft and not skin.is_attached and skin.carrier.name == "rig"
+    assert rig.carrier is None
+    top = skin.node_positions[:, 2] > 0.3 - 1e-9
+    assert top.sum() == 16
+    rig.joint_positions = [0.4]  # the bound nodes follow the joint
+    assert np.allclose(skin.node_positions[top, 2], 0.4, atol=1e-12)
+    rig.joint_positions = [0.3]
+    scene.run(3.0, 1e-2)  # raises RuntimeError on a stage that does not converge
+    weight = (0.2 + skin.mass) * G
+    assert 2000.0 * (0.3 - rig.joint_positions[0]) == pytest.approx(weight, rel=1e-6)
+    assert rig.drive_forces[0] == pytest.approx(weight, rel=1e-6)
+
+
+def test_bad_skin_bindings_name_the_field():
+    scene = sd.Scene()
+    rig, _ = carriage_with_skin(scene)
+    cube = sd.SoftActorDesc("pad", sd.make_tet_box([0.03] * 3, [2] * 3))
+    cube.position = [0, 0, 0.27]
+    b = sd.SkinBinding("wheel", nodes=[0, 1])
+    assert b.region is None and b.shape_distance < 0 and "wheel" in repr(b)
+    cube.skin = [b]
+    with pytest.raises(ValueError, match=r'^skin\[0\]\.link: no link named "wheel" in \'rig\''):
+        scene.add_soft_actor(cube, parent=rig)
+    with pytest.raises(ValueError, match=r"^skin: a soft-skinned actor needs its skeleton"):
+        scene.add_soft_actor(cube)
+    cube.skin = [sd.SkinBinding("carriage", region=([0, 0, 1], [1, 1, 0]))]
+    with pytest.raises(ValueError, match=r"^skin\[0\]\.region: min must be finite and < max"):
+        scene.add_soft_actor(cube, parent=rig)

@@ -56,9 +56,9 @@ SkinBinding BoxBinding(const std::string& link, const Eigen::Vector3d& lo,
                        const Eigen::Vector3d& hi) {
   SkinBinding b;
   b.link = link;
-  b.hasBox = true;
-  b.boxMin = lo;
-  b.boxMax = hi;
+  b.hasRegion = true;
+  b.regionMin = lo;
+  b.regionMax = hi;
   return b;
 }
 
@@ -362,8 +362,8 @@ TEST_CASE("soft skin: bad bindings are refused with the field and the rule", "[c
   refused(d, h, "skin[0].link: no link named \"wheel\"");
   d = cube;
   d.skin.push_back(top);
-  d.skin[0].boxMin.z() = 1.0;
-  refused(d, h, "skin[0].box_min: must be finite and < box_max");
+  d.skin[0].regionMin.z() = 1.0;
+  refused(d, h, "skin[0].region: min must be finite and < max");
   d.skin[0] = top;
   d.skin[0].nodes = {27};
   refused(d, h, "skin[0].nodes: 27 is not a node of the mesh (0 .. 26)");

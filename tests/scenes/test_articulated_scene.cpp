@@ -11,7 +11,10 @@
 //   - bad fields are refused with the JSON path and the rule (eleven cases);
 //   - links' "shapes" become attached actors named after the articulation and the link (or their
 //     own name), nested under it, at their pose in the link frame, with their contact role; their
-//     bad fields are named (four cases).
+//     bad fields are named (four cases);
+//   - a soft actor's "skin" binds the nodes its selectors pick (a region of the link frame, a
+//     distance to the link's shapes) to its parent's links, the scene runs converged, and bad
+//     bindings are named (eight cases).
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -214,4 +217,62 @@ TEST_CASE("a scene file gives links collision shapes as attached actors",
                           R"({"type": "plane"})")) ==
         "actors[0]: articulation 'pendulum': link 0 ('bob'): shapes[0].shape: a plane is a "
         "static actor's shape, not a link's");
+}
+
+TEST_CASE("a scene file gives a soft actor skin bindings on its skeleton's links",
+          "[scenes][articulated][skin]") {
+  // A vertical carriage with a sphere inside a soft cube: the nodes within 2 mm of the sphere
+  // and the cube's top layer (a region of the link frame) ride on the carriage.
+  const std::string text = R"({
+  "settings": {"dt": 0.01, "duration": 0.1, "integrator": "BackwardEuler"},
+  "actors": [
+    {"name": "rig", "type": "articulated", "links": [
+      {"name": "carriage", "joint": "Prismatic", "axis": [0, 0, 1], "mass": 0.2,
+       "inertia": [1e-4, 1e-4, 1e-4], "position": 0.3,
+       "joint_params": {"drive_stiffness": 2000, "drive_damping": 50, "drive_target_position": 0.3},
+       "shapes": [{"shape": {"type": "sphere", "radius": 0.012}, "position": [0, 0, -0.03]}]}
+    ]},
+    {"name": "pad", "type": "soft", "parent": "rig", "position": [0, 0, 0.27],
+     "mesh": {"type": "box", "half_extents": [0.03, 0.03, 0.03], "cells": [4, 4, 4]},
+     "material": {"youngs_modulus": 2e4, "density": 500},
+     "skin": [{"link": "carriage", "shape_distance": 0.002},
+              {"link": "carriage", "region": {"min": [-1, -1, -0.001], "max": [1, 1, 0.001]}}]}
+  ]
+})";
+  SceneFile f;
+  Error e;
+  REQUIRE(LoadSceneText(text, "", &f, &e));
+  REQUIRE(f.scene->NumActors() == 3);
+  const ActorHandle pad{2};
+  CHECK(f.scene->Carrier(pad).index == 0);
+  CHECK_FALSE(f.scene->IsAttached(pad));
+  CHECK(f.scene->ContactAllowed(pad, {1}) == false);  // its own link's sphere
+  // The 5 × 5 top layer and the node at the sphere's centre (the lattice's middle node; the
+  // sphere of radius 12 mm + 2 mm reaches none of its neighbours, 15 mm away; with 5 mm it
+  // reaches the six).
+  const std::vector<CarriedPart>& parts = *f.scene->Kind(pad).CarriedParts();
+  CHECK(parts.size() == 25 + 1);
+  for (int i = 0; i < 10; ++i) {
+    StepReport r;
+    REQUIRE(f.scene->Step(0.01, &r, &e));
+    CHECK(r.status == StageStatus::Converged);
+  }
+  auto bad = [&](const std::string& from, const std::string& to) {
+    return LoadError(Replace(text, from, to));
+  };
+  const std::string first = R"({"link": "carriage", "shape_distance": 0.002})";
+  CHECK(bad(first, R"({"link": "wheel", "shape_distance": 0.002})") ==
+        "actors[1].skin[0].link: no link named \"wheel\" in 'rig'");
+  CHECK(bad(first, R"({"shape_distance": 0.002})") == "actors[1].skin[0].link: missing required field");
+  CHECK(bad(first, R"({"link": "carriage"})") ==
+        "actors[1].skin[0]: give at least one of \"nodes\", \"region\" and \"shape_distance\"");
+  CHECK(bad(first, R"({"link": "carriage", "shape_distance": -1})") ==
+        "actors[1].skin[0].shape_distance: must be >= 0 [m]");
+  CHECK(bad(first, R"({"link": "carriage", "nodes": [125]})") ==
+        "actors[1].skin[0].nodes[0]: node 125 does not exist (the mesh has 125 nodes)");
+  CHECK(bad(first, R"({"link": "carriage", "region": {"min": [0, 0, 0]}})") ==
+        "actors[1].skin[0].region: needs \"min\" and \"max\"");
+  CHECK(bad(R"("parent": "rig", )", "") ==
+        "actors[1].skin: a soft-skinned actor needs its skeleton (an articulated actor) as parent");
+  CHECK(bad(R"("skin": [)", R"("skin": 3, "unused": [)").rfind("actors[1]", 0) == 0);
 }
