@@ -8,7 +8,9 @@ each time step gives against the scene's own expectation.
 Scenes: gripper_lift.json (a URDF gripper lowers, grasps a 0.2 kg box with 10 N force-limited
 fingers and lifts it 10 cm; error: the box's final height against 0.1296 m) and arm_push.json (a
 URDF two-link arm pushes a 0.5 kg box along a straight path; error: the box's final x against the
-finger's stop, 0.665 m). Prints one table row per scene and time step.
+finger's stop, 0.665 m) and soft_pad_grip.json (the gripper with soft-skinned pads on its fingers
+lifts the box; error: its final height against 0.1295 m). Prints one table row per scene and
+time step.
 """
 import argparse
 import json
@@ -23,6 +25,7 @@ SCENES = [
     # scene, the actor, the coordinate measured, its expected final value [m]
     ("gripper_lift.json", "box", 2, 0.1296),
     ("arm_push.json", "box", 0, 0.665),
+    ("soft_pad_grip.json", "box", 2, 0.1295),
 ]
 
 
