@@ -156,6 +156,63 @@ TriangleMesh MakePlanePatch(double size, int divisions) {
   return m;
 }
 
+bool FaceOppositeVertices(const std::vector<Eigen::Vector3i>& faces,
+                          std::vector<Eigen::Vector3i>* opposite, std::pair<int, int>* badEdge,
+                          std::vector<Eigen::Vector3i>* oppositeFace) {
+  // Each edge's (face, local index of the opposite vertex) uses, sorted by edge.
+  struct Use {
+    int a, b, face, local;
+  };
+  std::vector<Use> uses;
+  uses.reserve(3 * faces.size());
+  for (size_t f = 0; f < faces.size(); ++f)
+    for (int i = 0; i < 3; ++i) {
+      const int u = faces[f][(i + 1) % 3], v = faces[f][(i + 2) % 3];
+      uses.push_back({std::min(u, v), std::max(u, v), static_cast<int>(f), i});
+    }
+  std::sort(uses.begin(), uses.end(), [](const Use& x, const Use& y) {
+    return x.a != y.a ? x.a < y.a : x.b != y.b ? x.b < y.b : x.face < y.face;
+  });
+  opposite->assign(faces.size(), Eigen::Vector3i::Constant(-1));
+  if (oppositeFace) oppositeFace->assign(faces.size(), Eigen::Vector3i::Constant(-1));
+  for (size_t k = 0; k < uses.size();) {
+    size_t e = k;
+    while (e < uses.size() && uses[e].a == uses[k].a && uses[e].b == uses[k].b) ++e;
+    if (e - k > 2) {
+      *badEdge = {uses[k].a, uses[k].b};
+      return false;
+    }
+    if (e - k == 2) {
+      const Use &x = uses[k], &y = uses[k + 1];
+      (*opposite)[x.face][x.local] = faces[y.face][y.local];
+      (*opposite)[y.face][y.local] = faces[x.face][x.local];
+      if (oppositeFace) {
+        (*oppositeFace)[x.face][x.local] = y.face;
+        (*oppositeFace)[y.face][y.local] = x.face;
+      }
+    }
+    k = e;
+  }
+  return true;
+}
+
+TriangleMesh MakeRectangleMesh(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi,
+                               const Eigen::Vector2i& cells) {
+  TriangleMesh m;
+  const int nx = std::max(1, cells.x()), ny = std::max(1, cells.y());
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i)
+      m.vertices.emplace_back(lo.x() + (hi.x() - lo.x()) * i / nx,
+                              lo.y() + (hi.y() - lo.y()) * j / ny, 0.0);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const int a = j * (nx + 1) + i, b = a + 1, c = a + nx + 2, d = a + nx + 1;
+      m.faces.emplace_back(a, b, c);
+      m.faces.emplace_back(a, c, d);
+    }
+  return m;
+}
+
 TriangleMesh MakeCylinderMesh(double radius, double halfLength, int segments, int rings) {
   TriangleMesh m;
   const int n = std::max(3, segments);

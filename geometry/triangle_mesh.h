@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "geometry/aabb.h"
@@ -43,6 +44,20 @@ TriangleMesh MakeBoxMesh(const Eigen::Vector3d& halfExtents, int divisions = 1);
 /// Square patch in the z = 0 plane centred at the origin, side `size` [m], `divisions` x
 /// `divisions` quads, normals +z (an open surface).
 TriangleMesh MakePlanePatch(double size, int divisions);
+
+/// Across each face's edges: (*opposite)[f][i] is the vertex of the other face on the edge opposite
+/// faces[f][i] (between faces[f][i+1] and faces[f][i+2]), −1 on a boundary edge. False, with the
+/// edge's two vertices in *badEdge, when an edge has more than two faces (not a manifold).
+/// *oppositeFace (may be null) gets the other face's index the same way.
+bool FaceOppositeVertices(const std::vector<Eigen::Vector3i>& faces,
+                          std::vector<Eigen::Vector3i>* opposite, std::pair<int, int>* badEdge,
+                          std::vector<Eigen::Vector3i>* oppositeFace = nullptr);
+
+/// Rectangle [lo, hi] in the z = 0 plane, cells.x() × cells.y() quads (at least 1 each), each
+/// split into two triangles along its (−,−)→(+,+) diagonal, counter-clockwise seen from +z.
+/// Vertex (i, j) has index i + (cells.x() + 1) j.
+TriangleMesh MakeRectangleMesh(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi,
+                               const Eigen::Vector2i& cells);
 
 /// Closed cylinder along x centred at the origin: radius [m], half length [m], `segments` around
 /// (>= 3), `rings` side rows (>= 1), fan-triangulated caps; outward oriented.

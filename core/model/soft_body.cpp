@@ -10,25 +10,19 @@ namespace superdex {
 
 Eigen::Vector3d NodeConstraint::Displacement(double t) const { return PiecewiseLinear(path, t); }
 
-bool BuildSoftBody(const SoftActorDesc& d, const std::string& prefix, SoftBodyModel* m,
-                   SoftBodyState* st, Error* error) {
-  if (!d.mesh) return Fail(error, prefix + "mesh: a tet mesh is required");
-  const std::string source = d.meshSource.empty() ? "mesh" : d.meshSource;
-  std::string message;
-  if (!ValidateTetMesh(*d.mesh, source, &message)) return Fail(error, prefix + "mesh: " + message);
-  if (std::string e = Validate(d.material, prefix + "material."); !e.empty()) return Fail(error, e);
-  if (std::string e = Validate(d.contact, prefix + "contact."); !e.empty()) return Fail(error, e);
-  if (!d.position.allFinite() || !d.linearVelocity.allFinite() ||
-      !d.orientation.coeffs().allFinite() || d.orientation.norm() < 1e-12)
-    return Fail(error, prefix + "position, orientation, linear_velocity: must be finite (and the "
-                                "orientation nonzero)");
-  if (d.colliderType != ColliderType::None && d.colliderType != ColliderType::Sdf &&
-      d.colliderType != ColliderType::Auto)
-    return Fail(error, prefix + "collider_type: " + ToString(d.colliderType) +
-                           " is not available for soft actors (expected None, Sdf or Auto)");
-  const int n = d.mesh->NumVertices();
-  for (size_t c = 0; c < d.constraints.size(); ++c) {
-    const NodeConstraint& k = d.constraints[c];
+bool ValidatePlacement(const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation,
+                       const Eigen::Vector3d& velocity, const std::string& prefix, Error* error) {
+  if (position.allFinite() && velocity.allFinite() && orientation.coeffs().allFinite() &&
+      orientation.norm() >= 1e-12)
+    return true;
+  return Fail(error, prefix + "position, orientation, linear_velocity: must be finite (and the "
+                              "orientation nonzero)");
+}
+
+bool ValidateNodeConstraints(const std::vector<NodeConstraint>& constraints, int n,
+                             const std::string& prefix, Error* error) {
+  for (size_t c = 0; c < constraints.size(); ++c) {
+    const NodeConstraint& k = constraints[c];
     const std::string field = prefix + "constraints[" + std::to_string(c) + "]";
     if (k.nodes.empty()) return Fail(error, field + ".nodes: must not be empty");
     for (int i : k.nodes)
@@ -38,6 +32,24 @@ bool BuildSoftBody(const SoftActorDesc& d, const std::string& prefix, SoftBodyMo
     if (std::string msg = CheckKeyframes(k.path, field + ".path"); !msg.empty())
       return Fail(error, msg);
   }
+  return true;
+}
+
+bool BuildSoftBody(const SoftActorDesc& d, const std::string& prefix, SoftBodyModel* m,
+                   SoftBodyState* st, Error* error) {
+  if (!d.mesh) return Fail(error, prefix + "mesh: a tet mesh is required");
+  const std::string source = d.meshSource.empty() ? "mesh" : d.meshSource;
+  std::string message;
+  if (!ValidateTetMesh(*d.mesh, source, &message)) return Fail(error, prefix + "mesh: " + message);
+  if (std::string e = Validate(d.material, prefix + "material."); !e.empty()) return Fail(error, e);
+  if (std::string e = Validate(d.contact, prefix + "contact."); !e.empty()) return Fail(error, e);
+  if (!ValidatePlacement(d.position, d.orientation, d.linearVelocity, prefix, error)) return false;
+  if (d.colliderType != ColliderType::None && d.colliderType != ColliderType::Sdf &&
+      d.colliderType != ColliderType::Auto)
+    return Fail(error, prefix + "collider_type: " + ToString(d.colliderType) +
+                           " is not available for soft actors (expected None, Sdf or Auto)");
+  const int n = d.mesh->NumVertices();
+  if (!ValidateNodeConstraints(d.constraints, n, prefix, error)) return false;
 
   *m = SoftBodyModel();
   m->name = d.name;
@@ -141,7 +153,12 @@ bool BuildSoftBody(const SoftActorDesc& d, const std::string& prefix, SoftBodyMo
 
 void ApplyNodeConstraints(const SoftBodyModel& m, const Eigen::VectorXd& initial, double t,
                           Eigen::VectorXd* x) {
-  for (const NodeConstraint& k : m.constraints) {
+  ApplyNodeConstraints(m.constraints, initial, t, x);
+}
+
+void ApplyNodeConstraints(const std::vector<NodeConstraint>& constraints,
+                          const Eigen::VectorXd& initial, double t, Eigen::VectorXd* x) {
+  for (const NodeConstraint& k : constraints) {
     const Eigen::Vector3d u = k.Displacement(t);
     for (int i : k.nodes) x->segment<3>(3 * i) = initial.segment<3>(3 * i) + u;
   }
@@ -173,6 +190,13 @@ Aabb SoftBounds(const Eigen::VectorXd& x) {
   Aabb b;
   for (Eigen::Index i = 0; i < x.size() / 3; ++i) b.Extend(x.segment<3>(3 * i));
   return b;
+}
+
+double TriangleBall(const Eigen::VectorXd& x, const Eigen::Vector3i& F, Eigen::Vector3d* c) {
+  const Eigen::Vector3d a = x.segment<3>(3 * F[0]), b = x.segment<3>(3 * F[1]),
+                        d = x.segment<3>(3 * F[2]);
+  *c = (a + b + d) / 3.0;
+  return std::max({(a - *c).norm(), (b - *c).norm(), (d - *c).norm()});
 }
 
 Eigen::Vector3d SoftFaceNormal(const SoftBodyModel& m, const Eigen::VectorXd& x, int f) {

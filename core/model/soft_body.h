@@ -74,6 +74,15 @@ struct SkinBinding {
   double shapeDistance = -1.0;                        ///< [m]; < 0: not used
 };
 
+/// A body of nodes' placement: position, orientation (nonzero) and velocity finite; false with
+/// *error naming them (`prefix`) otherwise.
+bool ValidatePlacement(const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation,
+                       const Eigen::Vector3d& velocity, const std::string& prefix, Error* error);
+/// Empty constraints' nodes, nodes outside [0, n) and bad paths: false with *error naming the
+/// field (`prefix` + "constraints[i]...") and the rule.
+bool ValidateNodeConstraints(const std::vector<NodeConstraint>& constraints, int n,
+                             const std::string& prefix, Error* error);
+
 /// What a user gives to create a soft actor. The tet mesh is the rest shape (in its own frame);
 /// position and orientation place it in the world; every node starts with `linearVelocity`.
 struct SoftActorDesc {
@@ -143,6 +152,9 @@ bool BuildSoftBody(const SoftActorDesc& desc, const std::string& prefix, SoftBod
 /// the state the actor was created with.
 void ApplyNodeConstraints(const SoftBodyModel& model, const Eigen::VectorXd& initial, double t,
                           Eigen::VectorXd* x);
+/// The same for any body of nodes (3 entries each in x and initial).
+void ApplyNodeConstraints(const std::vector<NodeConstraint>& constraints,
+                          const Eigen::VectorXd& initial, double t, Eigen::VectorXd* x);
 
 /// Kinetic energy ½ Σ m_a |v_a|² [J].
 double KineticEnergy(const SoftBodyModel& model, const SoftBodyState& state);
@@ -150,6 +162,9 @@ double KineticEnergy(const SoftBodyModel& model, const SoftBodyState& state);
 double ElasticEnergy(const SoftBodyModel& model, const Eigen::VectorXd& x, double* minDetF);
 /// World bounds of the nodes.
 Aabb SoftBounds(const Eigen::VectorXd& x);
+/// The centroid *c of the triangle F of nodes at positions x and its largest distance to a
+/// corner [m] (the ball that holds the triangle's samples).
+double TriangleBall(const Eigen::VectorXd& x, const Eigen::Vector3i& F, Eigen::Vector3d* c);
 /// Outward unit normal of boundary face f at positions x (zero for a degenerate face).
 Eigen::Vector3d SoftFaceNormal(const SoftBodyModel& model, const Eigen::VectorXd& x, int f);
 

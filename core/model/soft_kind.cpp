@@ -9,20 +9,6 @@ namespace {
 
 Eigen::Vector3d Node(const Eigen::VectorXd& x, int i) { return x.segment<3>(3 * i); }
 
-// Σ_a m_a u_a over the nodes (u: their positions [m] or velocities [m/s]).
-Eigen::Vector3d NodeMassSum(const SoftBodyModel& m, const Eigen::VectorXd& u) {
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for (int a = 0; a < m.NumNodes(); ++a) sum += m.nodeMass[a] * Node(u, a);
-  return sum;
-}
-
-// The centroid of face F at positions x and its largest distance to a corner [m].
-double FaceBall(const Eigen::VectorXd& x, const Eigen::Vector3i& F, Eigen::Vector3d* c) {
-  const Eigen::Vector3d a = Node(x, F[0]), b = Node(x, F[1]), d = Node(x, F[2]);
-  *c = (a + b + d) / 3.0;
-  return std::max({(a - *c).norm(), (b - *c).norm(), (d - *c).norm()});
-}
-
 }  // namespace
 
 SoftKind::SoftKind(SoftBodyModel model, const SoftBodyState& initial)
@@ -87,75 +73,8 @@ void SoftKind::Prescribe(double t, Eigen::VectorXd* q) const {
   ApplyNodeConstraints(model_, initial_.x, t, q);
 }
 
-double SoftKind::KineticEnergy(const KindState& s) const { return superdex::KineticEnergy(model_, s); }
-
-double SoftKind::GravityEnergy(const KindState& s, const Eigen::Vector3d& gravity) const {
-  double e = 0.0;
-  for (int a = 0; a < model_.NumNodes(); ++a) e += -model_.nodeMass[a] * gravity.dot(Node(s.x, a));
-  return e;
-}
-
 double SoftKind::InternalEnergy(const KindState& s) const {
   return ElasticEnergy(model_, s.x, nullptr);
-}
-
-Eigen::Vector3d SoftKind::LinearMomentum(const KindState& s) const {
-  return NodeMassSum(model_, s.v);
-}
-
-Eigen::Vector3d SoftKind::AngularMomentum(const KindState& s) const {
-  Eigen::Vector3d L = Eigen::Vector3d::Zero();
-  for (int a = 0; a < model_.NumNodes(); ++a)
-    L += model_.nodeMass[a] * Node(s.x, a).cross(Node(s.v, a));
-  return L;
-}
-
-Eigen::Vector3d SoftKind::CenterOfMass(const KindState& s) const {
-  return NodeMassSum(model_, s.x) / model_.mass;
-}
-
-Eigen::Vector3d SoftKind::CenterOfMassVelocity(const KindState& s) const {
-  return NodeMassSum(model_, s.v) / model_.mass;
-}
-
-void SoftKind::DifferenceGroups(const KindState& s,
-                                std::vector<KindDifferenceGroup>* groups) const {
-  const int n = static_cast<int>(s.x.size());
-  groups->resize(model_.NumNodes());
-  for (int a = 0; a < model_.NumNodes(); ++a) {
-    KindDifferenceGroup& g = (*groups)[a];
-    g = KindDifferenceGroup();
-    for (int c = 0; c < 3; ++c) g.directions.push_back({{{3 * a + c, 1.0}}, false, 1.0});
-    for (int c = 0; c < 3; ++c) g.directions.push_back({{{n + 3 * a + c, 1.0}}, true, 1.0});
-    for (int c = 0; c < 3; ++c) g.entries.push_back(3 * a + c);
-    for (int c = 0; c < 3; ++c) g.entries.push_back(n + 3 * a + c);
-    if (model_.freeIndex[a] < 0) continue;
-    for (int c = 0; c < 3; ++c) {
-      g.tangentDofs.push_back(3 * a + c);
-      g.tangentLength.push_back(1.0);
-    }
-  }
-}
-
-bool SoftKind::MotionParameter(KindMotion motion, int component, const KindState& s,
-                               double* value, Eigen::VectorXd* direction) const {
-  if (motion == KindMotion::AngularVelocity || component < 0 || component > 2) return false;
-  const Eigen::Index n = s.x.size();
-  const bool position = motion == KindMotion::Position;
-  const Eigen::VectorXd& u = position ? s.x : s.v;
-  double sum = 0.0;
-  for (Eigen::Index i = component; i < n; i += 3) sum += u[i];
-  *value = sum / static_cast<double>(n / 3);
-  direction->setZero(2 * n);
-  for (Eigen::Index i = component; i < n; i += 3) (*direction)[(position ? 0 : n) + i] = 1.0;
-  return true;
-}
-
-Eigen::MatrixXd SoftKind::CenterOfMassJacobian(const KindState& s) const {
-  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(3, s.x.size());
-  for (int a = 0; a < model_.NumNodes(); ++a)
-    C.middleCols<3>(3 * a).diagonal().setConstant(model_.nodeMass[a] / model_.mass);
-  return C;
 }
 
 KindSample SoftKind::Sample(int k, const Eigen::VectorXd& q) const {
@@ -183,7 +102,7 @@ void SoftKind::ForEachSampleNear(
     const std::function<void(int, int)>& visit) const {
   for (size_t f = 0; f < model_.faces.size(); ++f) {
     Eigen::Vector3d c, cLast;
-    const double r = std::max(FaceBall(q, model_.faces[f], &c), FaceBall(qLast, model_.faces[f], &cLast));
+    const double r = std::max(TriangleBall(q, model_.faces[f], &c), TriangleBall(qLast, model_.faces[f], &cLast));
     if (keep(c, cLast, r)) visit(model_.faceSampleBegin[f], model_.faceSampleBegin[f + 1]);
   }
 }

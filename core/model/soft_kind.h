@@ -14,12 +14,12 @@
 #include <memory>
 #include <vector>
 
-#include "core/model/actor_kind.h"
+#include "core/model/node_body_kind.h"
 #include "core/model/soft_terms.h"
 
 namespace superdex {
 
-class SoftKind : public ActorKind {
+class SoftKind : public NodeBodyKind {
  public:
   /// A body built by BuildSoftBody (the same model and initial state as Scene::AddSoftActor).
   SoftKind(SoftBodyModel model, const SoftBodyState& initial);
@@ -61,22 +61,10 @@ class SoftKind : public ActorKind {
   ///   split parts: the by-parts line search has not been measured on deforming bodies.
   StageShortcuts Shortcuts() const override { return {false, false, false}; }
 
-  double KineticEnergy(const KindState& s) const override;
-  double GravityEnergy(const KindState& s, const Eigen::Vector3d& gravity) const override;
+  const Eigen::VectorXd& NodeMasses() const override { return model_.nodeMass; }
+  double TotalMass() const override { return model_.mass; }
   /// Σ_t V_t Ψ(F_t) [J].
   double InternalEnergy(const KindState& s) const override;
-  Eigen::Vector3d LinearMomentum(const KindState& s) const override;
-  Eigen::Vector3d AngularMomentum(const KindState& s) const override;
-  Eigen::Vector3d CenterOfMass(const KindState& s) const override;
-  Eigen::Vector3d CenterOfMassVelocity(const KindState& s) const override;
-  /// Sensitivities: a group per node (its x and v, its free tangent dofs), so that nodes far
-  /// apart are differenced in one run; Position and Velocity are the nodes' unweighted mean,
-  /// moved by moving every node alike (no AngularVelocity); c = Σ m_a x_a / M exactly.
-  void DifferenceGroups(const KindState& s, std::vector<KindDifferenceGroup>* groups) const override;
-  bool MotionParameter(KindMotion motion, int component, const KindState& s, double* value,
-                       Eigen::VectorXd* direction) const override;
-  Eigen::MatrixXd CenterOfMassJacobian(const KindState& s) const override;
-  Aabb Bounds(const Eigen::VectorXd& q) const override { return SoftBounds(q); }
   const SoftBodyModel* TetCollider() const override {
     return model_.collider == ColliderType::Sdf ? &model_ : nullptr;
   }

@@ -23,6 +23,9 @@
 
 #include "derivative_check.h"
 #include "energies/shell_energies.h"
+#include "energies/shell_midedge.h"
+#include "core/model/shell_body.h"
+#include "geometry/triangle_mesh.h"
 
 namespace superdex {
 namespace {
@@ -166,6 +169,101 @@ TEST_CASE("shell bending: a strip bent onto a cylinder stores the plate's energy
   const double plate = 0.5 * D / (R * R) * area;
   INFO("hinges " << W << " J, plate " << plate << " J, ratio " << W / plate);
   CHECK(std::abs(W / plate - 1.0) < 3e-4);
+}
+
+}  // namespace superdex
+
+namespace superdex {
+namespace {
+
+// A grid of (n + 1)² points mapped by f from the square [−a, a]² (cells split along (−,−)→(+,+)),
+// and its faces.
+struct Grid {
+  std::vector<Eigen::Vector3d> rest, now;
+  std::vector<Eigen::Vector3i> faces, opposite;
+};
+
+template <typename Map>
+Grid MakeGrid(int n, double a, Map f) {
+  Grid g;
+  const TriangleMesh m = MakeRectangleMesh(Eigen::Vector2d(-a, -a), Eigen::Vector2d(a, a),
+                                           Eigen::Vector2i(n, n));
+  g.rest = m.vertices;
+  for (const Eigen::Vector3d& X : g.rest) g.now.push_back(f(X.x(), X.y()));
+  g.faces = m.faces;
+  std::pair<int, int> bad;
+  REQUIRE(FaceOppositeVertices(g.faces, &g.opposite, &bad));
+  return g;
+}
+
+// Σ W / Σ Ā over the faces with three neighbours [J/m²].
+double InteriorEnergyDensity(const Grid& g, const LameParameters& lame, double h) {
+  double W = 0.0, A = 0.0;
+  for (size_t f = 0; f < g.faces.size(); ++f) {
+    if ((g.opposite[f].array() < 0).any()) continue;
+    const bool has[3] = {true, true, true};
+    const MidedgeTriangle t = MakeMidedgeTriangle(MidedgeNodes(g.rest, g.faces[f], g.opposite[f]), has);
+    W += MidedgeBendingEnergy(MidedgeNodes(g.now, g.faces[f], g.opposite[f]), t, lame, h, 0, false,
+                              nullptr, nullptr);
+    A += t.restArea;
+  }
+  return W / A;
+}
+
+}  // namespace
+
+TEST_CASE("shell mid-edge bending: derivatives against differences", "[energies][shell]") {
+  const LameParameters lame = PlaneStressLame(2e5, 0.3);
+  const double h = 2e-3;
+  // A curved patch (rest) and a deformed one.
+  const Grid g = MakeGrid(3, 0.1, [](double x, double y) {
+    return Eigen::Vector3d(x + 0.01 * y * y, y, 0.8 * x * x - 0.5 * x * y + 0.3 * y * y * y);
+  });
+  const Grid r = MakeGrid(3, 0.1, [](double x, double y) {
+    return Eigen::Vector3d(x, y, 0.2 * x * y);
+  });
+  for (size_t f : {size_t(0), size_t(8)}) {  // a corner face (boundary edges) and an inner one
+    bool has[3];
+    for (int k = 0; k < 3; ++k) has[k] = g.opposite[f][k] >= 0;
+    const MidedgeTriangle t = MakeMidedgeTriangle(MidedgeNodes(r.now, g.faces[f], g.opposite[f]), has);
+    const MidedgeStencil x = MidedgeNodes(g.now, g.faces[f], g.opposite[f]);
+    Eigen::Matrix<double, 18, 1> grad = Eigen::Matrix<double, 18, 1>::Zero();
+    Eigen::Matrix<double, 18, 18> H = Eigen::Matrix<double, 18, 18>::Zero();
+    MidedgeBendingEnergy(x, t, lame, h, 2, false, &grad, &H);
+    const test::DerivativeCheck c = test::CheckDerivatives(
+        [&](const Eigen::VectorXd& d) {
+          return MidedgeBendingEnergy(x + MidedgeStencil(d), t, lame, h, 0, false, nullptr, nullptr);
+        },
+        grad, H, 1e-5);
+    INFO("face " << f << ": gradient " << c.gradientError << ", Hessian " << c.hessianError);
+    CHECK(c.gradientError < 1e-6);
+    CHECK(c.hessianError < 1e-5);
+    Eigen::Matrix<double, 18, 1> gp = Eigen::Matrix<double, 18, 1>::Zero();
+    Eigen::Matrix<double, 18, 18> Hp = Eigen::Matrix<double, 18, 18>::Zero();
+    MidedgeBendingEnergy(x, t, lame, h, 2, true, &gp, &Hp);
+    CHECK(MinEigen(Hp) > -1e-10 * Hp.norm());
+  }
+}
+
+TEST_CASE("shell mid-edge bending: a cylinder and a sphere store Kirchhoff's plate energy",
+          "[energies][shell]") {
+  const double E = 1e6, nu = 0.3, h = 1e-3, R = 1.0;
+  const LameParameters lame = PlaneStressLame(E, nu);
+  const double D = E * h * h * h / (12.0 * (1.0 - nu * nu));
+  // A flat 8 × 8 grid of 2 cm wrapped isometrically onto a cylinder (axis along y, κ = 1/R):
+  // D/2 κ² per unit area.
+  const Grid cylinder = MakeGrid(8, 0.02, [&](double x, double y) {
+    return Eigen::Vector3d(R * std::sin(x / R), y, R - R * std::cos(x / R));
+  });
+  const double c = InteriorEnergyDensity(cylinder, lame, h) / (0.5 * D / (R * R));
+  // Pressed onto a sphere of radius R (κ₁ = κ₂ = 1/R): D (1 + ν) κ² per unit area.
+  const Grid sphere = MakeGrid(8, 0.02, [&](double x, double y) {
+    return Eigen::Vector3d(x, y, R - std::sqrt(R * R - x * x - y * y));
+  });
+  const double s = InteriorEnergyDensity(sphere, lame, h) / (D * (1.0 + nu) / (R * R));
+  INFO("cylinder " << c << ", sphere " << s << " of Kirchhoff's");
+  CHECK(std::abs(c - 1.0) < 1e-3);
+  CHECK(std::abs(s - 1.0) < 1e-3);
 }
 
 }  // namespace superdex

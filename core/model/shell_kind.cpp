@@ -1,0 +1,145 @@
+#include "core/model/shell_kind.h"
+
+#include <algorithm>
+
+namespace superdex {
+namespace {
+
+Eigen::Vector3d Node(const Eigen::VectorXd& x, int i) { return x.segment<3>(3 * i); }
+
+// Appends the dense block Hl over the nodes `nodes` (3 dofs each) as triplets.
+// A node index −1 (a missing neighbour) is skipped.
+template <int N>
+void AppendBlock(const Eigen::Matrix<double, 3 * N, 3 * N>& Hl, const int (&nodes)[N],
+                 std::vector<Eigen::Triplet<double>>* H) {
+  for (int a = 0; a < N; ++a)
+    for (int b = 0; b < N; ++b)
+      if (nodes[a] >= 0 && nodes[b] >= 0)
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+          H->emplace_back(3 * nodes[a] + i, 3 * nodes[b] + j, Hl(3 * a + i, 3 * b + j));
+}
+
+}  // namespace
+
+ShellKind::ShellKind(ShellModel model, const VectorState& initial)
+    : model_(std::move(model)), rest_(initial) {
+  name = model_.name;
+}
+
+std::unique_ptr<ShellKind> ShellKind::Build(const ShellActorDesc& desc, Error* error) {
+  ShellModel model;
+  VectorState state;
+  if (!BuildShell(desc, "", &model, &state, error)) return nullptr;
+  auto kind = std::make_unique<ShellKind>(std::move(model), state);
+  kind->contact = desc.contact;
+  return kind;
+}
+
+std::unique_ptr<ActorKind> ShellKind::Clone() const { return std::make_unique<ShellKind>(*this); }
+
+KindState ShellKind::InitialState() const {
+  KindState s = rest_;
+  Prescribe(0.0, &s.x);
+  return s;
+}
+
+void ShellKind::Prescribe(double t, Eigen::VectorXd* q) const {
+  ApplyNodeConstraints(model_.constraints, rest_.x, t, q);
+}
+
+double ShellKind::ElasticTerms(const Eigen::VectorXd& x, int order, bool project,
+                               Eigen::VectorXd* g, std::vector<Eigen::Triplet<double>>* H) const {
+  const ShellModel& m = model_;
+  const double h = m.material.thickness;
+  double value = 0.0;
+  for (size_t f = 0; f < m.faces.size(); ++f) {
+    const int nodes[3] = {m.faces[f][0], m.faces[f][1], m.faces[f][2]};
+    Eigen::Matrix<double, 9, 1> xl, gl = Eigen::Matrix<double, 9, 1>::Zero();
+    Eigen::Matrix<double, 9, 9> Hl = Eigen::Matrix<double, 9, 9>::Zero();
+    for (int a = 0; a < 3; ++a) xl.segment<3>(3 * a) = Node(x, nodes[a]);
+    value += MembraneEnergy(xl, m.triangles[f], m.lame, h, order, project, &gl, &Hl);
+    if (order >= 1)
+      for (int a = 0; a < 3; ++a) g->segment<3>(3 * nodes[a]) += gl.segment<3>(3 * a);
+    if (order >= 2) AppendBlock<3>(Hl, nodes, H);
+  }
+  for (size_t f = 0; f < m.bendingTriangles.size(); ++f) {  // Midedge
+    const Eigen::Vector3i& F = m.faces[f];
+    const Eigen::Vector3i& P = m.opposite[f];
+    Eigen::Matrix<double, 18, 1> xl = Eigen::Matrix<double, 18, 1>::Zero(),
+                                 gl = Eigen::Matrix<double, 18, 1>::Zero();
+    Eigen::Matrix<double, 18, 18> Hl = Eigen::Matrix<double, 18, 18>::Zero();
+    int nodes[6];
+    for (int k = 0; k < 3; ++k) {
+      nodes[k] = F[k];
+      nodes[3 + k] = P[k];
+      xl.segment<3>(3 * k) = Node(x, F[k]);
+      if (P[k] >= 0) xl.segment<3>(9 + 3 * k) = Node(x, P[k]);
+    }
+    value += MidedgeBendingEnergy(xl, m.bendingTriangles[f], m.lame, h, order, project, &gl, &Hl);
+    if (order >= 1)
+      for (int a = 0; a < 6; ++a)
+        if (nodes[a] >= 0) g->segment<3>(3 * nodes[a]) += gl.segment<3>(3 * a);
+    if (order >= 2) AppendBlock<6>(Hl, nodes, H);
+  }
+  for (const ShellHinge& e : m.hinges) {
+    const int nodes[4] = {e.node[0], e.node[1], e.node[2], e.node[3]};
+    Eigen::Matrix<double, 12, 1> xl, gl = Eigen::Matrix<double, 12, 1>::Zero();
+    Eigen::Matrix<double, 12, 12> Hl = Eigen::Matrix<double, 12, 12>::Zero();
+    for (int a = 0; a < 4; ++a) xl.segment<3>(3 * a) = Node(x, nodes[a]);
+    value += HingeBendingEnergy(xl, e.stiffness, e.restAngle, order, project, &gl, &Hl);
+    if (order >= 1)
+      for (int a = 0; a < 4; ++a) g->segment<3>(3 * nodes[a]) += gl.segment<3>(3 * a);
+    if (order >= 2) AppendBlock<4>(Hl, nodes, H);
+  }
+  return value;
+}
+
+double ShellKind::StageEnergy(const KindStageData& stage, const Eigen::VectorXd& q, int order,
+                              PsdProjection projection, Eigen::VectorXd* g,
+                              std::vector<Eigen::Triplet<double>>* H) const {
+  const ShellModel& m = model_;
+  const double dt2 = stage.dt * stage.dt;
+  double value = 0.0;
+  for (int a = 0; a < m.NumNodes(); ++a) {  // inertia and gravity
+    const Eigen::Vector3d u = Node(q, a) - stage.qHat.segment<3>(3 * a);
+    value += 0.5 * m.nodeMass[a] / dt2 * u.squaredNorm() - m.nodeMass[a] * stage.gravity.dot(Node(q, a));
+    if (order >= 1) g->segment<3>(3 * a) += m.nodeMass[a] * (u / dt2 - stage.gravity);
+    if (order >= 2)
+      for (int i = 0; i < 3; ++i) H->emplace_back(3 * a + i, 3 * a + i, m.nodeMass[a] / dt2);
+  }
+  return value + ElasticTerms(q, order, projection != PsdProjection::None, g, H);
+}
+
+double ShellKind::InternalEnergy(const KindState& s) const {
+  return ElasticTerms(s.x, 0, false, nullptr, nullptr);
+}
+
+KindSample ShellKind::Sample(int k, const Eigen::VectorXd& q) const {
+  const ShellSample& ss = model_.samples[k];
+  const Eigen::Vector3i& F = model_.faces[ss.face];
+  KindSample s;
+  s.map = SamplePointMap::Face(ss.bary);
+  s.y.setZero();
+  for (int a = 0; a < 3; ++a) {
+    s.y += ss.bary[a] * Node(q, F[a]);
+    s.dof[a] = 3 * F[a];
+  }
+  s.weight = ss.weight;
+  s.face = ss.face;
+  return s;
+}
+
+void ShellKind::ForEachSampleNear(
+    const Eigen::VectorXd& q, const Eigen::VectorXd& qLast,
+    const std::function<bool(const Eigen::Vector3d&, const Eigen::Vector3d&, double)>& keep,
+    const std::function<void(int, int)>& visit) const {
+  for (size_t f = 0; f < model_.faces.size(); ++f) {
+    Eigen::Vector3d c, cLast;
+    const double r = std::max(TriangleBall(q, model_.faces[f], &c),
+                              TriangleBall(qLast, model_.faces[f], &cLast));
+    if (keep(c, cLast, r)) visit(model_.faceSampleBegin[f], model_.faceSampleBegin[f + 1]);
+  }
+}
+
+}  // namespace superdex

@@ -1,0 +1,67 @@
+// A shell actor carried by the generic actor layer (core/model/actor_kind.h): q = the node
+// positions x (3 per node, [m]), v their velocities, a vector kind (q ⊕ δ = q + δ). Its stage
+// energy (core/model/shell_body.h, energies/shell_energies.h):
+//   Φ(x) = Σ_a m_a/(2Δt_i²) |x_a − x̂_a|² − Σ_a m_a g·x_a
+//          + Σ_triangles h A (μ tr E² + λ_s/2 (tr E)²) + W_bending                          [J]
+// with W_bending the mid-edge Kirchhoff–Love term per triangle (energies/shell_midedge.h, the
+// default) or the hinge term per interior edge (energies/shell_energies.h; ShellBendingModel)
+// (lumped masses ρ h A / 3 per triangle corner). Prescribed nodes (pinned or driven) are
+// prescribed tangent dofs, placed by Prescribe. Its colliding role is the triangles' quadrature
+// samples (contactElementType), y = Σ_a b_a x_a, without a colliding normal: a shell is two-sided,
+// so alignment rejection and friction fading are off for it (spec). Not a collider yet (the
+// PointCloud collider comes with self-contact).
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "core/model/node_body_kind.h"
+#include "core/model/shell_body.h"
+
+namespace superdex {
+
+class ShellKind : public NodeBodyKind {
+ public:
+  ShellKind(ShellModel model, const VectorState& initial);
+  /// Builds the model from a description; null with *error filled on bad input.
+  static std::unique_ptr<ShellKind> Build(const ShellActorDesc& desc, Error* error);
+
+  const ShellModel& Model() const { return model_; }
+
+  std::string KindName() const override { return "shell"; }
+  std::unique_ptr<ActorKind> Clone() const override;
+  int NumDofs() const override { return 3 * model_.NumNodes(); }
+  KindState InitialState() const override;
+  double StageEnergy(const KindStageData& stage, const Eigen::VectorXd& q, int order,
+                     PsdProjection projection, Eigen::VectorXd* g,
+                     std::vector<Eigen::Triplet<double>>* H) const override;
+  bool IsPrescribed(int dof) const override { return model_.freeIndex[dof / 3] < 0; }
+  /// The constraints' paths from the rest positions.
+  void Prescribe(double t, Eigen::VectorXd* q) const override;
+  /// Cold stages, whole, no step limit, as a soft body's (core/model/soft_kind.h): not measured
+  /// on shells yet.
+  StageShortcuts Shortcuts() const override { return {false, false, false}; }
+
+  const Eigen::VectorXd& NodeMasses() const override { return model_.nodeMass; }
+  double TotalMass() const override { return model_.mass; }
+  /// Membrane and bending energy [J].
+  double InternalEnergy(const KindState& s) const override;
+
+  int NumSamples() const override { return static_cast<int>(model_.samples.size()); }
+  KindSample Sample(int k, const Eigen::VectorXd& q) const override;
+  /// Triangle by triangle: a triangle's samples lie in the ball about its centroid through its
+  /// farthest node, now and at qLast.
+  void ForEachSampleNear(
+      const Eigen::VectorXd& q, const Eigen::VectorXd& qLast,
+      const std::function<bool(const Eigen::Vector3d&, const Eigen::Vector3d&, double)>& keep,
+      const std::function<void(int, int)>& visit) const override;
+
+ private:
+  /// The elastic terms at x (value; order >= 1 gradient into *g, order 2 triplets into *H).
+  double ElasticTerms(const Eigen::VectorXd& x, int order, bool project, Eigen::VectorXd* g,
+                      std::vector<Eigen::Triplet<double>>* H) const;
+  ShellModel model_;
+  VectorState rest_;  ///< the rest positions (constraints displace from them) and initial velocity
+};
+
+}  // namespace superdex
