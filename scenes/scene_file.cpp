@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "core/model/shell_kind.h"
 #include "geometry/mesh_io.h"
 #include "geometry/tet_mesh.h"
 #include "scenes/checkpoint.h"
@@ -16,6 +17,7 @@
 #include "scenes/json_text.h"
 #include "scenes/articulated_spec.h"
 #include "scenes/shape_spec.h"
+#include "scenes/shell_spec.h"
 #include "scenes/soft_mesh_spec.h"
 
 namespace superdex {
@@ -120,7 +122,7 @@ RigidActorDesc ReadRigidDesc(const json& a, const std::string& path, const std::
                "applied_torque"});
   const std::string type = String(a, path, "type", std::string("rigid"));
   if (type != "rigid")
-    Throw(Join(path, "type"), "unknown value \"" + type + "\" (supported: rigid, soft, articulated)");
+    Throw(Join(path, "type"), "unknown value \"" + type + "\" (supported: rigid, soft, shell, articulated)");
   RigidActorDesc d;
   d.name = String(a, path, "name");
   d.kinematic = Bool(a, path, "kinematic", false);
@@ -204,6 +206,17 @@ void ReadActors(const json& actors, const std::string& baseDir, SceneFile* out) 
       const std::string name = String(a, path, "name");
       if (!names.insert(name).second) Throw(Join(path, "name"), "duplicate actor name \"" + name + "\"");
       ReadSoftActor(a, path, baseDir, parent, out);
+      continue;
+    }
+    if (a.is_object() && a.contains("type") && a.at("type") == "shell") {
+      const ActorHandle parent = ReadParent(a, path, *out);
+      const ShellActorDesc d = ReadShellDesc(a, path, baseDir);
+      if (!names.insert(d.name).second) Throw(Join(path, "name"), "duplicate actor name \"" + d.name + "\"");
+      Error err;
+      std::unique_ptr<ShellKind> kind = ShellKind::Build(d, &err);
+      if (!kind || !out->scene->AddActor(std::move(kind), &err, d.contactLayer, parent).IsValid())
+        throw LoadError{path + "." + err.message};
+      out->actorNames.push_back(d.name);
       continue;
     }
     if (a.is_object() && a.contains("type") && a.at("type") == "articulated") {

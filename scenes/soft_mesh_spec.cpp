@@ -146,7 +146,7 @@ std::shared_ptr<TetMesh> ReadTetMeshSpec(const json& j, const std::string& path,
 namespace {
 
 // The node indices of field "nodes" of object c, each a node of the mesh.
-std::vector<int> ReadNodes(const json& c, const std::string& p, const TetMesh& mesh) {
+std::vector<int> ReadNodes(const json& c, const std::string& p, const MeshVertices& mesh) {
   std::vector<int> nodes;
   auto readNode = [&](const json& v, const std::string& np) {
     if (!v.is_number_integer()) Throw(np, "must be a node index (an integer)");
@@ -196,7 +196,7 @@ std::vector<SkinBinding> ReadSkin(const json& list, const std::string& path, con
 }
 
 std::vector<NodeConstraint> ReadConstraints(const json& list, const std::string& path,
-                                            const TetMesh& mesh, const Eigen::Vector3d& position,
+                                            const MeshVertices& mesh, const Eigen::Vector3d& position,
                                             const Eigen::Quaterniond& orientation) {
   if (!list.is_array()) Throw(path, "must be an array");
   std::vector<NodeConstraint> out;

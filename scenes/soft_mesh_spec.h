@@ -20,7 +20,7 @@ std::shared_ptr<TetMesh> ReadTetMeshSpec(const json& j, const std::string& path,
 
 /// [{"nodes": [...] | "region": {...}, "path": [[t, dx, dy, dz], ...]}, ...]
 std::vector<NodeConstraint> ReadConstraints(const json& list, const std::string& path,
-                                            const TetMesh& mesh, const Eigen::Vector3d& position,
+                                            const MeshVertices& mesh, const Eigen::Vector3d& position,
                                             const Eigen::Quaterniond& orientation);
 
 /// [{"link": NAME, "nodes": [...], "region": {"min", "max"} (link frame), "shape_distance": d},

@@ -80,12 +80,13 @@ json RigidShapeJson(const RigidBodyModel& m) {
           {"vertices", vertices}, {"faces", faces}};
 }
 
-// The soft actor's boundary: the nodes its faces use (in first-use order) and the faces as
-// indices into that list.
-json SoftSurfaceJson(const SoftBodyModel& m, std::vector<int>* nodes) {
-  std::vector<int> local(m.NumNodes(), -1);
+// A drawn surface (ActorKind::SurfaceTriangles) over numNodes nodes: the nodes its faces use (in
+// first-use order) and the faces as indices into that list.
+json SurfaceJson(const std::vector<Eigen::Vector3i>& triangles, int numNodes,
+                 std::vector<int>* nodes) {
+  std::vector<int> local(numNodes, -1);
   json faces = json::array();
-  for (const Eigen::Vector3i& f : m.faces) {
+  for (const Eigen::Vector3i& f : triangles) {
     for (int k = 0; k < 3; ++k) {
       if (local[f[k]] < 0) {
         local[f[k]] = static_cast<int>(nodes->size());
@@ -171,7 +172,21 @@ std::string TrajectoryWriter::Header(const Scene& scene, const std::vector<std::
       const SoftBodyModel& m = scene.SoftModel({i});
       actors.push_back({{"name", names[i]}, {"type", "soft"}, {"dynamic", true}, {"mass", m.mass},
                         {"nodes", m.NumNodes()}, {"tets", m.rest.NumTets()},
-                        {"surface", SoftSurfaceJson(m, &surfaceNodes_[i])}});
+                        {"surface", SurfaceJson(m.faces, m.NumNodes(), &surfaceNodes_[i])}});
+      continue;
+    }
+    const ActorKind& kind = scene.Kind({i});
+    if (const auto* body = dynamic_cast<const NodeBodyKind*>(&kind);
+        body && kind.SurfaceTriangles()) {  // a shell: its triangles
+      actors.push_back({{"name", names[i]}, {"type", kind.KindName()}, {"dynamic", true},
+                        {"mass", body->TotalMass()}, {"nodes", body->NumNodes()},
+                        {"surface", SurfaceJson(*kind.SurfaceTriangles(), body->NumNodes(),
+                                                &surfaceNodes_[i])}});
+      continue;
+    }
+    if (!scene.BodyModel({i}) && !dynamic_cast<const ArticulatedKind*>(&kind)) {
+      // A kind the writer cannot draw: a marker at its centre of mass.
+      actors.push_back({{"name", names[i]}, {"type", kind.KindName()}, {"dynamic", true}});
       continue;
     }
     if (const auto* art = dynamic_cast<const ArticulatedKind*>(&scene.Kind({i}))) {
@@ -254,9 +269,9 @@ bool TrajectoryWriter::WriteFrame(Scene& scene, long long step, const StepReport
   f["step"] = step;
   json actors = json::array();
   for (int i = 0; i < scene.NumActors(); ++i) {
-    if (scene.IsSoft({i})) {  // centre of mass, its velocity and the boundary nodes
+    if (!surfaceNodes_[i].empty()) {  // centre of mass, its velocity and the surface's nodes
       json surface = json::array();
-      const Eigen::VectorXd& x = scene.SoftState({i}).x;
+      const Eigen::VectorXd& x = scene.KindStateOf({i}).x;
       for (int a : surfaceNodes_[i]) Push(&surface, x.segment<3>(3 * a));
       actors.push_back({{"p", Vec(scene.CenterOfMass({i}))},
                         {"v", Vec(scene.CenterOfMassVelocity({i}))},
@@ -265,6 +280,11 @@ bool TrajectoryWriter::WriteFrame(Scene& scene, long long step, const StepReport
     }
     if (const auto* art = dynamic_cast<const ArticulatedKind*>(&scene.Kind({i}))) {
       actors.push_back(ArticulatedFrameJson(scene, {i}, *art));
+      continue;
+    }
+    if (!scene.BodyModel({i})) {  // a marker
+      actors.push_back({{"p", Vec(scene.CenterOfMass({i}))},
+                        {"v", Vec(scene.CenterOfMassVelocity({i}))}});
       continue;
     }
     const RigidBodyState s = scene.BodyState({i});

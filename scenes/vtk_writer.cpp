@@ -87,6 +87,23 @@ bool WriteVtkFrame(Scene& scene, const std::string& path, Error* error) {
       }
       continue;
     }
+    if (const std::vector<Eigen::Vector3i>* tri = scene.Kind(h).SurfaceTriangles()) {
+      // A shell's triangles (no contact tractions per face yet: zero).
+      const Eigen::VectorXd& x = scene.KindStateOf(h).x;
+      const Eigen::VectorXd& x0 = scene.Kind(h).InitialState().x;
+      const int base = static_cast<int>(s.points.size());
+      for (Eigen::Index a = 0; a < x.size() / 3; ++a) {
+        s.points.push_back(x.segment<3>(3 * a));
+        s.displacement.push_back(x.segment<3>(3 * a) - x0.segment<3>(3 * a));
+      }
+      for (const Eigen::Vector3i& f : *tri) {
+        s.triangles.push_back(f + Eigen::Vector3i::Constant(base));
+        s.traction.push_back(Eigen::Vector3d::Zero());
+        s.referenceArea.push_back(0.0);
+        s.actor.push_back(i);
+      }
+      continue;
+    }
     if (const auto* art = dynamic_cast<const ArticulatedKind*>(&scene.Kind(h))) {
       // The links' shapes are actors of their own; without any, each massive link is drawn as
       // a sphere of its RMS radius about its centre of mass.
@@ -102,6 +119,7 @@ bool WriteVtkFrame(Scene& scene, const std::string& path, Error* error) {
       }
       continue;
     }
+    if (!scene.BodyModel(h)) continue;  // a kind the writer cannot draw
     const RigidBodyModel& m = *scene.BodyModel(h);
     const RigidBodyState st = scene.BodyState(h);
     switch (m.shape.kind) {

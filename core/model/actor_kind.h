@@ -400,6 +400,11 @@ class ActorKind {
   /// a's position is q's entries 3a .. 3a+2, its tangent dofs the same. Null: none.
   virtual const SoftBodyModel* TetCollider() const { return nullptr; }
 
+  /// Drawing: triangles over the kind's nodes (node a at q's entries 3a .. 3a+2) that show its
+  /// surface (a soft body's boundary faces, a shell's triangles), for the trajectory and VTK
+  /// writers and the viewer; null: none (drawn as a rigid shape, an articulation, or a marker).
+  virtual const std::vector<Eigen::Vector3i>* SurfaceTriangles() const { return nullptr; }
+
   // --- Carried frames and attached actors (an articulation's links and their collision bodies).
   /// Rigid frames the configuration holds: frame f's origin and rotation (frame → world) are
   /// the 12 entries [p, vec R] of q at CarriedFrameOffset(f), a pose linear in q, so that an

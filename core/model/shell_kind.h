@@ -47,6 +47,7 @@ class ShellKind : public NodeBodyKind {
   /// Membrane and bending energy [J].
   double InternalEnergy(const KindState& s) const override;
 
+  const std::vector<Eigen::Vector3i>* SurfaceTriangles() const override { return &model_.faces; }
   int NumSamples() const override { return static_cast<int>(model_.samples.size()); }
   KindSample Sample(int k, const Eigen::VectorXd& q) const override;
   /// Triangle by triangle: a triangle's samples lie in the ball about its centroid through its

@@ -69,6 +69,7 @@ class SoftKind : public NodeBodyKind {
     return model_.collider == ColliderType::Sdf ? &model_ : nullptr;
   }
 
+  const std::vector<Eigen::Vector3i>* SurfaceTriangles() const override { return &model_.faces; }
   int NumSamples() const override { return static_cast<int>(model_.samples.size()); }
   KindSample Sample(int k, const Eigen::VectorXd& q) const override;
   /// Face by face (samples are grouped by face): a face's samples lie in the ball about its

@@ -22,6 +22,7 @@
 #include <string>
 
 #include "core/model/articulated_kind.h"
+#include "scene_text.h"
 #include "scenes/runner.h"
 #include "scenes/scene_file.h"
 
@@ -43,17 +44,9 @@ const char* kPendulum = R"({
   ]
 })";
 
-std::string Replace(std::string s, const std::string& from, const std::string& to) {
-  const size_t at = s.find(from);
-  REQUIRE(at != std::string::npos);
-  return s.replace(at, from.size(), to);
-}
+using test::Replace;
 
-std::string LoadError(const std::string& text) {
-  SceneFile f;
-  Error e;
-  return LoadSceneText(text, ".", &f, &e) ? "<loaded>" : e.message;
-}
+using test::LoadError;
 
 }  // namespace
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <tuple>
 
+#include "scene_text.h"
 #include "scenes/runner.h"
 
 using namespace superdex;
@@ -18,11 +19,7 @@ const char* kDrop = R"({"settings": {"dt": 0.01, "duration": 1.0},
              {"name": "ball", "shape": {"type": "sphere", "radius": 0.1}, "mass": 1,
               "position": [0, 0, 0.5], "velocity": [0, 0, 0]}]})";
 
-std::string Replace(std::string s, const std::string& from, const std::string& to) {
-  const size_t at = s.find(from);
-  REQUIRE(at != std::string::npos);
-  return s.replace(at, from.size(), to);
-}
+using test::Replace;
 
 struct Outcome {
   bool completed = false;

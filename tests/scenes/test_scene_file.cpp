@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "scene_text.h"
 #include "scenes/parameter_docs.h"
 #include "scenes/runner.h"
 #include "scenes/scene_file.h"
@@ -27,18 +28,9 @@ const char* kGood = R"({
   ]
 })";
 
-std::string LoadError(const std::string& text) {
-  SceneFile f;
-  Error e;
-  const bool ok = LoadSceneText(text, ".", &f, &e);
-  return ok ? std::string("<loaded>") : e.message;
-}
+using test::LoadError;
 
-std::string Replace(std::string s, const std::string& from, const std::string& to) {
-  const size_t at = s.find(from);
-  REQUIRE(at != std::string::npos);
-  return s.replace(at, from.size(), to);
-}
+using test::Replace;
 
 int RunCli(const std::string& args) {
   const std::string cmd = std::string(SUPERDEX_CLI) + " " + args + " > /dev/null 2>&1";

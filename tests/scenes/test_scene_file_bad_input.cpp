@@ -6,6 +6,7 @@
 #include <fstream>
 #include <string>
 
+#include "scene_text.h"
 #include "scenes/scene_file.h"
 
 using namespace superdex;
@@ -21,16 +22,10 @@ const char* kScene = R"({
 })";
 
 std::string LoadError(const std::string& text) {
-  SceneFile f;
-  Error e;
-  return LoadSceneText(text, std::string(SUPERDEX_BINARY_DIR), &f, &e) ? "<loaded>" : e.message;
+  return test::LoadError(text, std::string(SUPERDEX_BINARY_DIR));
 }
 
-std::string Replace(std::string s, const std::string& from, const std::string& to) {
-  const size_t at = s.find(from);
-  REQUIRE(at != std::string::npos);
-  return s.replace(at, from.size(), to);
-}
+using test::Replace;
 
 // kScene with its ball replaced by `actor` (a JSON object).
 std::string WithActor(const std::string& actor) {

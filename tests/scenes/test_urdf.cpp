@@ -22,6 +22,7 @@
 
 #include "core/model/articulated_kind.h"
 #include "core/scene.h"
+#include "scene_text.h"
 #include "scenes/runner.h"
 #include "scenes/scene_file.h"
 #include "scenes/urdf_reader.h"
@@ -50,11 +51,7 @@ const char* kTwoLinks = R"(<?xml version="1.0"?>
   </joint>
 </robot>)";
 
-std::string Replace(std::string s, const std::string& from, const std::string& to) {
-  const size_t at = s.find(from);
-  REQUIRE(at != std::string::npos);
-  return s.replace(at, from.size(), to);
-}
+using test::Replace;
 
 std::string UrdfError(const std::string& text, const UrdfPlacement& placement = {}) {
   ArticulatedActorDesc d;

@@ -1,0 +1,98 @@
+// Shell actors in scene files (scenes/shell_spec.h, docs/scene-format.md).
+//
+// Expectations:
+//   - a "shell" actor (a generated rectangle, clamped along one edge, its material and bending
+//     model given) is read into the description built in C++ would be, runs with every stage
+//     converged, and is drawn: the trajectory's header has its surface (every node, every
+//     triangle) and each frame its nodes' positions; VTK frames hold its triangles;
+//   - bad fields are refused with the JSON path and the rule (seven cases).
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/model/shell_kind.h"
+#include "scene_text.h"
+#include "scenes/runner.h"
+#include "scenes/scene_file.h"
+
+using namespace superdex;
+
+namespace {
+
+const char* kFlap = R"({
+  "settings": {"dt": 0.005, "duration": 0.05, "integrator": "BDF2"},
+  "actors": [
+    {"name": "flap", "type": "shell", "mesh": {"type": "rectangle", "size": [0.2, 0.1], "cells": [4, 2]},
+     "material": {"youngs_modulus": 1e8, "poisson_ratio": 0.3, "density": 1000, "thickness": 0.002},
+     "bending": "Midedge", "position": [0, 0, 0.5],
+     "clamped": [{"region": {"min": [-0.11, -1, 0], "max": [-0.09, 1, 1]}}]}
+  ]
+})";
+
+using test::Replace;
+
+using test::LoadError;
+
+}  // namespace
+
+TEST_CASE("a shell actor in a scene file runs and is drawn", "[scenes][shell]") {
+  SceneFile f;
+  Error e;
+  REQUIRE(LoadSceneText(kFlap, ".", &f, &e));
+  REQUIRE(f.scene->NumActors() == 1);
+  const auto* shell = dynamic_cast<const ShellKind*>(&f.scene->Kind({0}));
+  REQUIRE(shell);
+  const ShellModel& m = shell->Model();
+  CHECK(m.NumNodes() == 15);
+  CHECK(m.faces.size() == 16);
+  CHECK(m.material.thickness == 0.002);
+  CHECK(m.bending == ShellBendingModel::Midedge);
+  int clamped = 0;
+  for (int i = 0; i < m.NumNodes(); ++i) clamped += m.freeIndex[i] < 0;
+  CHECK(clamped == 3);  // the edge x = −0.1
+  const std::string dir = (std::filesystem::temp_directory_path() / "superdex_shell_scene").string();
+  std::filesystem::remove_all(dir);
+  RunOptions options;
+  options.out = dir + "/t.jsonl";
+  options.vtk = dir + "/vtk";
+  RunSummary r;
+  REQUIRE(RunScene(&f, options, &r, &e));
+  CHECK(r.converged == r.steps);
+  std::ifstream in(dir + "/t.jsonl");
+  std::string line;
+  REQUIRE(std::getline(in, line));
+  const nlohmann::json header = nlohmann::json::parse(line);
+  const nlohmann::json& a = header.at("actors").at(0);
+  CHECK(a.at("type") == "shell");
+  CHECK(a.at("surface").at("nodes").size() == 15);
+  CHECK(a.at("surface").at("faces").size() == 3 * 16);
+  REQUIRE(std::getline(in, line));
+  const nlohmann::json frame = nlohmann::json::parse(line);
+  CHECK(frame.at("actors").at(0).at("surface").size() == 3 * 15);
+  std::ifstream vtk(dir + "/vtk/frame_000000.vtk");
+  REQUIRE(vtk.good());
+  std::string text((std::istreambuf_iterator<char>(vtk)), std::istreambuf_iterator<char>());
+  CHECK(text.find("POLYGONS 16 ") != std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("bad shell fields name the JSON path and the rule", "[scenes][shell]") {
+  CHECK(LoadError(Replace(kFlap, R"("bending": "Midedge")", R"("bending": "Soft")"))
+            .rfind("actors[0].bending: unknown value \"Soft\"", 0) == 0);
+  CHECK(LoadError(Replace(kFlap, R"({"type": "rectangle",)", R"({"type": "disk",)")) ==
+        "actors[0].mesh.type: unknown value \"disk\" (expected one of: file, rectangle)");
+  CHECK(LoadError(Replace(kFlap, R"("cells": [4, 2])", R"("cells": [4, 0])")) ==
+        "actors[0].mesh.cells: must be two integers in [1, 1000]");
+  CHECK(LoadError(Replace(kFlap, R"("thickness": 0.002)", R"("thickness": -1)"))
+            .rfind("actors[0].material.thickness: must be finite and > 0", 0) == 0);
+  CHECK(LoadError(Replace(kFlap, R"("max": [-0.09, 1, 1]}})", R"("max": [-0.09, 1, 1]}, "path": [[0, 0, 0, 1]]})")) ==
+        "actors[0].clamped[0].path: a clamped edge does not move");
+  CHECK(LoadError(Replace(kFlap, R"("position": [0, 0, 0.5])", R"("position": [0, 0, 0.5], "colour": 1)"))
+            .rfind("actors[0].colour: unknown field", 0) == 0);
+  CHECK(LoadError(Replace(kFlap, R"({"type": "rectangle", "size": [0.2, 0.1], "cells": [4, 2]})",
+                          R"({"type": "file", "file": "no_such.obj"})"))
+            .rfind("actors[0].mesh.file: ", 0) == 0);
+}
