@@ -5,6 +5,7 @@
 #include "core/model/contact_params.h"
 #include "core/model/eval_params.h"
 #include "core/model/joint_params.h"
+#include "core/model/shell_body.h"
 #include "core/model/soft_body.h"
 #include "core/sensitivity/sensitivity.h"
 #include "optim/newton_solver.h"
@@ -48,6 +49,10 @@ void PrintParameterMarkdown(std::ostream& out) {
           "Scene file: `actors[i].material` (soft actors). Python: `superdex.SoftMaterial` "
           "(`SoftActorDesc.material`). Source: `core/model/soft_body.h`.",
           kSoftMaterialFields);
+  Section(out, "ShellMaterial",
+          "Scene file: `actors[i].material` (shell actors). Python: `superdex.ShellMaterial` "
+          "(`ShellActorDesc.material`). Source: `core/model/shell_body.h`.",
+          kShellMaterialFields);
   Section(out, "GridSdfParams",
           "Scene file: `actors[i].grid_sdf`. Python: `superdex.GridSdfParams` "
           "(`RigidActorDesc.grid_sdf`, `SoftActorDesc.grid_sdf`). "

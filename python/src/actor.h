@@ -58,6 +58,12 @@ struct Actor {
     Soft(field);
     return scene->SoftState(Handle());
   }
+  /// The state of a body of nodes (a soft or shell actor); TypeError naming `field` otherwise.
+  const KindState& NodeState(const char* field) const {
+    if (IsSoft()) return SoftState(field);
+    if (!dynamic_cast<const NodeBodyKind*>(&scene->Kind(Handle()))) Soft(field);  // throws
+    return scene->KindStateOf(Handle());
+  }
 };
 
 /// Actor.contact_params: the live view (bind_params.cpp), and its assignment from a

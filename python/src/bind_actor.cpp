@@ -89,15 +89,16 @@ void DefSoftProperties(py::class_<Actor>& actor) {
           "num_nodes", [](const Actor& a) { return a.Soft("num_nodes").NumNodes(); },
           "number of tet mesh nodes (soft actors)")
       .def_property(
-          "node_positions", [](const Actor& a) { return StackedToArray(a.SoftState("node_positions").x); },
+          "node_positions", [](const Actor& a) { return StackedToArray(a.NodeState("node_positions").x); },
           [](Actor& a, const py::handle& x) {
             const Eigen::VectorXd to = NodeRows(a, x, "node_positions");
             EditSoft(a, "node_positions", [&](SoftBodyState* s) { s->x = to; });
           },
-          "(n, 3) current node positions [m] (soft actors; a copy, assign a whole array)")
+          "(n, 3) current node positions [m] (soft and shell actors; a copy; assignable for soft "
+          "actors: a whole array)")
       .def_property(
           "node_velocities",
-          [](const Actor& a) { return StackedToArray(a.SoftState("node_velocities").v); },
+          [](const Actor& a) { return StackedToArray(a.NodeState("node_velocities").v); },
           [](Actor& a, const py::handle& v) {
             const Eigen::VectorXd to = NodeRows(a, v, "node_velocities");
             EditSoft(a, "node_velocities", [&](SoftBodyState* s) { s->v = to; });

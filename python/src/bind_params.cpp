@@ -14,6 +14,7 @@
 #include "core/model/eval_params.h"
 #include "core/model/joint_params.h"
 #include "core/model/kinematic_tree.h"
+#include "core/model/shell_body.h"
 #include "core/model/soft_body.h"
 #include "energies/contact_dissipation.h"
 #include "optim/newton_solver.h"
@@ -39,6 +40,8 @@ template <>
 constexpr bool kPythonEnum<SurfaceIntegral> = true;
 template <>
 constexpr bool kPythonEnum<JointType> = true;
+template <>
+constexpr bool kPythonEnum<ShellBendingModel> = true;
 
 template <typename E>
 void BindEnum(py::module_& m, const char* name, const char* doc) {
@@ -273,6 +276,8 @@ void BindParams(py::module_& m) {
                                  "SoftActorDesc.grid_sdf).",
                                  kGridSdfFields);
   BindEnum<JointType>(m, "JointType", "Joint types of an articulated actor's links");
+  BindEnum<ShellBendingModel>(m, "ShellBendingModel",
+                              "A shell's bending model: Midedge (Kirchhoff-Love) or Hinge (cloth)");
   auto joint = BindParamsClass<JointParams>(
       m, "JointParams",
       Keep(std::string("Limits, damping and a PD drive of a Revolute or Prismatic joint "
@@ -290,6 +295,11 @@ void BindParams(py::module_& m) {
       m, "SoftMaterial",
       Keep(std::string("Bulk material of a soft actor (stable neo-Hookean).") + validated),
       kSoftMaterialFields);
+  BindParamsClass<ShellMaterial>(
+      m, "ShellMaterial",
+      Keep(std::string("Material of a shell actor: membrane E h, plate E h^3 / (12 (1 - nu^2)).") +
+           validated),
+      kShellMaterialFields);
   BindParamsClass<PointCloudColliderParams>(
       m, "PointCloudColliderParams",
       "Point-cloud collider parameters (the PointCloud collider is not implemented yet).",

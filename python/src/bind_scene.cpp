@@ -327,6 +327,7 @@ void BindSceneClass(py::module_& m) {
   BindContactFilter(scene);
   BindSceneStateMethods(scene);
   BindArticulatedMethods(scene);
+  BindShellMethods(scene);
 }
 
 void BindSceneFile(py::module_& m) {

@@ -23,6 +23,7 @@ namespace py = pybind11;
 void BindParams(py::module_& m);  // enums and parameter structs, from their tables
 void BindTetMesh(py::module_& m);
 void BindSoftActorDesc(py::module_& m);  // NodeConstraint, SoftActorDesc
+void BindShellActorDesc(py::module_& m);  // ShellActorDesc, make_rectangle_mesh
 void BindRigidShape(py::module_& m);
 void BindRigidActorDesc(py::module_& m);
 void BindStepReport(py::module_& m);
@@ -32,6 +33,7 @@ void BindSceneState(py::module_& m);  // SceneState
 void BindArticulatedDescs(py::module_& m);  // ArticulatedLinkDesc, ArticulatedActorDesc, read_urdf
 void BindSceneClass(py::module_& m);  // Scene, with contact filtering and its state
 void BindArticulatedMethods(py::class_<Scene>& scene);  // Scene.add_articulated_actor
+void BindShellMethods(py::class_<Scene>& scene);  // Scene.add_shell_actor
 void BindSceneStateMethods(py::class_<Scene>& scene);  // get_state, set_state, clone
 void BindSceneFile(py::module_& m);  // SceneFile, load_scene
 void BindForwardSensitivity(py::module_& m);

@@ -14,6 +14,7 @@ PYBIND11_MODULE(_superdex, m) {
   BindParams(m);
   BindTetMesh(m);
   BindSoftActorDesc(m);
+  BindShellActorDesc(m);
   BindRigidShape(m);
   BindRigidActorDesc(m);
   BindStepReport(m);
