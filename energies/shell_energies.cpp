@@ -5,6 +5,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "energies/psd_projection.h"
+#include "geometry/skew.h"
 
 namespace superdex {
 namespace {
@@ -13,11 +14,6 @@ using Vec9 = Eigen::Matrix<double, 9, 1>;
 using Mat9 = Eigen::Matrix<double, 9, 9>;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 
-Eigen::Matrix3d Cross(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
-  return m;
-}
 
 // P = ∂ψ/∂F of StVK for F (3 × 2) and ψ itself.
 double StvkStress(const Eigen::Matrix<double, 3, 2>& F, const LameParameters& p,
@@ -143,12 +139,12 @@ double HingeAngle(const Eigen::Matrix<double, 12, 1>& x, int order,
        d2r = Mat9::Zero(), d2w = Mat9::Zero();
   const Eigen::Vector3d eh = e / len;
   d2Len.block<3, 3>(0, 0) = (I - eh * eh.transpose()) / len;
-  d2T.block<3, 3>(0, 3) = -Cross(b);
-  d2T.block<3, 3>(3, 0) = Cross(b);
-  d2T.block<3, 3>(0, 6) = Cross(a);
-  d2T.block<3, 3>(6, 0) = -Cross(a);
-  d2T.block<3, 3>(3, 6) = -Cross(e);
-  d2T.block<3, 3>(6, 3) = Cross(e);
+  d2T.block<3, 3>(0, 3) = -Skew(b);
+  d2T.block<3, 3>(3, 0) = Skew(b);
+  d2T.block<3, 3>(0, 6) = Skew(a);
+  d2T.block<3, 3>(6, 0) = -Skew(a);
+  d2T.block<3, 3>(3, 6) = -Skew(e);
+  d2T.block<3, 3>(6, 3) = Skew(e);
   d2p.block<3, 3>(0, 6) = d2p.block<3, 3>(6, 0) = I;
   d2q.block<3, 3>(0, 3) = d2q.block<3, 3>(3, 0) = I;
   d2r.block<3, 3>(0, 0) = 2.0 * I;

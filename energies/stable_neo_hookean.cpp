@@ -6,6 +6,8 @@
 #include <Eigen/SVD>
 #include <cmath>
 
+#include "geometry/skew.h"
+
 namespace superdex {
 namespace {
 
@@ -24,11 +26,6 @@ Eigen::Matrix3d Cofactor(const Eigen::Matrix3d& F) {
   return C;
 }
 
-Eigen::Matrix3d Cross(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return m;
-}
 
 /// Ψ from the invariants (expanded form of the header; no α, no cancellation through α − 1).
 double Density(double Ic, double J, const LameParameters& p) {
@@ -128,9 +125,9 @@ Matrix9d StressDerivative(const Eigen::Matrix3d& F, const Eigen::Matrix3d& cof, 
   A.diagonal().array() += a;
   // κ H_J, H_J = ∂²J/∂F² in 3×3 blocks over the columns of F:
   //   [[0, −[f2]×, [f1]×], [[f2]×, 0, −[f0]×], [−[f1]×, [f0]×, 0]].
-  const Eigen::Matrix3d X0 = kappa * Cross(F.col(0));
-  const Eigen::Matrix3d X1 = kappa * Cross(F.col(1));
-  const Eigen::Matrix3d X2 = kappa * Cross(F.col(2));
+  const Eigen::Matrix3d X0 = kappa * Skew(F.col(0));
+  const Eigen::Matrix3d X1 = kappa * Skew(F.col(1));
+  const Eigen::Matrix3d X2 = kappa * Skew(F.col(2));
   A.block<3, 3>(0, 3) -= X2;
   A.block<3, 3>(3, 0) += X2;
   A.block<3, 3>(0, 6) += X1;

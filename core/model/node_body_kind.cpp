@@ -1,5 +1,7 @@
 #include "core/model/node_body_kind.h"
 
+#include <algorithm>
+
 namespace superdex {
 namespace {
 
@@ -83,6 +85,33 @@ Eigen::MatrixXd NodeBodyKind::CenterOfMassJacobian(const KindState& s) const {
   for (int a = 0; a < NumNodes(); ++a)
     C.middleCols<3>(3 * a).diagonal().setConstant(NodeMasses()[a] / TotalMass());
   return C;
+}
+
+KindSample NodeBodyKind::TriangleSample(const Eigen::Vector3i& F, const Eigen::Vector3d& bary,
+                                        double weight, int face, const Eigen::VectorXd& q) {
+  KindSample s;
+  s.map = SamplePointMap::Face(bary);
+  s.y.setZero();
+  for (int a = 0; a < 3; ++a) {
+    s.faceNodes[a] = Node(q, F[a]);
+    s.y += bary[a] * s.faceNodes[a];
+    s.dof[a] = 3 * F[a];
+  }
+  s.weight = weight;
+  s.face = face;
+  return s;
+}
+
+void NodeBodyKind::VisitTriangleSamplesNear(
+    const std::vector<Eigen::Vector3i>& faces, const std::vector<int>& sampleBegin,
+    const Eigen::VectorXd& q, const Eigen::VectorXd& qLast,
+    const std::function<bool(const Eigen::Vector3d&, const Eigen::Vector3d&, double)>& keep,
+    const std::function<void(int, int)>& visit) {
+  for (size_t f = 0; f < faces.size(); ++f) {
+    Eigen::Vector3d c, cLast;
+    const double r = std::max(TriangleBall(q, faces[f], &c), TriangleBall(qLast, faces[f], &cLast));
+    if (keep(c, cLast, r)) visit(sampleBegin[f], sampleBegin[f + 1]);
+  }
 }
 
 }  // namespace superdex

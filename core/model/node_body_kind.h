@@ -6,6 +6,7 @@
 // AngularVelocity; c = Σ m_a x_a / M exactly). Soft (tet) and shell actors are node bodies.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "core/model/actor_kind.h"
@@ -34,6 +35,21 @@ class NodeBodyKind : public ActorKind {
   Eigen::MatrixXd CenterOfMassJacobian(const KindState& s) const override;
   /// The nodes' bounds.
   Aabb Bounds(const Eigen::VectorXd& q) const override { return SoftBounds(q); }
+
+ protected:
+  /// A colliding sample on triangle F of the nodes at q: y = Σ_a b_a x_a (a Face map on the
+  /// three nodes' dofs, their positions in faceNodes), weight w [m²], the face's index; no
+  /// colliding normal (a kind with one adds it).
+  static KindSample TriangleSample(const Eigen::Vector3i& F, const Eigen::Vector3d& bary,
+                                   double weight, int face, const Eigen::VectorXd& q);
+  /// ForEachSampleNear over triangles whose samples are grouped face by face (those of face f
+  /// at [sampleBegin[f], sampleBegin[f+1])): a face is visited when keep accepts the larger of
+  /// its balls at q and qLast (TriangleBall).
+  static void VisitTriangleSamplesNear(
+      const std::vector<Eigen::Vector3i>& faces, const std::vector<int>& sampleBegin,
+      const Eigen::VectorXd& q, const Eigen::VectorXd& qLast,
+      const std::function<bool(const Eigen::Vector3d&, const Eigen::Vector3d&, double)>& keep,
+      const std::function<void(int, int)>& visit);
 };
 
 }  // namespace superdex

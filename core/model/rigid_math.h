@@ -1,18 +1,13 @@
-// Rotations: skew matrices, the SO(3) exponential and logarithm, Lie-algebra combinations.
+// Rotations: skew matrices (Skew, geometry/skew.h), the SO(3) exponential and logarithm,
+// Lie-algebra combinations.
 #pragma once
 
 #include <Eigen/Core>
 
+#include "geometry/skew.h"
+
 namespace superdex {
 
-/// [v]× with [v]× w = v × w (inline: the contact sample loops call it per sample).
-inline Eigen::Matrix3d Skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d S;
-  S(0, 0) = 0.0;    S(0, 1) = -v.z(); S(0, 2) = v.y();
-  S(1, 0) = v.z();  S(1, 1) = 0.0;    S(1, 2) = -v.x();
-  S(2, 0) = -v.y(); S(2, 1) = v.x();  S(2, 2) = 0.0;
-  return S;
-}
 /// The 3 × 3 matrix stored column-major at x[offset .. offset + 8] of a state vector (a rotation
 /// or its rate), read or written in place.
 template <typename Vector>

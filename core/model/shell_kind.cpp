@@ -1,7 +1,5 @@
 #include "core/model/shell_kind.h"
 
-#include <algorithm>
-
 namespace superdex {
 namespace {
 
@@ -117,29 +115,14 @@ double ShellKind::InternalEnergy(const KindState& s) const {
 
 KindSample ShellKind::Sample(int k, const Eigen::VectorXd& q) const {
   const ShellSample& ss = model_.samples[k];
-  const Eigen::Vector3i& F = model_.faces[ss.face];
-  KindSample s;
-  s.map = SamplePointMap::Face(ss.bary);
-  s.y.setZero();
-  for (int a = 0; a < 3; ++a) {
-    s.y += ss.bary[a] * Node(q, F[a]);
-    s.dof[a] = 3 * F[a];
-  }
-  s.weight = ss.weight;
-  s.face = ss.face;
-  return s;
+  return TriangleSample(model_.faces[ss.face], ss.bary, ss.weight, ss.face, q);
 }
 
 void ShellKind::ForEachSampleNear(
     const Eigen::VectorXd& q, const Eigen::VectorXd& qLast,
     const std::function<bool(const Eigen::Vector3d&, const Eigen::Vector3d&, double)>& keep,
     const std::function<void(int, int)>& visit) const {
-  for (size_t f = 0; f < model_.faces.size(); ++f) {
-    Eigen::Vector3d c, cLast;
-    const double r = std::max(TriangleBall(q, model_.faces[f], &c),
-                              TriangleBall(qLast, model_.faces[f], &cLast));
-    if (keep(c, cLast, r)) visit(model_.faceSampleBegin[f], model_.faceSampleBegin[f + 1]);
-  }
+  VisitTriangleSamplesNear(model_.faces, model_.faceSampleBegin, q, qLast, keep, visit);
 }
 
 }  // namespace superdex

@@ -1,15 +1,8 @@
 #include "core/model/soft_kind.h"
 
-#include <algorithm>
-
 #include "energies/stable_neo_hookean.h"
 
 namespace superdex {
-namespace {
-
-Eigen::Vector3d Node(const Eigen::VectorXd& x, int i) { return x.segment<3>(3 * i); }
-
-}  // namespace
 
 SoftKind::SoftKind(SoftBodyModel model, const SoftBodyState& initial)
     : model_(std::move(model)), initial_(initial) {
@@ -79,19 +72,9 @@ double SoftKind::InternalEnergy(const KindState& s) const {
 
 KindSample SoftKind::Sample(int k, const Eigen::VectorXd& q) const {
   const SoftSurfaceSample& ss = model_.samples[k];
-  const Eigen::Vector3i& F = model_.faces[ss.face];
-  KindSample s;
-  s.map = SamplePointMap::Face(ss.bary);
-  s.y.setZero();
-  for (int a = 0; a < 3; ++a) {
-    s.faceNodes[a] = Node(q, F[a]);
-    s.y += ss.bary[a] * s.faceNodes[a];
-    s.dof[a] = 3 * F[a];
-  }
-  s.weight = ss.weight;
+  KindSample s = TriangleSample(model_.faces[ss.face], ss.bary, ss.weight, ss.face, q);
   s.hasNormal = true;
   s.faceNormal = true;
-  s.face = ss.face;
   s.n = SoftFaceNormal(model_, q, ss.face);
   return s;
 }
@@ -100,11 +83,7 @@ void SoftKind::ForEachSampleNear(
     const Eigen::VectorXd& q, const Eigen::VectorXd& qLast,
     const std::function<bool(const Eigen::Vector3d&, const Eigen::Vector3d&, double)>& keep,
     const std::function<void(int, int)>& visit) const {
-  for (size_t f = 0; f < model_.faces.size(); ++f) {
-    Eigen::Vector3d c, cLast;
-    const double r = std::max(TriangleBall(q, model_.faces[f], &c), TriangleBall(qLast, model_.faces[f], &cLast));
-    if (keep(c, cLast, r)) visit(model_.faceSampleBegin[f], model_.faceSampleBegin[f + 1]);
-  }
+  VisitTriangleSamplesNear(model_.faces, model_.faceSampleBegin, q, qLast, keep, visit);
 }
 
 }  // namespace superdex

@@ -32,6 +32,7 @@
 #include "core/model/articulated_kind.h"
 #include "core/model/rigid_math.h"
 #include "core/scene.h"
+#include "ground_plane.h"
 #include "stage_derivative_recorder.h"
 
 namespace superdex {
@@ -47,15 +48,7 @@ LinkShapeDesc BoxShape(const Eigen::Vector3d& half, const Eigen::Vector3d& at) {
   return s;
 }
 
-void AddGround(Scene* scene) {
-  RigidActorDesc g;
-  g.name = "ground";
-  g.dynamic = false;
-  g.shape.kind = RigidShapeKind::Plane;
-  g.contact.penaltyCoefficient = 1e6;
-  Error e;
-  REQUIRE(scene->AddRigidActor(g, &e).IsValid());
-}
+using test::AddGround;
 
 }  // namespace
 

@@ -32,6 +32,7 @@
 #include "core/model/articulated_kind.h"
 #include "core/model/rigid_math.h"
 #include "core/scene.h"
+#include "ground_plane.h"
 #include "stage_derivative_recorder.h"
 
 namespace superdex {
@@ -62,15 +63,7 @@ SkinBinding BoxBinding(const std::string& link, const Eigen::Vector3d& lo,
   return b;
 }
 
-void AddGround(Scene* scene) {
-  RigidActorDesc g;
-  g.name = "ground";
-  g.dynamic = false;
-  g.shape.kind = RigidShapeKind::Plane;
-  g.contact.penaltyCoefficient = 1e6;
-  Error e;
-  REQUIRE(scene->AddRigidActor(g, &e).IsValid());
-}
+using test::AddGround;
 
 ArticulatedLinkDesc RevoluteLink(const std::string& name, int parent, const Eigen::Vector3d& at,
                                  const Eigen::Vector3d& axis) {
