@@ -566,12 +566,13 @@ std::vector<std::string> Scene::Notices() const {
 
 bool Scene::HasDissipation() const {
   // A pair's μ, c_t and c_n are geometric means: dissipation needs two actors, one of them
-  // dynamic, that both have a nonzero coefficient of the same kind.
+  // dynamic, that both have a nonzero coefficient of the same kind (a point cloud in self-contact
+  // is both).
   auto twoWith = [&](auto coefficient) {
     int count = 0, dynamic = 0;
     for (const auto& k : kinds_)  // a kind's actor is, where a dof is free
       if (coefficient(k->contact) > 0) {
-        ++count;
+        count += k->PointCloud() && k->PointCloud()->selfContact ? 2 : 1;
         dynamic += k->HasFreeDof();
       }
     return count >= 2 && dynamic >= 1;

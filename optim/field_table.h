@@ -119,6 +119,7 @@ struct Rule {
     NonNegative,  ///< finite and >= 0
     Closed,       ///< finite and in [lo, hi]
     Open,         ///< in (lo, hi)
+    Above,        ///< finite and > lo
     AtLeast,      ///< an integer >= lo
   };
   Kind kind = Any;
@@ -138,6 +139,7 @@ struct Rule {
       case NonNegative: return std::isfinite(v) && v >= 0.0;
       case Closed: return std::isfinite(v) && v >= lo && v <= hi;
       case Open: return v > lo && v < hi;
+      case Above: return std::isfinite(v) && v > lo;
       case AtLeast: return v >= lo;
     }
     return false;
@@ -153,6 +155,7 @@ struct Rule {
       case NonNegative: s << ">= 0"; break;
       case Closed: s << "in [" << lo << ", " << hi << "]"; break;
       case Open: s << "in (" << lo << ", " << hi << ")"; break;
+      case Above: s << "> " << lo; break;
       case AtLeast: s << ">= " << lo; break;
     }
     return s.str();
@@ -171,6 +174,8 @@ constexpr Rule PositiveRule() { return {Rule::Positive}; }
 constexpr Rule NonNegativeRule() { return {Rule::NonNegative}; }
 constexpr Rule InClosed(double lo, double hi) { return {Rule::Closed, lo, hi}; }
 constexpr Rule InOpen(double lo, double hi) { return {Rule::Open, lo, hi}; }
+/// Finite and > lo.
+constexpr Rule Above(double lo) { return {Rule::Above, lo}; }
 /// An integer >= lo; a scene file also refuses values above fileMax.
 constexpr Rule AtLeast(int lo, long long fileMax) {
   return {Rule::AtLeast, double(lo), 0.0, fileMax};

@@ -169,6 +169,12 @@ E Enum(const json& obj, const std::string& path, const char* key, E def) {
   return e;
 }
 
+// Whether T is std::optional of an enum (a field that may be left unset).
+template <typename T>
+inline constexpr bool kIsOptionalEnum = false;
+template <typename E>
+inline constexpr bool kIsOptionalEnum<std::optional<E>> = std::is_enum_v<E>;
+
 // Reads the fields of a parameter table (optim/field_table.h) from the object j: the keys are the
 // rows' names (a nested row's key holds an object read by its own table), an absent key keeps the
 // value in *out, any other key is refused unless it is one of `alsoKnown` (read by the caller).
@@ -200,6 +206,11 @@ void ReadFields(const json& j, const std::string& path, const Table& table, Clas
       v = String(j, path, f.name, v);
     } else if constexpr (kIsFixedVector<T>) {
       v = Vector<T::RowsAtCompileTime>(j, path, f.name, v);
+    } else if constexpr (kIsOptionalEnum<T>) {  // absent or null: none
+      if (j.contains(f.name) && !j.at(f.name).is_null())
+        v = Enum(j, path, f.name, typename T::value_type());
+      else if (j.contains(f.name))
+        v.reset();
     } else {
       static_assert(sizeof(T) == 0, "no scene-file reader for this field type");
     }

@@ -59,8 +59,8 @@ void PrintParameterMarkdown(std::ostream& out) {
           "Source: `core/model/collider_params.h`.",
           kGridSdfFields);
   Section(out, "PointCloudColliderParams",
-          "Python: `superdex.PointCloudColliderParams` (the PointCloud collider is not "
-          "implemented yet). Source: `core/model/collider_params.h`.",
+          "Scene file: a shell's `point_cloud`. Python: `superdex.PointCloudColliderParams` "
+          "(`ShellActorDesc.point_cloud`). Source: `core/model/collider_params.h`.",
           kPointCloudColliderFields);
   Section(out, "SceneSettings",
           "Scene file: `settings` (which also holds the scene file's own `dt`, `duration` and "

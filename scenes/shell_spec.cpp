@@ -44,8 +44,8 @@ std::shared_ptr<TriangleMesh> ReadShellMesh(const json& j, const std::string& pa
 ShellActorDesc ReadShellDesc(const json& a, const std::string& path, const std::string& baseDir) {
   CheckObject(a, path,
               {"name", "type", "mesh", "material", "bending", "position", "orientation",
-               "euler_deg", "velocity", "contact", "contact_element_type", "contact_layer",
-               "parent", "constraints", "clamped"});
+               "euler_deg", "velocity", "contact", "contact_element_type", "collider_type",
+               "point_cloud", "contact_layer", "parent", "constraints", "clamped"});
   ShellActorDesc d;
   d.name = String(a, path, "name");
   if (!a.contains("mesh")) Throw(Join(path, "mesh"), "missing required field");
@@ -58,6 +58,10 @@ ShellActorDesc ReadShellDesc(const json& a, const std::string& path, const std::
   d.linearVelocity = Vector<3>(a, path, "velocity", Eigen::Vector3d::Zero());
   if (a.contains("contact")) d.contact = ReadContact(a.at("contact"), Join(path, "contact"));
   d.contactElementType = Enum(a, path, "contact_element_type", ActorBoundaryElementType::P1Q3);
+  d.colliderType = Enum(a, path, "collider_type", ColliderType::Auto);
+  if (a.contains("point_cloud"))
+    ReadFields(a.at("point_cloud"), Join(path, "point_cloud"), kPointCloudColliderFields,
+               &d.pointCloud);
   d.contactLayer = String(a, path, "contact_layer", std::string("default"));
   if (a.contains("constraints"))
     d.constraints = ReadConstraints(a.at("constraints"), Join(path, "constraints"), *d.mesh,

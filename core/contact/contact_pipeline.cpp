@@ -84,6 +84,10 @@ void ContactPipeline::Configure(const ContactFilter* filter,
   kindSamples_.clear();
   kindStepLimit_.clear();
   kindFaceSamples_.clear();
+  kindCloud_.clear();
+  kindCloudSelf_.clear();
+  cloudSamples_.clear();  // their reference places are the kinds'
+  cloudPoints_.clear();
   kindTetFields_.clear();
   staticSides_.clear();  // the kinds may be new ones
   pairsFormed_ = false;
@@ -99,7 +103,13 @@ void ContactPipeline::Configure(const ContactFilter* filter,
         field.boundingRadius = INFINITY;
       }
       kindTetFields_.push_back(field);
-      kindInflation_.push_back(k->Collider() || tet ? ColliderReach(k->contact) : 0.0);
+      const PointCloudColliderParams* cloud = k->PointCloud();
+      kindCloud_.push_back(cloud != nullptr);
+      kindCloudSelf_.push_back(cloud && cloud->selfContact);
+      // A point cloud's spheres reach L_B beyond its points.
+      kindInflation_.push_back(k->Collider() || tet ? ColliderReach(k->contact)
+                               : cloud          ? cloud->radius + ColliderReach(k->contact)
+                                                : 0.0);
       kindCollider_.push_back(k->Collider() != nullptr);
       kindTetCollider_.push_back(tet);
       kindHasDofs_.push_back(k->HasFreeDof());
@@ -137,20 +147,24 @@ void ContactPipeline::FindPairs(const KindView* kinds) {
     ConsiderKindPair(i, j);
     ConsiderKindPair(j, i);
   }
+  for (size_t k = 0; k < nk; ++k)
+    if (kindCloudSelf_[k]) ConsiderKindPair(static_cast<int>(k), static_cast<int>(k));
   pairOverlaps_ = overlaps_;
   pairFilterVersion_ = version;
   pairsFormed_ = true;
 }
 
 void ContactPipeline::ConsiderKindPair(int a, int b) {
-  if (a == b) return;  // self-contact of a kind: not in this layer yet
   const ActorKind& A = *(*kinds_)[a];
   const ActorKind& B = *(*kinds_)[b];
   const bool tet = kindTetCollider_[b] != 0;
-  if (!kindColliding_[a] || !(kindCollider_[b] || tet)) return;
+  // Point clouds meet point clouds only (spec), themselves only with selfContact.
+  const bool cloud = kindCloud_[a] && kindCloud_[b] && (a != b || kindCloudSelf_[b]);
+  if (!kindColliding_[a] || !(kindCollider_[b] || tet || cloud)) return;
   // Neither has a stage unknown (static, kinematic or all prescribed): nothing to solve for.
   if (!kindHasDofs_[a] && !kindHasDofs_[b]) return;
   if (filter_ && !filter_->Allowed(kindActor_[a], kindActor_[b])) return;
+  if (cloud) return AddCloudPieces(a, b, CombineContactParams(A.contact, B.contact, false, true));
   KindPair p;
   p.a = a;
   p.b = b;
@@ -159,6 +173,30 @@ void ContactPipeline::ConsiderKindPair(int a, int b) {
   // The threshold padding applies when A has no collider of its own (spec: None or PointCloud).
   p.params = CombineContactParams(A.contact, B.contact, !tet && kindStatic_[b], PadsThreshold(a));
   kindPairs_.push_back(p);
+}
+
+void ContactPipeline::AddCloudPieces(int a, int b, const PairContactParams& params) {
+  const int n = (*kinds_)[b]->NumCloudPoints();
+  for (int begin = 0; begin < n; begin += kCloudPiece) {
+    KindPair p;
+    p.a = a;
+    p.b = b;
+    p.params = params;
+    p.cloudBegin = begin;
+    p.cloudEnd = std::min(n, begin + kCloudPiece);
+    kindPairs_.push_back(p);
+  }
+}
+
+void ContactPipeline::EvaluateCloudPiece(const KindView& kv, const KindPair& kp,
+                                         const DissipationSetup* setup, int order,
+                                         PairStencils* out,
+                                         std::vector<ContactSampleRecord>* records) const {
+  out->Reset();
+  const PointCloudColliderParams& cloud = *(*kinds_)[kp.b]->PointCloud();
+  EvaluateCloudPoints(cloudSamples_[kp.a], cloudPoints_[kp.b], (*kv.stageDof)[kp.b], kp.a == kp.b,
+                      cloud.selfContactExclusionRatio, kp.cloudBegin, kp.cloudEnd,
+                      PenaltyOf(kp.params), setup, order, out, records);
 }
 
 FrameSide ContactPipeline::TetSide(const KindView& kinds, int k,
@@ -231,7 +269,7 @@ size_t ContactPipeline::KindPairWork() const {
   size_t work = 0;
   for (const KindPair& kp : kindPairs_) {
     // A deforming surface's samples, or a tet field's pullbacks: always in parallel.
-    if (kindFaceSamples_[kp.a] || kindTetCollider_[kp.b]) return kParallelSampleWork;
+    if (kindFaceSamples_[kp.a] || kindTetCollider_[kp.b] || kp.Cloud()) return kParallelSampleWork;
     work += kindSamples_[kp.a];
   }
   return work;
@@ -268,7 +306,7 @@ void ContactPipeline::StepLimits(const KindView& now, const KindView& next,
   auto evaluateKind = [&](size_t k) {
     const KindPair& kp = kindPairs_[k];
     kindPairLimits_[k] = 1.0;
-    if (kindTetCollider_[kp.b]) return;  // none on a tet field
+    if (kindTetCollider_[kp.b] || kp.Cloud()) return;  // none on a tet field or a point cloud
     if (!kindStepLimit_[kp.a] || !kindStepLimit_[kp.b]) return;  // ActorKind::Shortcuts
     const PenaltyParams penalty = PenaltyOf(kp.params);
     const FrameSide B = KindFrameSide(*(*kinds_)[kp.b], q(next, kp.b), &q(now, kp.b), nullptr,
@@ -343,7 +381,17 @@ void ContactPipeline::FormKindSides(const Request& q) {
   if (!kinds_ || !q.kinds) return;
   const size_t nk = kinds_->size();
   kindRoles_.assign(nk, 0);
+  cloudSamples_.resize(nk);
+  cloudPoints_.resize(nk);
+  std::vector<double>& cell = cloudCell_;
+  cell.assign(nk, 0.0);
   for (const KindPair& kp : kindPairs_) {
+    if (kp.Cloud()) {  // the hash's cells: the largest reach L_B + δ of A's pairs
+      kindRoles_[kp.b] |= 4;
+      kindRoles_[kp.a] |= 8;
+      cell[kp.a] = std::max(cell[kp.a], (*kinds_)[kp.b]->PointCloud()->radius + kp.params.threshold);
+      continue;
+    }
     kindRoles_[kp.b] |= 1;
     kindRoles_[kp.a] |= 2;
   }
@@ -367,6 +415,11 @@ void ContactPipeline::FormKindSides(const Request& q) {
       FormKindFrameSide(kind, x, EntryOf(kv.qLast, k), x0, (*kv.stageDof)[k], &kindSides_[k]);
     if ((kindRoles_[k] & 2) && kind.NumSampleBodies() > 0)
       kindBodies_[k].Form(kind, x, EntryOf(kv.qLast, k), x0);
+    if (kindRoles_[k] & 4)
+      cloudPoints_[k].Form(kind, x, EntryOf(kv.qLast, k), x0, kindCloudSelf_[k]);
+    if (kindRoles_[k] & 8)
+      cloudSamples_[k].Form(kind, x, EntryOf(kv.qLast, k), x0, (*kv.stageDof)[k], cell[k],
+                            kind.PointCloud()->spatialHashLoadFactor, kindCloudSelf_[k]);
   }
 }
 
@@ -417,10 +470,14 @@ void ContactPipeline::EvaluateKindPairs(const Request& q, double* energy, Contac
     // Evaluated into the worker's own stencils, then kept in the pair's compact ones where they
     // fit (a pair of rigid bodies' [δp, δθ]: the memory the sweeps touch is a quarter).
     static thread_local PairStencils scratch;
-    FrameEvaluation evaluation(B, PenaltyOf(kp.params), kp.params.maxAlignmentNormals,
-                               dissipation ? &setup : nullptr, q.order, &scratch);
-    GatherKindPairSamples(q, kp, B, dissipation ? &setup : nullptr, &evaluation);
-    evaluation.Finish();
+    if (kp.Cloud()) {
+      EvaluateCloudPiece(*q.kinds, kp, dissipation ? &setup : nullptr, q.order, &scratch);
+    } else {
+      FrameEvaluation evaluation(B, PenaltyOf(kp.params), kp.params.maxAlignmentNormals,
+                                 dissipation ? &setup : nullptr, q.order, &scratch);
+      GatherKindPairSamples(q, kp, B, dissipation ? &setup : nullptr, &evaluation);
+      evaluation.Finish();
+    }
     bool fits = true;
     for (int e = 0; e < scratch.count; ++e) {
       if (3 * scratch.stencils[e].blocks > kMaxSmallStencil) fits = false;
@@ -456,10 +513,14 @@ void ContactPipeline::CollectSamples(std::vector<ContactSampleRecord>* records,
     const FrameSide& B = kindSides_[kp.b];
     const DissipationSetup setup = setupOf(kp.params);
     const size_t first = records->size();
-    FrameEvaluation evaluation(B, PenaltyOf(kp.params), kp.params.maxAlignmentNormals,
-                               dissipation ? &setup : nullptr, 0, &scratchKind, records);
-    GatherKindPairSamples(q, kp, B, dissipation ? &setup : nullptr, &evaluation);
-    evaluation.Finish();
+    if (kp.Cloud()) {
+      EvaluateCloudPiece(*kinds, kp, dissipation ? &setup : nullptr, 0, &scratchKind, records);
+    } else {
+      FrameEvaluation evaluation(B, PenaltyOf(kp.params), kp.params.maxAlignmentNormals,
+                                 dissipation ? &setup : nullptr, 0, &scratchKind, records);
+      GatherKindPairSamples(q, kp, B, dissipation ? &setup : nullptr, &evaluation);
+      evaluation.Finish();
+    }
     for (size_t k = first; k < records->size(); ++k) {
       (*records)[k].colliding = kindActor_[kp.a];
       (*records)[k].collider = kindActor_[kp.b];

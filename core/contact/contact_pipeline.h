@@ -12,6 +12,7 @@
 #include "core/contact/broad_phase.h"
 #include "core/contact/contact_filter.h"
 #include "core/contact/kind_contact.h"
+#include "core/contact/point_cloud.h"
 #include "core/model/rigid_body.h"
 #include "core/contact/rigid_contact.h"
 #include "core/contact/rigid_dissipation.h"
@@ -56,10 +57,13 @@ struct KindView {
 
 /// Ordered pair on a collider field of a kind, carried by its frame or its tets (A colliding, B
 /// collider: indices into the kinds), evaluated by the one assembler of
-/// core/contact/kind_contact.h.
+/// core/contact/kind_contact.h; or a piece of a point-cloud pair, B's points cloudBegin ..
+/// cloudEnd − 1 as spheres on A's samples (core/contact/point_cloud.h; a = b: self-contact).
 struct KindPair {
   int a = -1, b = -1;
   PairContactParams params;
+  int cloudBegin = -1, cloudEnd = -1;
+  bool Cloud() const { return cloudBegin >= 0; }
 };
 
 class ContactPipeline {
@@ -131,8 +135,11 @@ class ContactPipeline {
   /// scattered into the request's outputs.
   void EvaluateKindPairs(const Request& q, double* energy, ContactStats* st);
   void FindPairs(const KindView* kinds);
-  // The generic layer's ordered pair (a, b) when the roles, the filter and the motion allow it.
+  // The generic layer's ordered pair (a, b) when the roles, the filter and the motion allow it
+  // (a = b: a point cloud's self-contact).
   void ConsiderKindPair(int a, int b);
+  // A point-cloud pair's pieces (kCloudPiece points each) with their parameters.
+  void AddCloudPieces(int a, int b, const PairContactParams& params);
   // Whether colliding kind a's pairs take the threshold padding (spec: its collider is None or
   // PointCloud, i.e. it has neither a frame field nor a tet field of its own).
   bool PadsThreshold(int a) const { return !kindCollider_[a] && !kindTetCollider_[a]; }
@@ -178,6 +185,18 @@ class ContactPipeline {
   std::vector<char> kindStepLimit_;  // per kind: Shortcuts().stepLimit
   // Per kind: its samples lie on a deforming surface (face normals, 3-node stencils).
   std::vector<char> kindFaceSamples_;
+  // Per kind: a PointCloud collider (ActorKind::PointCloud) and its self-contact.
+  std::vector<char> kindCloud_, kindCloudSelf_;
+  // Per kind in a point-cloud pair, at the evaluation under way (FormKindSides): its samples
+  // with their hash (colliding) and its points (collider).
+  std::vector<CloudSamples> cloudSamples_;
+  std::vector<CloudPoints> cloudPoints_;
+  std::vector<double> cloudCell_;  // per colliding kind: its hash's cell side [m]
+  // Pair piece k's terms into *out (EvaluateCloudPoints at the request's configurations).
+  void EvaluateCloudPiece(const KindView& kv, const KindPair& kp, const DissipationSetup* setup,
+                          int order,
+                          PairStencils* out,
+                          std::vector<ContactSampleRecord>* records = nullptr) const;
 
   std::vector<KindPair> kindPairs_;
   // What kindPairs_ was formed from (FindPairs keeps it while both are unchanged): the broad

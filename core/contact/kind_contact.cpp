@@ -332,10 +332,10 @@ void SetBlocks(const PairSample& s, const FrameSide& B, int t, ContactStencil* s
 FrameEvaluation::FrameEvaluation(const FrameSide& B, const PenaltyParams& penalty,
                                  double maxAlignment, const DissipationSetup* dissipation,
                                  int order, PairStencils* out,
-                                 std::vector<ContactSampleRecord>* records)
+                                 std::vector<ContactSampleRecord>* records, bool append)
     : B_(B), penalty_(penalty), maxAlignment_(maxAlignment), dissipation_(dissipation),
       order_(order), out_(out), records_(records) {
-  out->Reset();
+  if (!append) out->Reset();
   withDissipation_ = dissipation && dissipation->coefficients.Any() && B.hasStart;
   // Samples without a colliding normal: no fading, friction split on the collider's normal.
   if (withDissipation_) {

@@ -217,9 +217,11 @@ struct SamplePullback {
 /// pile keeps hundreds per pair). B must outlive it; Finish closes the last stencil.
 class FrameEvaluation final : public SampleSink {
  public:
+  /// `append`: keep what *out holds (its stencils and counts) and add after it (the point-cloud
+  /// pairs evaluate one sphere after another into one list); else *out starts empty.
   FrameEvaluation(const FrameSide& B, const PenaltyParams& penalty, double maxAlignment,
                   const DissipationSetup* dissipation, int order, PairStencils* out,
-                  std::vector<ContactSampleRecord>* records = nullptr);
+                  std::vector<ContactSampleRecord>* records = nullptr, bool append = false);
   void Add(const PairSample& s) override;
   /// A rigid body's samples: each one's pullback Y, and Y_n where the bound needs it, first; the
   /// rest only when the field says it can contribute (most samples a pile's culling keeps do not).

@@ -29,6 +29,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/model/collider_params.h"
 #include "core/model/contact_params.h"
 #include "core/model/enums.h"
 #include "core/model/rigid_body.h"
@@ -399,6 +400,17 @@ class ActorKind {
   /// tet_field.h): the model holding the rest tets, their reference data and the grid; node
   /// a's position is q's entries 3a .. 3a+2, its tangent dofs the same. Null: none.
   virtual const SoftBodyModel* TetCollider() const { return nullptr; }
+  /// Or a PointCloud collider (spec: "Double-Integral Generalization"; its pairs: core/contact/
+  /// point_cloud.h): its parameters (null: none), its points X_B, each a moving sphere of radius
+  /// L_B about its current place, given as a sample is (y, a map on the kind's 3-dof blocks, no
+  /// normal) with the quadrature weight w_B [m^d] of the outer integral, d = CloudDimension()
+  /// (2: points of a surface, 1: of a curve). Self-contact compares the samples' and the points'
+  /// places in the reference configuration (ReferenceConfiguration, a q).
+  virtual const PointCloudColliderParams* PointCloud() const { return nullptr; }
+  virtual int CloudDimension() const { return 2; }
+  virtual int NumCloudPoints() const { return 0; }
+  virtual KindSample CloudPoint(int /*j*/, const Eigen::VectorXd& /*q*/) const { return {}; }
+  virtual const Eigen::VectorXd* ReferenceConfiguration() const { return nullptr; }
 
   /// Drawing: triangles over the kind's nodes (node a at q's entries 3a .. 3a+2) that show its
   /// surface (a soft body's boundary faces, a shell's triangles), for the trajectory and VTK

@@ -1,7 +1,6 @@
 // Collider construction parameters named by the spec (GridSdfParams, PointCloudColliderParams) and
-// the grid sizing shared by rigid and soft Sdf colliders. The PointCloud collider itself is not
-// implemented yet: an actor that requests it gets a clear error; its parameter type exists so that
-// the C++ and Python APIs carry the spec's names, defaults and validation from the start.
+// the grid sizing shared by rigid and soft Sdf colliders. The PointCloud collider is a shell's
+// (core/model/shell_kind.h; its pairs: core/contact/point_cloud.h); rigid and soft actors refuse it.
 #pragma once
 
 #include <functional>
@@ -57,7 +56,9 @@ inline constexpr auto kPointCloudColliderFields = std::make_tuple(
     MakeField("radius", &PointCloudColliderParams::radius, "m", PositiveRule(),
               "Interaction range L_B"),
     MakeField("self_contact_exclusion_ratio", &PointCloudColliderParams::selfContactExclusionRatio,
-              "-", PositiveRule(), "Self-contact exclusion ratio r"),
+              "-", Above(1.0),
+              "Self-contact exclusion ratio r: points closer than r L_B in the reference "
+              "configuration do not touch"),
     MakeField("spatial_hash_load_factor", &PointCloudColliderParams::spatialHashLoadFactor, "-",
               PositiveRule(), "Load factor of the collision-detection spatial hash"),
     MakeField("self_contact", &PointCloudColliderParams::selfContact, "", NoRule(),

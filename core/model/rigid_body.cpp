@@ -358,8 +358,9 @@ bool BuildColliderRole(const RigidActorDesc& d, const std::string& prefix, Rigid
     }
   }
   if (want == ColliderType::PointCloud)
-    return Fail(error, prefix + "collider_type: PointCloud is not supported yet (supported: "
-                                "Auto, None, Sphere, Box, Plane, Capsule, Mesh, Sdf)");
+    return Fail(error, prefix + "collider_type: PointCloud is not available for rigid bodies "
+                                "(a point cloud is a shell's collider; expected Auto, None, "
+                                "Sphere, Box, Plane, Capsule, Mesh or Sdf)");
   const bool analytic = want == ColliderType::Sphere || want == ColliderType::Box ||
                         want == ColliderType::Plane || want == ColliderType::Capsule;
   const bool match = want == ColliderType::None || !analytic ||

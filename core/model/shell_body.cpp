@@ -52,6 +52,26 @@ constexpr EnumName<ShellBendingModel> kBendingModels[] = {{ShellBendingModel::Mi
 
 EnumNames<ShellBendingModel> NamesOf(ShellBendingModel) { return kBendingModels; }
 
+namespace {
+
+// The collider points: the nodes with their lumped areas m_a/(ρ h), or the triangles' quadrature
+// points of the chosen rule with A w_q.
+void AddCloudPoints(const PointCloudColliderParams& p, const ShellMaterial& mat, ShellModel* m) {
+  if (!p.colliderTriangleElementType) {
+    for (int a = 0; a < m->NumNodes(); ++a)
+      m->cloudPoints.push_back({a, -1, Eigen::Vector3d::Zero(),
+                                m->nodeMass[a] / (mat.density * mat.thickness)});
+    return;
+  }
+  const TriangleQuadratureRule& rule = GetTriangleQuadratureRule(*p.colliderTriangleElementType);
+  for (size_t f = 0; f < m->faces.size(); ++f)
+    for (size_t q = 0; q < rule.weights.size(); ++q)
+      m->cloudPoints.push_back({-1, static_cast<int>(f), rule.barycentric[q],
+                                m->triangles[f].restArea * rule.weights[q]});
+}
+
+}  // namespace
+
 bool BuildShell(const ShellActorDesc& d, const std::string& prefix, ShellModel* m,
                 VectorState* state, Error* error) {
   if (!d.mesh || d.mesh->NumFaces() == 0)
@@ -60,6 +80,13 @@ bool BuildShell(const ShellActorDesc& d, const std::string& prefix, ShellModel* 
   if (std::string e = Validate(d.material, prefix + "material."); !e.empty()) return Fail(error, e);
   if (std::string e = Validate(d.contact, prefix + "contact."); !e.empty()) return Fail(error, e);
   if (!ValidatePlacement(d.position, d.orientation, d.linearVelocity, prefix, error)) return false;
+  if (d.colliderType != ColliderType::Auto && d.colliderType != ColliderType::None &&
+      d.colliderType != ColliderType::PointCloud)
+    return Fail(error, prefix + "collider_type: " + ToString(d.colliderType) +
+                           " is not available for shell actors (expected Auto, None or PointCloud: "
+                           "a shell has no distance field of its own)");
+  if (std::string e = Validate(d.pointCloud, prefix + "point_cloud."); !e.empty())
+    return Fail(error, e);
   const int n = d.mesh->NumVertices();
   for (int f = 0; f < d.mesh->NumFaces(); ++f)
     for (int k = 0; k < 3; ++k)
@@ -109,6 +136,9 @@ bool BuildShell(const ShellActorDesc& d, const std::string& prefix, ShellModel* 
       m->samples.push_back({static_cast<int>(f), rule.barycentric[q], t.restArea * rule.weights[q]});
   }
   m->faceSampleBegin.back() = static_cast<int>(m->samples.size());
+  m->pointCloud = d.colliderType != ColliderType::None;
+  m->cloud = d.pointCloud;
+  if (m->pointCloud) AddCloudPoints(d.pointCloud, mat, m);
   for (int i = 0; i < n; ++i)
     if (!(m->nodeMass[i] > 0))
       return Fail(error, prefix + "mesh: " + source + ": vertex " + std::to_string(i) +

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/model/collider_params.h"
 #include "core/model/contact_params.h"
 #include "core/model/enums.h"
 #include "core/model/error.h"
@@ -68,6 +69,10 @@ struct ShellActorDesc {
   ContactParams contact;
   /// The quadrature rule per triangle of the colliding role (spec: a shell's contactElementType).
   ActorBoundaryElementType contactElementType = ActorBoundaryElementType::P1Q3;
+  /// Its collider role: Auto and PointCloud make it a PointCloud collider (spec: a shell's
+  /// default), None none; a shell has no field of its own, so no other type.
+  ColliderType colliderType = ColliderType::Auto;
+  PointCloudColliderParams pointCloud;  ///< L_B, self-contact, the collider points' rule
   std::string contactLayer = "default";
   std::vector<NodeConstraint> constraints;  ///< pinned or driven nodes
   /// Clamped nodes: pinned, and every edge between two of them holds its rest mid-edge normal
@@ -90,6 +95,16 @@ struct ShellSample {
   double weight = 0.0;
 };
 
+/// A collider point of the PointCloud collider (spec: "Double-Integral Generalization"): mesh node
+/// `node` (face −1) with its lumped area, or a quadrature point of triangle `face` (barycentrics
+/// `bary`, pointCloud.colliderTriangleElementType) with A w_q; weight w_B [m²].
+struct ShellCloudPoint {
+  int node = -1;
+  int face = -1;
+  Eigen::Vector3d bary = Eigen::Vector3d::Zero();
+  double weight = 0.0;
+};
+
 /// Everything about a shell that stays fixed during a run.
 struct ShellModel {
   std::string name;
@@ -107,6 +122,9 @@ struct ShellModel {
   double mass = 0.0;                     ///< [kg]
   std::vector<ShellSample> samples;      ///< grouped face by face
   std::vector<int> faceSampleBegin;      ///< samples of face f: [begin[f], begin[f+1])
+  bool pointCloud = false;               ///< a PointCloud collider (colliderType Auto or PointCloud)
+  PointCloudColliderParams cloud;
+  std::vector<ShellCloudPoint> cloudPoints;
   std::vector<int> freeIndex;            ///< per node: index among the free nodes, −1 if prescribed
   std::vector<NodeConstraint> constraints;
   int NumNodes() const { return static_cast<int>(nodeMass.size()); }
@@ -122,7 +140,8 @@ std::array<bool, 3> Has(const Eigen::Vector3i& opposite);
 /// validating the description: the material's fields, a mesh of at least one triangle, every
 /// triangle non-degenerate, every edge shared by at most two triangles (a manifold with
 /// boundary) that traverse it in opposite directions (consistently oriented), constraints on
-/// existing nodes. False with *error naming the field (`prefix` + its
+/// existing nodes, a collider type a shell can provide (Auto, None, PointCloud) and valid
+/// point-cloud parameters. False with *error naming the field (`prefix` + its
 /// snake_case name) and the rule.
 bool BuildShell(const ShellActorDesc& desc, const std::string& prefix, ShellModel* model,
                 VectorState* state, Error* error);

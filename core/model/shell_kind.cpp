@@ -118,6 +118,17 @@ KindSample ShellKind::Sample(int k, const Eigen::VectorXd& q) const {
   return TriangleSample(model_.faces[ss.face], ss.bary, ss.weight, ss.face, q);
 }
 
+KindSample ShellKind::CloudPoint(int j, const Eigen::VectorXd& q) const {
+  const ShellCloudPoint& c = model_.cloudPoints[j];
+  if (c.face >= 0) return TriangleSample(model_.faces[c.face], c.bary, c.weight, c.face, q);
+  KindSample s;
+  s.y = Node(q, c.node);
+  s.weight = c.weight;
+  s.map = SamplePointMap::Point();
+  s.dof[0] = 3 * c.node;
+  return s;
+}
+
 void ShellKind::ForEachSampleNear(
     const Eigen::VectorXd& q, const Eigen::VectorXd& qLast,
     const std::function<bool(const Eigen::Vector3d&, const Eigen::Vector3d&, double)>& keep,

@@ -8,8 +8,9 @@
 // (lumped masses ρ h A / 3 per triangle corner). Prescribed nodes (pinned or driven) are
 // prescribed tangent dofs, placed by Prescribe. Its colliding role is the triangles' quadrature
 // samples (contactElementType), y = Σ_a b_a x_a, without a colliding normal: a shell is two-sided,
-// so alignment rejection and friction fading are off for it (spec). Not a collider yet (the
-// PointCloud collider comes with self-contact).
+// so alignment rejection and friction fading are off for it (spec). Its collider role is the
+// PointCloud collider (colliderType Auto or PointCloud): its nodes with their lumped areas, or
+// its triangles' quadrature points (pointCloud.colliderTriangleElementType), d = 2.
 #pragma once
 
 #include <memory>
@@ -56,6 +57,14 @@ class ShellKind : public NodeBodyKind {
       const Eigen::VectorXd& q, const Eigen::VectorXd& qLast,
       const std::function<bool(const Eigen::Vector3d&, const Eigen::Vector3d&, double)>& keep,
       const std::function<void(int, int)>& visit) const override;
+
+  const PointCloudColliderParams* PointCloud() const override {
+    return model_.pointCloud ? &model_.cloud : nullptr;
+  }
+  int NumCloudPoints() const override { return static_cast<int>(model_.cloudPoints.size()); }
+  KindSample CloudPoint(int j, const Eigen::VectorXd& q) const override;
+  /// The rest positions.
+  const Eigen::VectorXd* ReferenceConfiguration() const override { return &rest_.x; }
 
  private:
   /// The elastic terms at x (value; order >= 1 gradient into *g, order 2 triplets into *H).

@@ -290,6 +290,11 @@ bool CheckDifferentiable(Scene& scene, const SceneParameter& p, int index, Error
     if (scene.Carrier({a}).IsValid() && !scene.IsAttached({a}))
       return Fail(error, name + ": actor '" + scene.ActorName({a}) + "' is a soft skin; "
                          "sensitivities through soft-skinned actors are not supported yet");
+  for (int a = 0; a < scene.NumActors(); ++a)
+    if (scene.Kind({a}).PointCloud())
+      return Fail(error, name + ": actor '" + scene.ActorName({a}) + "' is a PointCloud "
+                         "collider; sensitivities through point-cloud contact are not supported "
+                         "yet");
   if (p.IsLinkParameter()) {
     if (!(ParameterValue(scene, p) > 0))
       return Fail(error, name + ": differentiated at positive values only; start from a value > 0");

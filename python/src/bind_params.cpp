@@ -242,8 +242,8 @@ py::object ActorContactParamsOf(const Actor& a) { return py::cast(ActorContactPa
 void BindParams(py::module_& m) {
   BindEnum<ColliderType>(m, "ColliderType",
                          "How an actor supplies its distance field (spec: Collider "
-                         "Representations). PointCloud is not implemented yet; soft actors "
-                         "accept None, Sdf and Auto. `None` is a Python keyword: write "
+                         "Representations). PointCloud is a shell's (its default, Auto); soft "
+                         "actors accept None, Sdf and Auto. `None` is a Python keyword: write "
                          "getattr(ColliderType, 'None').");
   BindEnum<ActorBoundaryElementType>(m, "ActorBoundaryElementType",
                                      "Surface quadrature rule per boundary triangle.");
@@ -302,7 +302,7 @@ void BindParams(py::module_& m) {
       kShellMaterialFields);
   BindParamsClass<PointCloudColliderParams>(
       m, "PointCloudColliderParams",
-      "Point-cloud collider parameters (the PointCloud collider is not implemented yet).",
+      "Point-cloud collider parameters (a shell's collider: ShellActorDesc.point_cloud).",
       kPointCloudColliderFields);
   BindParamsClass<NonlinearSolverParams>(
       m, "NonlinearSolverParams",

@@ -81,6 +81,10 @@ void BindShellActorDesc(py::module_& m) {
       .def_readwrite("contact", &ShellActorDesc::contact, "ContactParams")
       .def_readwrite("contact_element_type", &ShellActorDesc::contactElementType,
                      "quadrature rule per triangle of the colliding role. Default P1Q3.")
+      .def_readwrite("collider_type", &ShellActorDesc::colliderType,
+                     "ColliderType: Auto or PointCloud (the point cloud), or None")
+      .def_readwrite("point_cloud", &ShellActorDesc::pointCloud,
+                     "PointCloudColliderParams: L_B, self-contact, the collider points' rule")
       .def_readwrite("contact_layer", &ShellActorDesc::contactLayer)
       .def_readwrite("constraints", &ShellActorDesc::constraints,
                      "list of NodeConstraint (a copy: assign a whole list)")

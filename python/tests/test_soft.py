@@ -307,3 +307,33 @@ def test_bad_shells_are_refused_naming_the_field():
         scene.add_shell_actor(d)
     with pytest.raises(ValueError, match=r"^size: must be > 0"):
         sd.make_rectangle_mesh([0.0, 1.0], [2, 2])
+
+
+def test_a_sheet_rests_on_a_pinned_sheet_through_their_point_clouds():
+    # Two 10 cm sheets (PointCloud colliders, L_B = 1 cm): the lower pinned at z = 0, the upper
+    # dropped from 2 cm. The upper comes to rest inside the spheres' band: its mean height
+    # between L_B - eps (penalty depth at most the smoothing width) and L_B + delta, every step
+    # converged. A ratio r <= 1 is refused naming the field.
+    scene = sd.Scene(sd.SceneSettings(integrator=sd.IntegrationMethod.BackwardEuler))
+    lower = sd.ShellActorDesc("lower", sd.make_rectangle_mesh([0.1, 0.1], [6, 6]))
+    lower.constraints = [sd.NodeConstraint(list(range(lower.mesh.num_vertices)))]
+    upper = sd.ShellActorDesc("upper", sd.make_rectangle_mesh([0.06, 0.06], [4, 4]))
+    upper.position = [0, 0, 0.02]
+    for d in (lower, upper):
+        d.material.youngs_modulus = 1e7
+        d.contact.penalty_coefficient = 1e6
+        d.point_cloud.radius = 0.01
+    scene.add_shell_actor(lower)
+    sheet = scene.add_shell_actor(upper)
+    for _ in range(150):
+        report = scene.step(2e-3)
+        assert report.status == "Converged"
+    z = sheet.node_positions[:, 2].mean()
+    assert 0.01 - 0.005 < z < 0.01 + 0.001
+    assert np.linalg.norm(sheet.node_velocities, axis=1).max() < 0.05
+    bad = sd.ShellActorDesc("bad", sd.make_rectangle_mesh([0.1, 0.1], [2, 2]))
+    with pytest.raises(ValueError, match=r"^self_contact_exclusion_ratio: must be > 1, got 1"):
+        bad.point_cloud.self_contact_exclusion_ratio = 1.0  # checked when set
+    bad.collider_type = sd.ColliderType.Sdf
+    with pytest.raises(ValueError, match=r"^collider_type: Sdf is not available for shell"):
+        scene.add_shell_actor(bad)

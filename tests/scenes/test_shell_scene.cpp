@@ -5,7 +5,9 @@
 //     model given) is read into the description built in C++ would be, runs with every stage
 //     converged, and is drawn: the trajectory's header has its surface (every node, every
 //     triangle) and each frame its nodes' positions; VTK frames hold its triangles;
-//   - bad fields are refused with the JSON path and the rule (seven cases).
+//   - its point cloud's fields (radius, self-contact, the collider points' rule) are read into the
+//     kind (its points then the triangles' P1Q6 points), collider_type None removes them;
+//   - bad fields are refused with the JSON path and the rule (ten cases).
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -79,7 +81,37 @@ TEST_CASE("a shell actor in a scene file runs and is drawn", "[scenes][shell]") 
   std::filesystem::remove_all(dir);
 }
 
+TEST_CASE("a shell's point cloud in a scene file", "[scenes][shell][point_cloud]") {
+  SceneFile f;
+  Error e;
+  const std::string text = Replace(kFlap, R"("bending": "Midedge",)",
+                                   R"("bending": "Midedge", "point_cloud": {"radius": 0.02,
+                                   "self_contact": true, "self_contact_exclusion_ratio": 2,
+                                   "collider_triangle_element_type": "P1Q6"},)");
+  REQUIRE(LoadSceneText(text, ".", &f, &e));
+  const ActorKind& k = f.scene->Kind({0});
+  REQUIRE(k.PointCloud());
+  CHECK(k.PointCloud()->radius == 0.02);
+  CHECK(k.PointCloud()->selfContact);
+  CHECK(k.PointCloud()->selfContactExclusionRatio == 2.0);
+  CHECK(k.NumCloudPoints() == 6 * 16);
+  SceneFile g;
+  REQUIRE(LoadSceneText(Replace(kFlap, R"("bending": "Midedge",)",
+                                R"("bending": "Midedge", "collider_type": "None",)"),
+                        ".", &g, &e));
+  CHECK_FALSE(g.scene->Kind({0}).PointCloud());
+}
+
 TEST_CASE("bad shell fields name the JSON path and the rule", "[scenes][shell]") {
+  CHECK(LoadError(Replace(kFlap, R"("bending": "Midedge",)",
+                          R"("bending": "Midedge", "point_cloud": {"self_contact_exclusion_ratio": 1},)")) ==
+        "actors[0].point_cloud.self_contact_exclusion_ratio: must be > 1, got 1");
+  CHECK(LoadError(Replace(kFlap, R"("bending": "Midedge",)",
+                          R"("bending": "Midedge", "point_cloud": {"radius": 0},)")) ==
+        "actors[0].point_cloud.radius: must be > 0, got 0");
+  CHECK(LoadError(Replace(kFlap, R"("bending": "Midedge",)",
+                          R"("bending": "Midedge", "collider_type": "Box",)"))
+            .rfind("actors[0].collider_type: Box is not available for shell actors", 0) == 0);
   CHECK(LoadError(Replace(kFlap, R"("bending": "Midedge")", R"("bending": "Soft")"))
             .rfind("actors[0].bending: unknown value \"Soft\"", 0) == 0);
   CHECK(LoadError(Replace(kFlap, R"({"type": "rectangle",)", R"({"type": "disk",)")) ==
