@@ -4,7 +4,9 @@
 //
 // A triangle q0, q1, q2 (counter-clockwise) with unit normal n; across its edge i (opposite q_i)
 // the neighbouring triangle (q_{i+2}, q_{i+1}, p_i) has unit normal n_i, and the mid-edge normal is
-// m_i = (n + n_i)/|n + n_i| (m_i = n on a boundary edge; held at its rest value on a clamped one). Interpolating the mid-edge normals
+// m_i = (n + n_i)/|n + n_i| (on a free boundary edge m_i = n + φ_i t_i, t_i its in-plane unit
+// normal, with φ_i minimizing W; held at its rest value on a clamped edge). Interpolating the
+// mid-edge normals
 // linearly over the triangle, n(u, v) = Σ_i (1 − 2λ_i) m_i, gives the second fundamental form
 // II_ab = −r_a·n_b in the edge basis r_u = q1 − q0, r_v = q2 − q0:
 //   II = 2 [ (q1−q0)·(m1−m0)  (q1−q0)·(m2−m0) ; (q2−q0)·(m1−m0)  (q2−q0)·(m2−m0) ]  (symmetrized),
@@ -14,12 +16,13 @@
 //   W = h³/12 · Ā · ( μ tr(M²) + λ_s/2 (tr M)² )                                          [J]
 // For a cylinder of curvature κ this is D/2 κ² Ā and for a sphere D (1 + ν) κ² Ā, D = E h³ /
 // (12 (1 − ν²)): Kirchhoff's D/2 [(κ₁ + κ₂)² − 2 (1 − ν) κ₁κ₂] with its Poisson term (which the
-// hinge model lacks), so that a plate's free edges behave as the plate's. On a boundary edge
-// m_i = n: no curvature across a free edge is measured there (a boundary layer of one triangle
-// where ν ≠ 0 wants a transverse curvature). The mid-edge average converges on regular meshes.
-// Derivatives: W is written once as a template on the scalar type and evaluated on second-order
-// jets (energies/second_order_jet.h) for its exact gradient and Hessian in the 18 coordinates of q0, q1, q2,
-// p0, p1, p2.
+// hinge model lacks), so that a plate's free edges behave as the plate's. A free edge's angle
+// φ_i is the discrete natural boundary condition (no moment across the edge): W is quadratic in
+// φ, so φ* = −A⁻¹ b per evaluation and the triangle's energy is W*(x) = W(x, φ*(x)), with
+// gradient ∂W/∂x at φ* and Hessian W_xx − W_xφ W_φφ⁻¹ W_φx. The mid-edge average converges on
+// regular meshes. Derivatives: W is written once as a template on the scalar type and evaluated
+// on second-order jets (energies/second_order_jet.h) for its exact gradient and Hessian in the 18
+// coordinates of q0, q1, q2, p0, p1, p2 (and the free edges' φ, condensed).
 #pragma once
 
 #include <Eigen/Core>
@@ -28,9 +31,10 @@
 
 namespace superdex {
 
-/// How a triangle's edge i (opposite q_i) gets its mid-edge normal m_i: from the face alone (a
-/// free boundary edge, m_i = n), shared with the neighbour across it (m_i = (n + n_i)/|n + n_i|),
-/// or held at a given unit vector (a clamped edge: its rest mid-edge normal).
+/// How a triangle's edge i (opposite q_i) gets its mid-edge normal m_i: a free boundary edge's
+/// is minimized over (m_i = n + φ_i t_i), a shared one is the neighbours' average
+/// (m_i = (n + n_i)/|n + n_i|), a held one a given unit vector (a clamped edge: its rest
+/// mid-edge normal).
 enum class MidedgeEdge { Boundary, Shared, Held };
 
 /// The rest data of a mid-edge bending triangle.

@@ -213,6 +213,15 @@ TriangleMesh MakeRectangleMesh(const Eigen::Vector2d& lo, const Eigen::Vector2d&
   return m;
 }
 
+TriangleMesh MakeAnnulusMesh(double innerRadius, double outerRadius, double angle,
+                             const Eigen::Vector2i& cells) {
+  TriangleMesh m = MakeRectangleMesh(Eigen::Vector2d(innerRadius, 0.0),
+                                     Eigen::Vector2d(outerRadius, angle), cells);
+  for (Eigen::Vector3d& v : m.vertices)  // (r, θ) → (r cos θ, r sin θ): orientation kept (r > 0)
+    v = Eigen::Vector3d(v.x() * std::cos(v.y()), v.x() * std::sin(v.y()), 0.0);
+  return m;
+}
+
 TriangleMesh MakeCylinderMesh(double radius, double halfLength, int segments, int rings) {
   TriangleMesh m;
   const int n = std::max(3, segments);

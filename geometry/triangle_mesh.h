@@ -59,6 +59,14 @@ bool FaceOppositeVertices(const std::vector<Eigen::Vector3i>& faces,
 TriangleMesh MakeRectangleMesh(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi,
                                const Eigen::Vector2i& cells);
 
+/// Annular sector in the z = 0 plane about the origin: radii innerRadius < outerRadius [m],
+/// angles θ ∈ [0, angle] (0 < angle <= 2π) from +x towards +y, cells.x() radial by cells.y()
+/// angular quads, each split in two, counter-clockwise seen from +z. Vertex (i, j) (radius i,
+/// angle j) has index i + (cells.x() + 1) j. With angle = 2π the ends θ = 0 and 2π stay
+/// separate vertices: an annulus with a slit.
+TriangleMesh MakeAnnulusMesh(double innerRadius, double outerRadius, double angle,
+                             const Eigen::Vector2i& cells);
+
 /// Closed cylinder along x centred at the origin: radius [m], half length [m], `segments` around
 /// (>= 3), `rings` side rows (>= 1), fan-triangulated caps; outward oriented.
 TriangleMesh MakeCylinderMesh(double radius, double halfLength, int segments, int rings);

@@ -94,6 +94,16 @@ bool BuildShell(const ShellActorDesc& d, const std::string& prefix, ShellModel* 
         return Fail(error, prefix + "mesh: " + source + ": triangle " + std::to_string(f) +
                                " names a vertex that does not exist");
   if (!ValidateNodeConstraints(d.constraints, n, prefix, error)) return false;
+  for (size_t k = 0; k < d.loads.size(); ++k) {
+    const std::string field = prefix + "loads[" + std::to_string(k) + "]";
+    for (int i : d.loads[k].nodes)
+      if (i < 0 || i >= n)
+        return Fail(error, field + ".nodes: node " + std::to_string(i) +
+                               " does not exist (the mesh has " + std::to_string(n) + " nodes)");
+    if (d.loads[k].force.empty()) return Fail(error, field + ".force: at least one keyframe");
+    if (std::string e = CheckKeyframes(d.loads[k].force, field + ".force"); !e.empty())
+      return Fail(error, e);
+  }
   std::vector<char> clamped(n, 0);
   for (int i : d.clampedNodes) {
     if (i < 0 || i >= n)
@@ -107,6 +117,7 @@ bool BuildShell(const ShellActorDesc& d, const std::string& prefix, ShellModel* 
   m->material = d.material;
   m->faces = d.mesh->faces;
   m->constraints = d.constraints;
+  m->loads = d.loads;
   if (!d.clampedNodes.empty()) m->constraints.push_back(NodeConstraint{d.clampedNodes, {}});
   const ShellMaterial& mat = d.material;
   m->lame = PlaneStressLame(mat.youngsModulus, mat.poissonRatio);

@@ -75,6 +75,7 @@ struct ShellActorDesc {
   PointCloudColliderParams pointCloud;  ///< L_B, self-contact, the collider points' rule
   std::string contactLayer = "default";
   std::vector<NodeConstraint> constraints;  ///< pinned or driven nodes
+  std::vector<NodeLoad> loads;              ///< dead loads on nodes (e.g. a line load, lumped)
   /// Clamped nodes: pinned, and every edge between two of them holds its rest mid-edge normal
   /// (Midedge bending), so that the shell cannot turn about a clamped edge.
   std::vector<int> clampedNodes;
@@ -127,6 +128,7 @@ struct ShellModel {
   std::vector<ShellCloudPoint> cloudPoints;
   std::vector<int> freeIndex;            ///< per node: index among the free nodes, −1 if prescribed
   std::vector<NodeConstraint> constraints;
+  std::vector<NodeLoad> loads;
   int NumNodes() const { return static_cast<int>(nodeMass.size()); }
 };
 
@@ -140,7 +142,7 @@ std::array<bool, 3> Has(const Eigen::Vector3i& opposite);
 /// validating the description: the material's fields, a mesh of at least one triangle, every
 /// triangle non-degenerate, every edge shared by at most two triangles (a manifold with
 /// boundary) that traverse it in opposite directions (consistently oriented), constraints on
-/// existing nodes, a collider type a shell can provide (Auto, None, PointCloud) and valid
+/// existing nodes, loads on existing nodes with valid keyframes, a collider type a shell can provide (Auto, None, PointCloud) and valid
 /// point-cloud parameters. False with *error naming the field (`prefix` + its
 /// snake_case name) and the rule.
 bool BuildShell(const ShellActorDesc& desc, const std::string& prefix, ShellModel* model,

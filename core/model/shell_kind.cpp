@@ -106,6 +106,13 @@ double ShellKind::StageEnergy(const KindStageData& stage, const Eigen::VectorXd&
     if (order >= 2)
       for (int i = 0; i < 3; ++i) H->emplace_back(3 * a + i, 3 * a + i, m.nodeMass[a] / dt2);
   }
+  for (const NodeLoad& load : m.loads) {  // dead loads: −f(t)·x
+    const Eigen::Vector3d f = PiecewiseLinear(load.force, stage.time);
+    for (int a : load.nodes) {
+      value -= f.dot(Node(q, a));
+      if (order >= 1) g->segment<3>(3 * a) -= f;
+    }
+  }
   return value + ElasticTerms(q, order, projection != PsdProjection::None, g, H);
 }
 

@@ -1,7 +1,7 @@
 // A shell actor carried by the generic actor layer (core/model/actor_kind.h): q = the node
 // positions x (3 per node, [m]), v their velocities, a vector kind (q ⊕ δ = q + δ). Its stage
 // energy (core/model/shell_body.h, energies/shell_energies.h):
-//   Φ(x) = Σ_a m_a/(2Δt_i²) |x_a − x̂_a|² − Σ_a m_a g·x_a
+//   Φ(x) = Σ_a m_a/(2Δt_i²) |x_a − x̂_a|² − Σ_a m_a g·x_a − Σ_loaded f_a(t_i)·x_a
 //          + Σ_triangles h A (μ tr E² + λ_s/2 (tr E)²) + W_bending                          [J]
 // with W_bending the mid-edge Kirchhoff–Love term per triangle (energies/shell_midedge.h, the
 // default) or the hinge term per interior edge (energies/shell_energies.h; ShellBendingModel)

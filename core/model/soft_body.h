@@ -56,6 +56,14 @@ struct NodeConstraint {
   Eigen::Vector3d Displacement(double t) const;
 };
 
+/// A dead load on nodes: each of `nodes` carries the force `force`(t) [N] (keyframes (t [s],
+/// force [N]), linear in between, the first before and the last after them; one keyframe: a
+/// constant load). Its potential −f(t)·x enters each stage at the stage's time.
+struct NodeLoad {
+  std::vector<int> nodes;
+  VectorKeyframes force;
+};
+
 /// A soft skin's binding to a link of its skeleton (the articulated actor the soft actor is nested
 /// under, Scene::AddSoftActor): the nodes it selects move with that link's rigid transform
 /// (eliminated dofs, core/model/actor_kind.h CarriedPart), the union of
