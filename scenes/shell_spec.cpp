@@ -45,7 +45,7 @@ ShellActorDesc ReadShellDesc(const json& a, const std::string& path, const std::
   CheckObject(a, path,
               {"name", "type", "mesh", "material", "bending", "position", "orientation",
                "euler_deg", "velocity", "contact", "contact_element_type", "collider_type",
-               "point_cloud", "contact_layer", "parent", "constraints", "clamped"});
+               "point_cloud", "contact_layer", "parent", "constraints", "loads", "clamped"});
   ShellActorDesc d;
   d.name = String(a, path, "name");
   if (!a.contains("mesh")) Throw(Join(path, "mesh"), "missing required field");
@@ -66,6 +66,8 @@ ShellActorDesc ReadShellDesc(const json& a, const std::string& path, const std::
   if (a.contains("constraints"))
     d.constraints = ReadConstraints(a.at("constraints"), Join(path, "constraints"), *d.mesh,
                                     d.position, d.orientation);
+  if (a.contains("loads"))
+    d.loads = ReadNodeLoads(a.at("loads"), Join(path, "loads"), *d.mesh, d.position, d.orientation);
   if (a.contains("clamped")) {  // nodes or regions, without paths
     const std::string cp = Join(path, "clamped");
     const std::vector<NodeConstraint> clamped =

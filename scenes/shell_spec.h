@@ -13,7 +13,7 @@ namespace superdex::scene_json {
 /// baseDir): name, mesh ({"type": "file", "file", "scale"} or {"type": "rectangle", "size":
 /// [a, b], "cells": [nx, ny]}), material, bending, placement, velocity, contact,
 /// contact_element_type, collider_type, point_cloud (PointCloudColliderParams' fields),
-/// contact_layer, constraints and clamped nodes.
+/// contact_layer, constraints, loads and clamped nodes.
 ShellActorDesc ReadShellDesc(const json& a, const std::string& path, const std::string& baseDir);
 
 }  // namespace superdex::scene_json

@@ -195,33 +195,65 @@ std::vector<SkinBinding> ReadSkin(const json& list, const std::string& path, con
   return out;
 }
 
+// The nodes of entry c at p: its "nodes" or the placed mesh's nodes in its "region".
+std::vector<int> ReadNodeSelection(const json& c, const std::string& p, const MeshVertices& mesh,
+                                   const Eigen::Vector3d& position,
+                                   const Eigen::Quaterniond& orientation) {
+  if (c.contains("nodes") == c.contains("region"))
+    Throw(p, "give exactly one of \"nodes\" and \"region\"");
+  if (c.contains("nodes")) return ReadNodes(c, p, mesh);
+  const Eigen::Matrix3d R = orientation.normalized().toRotationMatrix();
+  const json& r = c.at("region");
+  const std::string rp = Join(p, "region");
+  CheckObject(r, rp, {"min", "max"});
+  const Eigen::Vector3d lo = Vector<3>(r, rp, "min", Eigen::Vector3d::Zero());
+  const Eigen::Vector3d hi = Vector<3>(r, rp, "max", Eigen::Vector3d::Zero());
+  std::vector<int> nodes;
+  for (int v = 0; v < mesh.NumVertices(); ++v) {
+    const Eigen::Vector3d x = position + R * mesh.vertices[v];
+    if ((x.array() >= lo.array()).all() && (x.array() <= hi.array()).all()) nodes.push_back(v);
+  }
+  if (nodes.empty()) Throw(rp, "selects no node");
+  return nodes;
+}
+
+std::vector<NodeLoad> ReadNodeLoads(const json& list, const std::string& path,
+                                    const MeshVertices& mesh, const Eigen::Vector3d& position,
+                                    const Eigen::Quaterniond& orientation) {
+  if (!list.is_array()) Throw(path, "must be an array");
+  std::vector<NodeLoad> out;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string p = path + "[" + std::to_string(i) + "]";
+    const json& c = list[i];
+    CheckObject(c, p, {"nodes", "region", "force"});
+    NodeLoad load;
+    load.nodes = ReadNodeSelection(c, p, mesh, position, orientation);
+    if (!c.contains("force")) Throw(Join(p, "force"), "missing required field");
+    ForEachItem(c, p, "force", "must be an array of [t, fx, fy, fz]",
+                [&](const json& f, const std::string& fp) {
+                  if (!f.is_array() || f.size() != 4) Throw(fp, "must be [t, fx, fy, fz]");
+                  for (const json& v : f)
+                    if (!v.is_number()) Throw(fp, "must be [t, fx, fy, fz] (numbers)");
+                  load.force.push_back(
+                      {f[0].get<double>(),
+                       Eigen::Vector3d(f[1].get<double>(), f[2].get<double>(), f[3].get<double>())});
+                });
+    out.push_back(std::move(load));
+  }
+  return out;
+}
+
 std::vector<NodeConstraint> ReadConstraints(const json& list, const std::string& path,
                                             const MeshVertices& mesh, const Eigen::Vector3d& position,
                                             const Eigen::Quaterniond& orientation) {
   if (!list.is_array()) Throw(path, "must be an array");
   std::vector<NodeConstraint> out;
-  const Eigen::Matrix3d R = orientation.normalized().toRotationMatrix();
   for (size_t i = 0; i < list.size(); ++i) {
     const std::string p = path + "[" + std::to_string(i) + "]";
     const json& c = list[i];
     CheckObject(c, p, {"nodes", "region", "path"});
     NodeConstraint k;
-    if (c.contains("nodes") == c.contains("region"))
-      Throw(p, "give exactly one of \"nodes\" and \"region\"");
-    if (c.contains("nodes")) {
-      k.nodes = ReadNodes(c, p, mesh);
-    } else {
-      const json& r = c.at("region");
-      const std::string rp = Join(p, "region");
-      CheckObject(r, rp, {"min", "max"});
-      const Eigen::Vector3d lo = Vector<3>(r, rp, "min", Eigen::Vector3d::Zero());
-      const Eigen::Vector3d hi = Vector<3>(r, rp, "max", Eigen::Vector3d::Zero());
-      for (int v = 0; v < mesh.NumVertices(); ++v) {
-        const Eigen::Vector3d x = position + R * mesh.vertices[v];
-        if ((x.array() >= lo.array()).all() && (x.array() <= hi.array()).all()) k.nodes.push_back(v);
-      }
-      if (k.nodes.empty()) Throw(rp, "selects no node");
-    }
+    k.nodes = ReadNodeSelection(c, p, mesh, position, orientation);
     auto readStep = [&](const json& f, const std::string& fp) {  // one [t, dx, dy, dz]
       if (!f.is_array() || f.size() != 4) Throw(fp, "must be [t, dx, dy, dz]");
       for (const json& v : f)

@@ -18,6 +18,12 @@ std::shared_ptr<TetMesh> ReadTetMeshSpec(const json& j, const std::string& path,
                                          const std::string& baseDir, double tetBudget,
                                          std::string* source);
 
+/// [{"nodes": [...] | "region": {...}, "force": [[t, fx, fy, fz], ...]}, ...]: dead loads [N]
+/// per node (NodeLoad).
+std::vector<NodeLoad> ReadNodeLoads(const json& list, const std::string& path,
+                                    const MeshVertices& mesh, const Eigen::Vector3d& position,
+                                    const Eigen::Quaterniond& orientation);
+
 /// [{"nodes": [...] | "region": {...}, "path": [[t, dx, dy, dz], ...]}, ...]
 std::vector<NodeConstraint> ReadConstraints(const json& list, const std::string& path,
                                             const MeshVertices& mesh, const Eigen::Vector3d& position,

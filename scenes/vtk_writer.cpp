@@ -67,6 +67,8 @@ bool WriteAtomically(const std::string& path, Error* error, Write&& write) {
 
 bool WriteVtkFrame(Scene& scene, const std::string& path, Error* error) {
   Surface s;
+  std::vector<ContactSampleRecord> records;  // a kind's surface's samples (read once)
+  bool recorded = false;
   for (int i = 0; i < scene.NumActors(); ++i) {
     const ActorHandle h{i};
     if (scene.IsSoft(h)) {
@@ -88,20 +90,31 @@ bool WriteVtkFrame(Scene& scene, const std::string& path, Error* error) {
       continue;
     }
     if (const std::vector<Eigen::Vector3i>* tri = scene.Kind(h).SurfaceTriangles()) {
-      // A shell's triangles (no contact tractions per face yet: zero).
+      // A kind's triangles (a shell's): its samples' contact tractions (normal, friction and
+      // damping) per reference area of their face, displacements from its reference shape.
       const Eigen::VectorXd& x = scene.KindStateOf(h).x;
-      const Eigen::VectorXd& x0 = scene.Kind(h).InitialState().x;
+      const Eigen::VectorXd* ref = scene.Kind(h).ReferenceConfiguration();
+      const Eigen::VectorXd& x0 = ref ? *ref : scene.Kind(h).InitialState().x;
       const int base = static_cast<int>(s.points.size());
       for (Eigen::Index a = 0; a < x.size() / 3; ++a) {
         s.points.push_back(x.segment<3>(3 * a));
         s.displacement.push_back(x.segment<3>(3 * a) - x0.segment<3>(3 * a));
       }
+      if (!recorded) records = scene.ContactSamples();
+      recorded = true;
+      const size_t first = s.traction.size();
       for (const Eigen::Vector3i& f : *tri) {
         s.triangles.push_back(f + Eigen::Vector3i::Constant(base));
         s.traction.push_back(Eigen::Vector3d::Zero());
-        s.referenceArea.push_back(0.0);
+        const Eigen::Vector3d a = x0.segment<3>(3 * f[0]), b = x0.segment<3>(3 * f[1]),
+                              c = x0.segment<3>(3 * f[2]);
+        s.referenceArea.push_back(0.5 * (b - a).cross(c - a).norm());
         s.actor.push_back(i);
       }
+      for (const ContactSampleRecord& r : records)
+        if (r.colliding == i && r.face >= 0 && r.face < static_cast<int>(tri->size()))
+          s.traction[first + r.face] +=
+              r.weight * (r.traction + r.friction + r.damping) / s.referenceArea[first + r.face];
       continue;
     }
     if (const auto* art = dynamic_cast<const ArticulatedKind*>(&scene.Kind(h))) {

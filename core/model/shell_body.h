@@ -29,6 +29,7 @@ struct ShellMaterial {
   double poissonRatio = 0.3;   ///< ν
   double density = 1000.0;     ///< ρ
   double thickness = 1e-3;     ///< h
+  double stiffnessDamping = 0.0;  ///< β [s]: Rayleigh stiffness-proportional damping
 };
 
 inline constexpr auto kShellMaterialFields = std::make_tuple(
@@ -39,7 +40,10 @@ inline constexpr auto kShellMaterialFields = std::make_tuple(
     MakeField("density", &ShellMaterial::density, "kg/m^3", PositiveRule().Worded("finite and > 0"),
               "Density ρ (the shell's mass is ρ h A)"),
     MakeField("thickness", &ShellMaterial::thickness, "m", PositiveRule().Worded("finite and > 0"),
-              "Thickness h (membrane stiffness E h, plate stiffness E h³ / (12 (1 − ν²)))"));
+              "Thickness h (membrane stiffness E h, plate stiffness E h³ / (12 (1 − ν²)))"),
+    MakeField("stiffness_damping", &ShellMaterial::stiffnessDamping, "s", NonNegativeRule(),
+              "Rayleigh stiffness damping β: dissipation β/2 vᵀ K v, K the elastic Hessian "
+              "(membrane and bending) at the stage's predictor"));
 
 /// The table of Validate (optim/field_table.h).
 constexpr const auto& FieldsOf(const ShellMaterial&) { return kShellMaterialFields; }

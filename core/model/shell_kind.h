@@ -2,7 +2,11 @@
 // positions x (3 per node, [m]), v their velocities, a vector kind (q ⊕ δ = q + δ). Its stage
 // energy (core/model/shell_body.h, energies/shell_energies.h):
 //   Φ(x) = Σ_a m_a/(2Δt_i²) |x_a − x̂_a|² − Σ_a m_a g·x_a − Σ_loaded f_a(t_i)·x_a
-//          + Σ_triangles h A (μ tr E² + λ_s/2 (tr E)²) + W_bending                          [J]
+//          + Σ_triangles h A (μ tr E² + λ_s/2 (tr E)²) + W_bending
+//          + β/(2Δt_i) Σ_e (x_e − x⁰_e)ᵀ K_e (x_e − x⁰_e)                                  [J]
+// the last the stiffness damping Δt_i R (R = β/2 vᵀ K v, v = (x − x⁰)/Δt_i), each element's K_e
+// its PSD-projected elastic Hessian at the predictor x̂, frozen for the stage (an exact quadratic
+// potential; as a soft body's, core/model/soft_terms.h)
 // with W_bending the mid-edge Kirchhoff–Love term per triangle (energies/shell_midedge.h, the
 // default) or the hinge term per interior edge (energies/shell_energies.h; ShellBendingModel)
 // (lumped masses ρ h A / 3 per triangle corner). Prescribed nodes (pinned or driven) are
@@ -39,6 +43,8 @@ class ShellKind : public NodeBodyKind {
   bool IsPrescribed(int dof) const override { return model_.freeIndex[dof / 3] < 0; }
   /// The constraints' paths from the rest positions.
   void Prescribe(double t, Eigen::VectorXd* q) const override;
+  /// With stiffness damping: the elements' damping stiffnesses at the predictor x̂.
+  void PrepareStage(KindStageData* stage) const override;
   /// Cold stages, whole, no step limit, as a soft body's (core/model/soft_kind.h): not measured
   /// on shells yet.
   StageShortcuts Shortcuts() const override { return {false, false, false}; }
@@ -68,8 +74,15 @@ class ShellKind : public NodeBodyKind {
 
  private:
   /// The elastic terms at x (value; order >= 1 gradient into *g, order 2 triplets into *H).
+  /// With `elementHessians`, instead of adding anything, stores each element's Hessian (membrane
+  /// triangles, then bending triangles or hinges), projected when `project`.
   double ElasticTerms(const Eigen::VectorXd& x, int order, bool project, Eigen::VectorXd* g,
-                      std::vector<Eigen::Triplet<double>>* H) const;
+                      std::vector<Eigen::Triplet<double>>* H,
+                      std::vector<Eigen::MatrixXd>* elementHessians = nullptr) const;
+  /// The stiffness damping's β/(2Δt) Σ_e uᵀ K_e u, u = x − x⁰ (order >= 1 its gradient into *g,
+  /// order 2 its Hessian's triplets into *H).
+  double DampingTerms(const KindStageData& stage, const Eigen::VectorXd& x, int order,
+                      Eigen::VectorXd* g, std::vector<Eigen::Triplet<double>>* H) const;
   ShellModel model_;
   VectorState rest_;  ///< the rest positions (constraints displace from them) and initial velocity
 };

@@ -88,6 +88,8 @@ void BindShellActorDesc(py::module_& m) {
       .def_readwrite("contact_layer", &ShellActorDesc::contactLayer)
       .def_readwrite("constraints", &ShellActorDesc::constraints,
                      "list of NodeConstraint (a copy: assign a whole list)")
+      .def_readwrite("loads", &ShellActorDesc::loads,
+                     "list of NodeLoad: dead loads on nodes (a copy: assign a whole list)")
       .def_readwrite("clamped_nodes", &ShellActorDesc::clampedNodes,
                      "pinned nodes whose edges also hold their rest normals (a copy: assign a "
                      "whole list)");

@@ -157,6 +157,21 @@ void BindSoftActorDesc(py::module_& m) {
                ")";
       });
 
+  py::class_<NodeLoad>(m, "NodeLoad",
+                       "A dead load on nodes: each node carries the force f(t) [N], keyframes\n"
+                       "[(t [s], [fx, fy, fz] [N]), ...] linear in between (one keyframe: constant).")
+      .def(py::init([](const std::vector<int>& nodes,
+                       const std::vector<std::pair<double, Eigen::Vector3d>>& force) {
+             NodeLoad l;
+             l.nodes = nodes;
+             l.force = force;
+             return l;
+           }),
+           py::arg("nodes"), py::arg("force"))
+      .def_readwrite("nodes", &NodeLoad::nodes, "node indices (a copy: assign a whole list)")
+      .def_readwrite("force", &NodeLoad::force,
+                     "keyframes [(t [s], [fx, fy, fz] [N]), ...] with increasing t");
+
   py::class_<SkinBinding>(
       m, "SkinBinding",
       "A soft skin's binding to a link of its skeleton (the articulated actor given as the soft\n"

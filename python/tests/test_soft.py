@@ -337,3 +337,32 @@ def test_a_sheet_rests_on_a_pinned_sheet_through_their_point_clouds():
     bad.collider_type = sd.ColliderType.Sdf
     with pytest.raises(ValueError, match=r"^collider_type: Sdf is not available for shell"):
         scene.add_shell_actor(bad)
+
+
+def test_a_shell_plate_carries_a_tip_line_load_as_kirchhoffs_plate():
+    # A 1 m square steel plate (h = 1 cm, nu = 0) clamped along x = -0.5 and loaded by 10 N
+    # spread along its free edge (NodeLoad, lumped by the trapezoid rule), no gravity: the tip
+    # deflection F L^3 / (3 D) within 3 % on 8 x 8 cells.
+    E, h, F = 2e11, 0.01, 10.0
+    mesh = sd.make_rectangle_mesh([1.0, 1.0], [8, 8])
+    d = sd.ShellActorDesc("plate", mesh, sd.ShellMaterial(youngs_modulus=E, poisson_ratio=0.0,
+                                                          density=7800.0, thickness=h))
+    x = mesh.vertices
+    d.clamped_nodes = [int(i) for i in np.flatnonzero(x[:, 0] < -0.5 + 1e-12)]
+    tip = np.flatnonzero(x[:, 0] > 0.5 - 1e-12)
+    ends = [int(i) for i in tip if abs(abs(x[i, 1]) - 0.5) < 1e-12]
+    inner = [int(i) for i in tip if int(i) not in ends]
+    d.loads = [sd.NodeLoad(inner, [(0.0, [0, 0, F / 8])]), sd.NodeLoad(ends, [(0.0, [0, 0, F / 16])])]
+    assert len(d.loads) == 2 and d.loads[0].force[0][0] == 0.0
+    settings = sd.SceneSettings(integrator=sd.IntegrationMethod.BackwardEuler)
+    settings.gravity = [0, 0, 0]
+    scene = sd.Scene(settings)
+    plate = scene.add_shell_actor(d)
+    for _ in range(3):
+        scene.step(100.0)
+    expected = F / (3 * E * h**3 / 12)
+    w = plate.node_positions[tip, 2].mean()
+    assert abs(w / expected - 1) < 0.03
+    d.loads = [sd.NodeLoad([10**6], [(0.0, [0, 0, 1])])]
+    with pytest.raises(ValueError, match=r"^loads\[0\]\.nodes: node 1000000 does not exist"):
+        scene.add_shell_actor(d)

@@ -7,7 +7,8 @@
 //     triangle) and each frame its nodes' positions; VTK frames hold its triangles;
 //   - its point cloud's fields (radius, self-contact, the collider points' rule) are read into the
 //     kind (its points then the triangles' P1Q6 points), collider_type None removes them;
-//   - bad fields are refused with the JSON path and the rule (ten cases).
+//     loads on a region's nodes are read with their keyframes;
+//   - bad fields are refused with the JSON path and the rule (twelve cases).
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -38,6 +39,19 @@ using test::Replace;
 
 using test::LoadError;
 
+// Runs the scene with its trajectory and VTK frames in a fresh temporary directory `name`
+// (t.jsonl, vtk/), which it returns.
+std::string RunWithOutputs(SceneFile* f, const char* name, RunSummary* r) {
+  const std::string dir = (std::filesystem::temp_directory_path() / name).string();
+  std::filesystem::remove_all(dir);
+  RunOptions options;
+  options.out = dir + "/t.jsonl";
+  options.vtk = dir + "/vtk";
+  Error e;
+  if (!RunScene(f, options, r, &e)) FAIL(e.message);
+  return dir;
+}
+
 }  // namespace
 
 TEST_CASE("a shell actor in a scene file runs and is drawn", "[scenes][shell]") {
@@ -55,13 +69,8 @@ TEST_CASE("a shell actor in a scene file runs and is drawn", "[scenes][shell]") 
   int clamped = 0;
   for (int i = 0; i < m.NumNodes(); ++i) clamped += m.freeIndex[i] < 0;
   CHECK(clamped == 3);  // the edge x = −0.1
-  const std::string dir = (std::filesystem::temp_directory_path() / "superdex_shell_scene").string();
-  std::filesystem::remove_all(dir);
-  RunOptions options;
-  options.out = dir + "/t.jsonl";
-  options.vtk = dir + "/vtk";
   RunSummary r;
-  REQUIRE(RunScene(&f, options, &r, &e));
+  const std::string dir = RunWithOutputs(&f, "superdex_shell_scene", &r);
   CHECK(r.converged == r.steps);
   std::ifstream in(dir + "/t.jsonl");
   std::string line;
@@ -95,6 +104,16 @@ TEST_CASE("a shell's point cloud in a scene file", "[scenes][shell][point_cloud]
   CHECK(k.PointCloud()->selfContact);
   CHECK(k.PointCloud()->selfContactExclusionRatio == 2.0);
   CHECK(k.NumCloudPoints() == 6 * 16);
+  // Loads on a region of nodes, keyframed.
+  SceneFile h;
+  REQUIRE(LoadSceneText(Replace(kFlap, R"("bending": "Midedge",)",
+                                R"("bending": "Midedge", "loads": [{"region": {"min": [0.09, -1, 0],
+                                "max": [0.11, 1, 1]}, "force": [[0, 0, 0, 0], [1, 0, 0, 2]]}],)"),
+                        ".", &h, &e));
+  const ShellModel& m = static_cast<const ShellKind&>(h.scene->Kind({0})).Model();
+  REQUIRE(m.loads.size() == 1);
+  CHECK(m.loads[0].nodes.size() == 3);  // the edge x = 0.1
+  CHECK(m.loads[0].force.back().second.z() == 2.0);
   SceneFile g;
   REQUIRE(LoadSceneText(Replace(kFlap, R"("bending": "Midedge",)",
                                 R"("bending": "Midedge", "collider_type": "None",)"),
@@ -103,6 +122,12 @@ TEST_CASE("a shell's point cloud in a scene file", "[scenes][shell][point_cloud]
 }
 
 TEST_CASE("bad shell fields name the JSON path and the rule", "[scenes][shell]") {
+  CHECK(LoadError(Replace(kFlap, R"("bending": "Midedge",)",
+                          R"("bending": "Midedge", "loads": [{"nodes": [0], "force": [[0, 1, 2]]}],)")) ==
+        "actors[0].loads[0].force[0]: must be [t, fx, fy, fz]");
+  CHECK(LoadError(Replace(kFlap, R"("bending": "Midedge",)",
+                          R"("bending": "Midedge", "loads": [{"nodes": [0]}],)")) ==
+        "actors[0].loads[0].force: missing required field");
   CHECK(LoadError(Replace(kFlap, R"("bending": "Midedge",)",
                           R"("bending": "Midedge", "point_cloud": {"self_contact_exclusion_ratio": 1},)")) ==
         "actors[0].point_cloud.self_contact_exclusion_ratio: must be > 1, got 1");
@@ -127,4 +152,40 @@ TEST_CASE("bad shell fields name the JSON path and the rule", "[scenes][shell]")
   CHECK(LoadError(Replace(kFlap, R"({"type": "rectangle", "size": [0.2, 0.1], "cells": [4, 2]})",
                           R"({"type": "file", "file": "no_such.obj"})"))
             .rfind("actors[0].mesh.file: ", 0) == 0);
+}
+
+TEST_CASE("a shell's VTK frames carry its contact tractions", "[scenes][shell]") {
+  // A 0.2 m sheet (1 kg/m²) settled on the ground: its faces' tractions times their areas add
+  // up to its weight, 0.04 × 9.81 N.
+  const char* text = R"({
+    "settings": {"dt": 0.01, "duration": 0.5, "integrator": "BackwardEuler"},
+    "actors": [
+      {"name": "ground", "dynamic": false, "shape": {"type": "plane", "normal": [0, 0, 1]}},
+      {"name": "sheet", "type": "shell", "mesh": {"type": "rectangle", "size": [0.2, 0.2], "cells": [4, 4]},
+       "material": {"youngs_modulus": 1e7, "density": 1000, "thickness": 0.001},
+       "position": [0, 0, 0.0008], "contact": {"normal_viscous_damping_coefficient": 1.0}}
+    ]})";
+  SceneFile f;
+  Error e;
+  REQUIRE(LoadSceneText(text, ".", &f, &e));
+  RunSummary r;
+  const std::string dir = RunWithOutputs(&f, "superdex_shell_vtk", &r);
+  std::string last;
+  for (const auto& entry : std::filesystem::directory_iterator(dir + "/vtk"))
+    last = std::max(last, entry.path().string());
+  std::ifstream vtk(last);
+  std::string line;
+  while (std::getline(vtk, line) && line.rfind("VECTORS traction", 0) != 0) {
+  }
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  const double area = 0.04 / 32;  // 32 equal triangles
+  for (int k = 0; k < 32; ++k) {
+    Eigen::Vector3d t;
+    vtk >> t.x() >> t.y() >> t.z();
+    force += area * t;
+  }
+  INFO("contact force " << force.transpose() << " N in " << last);
+  CHECK(force.z() == Approx(0.04 * 9.81).epsilon(0.01));
+  CHECK(std::abs(force.x()) + std::abs(force.y()) < 1e-6);
+  std::filesystem::remove_all(dir);
 }
