@@ -222,6 +222,36 @@ TriangleMesh MakeAnnulusMesh(double innerRadius, double outerRadius, double angl
   return m;
 }
 
+TriangleMesh MakeDiskMesh(double radius, int rings) {
+  TriangleMesh m;
+  const int n = std::max(1, rings);
+  m.vertices.emplace_back(0.0, 0.0, 0.0);
+  for (int k = 1; k <= n; ++k)
+    for (int j = 0; j < 6 * k; ++j) {
+      const double a = 2.0 * M_PI * j / (6 * k), r = radius * k / n;
+      m.vertices.emplace_back(r * std::cos(a), r * std::sin(a), 0.0);
+    }
+  // Ring k's first vertex: 1 + 3k(k − 1).
+  auto first = [](int k) { return k == 0 ? 0 : 1 + 3 * k * (k - 1); };
+  for (int j = 0; j < 6; ++j) m.faces.emplace_back(0, 1 + j, 1 + (j + 1) % 6);
+  for (int k = 2; k <= n; ++k) {  // zip ring k − 1 (ni vertices) with ring k (no) by angle
+    const int ni = 6 * (k - 1), no = 6 * k, bi = first(k - 1), bo = first(k);
+    int i = 0, j = 0;
+    while (i < ni || j < no) {
+      // Advance on the ring whose next vertex comes first (the outer one on a tie: a corner).
+      const bool outer = i == ni || (j < no && (j + 1) * ni <= (i + 1) * no);
+      if (outer) {
+        m.faces.emplace_back(bi + i % ni, bo + j, bo + (j + 1) % no);
+        ++j;
+      } else {
+        m.faces.emplace_back(bi + i, bo + j % no, bi + (i + 1) % ni);
+        ++i;
+      }
+    }
+  }
+  return m;
+}
+
 TriangleMesh MakeCylinderMesh(double radius, double halfLength, int segments, int rings) {
   TriangleMesh m;
   const int n = std::max(3, segments);

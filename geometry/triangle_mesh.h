@@ -67,6 +67,12 @@ TriangleMesh MakeRectangleMesh(const Eigen::Vector2d& lo, const Eigen::Vector2d&
 TriangleMesh MakeAnnulusMesh(double innerRadius, double outerRadius, double angle,
                              const Eigen::Vector2i& cells);
 
+/// Disk of `radius` [m] in the z = 0 plane about the origin: a centre vertex and `rings` (>= 1)
+/// rings, ring k of 6k vertices at radius k·radius/rings (vertex 0 the centre, ring k's first at
+/// angle 0 on +x), neighbouring rings zipped into triangles by angle (6 k² triangles inside ring
+/// k; nearly equilateral), counter-clockwise seen from +z.
+TriangleMesh MakeDiskMesh(double radius, int rings);
+
 /// Closed cylinder along x centred at the origin: radius [m], half length [m], `segments` around
 /// (>= 3), `rings` side rows (>= 1), fan-triangulated caps; outward oriented.
 TriangleMesh MakeCylinderMesh(double radius, double halfLength, int segments, int rings);

@@ -33,8 +33,27 @@ std::shared_ptr<TriangleMesh> ReadShellMesh(const json& j, const std::string& pa
       Throw(Join(path, "cells"), "must be two integers in [1, 1000]");
     *mesh = MakeRectangleMesh(-0.5 * size, 0.5 * size, cells.cast<int>());
     *source = "rectangle";
+  } else if (type == "disk") {
+    CheckObject(j, path, {"type", "radius", "rings"});
+    const double radius = Positive(j, path, "radius", 0.5);
+    const int rings = Integer(j, path, "rings", 8, 1, 500);
+    *mesh = MakeDiskMesh(radius, rings);
+    *source = "disk";
+  } else if (type == "annulus") {
+    CheckObject(j, path, {"type", "inner_radius", "outer_radius", "angle_deg", "cells"});
+    const double inner = Positive(j, path, "inner_radius", 0.25);
+    const double outer = Positive(j, path, "outer_radius", 0.5);
+    if (!(outer > inner)) Throw(Join(path, "outer_radius"), "must be > inner_radius");
+    const double angle = Positive(j, path, "angle_deg", 360.0);
+    if (angle > 360.0) Throw(Join(path, "angle_deg"), "must be in (0, 360]");
+    const Eigen::Vector2d cells = Vector<2>(j, path, "cells", Eigen::Vector2d(4, 32));
+    if (!(cells.minCoeff() >= 1.0 && cells.maxCoeff() <= 1000.0) || cells != cells.array().round().matrix())
+      Throw(Join(path, "cells"), "must be two integers in [1, 1000]");
+    *mesh = MakeAnnulusMesh(inner, outer, angle * M_PI / 180.0, cells.cast<int>());
+    *source = "annulus";
   } else {
-    Throw(Join(path, "type"), "unknown value \"" + type + "\" (expected one of: file, rectangle)");
+    Throw(Join(path, "type"),
+          "unknown value \"" + type + "\" (expected one of: file, rectangle, disk, annulus)");
   }
   return mesh;
 }

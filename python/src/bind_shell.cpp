@@ -2,6 +2,7 @@
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <memory>
 #include <optional>
 
@@ -103,6 +104,28 @@ void BindShellActorDesc(py::module_& m) {
       py::arg("size"), py::arg("cells"),
       "A rectangle of size [a, b] [m] centred at the origin in the z = 0 plane, cells [nx, ny]\n"
       "quads split in two triangles each (vertex (i, j) has index i + (nx + 1) j).");
+  m.def(
+      "make_disk_mesh",
+      [](double radius, int rings) {
+        if (!(radius > 0.0)) throw py::value_error("radius: must be > 0");
+        if (rings < 1 || rings > 500) throw py::value_error("rings: must be in [1, 500]");
+        return std::make_shared<TriangleMesh>(MakeDiskMesh(radius, rings));
+      },
+      py::arg("radius"), py::arg("rings"),
+      "A disk of `radius` [m] about the origin in the z = 0 plane: a centre vertex and `rings`\n"
+      "rings of 6k vertices (nearly equilateral triangles).");
+  m.def(
+      "make_annulus_mesh",
+      [](double inner, double outer, const Eigen::Vector2i& cells, double angle) {
+        if (!(inner > 0.0 && outer > inner)) throw py::value_error("radii: must be 0 < inner < outer");
+        if (!(angle > 0.0 && angle <= 2.0 * M_PI)) throw py::value_error("angle: must be in (0, 2 pi]");
+        if (!(cells.minCoeff() >= 1)) throw py::value_error("cells: must be >= 1 in both components");
+        return std::make_shared<TriangleMesh>(MakeAnnulusMesh(inner, outer, angle, cells));
+      },
+      py::arg("inner_radius"), py::arg("outer_radius"), py::arg("cells"),
+      py::arg("angle") = 2.0 * M_PI,
+      "An annular sector in the z = 0 plane: radii [m], cells [radial, angular], angles [0, angle]\n"
+      "[rad]; at 2 pi an annulus with a slit (its two sides separate vertices).");
 }
 
 void BindShellMethods(py::class_<Scene>& scene) {

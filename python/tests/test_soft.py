@@ -366,3 +366,15 @@ def test_a_shell_plate_carries_a_tip_line_load_as_kirchhoffs_plate():
     d.loads = [sd.NodeLoad([10**6], [(0.0, [0, 0, 1])])]
     with pytest.raises(ValueError, match=r"^loads\[0\]\.nodes: node 1000000 does not exist"):
         scene.add_shell_actor(d)
+
+
+def test_disk_and_annulus_meshes():
+    d = sd.make_disk_mesh(0.5, 3)
+    assert d.num_vertices == 1 + 6 + 12 + 18 and d.num_faces == 54
+    assert np.allclose(d.vertices[0], 0) and np.allclose(np.linalg.norm(d.vertices[-18:], axis=1), 0.5)
+    a = sd.make_annulus_mesh(6.0, 10.0, [4, 32])
+    assert a.num_vertices == 5 * 33 and a.num_faces == 256
+    with pytest.raises(ValueError, match=r"^rings: must be in \[1, 500\]"):
+        sd.make_disk_mesh(0.5, 0)
+    with pytest.raises(ValueError, match=r"^radii: must be 0 < inner < outer"):
+        sd.make_annulus_mesh(10.0, 6.0, [4, 32])

@@ -10,6 +10,8 @@
 //     and shear vanish with κ_y = 0); a static solve (Backward Euler steps of 100 s). The hinge
 //     model, without the plate's Poisson term, deflects 28 % more at 16 cells (its free edges
 //     relax anticlastically);
+//   - a clamped disk under its weight: the centre within 2.5 % of q R⁴/(64 D) at 8 and 12 rings
+//     (measured −2.4 %, −2.0 %: no convergence on that mesh, the mid-edge average's limit);
 //   - stiffness damping: a clamped strip's swing keeps its amplitude without it (SymplecticDIRK22,
 //     log decrement below 0.005) and loses it at ζ = β ω / 2 with it (within 5 %);
 //   - the stage of a shell (with stiffness damping) resting on the ground in contact: gradient
@@ -22,6 +24,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <memory>
 
 #include "core/model/shell_kind.h"
@@ -214,6 +217,48 @@ TEST_CASE("shell: stiffness damping takes a mode's energy at the rate ζ = β ω
   INFO("β " << beta << " s: log decrement " << damped << ", expected " << expected << " (ω "
             << omega << " rad/s, ζ " << zeta << ")");
   CHECK(std::abs(damped / expected - 1.0) < 0.05);
+}
+
+TEST_CASE("shell: a clamped circular plate under its weight sags near Kirchhoff's plate",
+          "[core][shell]") {
+  // A steel disk (R = 1 m, h = 1 cm, ν = 0.3) clamped along its rim (MakeDiskMesh: a centre and
+  // rings of 6k nodes, no grid direction): the centre deflection against q R⁴/(64 D) (Kirchhoff).
+  // Measured +2.1 %, −2.4 %, −2.0 % at 4, 8, 12 rings: the mid-edge average does not converge on
+  // this mesh (its triangles are not a lattice: known of the average formulation, whose
+  // stiffness carries a mesh-dependent error off regular grids; the rectangle cantilever
+  // converges). Asserted: within 2.5 % at 8 and 12 rings, so that a change of the error shows.
+  const double R = 1.0, h = 0.01, E = 2e11, nu = 0.3, rho = 7800.0, g = 9.81;
+  const double D = E * h * h * h / (12.0 * (1.0 - nu * nu));
+  const double expected = rho * h * g * std::pow(R, 4) / (64.0 * D);
+  SceneSettings settings;
+  settings.integrator = IntegrationMethod::BackwardEuler;
+  std::vector<double> error;
+  for (int rings : {4, 8, 12}) {
+    ShellActorDesc d;
+    d.name = "disk";
+    d.mesh = std::make_shared<TriangleMesh>(MakeDiskMesh(R, rings));
+    d.material = {E, nu, rho, h, 0.0};
+    d.colliderType = ColliderType::None;
+    for (int i = 0; i < d.mesh->NumVertices(); ++i)
+      if (d.mesh->vertices[i].norm() > R - 1e-9) d.clampedNodes.push_back(i);
+    Scene scene(settings);
+    Error e;
+    const ActorHandle a = scene.AddActor(ShellKind::Build(d, &e), &e);
+    INFO(e.message);
+    REQUIRE(a.IsValid());
+    for (int s = 0; s < 3; ++s) {
+      StepReport r;
+      REQUIRE(scene.Step(100.0, &r, &e));
+      REQUIRE(r.status == StageStatus::Converged);
+    }
+    const double w = -scene.KindStateOf(a).x[2];  // node 0: the centre
+    error.push_back(std::abs(w / expected - 1.0));
+    std::printf("clamped disk, %d rings: centre %.6g m, Kirchhoff %.6g m (%.2f %%)\n", rings, w,
+                expected, 100 * (w / expected - 1.0));
+  }
+  INFO("relative errors " << error[0] << ", " << error[1] << ", " << error[2]);
+  CHECK(error[1] < 0.025);
+  CHECK(error[2] < 0.025);
 }
 
 }  // namespace superdex

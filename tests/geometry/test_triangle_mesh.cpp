@@ -343,3 +343,29 @@ TEST_CASE("cylinder mesh: closed, outward, volume of the inscribed prism", "[geo
   CHECK(MeshSdf::Build(m, &why) != nullptr);  // closed and outward
   for (int f = 0; f < m.NumFaces(); ++f) CHECK(m.FaceArea(f) > 0);
 }
+
+TEST_CASE("disk and annulus meshes: open +z discs of the right area and topology",
+          "[geometry][mesh]") {
+  for (int rings : {1, 3, 7}) {
+    const TriangleMesh d = MakeDiskMesh(0.5, rings);
+    CHECK(d.NumVertices() == 1 + 3 * rings * (rings + 1));
+    CHECK(d.NumFaces() == 6 * rings * rings);
+    CHECK(AllVerticesUsed(d));
+    for (int f = 0; f < d.NumFaces(); ++f) CHECK(d.FaceNormal(f).z() > 1.0 - 1e-12);
+    const Topology t = Analyse(d);
+    CHECK(t.boundaryEdges == 6 * rings);  // the rim
+    CHECK(d.NumVertices() - t.edges + d.NumFaces() == 1);  // a disk
+    // The area of the rim's regular 6n-gon.
+    const int n = 6 * rings;
+    CHECK(d.SurfaceArea() == Approx(0.5 * n * 0.25 * std::sin(2 * M_PI / n)).epsilon(1e-12));
+  }
+  const TriangleMesh a = MakeAnnulusMesh(6.0, 10.0, 2 * M_PI, Eigen::Vector2i(4, 32));
+  CHECK(a.NumVertices() == 5 * 33);
+  CHECK(a.NumFaces() == 2 * 4 * 32);
+  for (int f = 0; f < a.NumFaces(); ++f) CHECK(a.FaceNormal(f).z() > 1.0 - 1e-12);
+  const Topology t = Analyse(a);
+  CHECK(t.boundaryEdges == 2 * 32 + 2 * 4);  // both rims and the slit's two sides
+  CHECK(a.NumVertices() - t.edges + a.NumFaces() == 1);  // cut open: a disk's topology
+  const double polygon = 0.5 * 32 * std::sin(2 * M_PI / 32) * (100.0 - 36.0);
+  CHECK(a.SurfaceArea() == Approx(polygon).epsilon(1e-12));
+}

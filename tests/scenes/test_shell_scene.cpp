@@ -8,7 +8,8 @@
 //   - its point cloud's fields (radius, self-contact, the collider points' rule) are read into the
 //     kind (its points then the triangles' P1Q6 points), collider_type None removes them;
 //     loads on a region's nodes are read with their keyframes;
-//   - bad fields are refused with the JSON path and the rule (twelve cases).
+//   - generated disks and annuli (with a slit) are read;
+//   - bad fields are refused with the JSON path and the rule (thirteen cases).
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -139,8 +140,12 @@ TEST_CASE("bad shell fields name the JSON path and the rule", "[scenes][shell]")
             .rfind("actors[0].collider_type: Box is not available for shell actors", 0) == 0);
   CHECK(LoadError(Replace(kFlap, R"("bending": "Midedge")", R"("bending": "Soft")"))
             .rfind("actors[0].bending: unknown value \"Soft\"", 0) == 0);
-  CHECK(LoadError(Replace(kFlap, R"({"type": "rectangle",)", R"({"type": "disk",)")) ==
-        "actors[0].mesh.type: unknown value \"disk\" (expected one of: file, rectangle)");
+  CHECK(LoadError(Replace(kFlap, R"({"type": "rectangle",)", R"({"type": "sphere",)")) ==
+        "actors[0].mesh.type: unknown value \"sphere\" (expected one of: file, rectangle, disk, "
+        "annulus)");
+  CHECK(LoadError(Replace(kFlap, R"({"type": "rectangle", "size": [0.2, 0.1], "cells": [4, 2]})",
+                          R"({"type": "annulus", "inner_radius": 0.2, "outer_radius": 0.1})")) ==
+        "actors[0].mesh.outer_radius: must be > inner_radius");
   CHECK(LoadError(Replace(kFlap, R"("cells": [4, 2])", R"("cells": [4, 0])")) ==
         "actors[0].mesh.cells: must be two integers in [1, 1000]");
   CHECK(LoadError(Replace(kFlap, R"("thickness": 0.002)", R"("thickness": -1)"))
@@ -152,6 +157,25 @@ TEST_CASE("bad shell fields name the JSON path and the rule", "[scenes][shell]")
   CHECK(LoadError(Replace(kFlap, R"({"type": "rectangle", "size": [0.2, 0.1], "cells": [4, 2]})",
                           R"({"type": "file", "file": "no_such.obj"})"))
             .rfind("actors[0].mesh.file: ", 0) == 0);
+}
+
+TEST_CASE("generated disk and annulus meshes in a scene file", "[scenes][shell]") {
+  SceneFile f;
+  Error e;
+  REQUIRE(LoadSceneText(Replace(kFlap, R"({"type": "rectangle", "size": [0.2, 0.1], "cells": [4, 2]})",
+                                R"({"type": "disk", "radius": 0.1, "rings": 3})"),
+                        ".", &f, &e));
+  const ShellModel& disk = static_cast<const ShellKind&>(f.scene->Kind({0})).Model();
+  CHECK(disk.NumNodes() == 1 + 6 + 12 + 18);
+  CHECK(disk.faces.size() == 6 * 9);
+  SceneFile g;
+  REQUIRE(LoadSceneText(Replace(kFlap, R"({"type": "rectangle", "size": [0.2, 0.1], "cells": [4, 2]})",
+                                R"({"type": "annulus", "inner_radius": 0.05, "outer_radius": 0.1,
+                                "angle_deg": 360, "cells": [2, 12]})"),
+                        ".", &g, &e));
+  const ShellModel& ring = static_cast<const ShellKind&>(g.scene->Kind({0})).Model();
+  CHECK(ring.NumNodes() == 3 * 13);  // the slit's two sides are separate nodes
+  CHECK(ring.faces.size() == 2 * 2 * 12);
 }
 
 TEST_CASE("a shell's VTK frames carry its contact tractions", "[scenes][shell]") {
