@@ -97,10 +97,33 @@ double MinPhiOn(const ShellKind& k, const Eigen::VectorXd& x, const RigidKind& b
   return phi;
 }
 
+// Backward Euler with the current load (the spec's advice for point clouds).
+SceneSettings ClothSettings() {
+  SceneSettings settings;
+  settings.integrator = IntegrationMethod::BackwardEuler;
+  settings.eval.implicitNormalForceForDissipation = true;
+  return settings;
+}
+
+// The static ground plane.
+ActorHandle AddGround(Scene* scene) {
+  Error e;
+  const ActorHandle g = scene->AddRigidActor(
+      Obstacle("ground", RigidShapeKind::Plane, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()), &e);
+  REQUIRE(g.IsValid());
+  return g;
+}
+
 struct Watch {
   double minPhi = INFINITY, minSelf = INFINITY, maxEnergyRise = -INFINITY;
   int steps = 0, converged = 0, activeSelf = 0;
 };
+
+// The bounds of every frame: the ramp's band on rigid fields and for admissible self pairs.
+void CheckBounds(const Watch& w) {
+  CHECK(w.minPhi >= kDelta - 2 * kEps);
+  CHECK(w.minSelf >= kL + kDelta - 2 * kEps);
+}
 
 // Runs `steps` steps of dt, watching the bounds after every step (the rigid obstacles `fields`).
 Watch Run(Scene* scene, ActorHandle cloth, const std::vector<ActorHandle>& fields, int steps,
@@ -132,14 +155,9 @@ Watch Run(Scene* scene, ActorHandle cloth, const std::vector<ActorHandle>& field
 TEST_CASE("cloth: dropped on a rigid sphere and on a box, it drapes within the band",
           "[core][shell][point_cloud][cloth]") {
   const bool box = GENERATE(false, true);
-  SceneSettings settings;
-  settings.integrator = IntegrationMethod::BackwardEuler;
-  settings.eval.implicitNormalForceForDissipation = true;  // the spec's advice for point clouds
-  Scene scene(settings);
+  Scene scene(ClothSettings());
   Error e;
-  const ActorHandle ground =
-      scene.AddRigidActor(Obstacle("ground", RigidShapeKind::Plane, Eigen::Vector3d::Zero(),
-                                   Eigen::Vector3d::Zero()), &e);
+  const ActorHandle ground = AddGround(&scene);
   const ActorHandle obstacle =
       box ? scene.AddRigidActor(Obstacle("box", RigidShapeKind::Box, Eigen::Vector3d(0.04, 0.04, 0.04),
                                          Eigen::Vector3d(0, 0, 0.04)), &e)
@@ -164,22 +182,16 @@ TEST_CASE("cloth: dropped on a rigid sphere and on a box, it drapes within the b
                                 << w.maxEnergyRise << " J of " << drop << " J, cloth z in [" << low
                                 << ", " << top << "]");
   CHECK(w.converged == w.steps);
-  CHECK(w.minPhi >= kDelta - 2 * kEps);
-  CHECK(w.minSelf >= kL + kDelta - 2 * kEps);
+  CheckBounds(w);
   CHECK(w.maxEnergyRise <= 1e-6 * std::abs(drop));
   CHECK(top == Approx(box ? 0.08 : 0.10).margin(0.005));  // resting on the obstacle's top
 }
 
 TEST_CASE("cloth: falling edge first, it folds onto itself on the ground without passing through",
           "[core][shell][point_cloud][cloth]") {
-  SceneSettings settings;
-  settings.integrator = IntegrationMethod::BackwardEuler;
-  settings.eval.implicitNormalForceForDissipation = true;
-  Scene scene(settings);
+  Scene scene(ClothSettings());
   Error e;
-  const ActorHandle ground =
-      scene.AddRigidActor(Obstacle("ground", RigidShapeKind::Plane, Eigen::Vector3d::Zero(),
-                                   Eigen::Vector3d::Zero()), &e);
+  const ActorHandle ground = AddGround(&scene);
   // Hanging in the x = 0 plane, tilted 0.15 rad off the vertical, its lower edge 5 mm up,
   // thrown down onto its edge.
   const Eigen::Quaterniond hang(Eigen::AngleAxisd(M_PI / 2 - 0.15, Eigen::Vector3d::UnitX()));
@@ -196,21 +208,15 @@ TEST_CASE("cloth: falling edge first, it folds onto itself on the ground without
                 << w.maxEnergyRise << " J of " << drop << " J");
   CHECK(w.converged == w.steps);
   CHECK(w.activeSelf > 10);  // it did fold onto itself
-  CHECK(w.minPhi >= kDelta - 2 * kEps);
-  CHECK(w.minSelf >= kL + kDelta - 2 * kEps);
+  CheckBounds(w);
   CHECK(w.maxEnergyRise <= 1e-6 * std::abs(drop));
 }
 
 TEST_CASE("cloth: a sheet crumpled by a rigid plunger does not pass through itself",
           "[core][shell][point_cloud][cloth]") {
-  SceneSettings settings;
-  settings.integrator = IntegrationMethod::BackwardEuler;
-  settings.eval.implicitNormalForceForDissipation = true;
-  Scene scene(settings);
+  Scene scene(ClothSettings());
   Error e;
-  const ActorHandle ground =
-      scene.AddRigidActor(Obstacle("ground", RigidShapeKind::Plane, Eigen::Vector3d::Zero(),
-                                   Eigen::Vector3d::Zero()), &e);
+  const ActorHandle ground = AddGround(&scene);
   // A kinematic paddle (its lower part below the ground, so that the sheet meets its side face)
   // sweeps along the ground from beyond the sheet's edge to its middle.
   RigidActorDesc paddle = Obstacle("paddle", RigidShapeKind::Box, Eigen::Vector3d(0.01, 0.12, 0.03),
@@ -245,8 +251,7 @@ TEST_CASE("cloth: a sheet crumpled by a rigid plunger does not pass through itse
   CHECK(w.converged == w.steps);
   CHECK(w.activeSelf > 10);
   CHECK(top > 0.02);  // crumpled up, not slid away flat
-  CHECK(w.minPhi >= kDelta - 2 * kEps);
-  CHECK(w.minSelf >= kL + kDelta - 2 * kEps);
+  CheckBounds(w);
 }
 
 }  // namespace superdex
